@@ -1,0 +1,183 @@
+"""Independent numeric loop closure: the second truth for every model.
+
+A loop is a closed chain of revolute joints written in the seeds' Denavit-Hartenberg form
+
+    T(q) = Rz(s_0 q[j_0]) L_0 Rz(s_1 q[j_1]) L_1 ... Rz(s_(n-1) q[j_(n-1)]) L_(n-1),
+
+which closes when T(q) = I. `L_k` is the constant transform from joint k's frame to joint k+1's
+frame at zero angle and `s_k = +/-1` is the direction in which the loop traverses joint k. The
+residual of a loop is (rotation vector of T, translation of T): radians and the mechanism's length
+unit. Nothing here knows a closed form; the solver is damped Newton (Levenberg-Marquardt, which
+tolerates the rank-deficient Jacobians of overconstrained loops) with continuation in the input.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .errors import ConvergenceError
+from .geometry import rotation_vector, transform_z
+
+
+@dataclass(frozen=True)
+class Loop:
+    """One closed chain; see the module docstring for the product it stands for."""
+
+    joints: tuple[int, ...]
+    links: NDArray[np.float64]  # (n, 4, 4)
+    signs: tuple[int, ...]
+
+    def product(self, q: ArrayLike) -> NDArray[np.float64]:
+        """Loop transforms T(q), (..., 4, 4), for joint vectors q of shape (..., n_joints)."""
+        q = np.asarray(q, dtype=float)
+        T = np.broadcast_to(np.eye(4), q.shape[:-1] + (4, 4))
+        for j, s, L in zip(self.joints, self.signs, self.links):
+            T = T @ transform_z(s * q[..., j]) @ L
+        return T
+
+
+@dataclass(frozen=True)
+class LoopSystem:
+    """All independent loops of a mechanism over one vector of `n_joints` joint angles."""
+
+    n_joints: int
+    loops: tuple[Loop, ...]
+
+    def residual(self, q: ArrayLike) -> NDArray[np.float64]:
+        """Closure residual (..., 6 * n_loops): per loop, rotation vector then translation."""
+        parts = []
+        for loop in self.loops:
+            T = loop.product(q)
+            parts += [rotation_vector(T[..., :3, :3]), T[..., :3, 3]]
+        return np.concatenate(parts, axis=-1)
+
+    def residual_norm(self, q: ArrayLike) -> NDArray[np.float64]:
+        """Largest absolute closure residual component, (...)."""
+        return np.max(np.abs(self.residual(q)), axis=-1)
+
+    def jacobian(self, q: ArrayLike, step: float = 1e-7) -> NDArray[np.float64]:
+        """Closure Jacobian (6 * n_loops, n_joints) at one configuration, central differences."""
+        q = np.asarray(q, dtype=float)
+        dq = np.eye(self.n_joints) * step
+        qs = np.concatenate([q + dq, q - dq])
+        r = self.residual(qs)
+        return ((r[: self.n_joints] - r[self.n_joints :]) / (2 * step)).T
+
+    def solve(
+        self,
+        q0: ArrayLike,
+        fixed: ArrayLike,
+        *,
+        tol: float = 1e-14,
+        max_iter: int = 60,
+    ) -> NDArray[np.float64]:
+        """
+        Close the loops by moving the joints not in `fixed`, starting from `q0`.
+
+        Parameters
+        ----------
+        q0 : (n_joints,) float
+          Start configuration; fixed joints keep their value.
+        fixed : (n_joints,) bool
+          Joints held at their `q0` value (the input).
+        tol : float
+          Stop when the largest residual component is below this (radians / length units).
+
+        Raises
+        ------
+        ConvergenceError
+          When the residual stays above `tol` (within a factor 100) after `max_iter` iterations.
+        """
+        q = np.array(q0, dtype=float)
+        free = ~np.asarray(fixed, dtype=bool)
+        damping = 1e-6
+        r = self.residual(q)
+        for _ in range(max_iter):
+            if np.max(np.abs(r)) < tol:
+                return q
+            J = self.jacobian(q)[:, free]
+            JtJ = J.T @ J
+            g = J.T @ r
+            step = np.linalg.solve(JtJ + damping * np.diag(np.diag(JtJ) + 1e-12), -g)
+            trial = q.copy()
+            trial[free] += step
+            r_trial = self.residual(trial)
+            if np.sum(r_trial**2) < np.sum(r**2):
+                q, r = trial, r_trial
+                damping = max(damping * 0.1, 1e-12)
+            else:
+                damping *= 10.0
+                if damping > 1e8:
+                    break
+        if np.max(np.abs(r)) < 100 * tol:
+            return q
+        raise ConvergenceError(
+            f"loop closure did not converge: residual {np.max(np.abs(r)):.3g} > tolerance {tol:g}"
+        )
+
+    def follow(
+        self, q_start: ArrayLike, input_joint: int, values: ArrayLike, *, tol: float = 1e-14
+    ) -> NDArray[np.float64]:
+        """
+        Follow one branch by continuity: solve at each input value in turn.
+
+        Each solve starts from a secant prediction through the two previous solutions, so the
+        branch is kept through crossings. `q_start` must be closed (or nearly) at `values[0]`.
+
+        Returns
+        -------
+        q : (len(values), n_joints) float
+        """
+        values = np.asarray(values, dtype=float)
+        fixed = np.zeros(self.n_joints, dtype=bool)
+        fixed[input_joint] = True
+        out = np.empty((len(values), self.n_joints))
+        q = np.array(q_start, dtype=float)
+        for k, x in enumerate(values):
+            guess = q.copy()
+            if k >= 2 and values[k - 1] != values[k - 2]:
+                rate = (out[k - 1] - out[k - 2]) / (values[k - 1] - values[k - 2])
+                guess = out[k - 1] + rate * (x - values[k - 1])
+            guess[input_joint] = x
+            q = self.solve(guess, fixed, tol=tol)
+            out[k] = q
+        return out
+
+    def assemblies(
+        self,
+        input_joint: int,
+        value: float,
+        *,
+        starts: int = 64,
+        seed: int = 0,
+        tol: float = 1e-13,
+    ) -> NDArray[np.float64]:
+        """
+        All distinct closed configurations found from random starts at one input value.
+
+        Returns
+        -------
+        q : (k, n_joints) float
+          Distinct solutions (angles wrapped to (-pi, pi]), k >= 0.
+        """
+        rng = np.random.default_rng(seed)
+        fixed = np.zeros(self.n_joints, dtype=bool)
+        fixed[input_joint] = True
+        found: list[NDArray[np.float64]] = []
+        for _ in range(starts):
+            q0 = rng.uniform(-np.pi, np.pi, self.n_joints)
+            q0[input_joint] = value
+            try:
+                q = self.solve(q0, fixed, tol=tol)
+            except ConvergenceError:
+                continue
+            q = np.angle(np.exp(1j * q))
+            if not any(np.max(np.abs(np.angle(np.exp(1j * (q - f))))) < 1e-6 for f in found):
+                found.append(q)
+        return np.array(found).reshape(-1, self.n_joints)
+
+    def mobility(self, q: ArrayLike, rtol: float = 1e-8) -> int:
+        """Instantaneous mobility: joints minus the numerical rank of the closure Jacobian."""
+        s = np.linalg.svd(self.jacobian(q), compute_uv=False)
+        return self.n_joints - int(np.sum(s > rtol * max(s.max(initial=0.0), 1.0)))

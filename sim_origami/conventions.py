@@ -1,0 +1,38 @@
+"""Units and sign conventions shared by every layer.
+
+Angles are radians everywhere inside the package and in JSON; degrees only at the command-line
+edge (`deg_to_rad`, `rad_to_deg`).
+
+Origami vertex (product of exponentials): the vertex sits at the origin of the flat sheet, normal
++z. Crease i points along d_i at angle alpha_1 + ... + alpha_(i-1) from +x (counter-clockwise);
+sector alpha_i lies between crease i and crease i+1. The fold angle rho_i is the right-handed
+rotation about +d_i of the panel on the counter-clockwise side of crease i relative to the panel on
+its clockwise side; flat is rho = 0. Seen from +z, rho > 0 lifts the counter-clockwise panel: a
+valley (FOLD's `edges_foldAngle` sign). The closure is Rot(d_1, rho_1) ... Rot(d_n, rho_n) = I.
+
+This rho equals a MuJoCo hinge qpos when the hinge axis is +d_i, the child body is the
+counter-clockwise panel and the reference pose is the flat sheet.
+
+Branches are named by geometry (e.g. which crease folds opposite to the other three, or the
+flat-foldable modes S and C) and followed by continuity, never by the +/- label of a root.
+"""
+
+import numpy as np
+
+VALLEY = "valley"
+MOUNTAIN = "mountain"
+
+
+def deg_to_rad(value_deg: float) -> float:
+    """Degrees (command line) to radians (API, JSON)."""
+    return float(np.deg2rad(value_deg))
+
+
+def rad_to_deg(value_rad: float) -> float:
+    """Radians (API, JSON) to degrees (command line, tables, plots)."""
+    return float(np.rad2deg(value_rad))
+
+
+def mountain_valley(rho: float) -> str:
+    """Crease assignment of a fold angle, seen from +z: rho > 0 is a valley."""
+    return VALLEY if rho > 0 else MOUNTAIN

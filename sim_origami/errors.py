@@ -1,0 +1,29 @@
+"""Typed errors. Every message names the offending value and the rule it breaks."""
+
+
+class SimOrigamiError(Exception):
+    """Base class of every error raised on purpose by sim_origami."""
+
+
+class ParameterError(SimOrigamiError, ValueError):
+    """An unknown parameter, or a value that breaks a rule of the geometry."""
+
+
+class DomainError(SimOrigamiError, ValueError):
+    """An input angle outside the validity domain of the requested branch."""
+
+
+class AssemblyError(SimOrigamiError):
+    """A linkage whose loops cannot be closed (the closure residual stays large)."""
+
+
+class ConvergenceError(SimOrigamiError):
+    """The numeric loop-closure solve did not converge."""
+
+
+class SimulationError(SimOrigamiError):
+    """MuJoCo reported a warning (e.g. bad qacc) or the run diverged."""
+
+
+class RenderError(SimOrigamiError):
+    """No working headless OpenGL backend."""

@@ -1,0 +1,276 @@
+"""Degree-4 rigid-origami vertex = spherical 4R linkage (seed 003 ch. 2 and §3.2.1).
+
+Conventions are those of `sim_origami.conventions`: sector alpha_i between creases i and i+1,
+fold angle rho_i = D-H joint angle theta_i of the spherical linkage whose twists are the sector
+angles (seed 003 §0.3), rho > 0 a valley seen from +z.
+
+Closed form (seed 003 M1, eqn 2-5 solved for the next joint): with input crease 1,
+
+    A cos rho_2 + B sin rho_2 = C,   rho_2 = atan2(B, A) +/- arccos(C / sqrt(A^2 + B^2)),
+
+then rho_3, rho_4 from N = (Rz(rho_1) Rx(a12) Rz(rho_2) Rx(a23))^T Rx(-a41) = Rz(rho_3) Rx(a34) Rz(rho_4).
+The printed matrix Q of (2-1) is the transpose of Rz Rx (seed 003 §0.2); the standard D-H product
+is used here. Another input crease k is handled by relabelling the creases cyclically.
+
+Branches. The +/- labels swap when the input changes sign (seed 003 M1 pitfall), so each root is
+named by its fold-sign pattern, which is constant along a branch between the flat state and the
+lock: on each branch of a developable vertex exactly one crease folds opposite to the other three
+("odd<k>"). A flat-foldable vertex (alpha_1 + alpha_3 = pi) names its branches by the seed's modes:
+S (rho_3 = -rho_1, rho_4 = rho_2) and C (rho_3 = rho_1, rho_4 = -rho_2). A vertex with a collinear
+crease pair (alpha_i + alpha_(i+1) = pi) also folds about that straight line alone ("straight<i><j>").
+All branches of a developable vertex meet at the flat state, a bifurcation point. A branch ends
+where a crease folds flat (|rho| = pi, panels in contact: a lock) or where the input turns back.
+"""
+
+from functools import cached_property
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..closure import Loop, LoopSystem
+from ..errors import ParameterError
+from ..geometry import rot_x, rot_z, transform
+from .base import Branch, Event, Kinematics, domain_of
+
+# Sum of sector angles and supplementary pairs are compared at this absolute tolerance (rad).
+ANGLE_TOL = 1e-9
+# A fold angle below this fraction of the largest fold counts as unfolded when naming a root by its
+# sign pattern (the straight-fold root carries about 1e-16 rad there; real folds are not that small).
+ZERO_FOLD = 1e-8
+
+
+def fold_roots(alpha: ArrayLike, rho1: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """
+    Both assembly modes of a spherical 4R driven by joint 1 (seed 003 eqn 2-5).
+
+    Parameters
+    ----------
+    alpha : (4,) float
+      Twists (sector angles) alpha_12, alpha_23, alpha_34, alpha_41 in radians.
+    rho1 : (n,) float
+      Input joint angle in radians.
+
+    Returns
+    -------
+    rho : (2, n, 4) float
+      Joint angles of the two roots, each smooth in rho1 (the roots are named by the caller).
+    real : (n,) bool
+      Where |C| <= sqrt(A^2 + B^2), i.e. where the linkage assembles.
+
+    Notes
+    -----
+    Valid for developable twists only (sum 2 pi): the discriminant is factored at the flat state.
+    """
+    a12, a23, a34, a41 = np.asarray(alpha, dtype=float)
+    t1 = np.atleast_1d(np.asarray(rho1, dtype=float))
+    c12, c23, c34, c41 = np.cos([a12, a23, a34, a41])
+    s12, s23, s41 = np.sin([a12, a23, a41])
+    P, Q = c41 * s12 * s23, c12 * s23 * s41
+    R, K = c23 * s41 * s12, c34 - c12 * c23 * c41
+    A = P + Q * np.cos(t1)
+    B = -s23 * s41 * np.sin(t1)
+    C = -(R * np.cos(t1) + K)
+    # A^2 + B^2 - C^2 is a quadratic in cos(rho1) that vanishes at the flat state of a developable
+    # vertex, so it factors as 2 sin^2(rho1/2) G with G linear in cos(rho1). Taking the root as
+    # sqrt(2) sin(rho1/2) sqrt(G) keeps full precision at the double root, where arccos(C/|(A,B)|)
+    # would lose half the digits (about 1e-8 rad), and makes each root smooth through rho1 = 0.
+    a2 = Q**2 - (s23 * s41) ** 2 - R**2
+    a1 = 2 * (P * Q - R * K)
+    G = -(a2 * (1 + np.cos(t1)) + a1)
+    real = G >= -1e-14
+    root = np.sqrt(2.0) * np.sin(t1 / 2) * np.sqrt(np.maximum(G, 0.0))
+    base = np.arctan2(B, A)
+    spread = np.arctan2(root, C)
+    out = np.empty((2, t1.size, 4))
+    for k, t2 in enumerate((base + spread, base - spread)):
+        M = rot_z(t1) @ rot_x(a12) @ rot_z(t2) @ rot_x(a23)
+        N = np.swapaxes(M, -1, -2) @ rot_x(-a41)
+        out[k, :, 0] = t1
+        out[k, :, 1] = np.angle(np.exp(1j * t2))
+        out[k, :, 2] = np.arctan2(N[:, 0, 2], -N[:, 1, 2])
+        out[k, :, 3] = np.arctan2(N[:, 2, 0], N[:, 2, 1])
+    return out, real
+
+
+def flat_foldable_multipliers(alpha: ArrayLike) -> dict[str, NDArray[np.float64]]:
+    """
+    Tan-half multipliers m_ij = tan(rho_j/2) / tan(rho_i/2) of a flat-foldable vertex.
+
+    Seed 003 eqns 3-1, 3-3a (mode S) and 3-3b (mode C, reconstructed from 3-4a/3-5b).
+
+    Returns
+    -------
+    {'S': (4,), 'C': (4,)} : m12, m23, m34, m41 of each mode.
+    """
+    a12, a23 = np.asarray(alpha, dtype=float)[:2]
+    ratio_s = -np.sin((a23 - a12) / 2) / np.sin((a23 + a12) / 2)  # t1/t2 in mode S
+    ratio_c = -np.cos((a23 - a12) / 2) / np.cos((a23 + a12) / 2)  # t1/t2 in mode C
+    return {
+        "S": np.array([1 / ratio_s, -ratio_s, -1 / ratio_s, ratio_s]),
+        "C": np.array([1 / ratio_c, ratio_c, -1 / ratio_c, -ratio_c]),
+    }
+
+
+def flat_foldable_fold_angles(alpha: ArrayLike, rho1: ArrayLike, mode: str) -> NDArray[np.float64]:
+    """Fold angles (n, 4) of a flat-foldable vertex on mode 'S' or 'C' from the multipliers."""
+    m12, m23, m34, _ = flat_foldable_multipliers(alpha)[mode]
+    t1 = np.tan(np.atleast_1d(np.asarray(rho1, dtype=float)) / 2)
+    t = np.stack([t1, m12 * t1, m12 * m23 * t1, m12 * m23 * m34 * t1], -1)
+    return 2 * np.arctan(t)
+
+
+class Vertex4(Kinematics):
+    """
+    A developable degree-4 vertex driven by the fold angle of one crease.
+
+    Parameters
+    ----------
+    alpha : (4,) float
+      Sector angles in radians, each in (0, pi), summing to 2 pi.
+    input_crease : int
+      Crease (1 to 4) whose fold angle is the input.
+    """
+
+    def __init__(self, alpha: ArrayLike, input_crease: int = 1):
+        alpha = np.asarray(alpha, dtype=float)
+        if alpha.shape != (4,):
+            raise ParameterError(f"a degree-4 vertex needs 4 sector angles, got {alpha.size}")
+        for i, a in enumerate(alpha, start=1):
+            if not 0.0 < a < np.pi:
+                raise ParameterError(
+                    f"sector angle alpha{i} = {np.rad2deg(a):.6g} deg; each must lie in (0, 180) deg"
+                )
+        total = float(np.sum(alpha))
+        if abs(total - 2 * np.pi) > ANGLE_TOL:
+            raise ParameterError(
+                f"sector angles sum to {np.rad2deg(total):.6g} deg; a flat (developable) vertex needs 360"
+            )
+        if input_crease not in (1, 2, 3, 4):
+            raise ParameterError(f"input crease {input_crease} does not exist; use 1 to 4")
+        self.alpha = alpha
+        self.input_crease = input_crease
+        self.input_name = f"rho{input_crease}"
+        self.joint_names = ("rho1", "rho2", "rho3", "rho4")
+        self._shift = input_crease - 1
+
+    @property
+    def flat_foldable(self) -> bool:
+        """Kawasaki: alpha_1 + alpha_3 = pi (then alpha_2 + alpha_4 = pi too)."""
+        return abs(self.alpha[0] + self.alpha[2] - np.pi) < ANGLE_TOL
+
+    @property
+    def collinear_pairs(self) -> tuple[tuple[int, int], ...]:
+        """Crease pairs (i, j), 1-based, that lie on one straight line in the flat sheet."""
+        pairs = []
+        for i in range(4):
+            if abs(self.alpha[i] + self.alpha[(i + 1) % 4] - np.pi) < ANGLE_TOL:
+                pairs.append(tuple(sorted((i + 1, (i + 2) % 4 + 1))))
+        return tuple(sorted(set(pairs)))
+
+    def _roots(self, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        """Both roots (2, n, 4) in crease order 1..4 for input values x."""
+        rolled = np.roll(self.alpha, -self._shift)
+        rho, real = fold_roots(rolled, x)
+        return np.roll(rho, self._shift, axis=-1), real
+
+    def _names(self, rho: NDArray[np.float64]) -> NDArray[np.object_]:
+        """Branch name of each configuration (..., 4) from its fold-sign pattern ('' if none)."""
+        scale = np.max(np.abs(rho), axis=-1, keepdims=True)
+        sign = np.where(np.abs(rho) <= ZERO_FOLD * scale, 0, np.sign(rho)).astype(int)
+        names = np.full(rho.shape[:-1], "", dtype=object)
+        zeros = np.sum(sign == 0, axis=-1)
+        total = np.sum(sign, axis=-1)
+        if self.flat_foldable:
+            s1, s3 = sign[..., 0], sign[..., 2]
+            names[(zeros == 0) & (s3 == -s1)] = "S"
+            names[(zeros == 0) & (s3 == s1)] = "C"
+        else:
+            for k in range(4):
+                odd = (zeros == 0) & (np.abs(total) == 2) & (sign[..., k] == -np.sign(total))
+                names[odd] = f"odd{k + 1}"
+        for i, j in self.collinear_pairs:
+            others = [c for c in range(4) if c not in (i - 1, j - 1)]
+            straight = (
+                (zeros == 2)
+                & (sign[..., others[0]] == 0)
+                & (sign[..., others[1]] == 0)
+                & (sign[..., i - 1] == sign[..., j - 1])
+            )
+            names[straight] = f"straight{i}{j}"
+        return names
+
+    @cached_property
+    def _branch_names(self) -> tuple[str, ...]:
+        probe = np.array([1e-3, -1e-3])
+        rho, real = self._roots(probe)
+        names = set(self._names(rho)[:, real].ravel()) - {""}
+        return tuple(sorted(names))
+
+    def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        if branch not in self._branch_names:
+            self.branch(branch)  # raises with the list of names
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        rho, real = self._roots(x)
+        names = self._names(rho)
+        values = np.full((x.size, 4), np.nan)
+        valid = np.zeros(x.size, dtype=bool)
+        for k in (1, 0):
+            hit = real & (names[k] == branch)
+            values[hit] = rho[k, hit]
+            valid |= hit
+        flat = x == 0.0
+        values[flat] = 0.0
+        valid |= flat
+        return values, valid
+
+    def _valid(self, branch: str):
+        return lambda x: self.evaluate(branch, x)[1]
+
+    @cached_property
+    def _branches(self) -> tuple[Branch, ...]:
+        out = []
+        for name in self._branch_names:
+            domain = domain_of(self._valid(name), -np.pi, np.pi, 0.0)
+            out.append(Branch(name, self._describe(name), domain))
+        return tuple(out)
+
+    def _describe(self, name: str) -> str:
+        if name == "S":
+            return "flat-foldable mode S: rho3 = -rho1, rho4 = rho2 (seed 003 eqn 3-3a)"
+        if name == "C":
+            return "flat-foldable mode C: rho3 = rho1, rho4 = -rho2 (seed 003 eqn 3-3b)"
+        if name.startswith("straight"):
+            return f"fold about the straight line of creases {name[-2]} and {name[-1]} only"
+        return f"crease {name[-1]} folds opposite to the other three"
+
+    def branches(self) -> tuple[Branch, ...]:
+        return self._branches
+
+    def events(self) -> tuple[Event, ...]:
+        names = tuple(b.name for b in self._branches)
+        events = [Event("bifurcation", 0.0, names, "flat state: every branch passes through it")]
+        for b in self._branches:
+            for end in b.domain:
+                events.append(self._end_event(b.name, end))
+        return tuple(events)
+
+    def _end_event(self, name: str, end: float) -> Event:
+        rho = self.evaluate(name, end)[0][0]
+        k = int(np.argmax(np.abs(rho)))
+        if abs(abs(rho[k]) - np.pi) < 1e-5:
+            return Event("lock", end, (name,), f"crease {k + 1} folds flat (|rho{k + 1}| = pi)")
+        return Event("turning_point", end, (name,), "|C| = sqrt(A^2 + B^2): the input turns back")
+
+    def loop_system(self) -> LoopSystem:
+        """Spherical D-H loop Rz(rho_1) Rx(alpha_1) ... Rz(rho_4) Rx(alpha_4) = I (seed 003 eqn 2-1)."""
+        links = np.stack([transform(rot_x(a)) for a in self.alpha])
+        return LoopSystem(4, (Loop((0, 1, 2, 3), links, (1, 1, 1, 1)),))
+
+    def loop_input(self) -> tuple[int, float]:
+        return self.input_crease - 1, 1.0
+
+    def observe(self, q_loop: ArrayLike) -> NDArray[np.float64]:
+        return np.asarray(q_loop, dtype=float).reshape(-1, 4)
+
+    def loop_angles(self, values: ArrayLike) -> NDArray[np.float64]:
+        return np.asarray(values, dtype=float).reshape(-1, 4)
