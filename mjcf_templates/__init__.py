@@ -1,0 +1,1 @@
+"""MJCF fragments composed by sim_origami.mjcf (a data folder, importable for importlib.resources)."""

@@ -1,0 +1,179 @@
+"""The mechanism graph: bodies, revolute joints, a spanning tree, loop closures and poses.
+
+Frames. Every body has a frame; geometry is given in it. A joint carries one frame on each of its
+two bodies (4x4, in that body's frame) whose z axis is the joint axis. The joint angle q is the
+right-handed rotation about that axis of `child` relative to `parent`:
+
+    T_child = T_parent @ frame_parent @ Rz(q) @ inv(frame_child).
+
+For an origami vertex every body frame is the world frame of the flat sheet, both joint frames
+lie on the crease with z = +d_i, `parent` is the clockwise panel and `child` the counter-clockwise
+one, so q is the fold angle rho of `sim_origami.conventions`.
+
+A breadth-first spanning tree from the root body (fixed to the world) keeps the joints that must
+be driven; every other joint is cut and becomes a loop closure.
+"""
+
+from collections import deque
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+import trimesh
+from numpy.typing import ArrayLike, NDArray
+
+from .closure import Loop, LoopSystem
+from .errors import ParameterError
+from .geometry import invert, transform_z
+
+
+@dataclass(frozen=True)
+class Body:
+    """A rigid panel or link; `solid` and `collision` are meshes in the body frame."""
+
+    name: str
+    solid: trimesh.Trimesh
+    collision: trimesh.Trimesh | None = None
+    rgba: tuple[float, float, float, float] = (0.8, 0.8, 0.8, 1.0)
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A revolute joint; `anchors` are points along its z axis where a cut joint is closed."""
+
+    name: str
+    parent: str
+    child: str
+    frame_parent: NDArray[np.float64]
+    frame_child: NDArray[np.float64]
+    anchors: tuple[float, ...] = (0.5, 1.0)
+
+
+@dataclass(frozen=True)
+class TreeEdge:
+    """A tree joint as traversed from `parent` body to `child` body; `sign` -1 when reversed."""
+
+    joint: int
+    parent: str
+    child: str
+    sign: int
+
+
+@dataclass(frozen=True)
+class Mechanism:
+    """Bodies and joints; `root` is fixed to the world, joints in `keep` stay in the tree."""
+
+    bodies: tuple[Body, ...]
+    joints: tuple[Joint, ...]
+    root: str
+    keep: tuple[str, ...] = field(default=())
+
+    def __post_init__(self):
+        names = [b.name for b in self.bodies]
+        if self.root not in names:
+            raise ParameterError(f"root body {self.root!r} is not one of {names}")
+        for j in self.joints:
+            for b in (j.parent, j.child):
+                if b not in names:
+                    raise ParameterError(f"joint {j.name!r} names unknown body {b!r}")
+
+    def joint_index(self, name: str) -> int:
+        """Position of joint `name` in `joints`."""
+        for i, j in enumerate(self.joints):
+            if j.name == name:
+                return i
+        raise ParameterError(f"unknown joint {name!r}; joints are {[j.name for j in self.joints]}")
+
+    @cached_property
+    def tree(self) -> tuple[TreeEdge, ...]:
+        """Spanning-tree edges in breadth-first order from the root."""
+        priority = {i: (j.name not in self.keep, i) for i, j in enumerate(self.joints)}
+        seen, edges, queue = {self.root}, [], deque([self.root])
+        while queue:
+            body = queue.popleft()
+            incident = [i for i, j in enumerate(self.joints) if body in (j.parent, j.child)]
+            for i in sorted(incident, key=priority.get):
+                j = self.joints[i]
+                other, sign = (j.child, 1) if j.parent == body else (j.parent, -1)
+                if other not in seen:
+                    seen.add(other)
+                    edges.append(TreeEdge(i, body, other, sign))
+                    queue.append(other)
+        missing = {b.name for b in self.bodies} - seen
+        if missing:
+            raise ParameterError(f"bodies {sorted(missing)} are not connected to root {self.root!r}")
+        return tuple(edges)
+
+    @cached_property
+    def cut_joints(self) -> tuple[int, ...]:
+        """Joints not in the tree: one loop closure each."""
+        tree = {e.joint for e in self.tree}
+        return tuple(i for i in range(len(self.joints)) if i not in tree)
+
+    def _step(self, i: int, from_body: str) -> tuple[NDArray, int, NDArray]:
+        """(F_from, sign, F_to) so that T_to = T_from @ F_from @ Rz(sign q_i) @ inv(F_to)."""
+        j = self.joints[i]
+        if from_body == j.parent:
+            return j.frame_parent, 1, j.frame_child
+        return j.frame_child, -1, j.frame_parent
+
+    def body_poses(self, q: ArrayLike) -> dict[str, NDArray[np.float64]]:
+        """World poses (..., 4, 4) of every body for joint angles q (..., n_joints); cut joints unused."""
+        q = np.asarray(q, dtype=float)
+        poses = {self.root: np.broadcast_to(np.eye(4), q.shape[:-1] + (4, 4))}
+        for e in self.tree:
+            F_from, sign, F_to = self._step(e.joint, e.parent)
+            poses[e.child] = poses[e.parent] @ F_from @ transform_z(sign * q[..., e.joint]) @ invert(F_to)
+        return poses
+
+    def reference_poses(self) -> dict[str, NDArray[np.float64]]:
+        """Body poses at q = 0 (the reference pose of the MJCF model)."""
+        return self.body_poses(np.zeros(len(self.joints)))
+
+    def complete(self, q: ArrayLike) -> NDArray[np.float64]:
+        """
+        Fill in cut-joint angles measured from the tree pose, (..., n_joints).
+
+        A cut joint's angle is the z rotation of inv(F_p) inv(T_parent) T_child F_c, which is
+        exactly Rz(q) when the loop is closed.
+        """
+        q = np.array(q, dtype=float)
+        poses = self.body_poses(q)
+        for i in self.cut_joints:
+            j = self.joints[i]
+            M = invert(j.frame_parent) @ invert(poses[j.parent]) @ poses[j.child] @ j.frame_child
+            q[..., i] = np.arctan2(M[..., 1, 0], M[..., 0, 0])
+        return q
+
+    def loop_system(self) -> LoopSystem:
+        """Each cut joint with its tree path, as a closed chain (see `closure`)."""
+        parent_of = {e.child: e for e in self.tree}
+
+        def path_to_root(body: str) -> list[str]:
+            out = [body]
+            while out[-1] != self.root:
+                out.append(parent_of[out[-1]].parent)
+            return out
+
+        loops = []
+        for c in self.cut_joints:
+            j = self.joints[c]
+            up, down = path_to_root(j.child), path_to_root(j.parent)
+            common = next(b for b in up if b in down)
+            # cycle: child -> ... -> common -> ... -> parent -> (cut joint) -> child
+            steps = []
+            for b in up[: up.index(common)]:
+                steps.append((parent_of[b].joint, b))
+            for b in reversed(down[: down.index(common)]):
+                steps.append((parent_of[b].joint, parent_of[b].parent))
+            steps.append((c, j.parent))
+            factors = [self._step(i, frm) for i, frm in steps]
+            links = [invert(factors[k][2]) @ factors[(k + 1) % len(factors)][0] for k in range(len(factors))]
+            loops.append(Loop(tuple(i for i, _ in steps), np.array(links), tuple(f[1] for f in factors)))
+        return LoopSystem(len(self.joints), tuple(loops))
+
+    def anchor_points(self, i: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Closure anchor points (k, 3) of joint i in its parent's and its child's body frames."""
+        j = self.joints[i]
+        local = np.array([[0.0, 0.0, s, 1.0] for s in j.anchors])
+        return (local @ j.frame_parent.T)[:, :3], (local @ j.frame_child.T)[:, :3]

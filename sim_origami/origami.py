@@ -1,0 +1,99 @@
+"""Origami vertices as mechanisms: sector panels joined by crease hinges.
+
+Frames follow `sim_origami.conventions`: the flat sheet in the world XY plane, vertex at the
+origin, crease i along d_i at angle alpha_1 + ... + alpha_(i-1). Panel i lies between creases i
+and i+1 (sector alpha_i). Crease i joins panel i-1 (clockwise side, the joint's parent) to panel i
+(counter-clockwise side, the child) about +d_i, so the joint angle is the fold angle rho_i.
+Every body frame is the world frame of the flat sheet.
+"""
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .geometry import frame_along
+from .mechanism import Body, Joint, Mechanism
+from .solids import inset_outline, prism, sector_outline
+
+# Panel colours by index (Menagerie-like muted palette), RGBA.
+PALETTE = (
+    (0.93, 0.93, 0.90, 1.0),
+    (0.85, 0.55, 0.30, 1.0),
+    (0.20, 0.35, 0.60, 1.0),
+    (0.35, 0.60, 0.35, 1.0),
+    (0.70, 0.30, 0.35, 1.0),
+    (0.55, 0.45, 0.70, 1.0),
+)
+
+# Thickness (fraction of the crease length) given to zero-thickness panels so that they carry
+# inertia and render; such panels never collide.
+NOMINAL_THICKNESS = 0.01
+
+
+def crease_directions(alpha: ArrayLike) -> np.ndarray:
+    """Unit crease directions d_i (n, 3) of a flat vertex with sector angles alpha (n,)."""
+    alpha = np.asarray(alpha, dtype=float)
+    angles = np.concatenate([[0.0], np.cumsum(alpha)[:-1]])
+    return np.stack([np.cos(angles), np.sin(angles), np.zeros_like(angles)], -1)
+
+
+def vertex_mechanism(
+    alpha: ArrayLike,
+    *,
+    length: float = 1.0,
+    thickness: float = 0.0,
+    inset: float = 0.0,
+    root: int = 1,
+    keep: tuple[int, ...] = (),
+    names: tuple[str, ...] | None = None,
+) -> Mechanism:
+    """
+    A single flat-sheet vertex of degree n as panels and crease hinges.
+
+    Parameters
+    ----------
+    alpha : (n,) float
+      Sector angles in radians.
+    length : float
+      Crease length in metres.
+    thickness : float
+      Panel thickness in metres; 0 builds zero-thickness panels (nominal solids, no collision).
+    inset : float
+      For thick panels: distance in metres by which the collision solid stays clear of the
+      creases (and so of the vertex), so that neighbours touch only when truly folded onto each other.
+    root : int
+      Panel (1-based) fixed to the world.
+    keep : tuple of int
+      Creases (1-based) that must stay in the spanning tree (the driven ones).
+    names : tuple of str, optional
+      Crease names (default crease_1 ... crease_n); panels are panel_1 ... panel_n.
+    """
+    alpha = np.asarray(alpha, dtype=float)
+    n = len(alpha)
+    d = crease_directions(alpha)
+    names = names or tuple(f"crease_{i + 1}" for i in range(n))
+    solid_t = thickness if thickness > 0 else NOMINAL_THICKNESS * length
+    bodies = []
+    for i in range(n):
+        outline = sector_outline(d[i], alpha[i], length)
+        collision = None
+        if thickness > 0:
+            distances = np.zeros(len(outline))
+            distances[0] = distances[-1] = inset  # the two crease edges meet at vertex 0
+            collision = prism(inset_outline(outline, distances), thickness)
+        bodies.append(
+            Body(f"panel_{i + 1}", prism(outline, solid_t), collision, PALETTE[i % len(PALETTE)])
+        )
+    joints = []
+    for i in range(n):
+        frame = frame_along(d[i])
+        joints.append(
+            Joint(
+                names[i],
+                parent=f"panel_{(i - 1) % n + 1}",
+                child=f"panel_{i + 1}",
+                frame_parent=frame,
+                frame_child=frame,
+                anchors=(0.5 * length, length),  # on the crease, away from the shared vertex
+            )
+        )
+    return Mechanism(tuple(bodies), tuple(joints), f"panel_{root}", tuple(names[k - 1] for k in keep))

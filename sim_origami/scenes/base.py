@@ -1,0 +1,153 @@
+"""What a scene is: parameters, a kinematics model, a mechanism and how to drive it.
+
+A scene wires one closed-form model (numpy) to one mechanism graph. Everything downstream (MJCF,
+simulation, checks, reports, the CLI) reads only the `Scene`, so a new mechanism is one kinematics
+module plus one scene module that calls `register`.
+"""
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..errors import ParameterError
+from ..kinematics.base import Kinematics
+from ..mechanism import Mechanism
+
+UNITS = {"deg": np.pi / 180.0, "m": 1.0, "": 1.0}
+
+
+@dataclass(frozen=True)
+class Param:
+    """A scene parameter. `unit` is what people type (deg or m); the API takes radians/metres."""
+
+    name: str
+    unit: str
+    default: float
+    help: str
+
+    def to_api(self, value: float) -> float:
+        """Command-line value (in `unit`) to the API's radians or metres."""
+        return value * UNITS[self.unit]
+
+    def to_user(self, value: float) -> float:
+        """API value back to `unit`."""
+        return value / UNITS[self.unit]
+
+
+@dataclass(frozen=True)
+class Scene:
+    """
+    A built scene.
+
+    Attributes
+    ----------
+    kinematics : Kinematics
+      The closed form; its loop joints map to `loop_joints` of the mechanism in order.
+    mechanism : Mechanism
+      Bodies and joints; the driven joint is kept in the spanning tree.
+    drive_joint : str
+      Mechanism joint whose angle is `drive_scale` * input.
+    path : (start, stop)
+      Default input sweep in radians (inside every branch's domain unless per-branch).
+    contact_pairs : pairs of body names that may really collide (thick panels); empty = no contact.
+    """
+
+    name: str
+    params: dict[str, float]
+    kinematics: Kinematics
+    mechanism: Mechanism
+    loop_joints: tuple[str, ...]
+    drive_joint: str
+    drive_scale: float
+    path: tuple[float, float]
+    contact_pairs: tuple[tuple[str, str], ...] = ()
+    notes: str = ""
+
+    def loop_to_mechanism(self, q_loop: ArrayLike) -> NDArray[np.float64]:
+        """Mechanism joint angles (n, n_joints) from loop joint angles (n, n_loop)."""
+        q_loop = np.atleast_2d(np.asarray(q_loop, dtype=float))
+        q = np.zeros((len(q_loop), len(self.mechanism.joints)))
+        for k, name in enumerate(self.loop_joints):
+            q[:, self.mechanism.joint_index(name)] = q_loop[:, k]
+        return q
+
+    def mechanism_to_loop(self, q: ArrayLike) -> NDArray[np.float64]:
+        """Loop joint angles (n, n_loop) from mechanism joint angles (n, n_joints)."""
+        q = np.atleast_2d(np.asarray(q, dtype=float))
+        return q[:, [self.mechanism.joint_index(n) for n in self.loop_joints]]
+
+    def pose(self, branch: str, x: float) -> NDArray[np.float64]:
+        """Mechanism joint angles (n_joints,) of the closed form on `branch` at input x."""
+        values = self.kinematics.joint_angles(branch, x)
+        return self.loop_to_mechanism(self.kinematics.loop_angles(values))[0]
+
+    def outputs(self, q: ArrayLike) -> NDArray[np.float64]:
+        """Output joints (n, k) of the closed form's naming, measured from mechanism angles."""
+        return self.kinematics.observe(self.mechanism_to_loop(q))
+
+    def branch_path(self, branch: str) -> tuple[float, float]:
+        """The default sweep clipped to 95% of the branch's domain."""
+        lo, hi = self.kinematics.branch(branch).domain
+        start, stop = self.path
+        clip = lambda v: float(np.clip(v, 0.95 * lo, 0.95 * hi))  # noqa: E731
+        return clip(start), clip(stop)
+
+
+@dataclass(frozen=True)
+class SceneType:
+    """A registered scene: its parameters and a builder taking API values by name."""
+
+    name: str
+    summary: str
+    params: tuple[Param, ...]
+    build_fn: Callable[..., Scene] = field(repr=False)
+
+    def build(self, **values: float) -> Scene:
+        """Build with API values (radians, metres); unknown names raise ParameterError."""
+        known = {p.name: p for p in self.params}
+        for key in values:
+            if key not in known:
+                raise ParameterError(
+                    f"unknown parameter {key!r} for scene {self.name!r}; parameters are {', '.join(known)}"
+                )
+        full = {p.name: p.to_api(p.default) for p in self.params} | values
+        return self.build_fn(**full)
+
+    def build_from_user(self, values: dict[str, float]) -> Scene:
+        """Build from command-line values (degrees, metres)."""
+        known = {p.name: p for p in self.params}
+        api = {}
+        for key, value in values.items():
+            if key not in known:
+                raise ParameterError(
+                    f"unknown parameter {key!r} for scene {self.name!r}; parameters are {', '.join(known)}"
+                )
+            api[key] = known[key].to_api(value)
+        return self.build(**api)
+
+
+REGISTRY: dict[str, SceneType] = {}
+
+
+def register(name: str, summary: str, params: tuple[Param, ...]):
+    """Decorator: add a scene builder to the registry under `name`."""
+
+    def wrap(fn: Callable[..., Scene]) -> Callable[..., Scene]:
+        REGISTRY[name] = SceneType(name, summary, params, fn)
+        return fn
+
+    return wrap
+
+
+def get(name: str) -> SceneType:
+    """The registered scene `name`; ParameterError listing the names otherwise."""
+    if name not in REGISTRY:
+        raise ParameterError(f"unknown scene {name!r}; scenes are {', '.join(sorted(REGISTRY))}")
+    return REGISTRY[name]
+
+
+def names() -> tuple[str, ...]:
+    """Every registered scene name, sorted."""
+    return tuple(sorted(REGISTRY))
