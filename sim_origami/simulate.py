@@ -269,3 +269,45 @@ def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: s
         target=inputs, q=binds.angles(scene, qpos_log), residual_index=index, closure_residual=residual,
         cpu_time_s=cpu, steps=len(inputs),
     )  # fmt: skip
+
+
+def contact_distance(scene: Scene, branch: str, inputs: NDArray[np.float64]) -> NDArray[np.float64]:
+    """
+    Smallest signed distance (m) between the scene's contact pairs, posed by the closed form.
+
+    A kinematic sweep (no dynamics): negative means the solids overlap at that input.
+    """
+    model, data = compile_model(scene, ModelOptions(contact=True))
+    binds = Bindings(scene, model)
+    pairs = [(model.geom(f"{a}_collision").id, model.geom(f"{b}_collision").id) for a, b in scene.contact_pairs]
+    out = np.empty(len(inputs))
+    fromto = np.zeros(6)
+    for k, value in enumerate(np.asarray(inputs, dtype=float)):
+        binds.set_pose(data, scene.pose(branch, float(value)))
+        mujoco.mj_kinematics(model, data)
+        out[k] = min(mujoco.mj_geomDistance(model, data, g1, g2, 1.0, fromto) for g1, g2 in pairs)
+    return out
+
+
+def contact_input(scene: Scene, branch: str, start: float, stop: float, samples: int = 400) -> float:
+    """
+    First input between start and stop at which the contact pairs touch, or nan if none.
+
+    A sweep first (the distance is not monotonic: solids can pass through and separate again),
+    then bisection inside the first bracket, to about 1e-12 rad.
+    """
+    grid = np.linspace(start, stop, samples)
+    dist = contact_distance(scene, branch, grid)
+    hits = np.flatnonzero(dist <= 0.0)
+    if not len(hits):
+        return float("nan")
+    if hits[0] == 0:
+        return float(grid[0])
+    lo, hi = grid[hits[0] - 1], grid[hits[0]]
+    for _ in range(45):
+        mid = 0.5 * (lo + hi)
+        if contact_distance(scene, branch, np.array([mid]))[0] <= 0.0:
+            hi = mid
+        else:
+            lo = mid
+    return float(hi)
