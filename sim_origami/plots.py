@@ -1,0 +1,50 @@
+"""Curves: closed-form lines, simulated markers and an error panel per branch (PNG, degrees)."""
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from .files import atomic_path  # noqa: E402
+from .validation import Report  # noqa: E402
+
+# Simulated markers drawn per branch (the CSV keeps every sample).
+MARKERS = 40
+
+
+def plot_report(report: Report, path: str | Path) -> Path:
+    """One column per branch: joint angles (deg) against the input (deg), then |error| (rad, log)."""
+    kin = report.scene.kinematics
+    runs = report.runs
+    fig, axes = plt.subplots(2, len(runs), figsize=(5.5 * len(runs), 7), squeeze=False,
+                             gridspec_kw={"height_ratios": [3, 2]}, constrained_layout=True)  # fmt: skip
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for col, run in enumerate(runs):
+        top, bottom = axes[0, col], axes[1, col]
+        lo, hi = kin.branch(run.requested).domain
+        dense = np.linspace(lo, hi, 400)
+        values, valid = kin.evaluate(run.requested, dense)
+        sim = run.dynamic_path
+        pick = np.linspace(0, len(sim.input) - 1, MARKERS).astype(int)
+        for k, name in enumerate(kin.joint_names):
+            c = colors[k % len(colors)]
+            top.plot(np.rad2deg(dense[valid]), np.rad2deg(values[valid, k]), color=c, lw=1.2, label=name)
+            top.plot(np.rad2deg(sim.input[pick]), np.rad2deg(sim.simulated[pick, k]), "o", ms=3.5,
+                     mfc="none", color=c)  # fmt: skip
+            bottom.semilogy(np.rad2deg(sim.input), np.maximum(sim.error[:, k], 1e-17), color=c, lw=1)
+        top.set_title(f"{report.scene.name}: branch {run.requested} (followed {run.followed or '-'})")
+        top.set_xlabel(f"{kin.input_name} (deg)")
+        top.set_ylabel("joint angle (deg)")
+        top.legend(fontsize=8, ncol=2)
+        top.grid(alpha=0.3)
+        bottom.set_xlabel(f"{kin.input_name} (deg)")
+        bottom.set_ylabel(f"|MuJoCo {report.preset} - closed form| (rad)")
+        bottom.grid(alpha=0.3, which="both")
+    fig.suptitle("lines: closed form; markers: MuJoCo", fontsize=9)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=110, format="png")
+    plt.close(fig)
+    return Path(path)
