@@ -1,0 +1,45 @@
+"""`sim-origami describe SCENE`: parameters, joints, input, branches and events."""
+
+import argparse
+
+import numpy as np
+
+from .. import scenes
+from .options import add_params, parse_params
+
+NAME = "describe"
+HELP = "show a scene's parameters (units, defaults), joints, input, branches and events"
+
+
+def add_args(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("scene")
+    add_params(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    kind = scenes.get(args.scene)
+    scene = kind.build_from_user(parse_params(args.param))
+    kin = scene.kinematics
+    deg = np.rad2deg
+    print(f"{kind.name}: {kind.summary}")
+    print("parameters:")
+    for p in kind.params:
+        value = p.to_user(scene.params[p.name])
+        print(f"  {p.name:10s} = {value:<10.6g} {p.unit:4s} (default {p.default:g}) {p.help}")
+    print(f"input: {kin.input_name} (degrees here, radians in JSON); drives {scene.drive_joint} x {scene.drive_scale:g}")
+    print(f"joints: {', '.join(kin.joint_names)}")
+    print(f"mechanism: {len(scene.mechanism.bodies)} bodies, {len(scene.mechanism.joints)} hinges, "
+          f"root {scene.mechanism.root}, loops cut at "
+          f"{', '.join(scene.mechanism.joints[i].name for i in scene.mechanism.cut_joints) or 'none'}")  # fmt: skip
+    print("branches:")
+    for b in kin.branches():
+        lo, hi = b.domain
+        print(f"  {b.name:10s} {kin.input_name} in [{deg(lo):.4f}, {deg(hi):.4f}] deg: {b.description}")
+    print("events:")
+    for e in kin.events():
+        print(f"  {e.kind:13s} at {kin.input_name} = {deg(e.input):9.4f} deg on {', '.join(e.branches)}: {e.detail}")
+    if scene.contact_pairs:
+        print(f"contact pairs: {', '.join('-'.join(p) for p in scene.contact_pairs)}")
+    if scene.notes:
+        print(f"notes: {scene.notes}")
+    return 0
