@@ -209,11 +209,12 @@ def simulate(
             eq = model.equality(f"drive_{scene.drive_joint}").id
             tau = max(model.eq_solref[eq, 0], 2 * h)  # refsafe clamp
             target = scale * (x + 2 * tau * model.eq_solref[eq, 1] * xdot)  # feed-forward lag
+            setpoint, qpos, step = model.eq_data[eq], data.qpos, mujoco.mj_step  # hoisted views
             cpu = time.thread_time()
             for k in range(n):
-                model.eq_data[eq, 0] = target[k]
-                mujoco.mj_step(model, data)
-                qpos_log[k] = data.qpos
+                setpoint[0] = target[k]
+                step(model, data)
+                qpos_log[k] = qpos
             cpu = time.thread_time() - cpu
         else:
             act = model.actuator(f"drive_{scene.drive_joint}").id
