@@ -40,7 +40,10 @@ def main(argv: list[str] | None = None) -> int:
         p = sub.add_parser(module.NAME, help=module.HELP, description=module.HELP)
         module.add_args(p)
         p.set_defaults(func=module.run)
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # --help (0) or a usage error (2), already printed
+        return int(exc.code or 0)
     if args.version:
         print(_version())
         return 0

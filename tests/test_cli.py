@@ -1,0 +1,100 @@
+"""The command line, run in process as `main([...])`, plus one call of the installed script."""
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from sim_origami.cli import main
+from sim_origami.kinematics.miura import MiuraVertex
+
+
+def run(capsys, *argv: str) -> tuple[int, str, str]:
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_list_names_every_scene(capsys):
+    code, out, _ = run(capsys, "list")
+    assert code == 0
+    assert {"vertex4", "miura"} <= {line.split()[0] for line in out.splitlines()}
+
+
+def test_describe_shows_units_branches_and_events(capsys):
+    code, out, _ = run(capsys, "describe", "miura")
+    assert code == 0
+    for text in ("alpha1", "deg", "branches:", "miura", "straight", "lock", "54.7356"):
+        assert text in out
+
+
+def test_analytic_json_schema_and_values(capsys):
+    code, out, _ = run(capsys, "analytic", "miura", "--input", "30,60", "--json")
+    assert code == 0
+    doc = json.loads(out)
+    assert set(doc) == {"scene", "params", "input", "branches"}
+    assert doc["input"]["joint"] == "theta"
+    np.testing.assert_allclose(doc["input"]["values"], np.deg2rad([30, 60]), atol=1e-15, rtol=0)
+    miura = next(b for b in doc["branches"] if b["name"] == "miura")
+    expected = MiuraVertex(np.deg2rad(30), np.deg2rad(60)).at("miura", np.deg2rad(30))["phi"]
+    assert miura["joints"]["phi"][0] == pytest.approx(expected, abs=1e-15)
+    # 60 deg lies beyond theta_limit = 54.7356 deg: null, not NaN
+    assert miura["joints"]["phi"][1] is None
+
+
+@pytest.mark.parametrize(
+    ("argv", "needle"),
+    [
+        (("analytic", "vertex4", "-p", "alpha1=70", "--input", "10"), "360"),
+        (("analytic", "vertex4", "-p", "beta=70", "--input", "10"), "beta"),
+        (("analytic", "nosuch", "--input", "10"), "nosuch"),
+        (("analytic", "miura", "--input", "ten"), "ten"),
+        (("analytic", "miura", "-p", "alpha1", "--input", "10"), "NAME=VALUE"),
+        (("analytic", "miura", "-p", "alpha1=95", "--input", "10"), "(0, 90)"),
+        (("validate", "vertex4", "--branch", "S"), "'S'"),
+        (("validate",), "--all"),
+        (("validate", "vertex4", "--preset", "slow"), "slow"),
+    ],
+)
+def test_bad_input_exits_2_with_one_line(capsys, argv, needle):
+    code, out, err = run(capsys, *argv)
+    assert code == 2
+    assert len(err.strip().splitlines()) == 1
+    assert needle in err
+
+
+def test_validate_writes_report_and_passes(capsys, tmp_path):
+    code, out, _ = run(capsys, "validate", "vertex4", "--branch", "odd2", "--out", str(tmp_path / "v"), "--json")
+    assert code == 0
+    doc = json.loads(out)
+    for key in ("scene", "params", "preset", "branches", "events", "timings_s", "passed",
+                "angle_error_max_rad", "closure_residual_max_m"):  # fmt: skip
+        assert key in doc
+    assert doc["branches"][0]["branch_requested"] == doc["branches"][0]["branch_followed"] == "odd2"
+    saved = json.loads((tmp_path / "v" / "report.json").read_text())
+    assert saved["passed"] is True
+    assert (tmp_path / "v" / "curves.csv").read_text().startswith("branch,mode,input_rad")
+    assert (tmp_path / "v" / "curves.png").stat().st_size > 10_000
+    assert not list((tmp_path / "v").glob(".*")), "no temporary files may remain"
+
+
+def test_validate_reports_blockage_event_for_thick_miura(capsys, tmp_path):
+    code, out, _ = run(capsys, "validate", "miura", "-p", "thickness=0.02", "--branch", "miura",
+                       "--out", str(tmp_path / "m"), "--json")  # fmt: skip
+    assert code == 0
+    doc = json.loads(out)
+    block = doc["blockage"]
+    assert block["stopped"]
+    assert block["stop_input_rad"] < block["zero_thickness_lock_input_rad"]
+    assert any(e["kind"] == "blockage" for e in doc["events"])
+
+
+def test_installed_script_runs():
+    # the script sits beside the interpreter of the environment the package is installed in
+    exe = Path(sys.executable).parent / "sim-origami"
+    assert exe.exists(), "the console script is installed with the package"
+    result = subprocess.run([str(exe), "--version"], capture_output=True, text=True, check=True)
+    assert "sim_origami" in result.stdout and "MuJoCo" in result.stdout
