@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .errors import ConvergenceError
-from .geometry import rotation_vector, transform_z
+from .geometry import rotation_vector, transform_z, wrap
 
 
 @dataclass(frozen=True)
@@ -31,8 +31,8 @@ class Loop:
     def product(self, q: ArrayLike) -> NDArray[np.float64]:
         """Loop transforms T(q), (..., 4, 4), for joint vectors q of shape (..., n_joints)."""
         q = np.asarray(q, dtype=float)
-        T = np.broadcast_to(np.eye(4), q.shape[:-1] + (4, 4))
-        for j, s, L in zip(self.joints, self.signs, self.links):
+        T = np.broadcast_to(np.eye(4), (*q.shape[:-1], 4, 4))
+        for j, s, L in zip(self.joints, self.signs, self.links, strict=False):
             T = T @ transform_z(s * q[..., j]) @ L
         return T
 
@@ -112,9 +112,7 @@ class LoopSystem:
                     break
         if np.max(np.abs(r)) < 100 * tol:
             return q
-        raise ConvergenceError(
-            f"loop closure did not converge: residual {np.max(np.abs(r)):.3g} > tolerance {tol:g}"
-        )
+        raise ConvergenceError(f"loop closure did not converge: residual {np.max(np.abs(r)):.3g} > tolerance {tol:g}")
 
     def follow(
         self, q_start: ArrayLike, input_joint: int, values: ArrayLike, *, tol: float = 1e-14
@@ -172,8 +170,8 @@ class LoopSystem:
                 q = self.solve(q0, fixed, tol=tol)
             except ConvergenceError:
                 continue
-            q = np.angle(np.exp(1j * q))
-            if not any(np.max(np.abs(np.angle(np.exp(1j * (q - f))))) < 1e-6 for f in found):
+            q = wrap(q)
+            if not any(np.max(np.abs(wrap(q - f))) < 1e-6 for f in found):
                 found.append(q)
         return np.array(found).reshape(-1, self.n_joints)
 

@@ -26,7 +26,7 @@ def rotation(axis: ArrayLike, angle: ArrayLike) -> NDArray[np.float64]:
     axis = np.asarray(axis, dtype=float)
     angle = np.asarray(angle, dtype=float)
     shape = np.broadcast_shapes(axis.shape[:-1], angle.shape)
-    k = np.broadcast_to(axis, shape + (3,))
+    k = np.broadcast_to(axis, (*shape, 3))
     c = np.cos(angle)[..., None, None]
     s = np.sin(angle)[..., None, None]
     kx, ky, kz = k[..., 0], k[..., 1], k[..., 2]
@@ -69,9 +69,7 @@ def rotation_vector(R: ArrayLike) -> NDArray[np.float64]:
       Rotation vector in radians.
     """
     R = np.asarray(R, dtype=float)
-    v = 0.5 * np.stack(
-        [R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]], -1
-    )
+    v = 0.5 * np.stack([R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]], -1)
     s = np.linalg.norm(v, axis=-1)
     c = 0.5 * (np.trace(R, axis1=-2, axis2=-1) - 1.0)
     angle = np.arctan2(s, c)
@@ -93,7 +91,7 @@ def transform(R: ArrayLike | None = None, p: ArrayLike | None = None) -> NDArray
 def transform_z(angle: ArrayLike) -> NDArray[np.float64]:
     """Homogeneous rotations about +z, (..., 4, 4)."""
     angle = np.asarray(angle, dtype=float)
-    T = np.zeros(angle.shape + (4, 4))
+    T = np.zeros((*angle.shape, 4, 4))
     T[..., :3, :3] = rot_z(angle)
     T[..., 3, 3] = 1.0
     return T
@@ -140,4 +138,6 @@ def unit(v: ArrayLike) -> NDArray[np.float64]:
 
 def wrap(angle: ArrayLike) -> NDArray[np.float64]:
     """Angles wrapped to (-pi, pi]."""
-    return -np.remainder(-np.asarray(angle, dtype=float) + np.pi, 2.0 * np.pi) + np.pi
+    out = -np.remainder(-np.asarray(angle, dtype=float) + np.pi, 2.0 * np.pi) + np.pi
+    # pi + 1 ulp rounds to exactly -pi above; the range is half-open at -pi
+    return np.where(out <= -np.pi, out + 2.0 * np.pi, out)

@@ -86,20 +86,40 @@ class Mechanism:
 
     @cached_property
     def tree(self) -> tuple[TreeEdge, ...]:
-        """Spanning-tree edges in breadth-first order from the root."""
-        priority = {i: (j.name not in self.keep, i) for i, j in enumerate(self.joints)}
+        """
+        Spanning-tree edges in breadth-first order from the root.
+
+        Joints are taken Kruskal-style, those in `keep` first, so a kept joint is never cut;
+        the chosen joints are then oriented breadth-first from the root.
+        """
+        names = [b.name for b in self.bodies]
+        group = {b: b for b in names}
+
+        def find(b: str) -> str:
+            while group[b] != b:
+                group[b] = group[group[b]]
+                b = group[b]
+            return b
+
+        chosen = set()
+        for i in sorted(range(len(self.joints)), key=lambda i: (self.joints[i].name not in self.keep, i)):
+            a, b = find(self.joints[i].parent), find(self.joints[i].child)
+            if a != b:
+                group[a] = b
+                chosen.add(i)
         seen, edges, queue = {self.root}, [], deque([self.root])
         while queue:
             body = queue.popleft()
-            incident = [i for i, j in enumerate(self.joints) if body in (j.parent, j.child)]
-            for i in sorted(incident, key=priority.get):
+            for i in sorted(chosen):
                 j = self.joints[i]
+                if body not in (j.parent, j.child):
+                    continue
                 other, sign = (j.child, 1) if j.parent == body else (j.parent, -1)
                 if other not in seen:
                     seen.add(other)
                     edges.append(TreeEdge(i, body, other, sign))
                     queue.append(other)
-        missing = {b.name for b in self.bodies} - seen
+        missing = set(names) - seen
         if missing:
             raise ParameterError(f"bodies {sorted(missing)} are not connected to root {self.root!r}")
         return tuple(edges)
@@ -120,7 +140,7 @@ class Mechanism:
     def body_poses(self, q: ArrayLike) -> dict[str, NDArray[np.float64]]:
         """World poses (..., 4, 4) of every body for joint angles q (..., n_joints); cut joints unused."""
         q = np.asarray(q, dtype=float)
-        poses = {self.root: np.broadcast_to(np.eye(4), q.shape[:-1] + (4, 4))}
+        poses = {self.root: np.broadcast_to(np.eye(4), (*q.shape[:-1], 4, 4))}
         for e in self.tree:
             F_from, sign, F_to = self._step(e.joint, e.parent)
             poses[e.child] = poses[e.parent] @ F_from @ transform_z(sign * q[..., e.joint]) @ invert(F_to)

@@ -61,7 +61,9 @@ def _quat(R: np.ndarray) -> np.ndarray:
     """Unit quaternion (w, x, y, z) of a rotation matrix."""
     w = np.sqrt(max(0.0, 1.0 + np.trace(R))) / 2
     if w > 1e-6:
-        return np.array([w, (R[2, 1] - R[1, 2]) / (4 * w), (R[0, 2] - R[2, 0]) / (4 * w), (R[1, 0] - R[0, 1]) / (4 * w)])
+        return np.array(
+            [w, (R[2, 1] - R[1, 2]) / (4 * w), (R[0, 2] - R[2, 0]) / (4 * w), (R[1, 0] - R[0, 1]) / (4 * w)]
+        )
     i = int(np.argmax(np.diag(R)))
     j, k = (i + 1) % 3, (i + 2) % 3
     q = np.zeros(4)
@@ -179,7 +181,7 @@ def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarr
         joint = mechanism.joints[i]
         equality.append(ET.Comment(f" loop cut at {joint.name}: anchors on its axis, away from shared vertices "))
         on_parent, on_child = mechanism.anchor_points(i)
-        for k, (p, c) in enumerate(zip(on_parent, on_child)):
+        for k, (p, c) in enumerate(zip(on_parent, on_child, strict=False)):
             ET.SubElement(elements[joint.parent], "site", name=f"{joint.name}_parent_{k}", pos=_fmt(p))
             ET.SubElement(elements[joint.child], "site", name=f"{joint.name}_child_{k}", pos=_fmt(c))
             for side in ("parent", "child"):

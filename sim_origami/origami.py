@@ -80,9 +80,7 @@ def vertex_mechanism(
             distances = np.zeros(len(outline))
             distances[0] = distances[-1] = inset  # the two crease edges meet at vertex 0
             collision = prism(inset_outline(outline, distances), thickness)
-        bodies.append(
-            Body(f"panel_{i + 1}", prism(outline, solid_t), collision, PALETTE[i % len(PALETTE)])
-        )
+        bodies.append(Body(f"panel_{i + 1}", prism(outline, solid_t), collision, PALETTE[i % len(PALETTE)]))
     joints = []
     for i in range(n):
         frame = frame_along(d[i])

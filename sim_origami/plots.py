@@ -5,11 +5,11 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
 
-from .files import atomic_path  # noqa: E402
-from .validation import Report  # noqa: E402
+from .files import atomic_path
+from .validation import Report
 
 # Simulated markers drawn per branch (the CSV keeps every sample).
 MARKERS = 40

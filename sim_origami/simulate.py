@@ -114,21 +114,9 @@ def _check(data: mujoco.MjData, messages: list[str], t: float) -> None:
         raise SimulationError(f"MuJoCo warning {names} at t = {t:.4g} s{detail}")
 
 
-def start_pose(scene: Scene, branch: str, start: float, seed: str, bias: float) -> NDArray[np.float64]:
-    """
-    Mechanism angles to start from.
-
-    seed 'closed': the closed form on `branch` at `start` (a closed pose, away from singular states).
-    seed 'flat': the flat state plus `bias` (rad) along the branch's tangent at flat, signed by
-    the direction of travel; the branch is then chosen by the engine from that bias.
-    """
-    if seed == "closed":
-        return scene.pose(branch, start)
-    if seed == "flat":
-        probe = 1e-4
-        tangent = scene.pose(branch, probe) / probe
-        return bias * tangent / np.max(np.abs(tangent))
-    raise DomainError(f"unknown seed {seed!r}; use 'closed' or 'flat'")
+def start_pose(scene: Scene, branch: str, start: float) -> NDArray[np.float64]:
+    """Mechanism angles of the closed form on `branch` at input `start` (a closed pose)."""
+    return scene.pose(branch, start)
 
 
 def ramp(phase: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -161,7 +149,7 @@ def simulate(
     start: float | None = None,
     stop: float | None = None,
     seed: str = "closed",
-    bias: float = 1e-6,
+    bias: float = 1e-4,
     drive: str = "equality",
     contact: bool = False,
     duration: float | None = None,
@@ -187,15 +175,23 @@ def simulate(
     start = default_start if start is None else start
     stop = default_stop if stop is None else stop
     if seed == "flat":
-        start = 0.0
+        # At the flat state every branch meets: start a signed `bias` (rad) from it, on the branch,
+        # so the engine is told the branch by a closed pose rather than left to choose.
+        start = float(np.copysign(bias, stop))
+    elif seed != "closed":
+        raise DomainError(f"unknown seed {seed!r}; use 'closed' or 'flat'")
+    if drive not in ("equality", "servo"):
+        raise DomainError(f"unknown drive {drive!r}; use 'equality' or 'servo'")
     model, data = compile_model(scene, ModelOptions(preset=preset, drive=drive, contact=contact))
     binds = Bindings(scene, model)
-    binds.set_pose(data, start_pose(scene, branch, start, seed, bias))
+    binds.set_pose(data, start_pose(scene, branch, start))
     mujoco.mj_forward(model, data)
 
     T = duration or preset_duration(preset)
     h = model.opt.timestep
-    n = int(round((T + hold) / h))
+    n = round((T + hold) / h)
+    if n < 2:
+        raise DomainError(f"a sweep of {T + hold:g} s is shorter than two time steps of {h:g} s")
     t = h * np.arange(1, n + 1)
     shape, rate = ramp(np.clip(t / T, 0.0, 1.0))
     x = start + (stop - start) * shape

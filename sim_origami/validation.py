@@ -87,7 +87,7 @@ def path_events(scene: Scene, branch: str, x: np.ndarray, labels: tuple[str, ...
     out = []
     for e in scene.kinematics.events():
         if branch in e.branches and lo - 1e-9 <= e.input <= hi + 1e-9:
-            after = next((lab for xi, lab in zip(x, labels) if lab and abs(xi - e.input) > 1e-6), "")
+            after = next((lab for xi, lab in zip(x, labels, strict=False) if lab and abs(xi - e.input) > 1e-6), "")
             out.append({"kind": e.kind, "input_rad": e.input, "branches": list(e.branches), "detail": e.detail,
                         "branch_after": after})  # fmt: skip
     return tuple(out)
@@ -160,9 +160,13 @@ def validate(scene: Scene, *, preset: str = "fast", branch: str | None = None, s
     if scene.contact_pairs:
         blockage, timings["blockage_cpu_s"] = run_blockage(scene, names[0])
         verdicts.append(
-            Verdict("blockage: servo stop vs kinematic contact (rad)", blockage.error, TOLERANCES.blockage_rad,
-                    f"stopped at {blockage.stop_input:.6f}, contact at {blockage.contact_input:.6f}, "
-                    f"zero-thickness lock at {blockage.analytic_limit:.6f} rad")  # fmt: skip
+            Verdict(
+                "blockage: servo stop vs kinematic contact (rad)",
+                blockage.error,
+                TOLERANCES.blockage_rad,
+                f"stopped at {blockage.stop_input:.6f}, contact at {blockage.contact_input:.6f}, "
+                f"zero-thickness lock at {blockage.analytic_limit:.6f} rad",
+            )
         )
     timings["total_cpu_s"] = time.thread_time() - t0
     return Report(scene, preset, seed, tuple(runs), tuple(verdicts), blockage, timings)

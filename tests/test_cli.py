@@ -60,7 +60,7 @@ def test_analytic_json_schema_and_values(capsys):
     ],
 )
 def test_bad_input_exits_2_with_one_line(capsys, argv, needle):
-    code, out, err = run(capsys, *argv)
+    code, _out, err = run(capsys, *argv)
     assert code == 2
     assert len(err.strip().splitlines()) == 1
     assert needle in err

@@ -6,6 +6,7 @@ times farther than the nearest. Near a bifurcation point the branches coincide a
 given. A path flips if its labels are not all the same.
 """
 
+import itertools
 from dataclasses import dataclass
 
 import numpy as np
@@ -35,8 +36,8 @@ def classify(
     order = np.sort(dist, axis=0)
     nearest = np.argmin(dist, axis=0)
     clear = (order[1] > separation * order[0]) if len(names) > 1 else np.isfinite(order[0])
-    labels = tuple(names[k] if c else "" for k, c in zip(nearest, clear))
+    labels = tuple(names[k] if c else "" for k, c in zip(nearest, clear, strict=False))
     told = [lab for lab in labels if lab]
     followed = max(set(told), key=told.count) if told else ""
-    flips = sum(1 for a, b in zip(told, told[1:]) if a != b)
+    flips = sum(1 for a, b in itertools.pairwise(told) if a != b)
     return BranchLabels(labels, followed, flips)

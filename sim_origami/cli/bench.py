@@ -86,8 +86,10 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps(rows, indent=2))
         return 0
-    print("| scene | input (rad) | fast err | fast step CPU | loop/bare | fast call CPU | accurate err "
-          "| accurate CPU | projection err | analytic values/s |")
+    print(
+        "| scene | input (rad) | fast err | fast step CPU | loop/bare | fast call CPU | accurate err "
+        "| accurate CPU | projection err | analytic values/s |"
+    )
     print("|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         print(f"| {r['scene']} {r['branch']} | {r['input_rad'][0]:.3f}-{r['input_rad'][1]:.3f} "

@@ -26,7 +26,9 @@ def run(args: argparse.Namespace) -> int:
     for p in kind.params:
         value = p.to_user(scene.params[p.name])
         print(f"  {p.name:10s} = {value:<10.6g} {p.unit:4s} (default {p.default:g}) {p.help}")
-    print(f"input: {kin.input_name} (degrees here, radians in JSON); drives {scene.drive_joint} x {scene.drive_scale:g}")
+    print(
+        f"input: {kin.input_name} (degrees here, radians in JSON); drives {scene.drive_joint} x {scene.drive_scale:g}"
+    )
     print(f"joints: {', '.join(kin.joint_names)}")
     print(f"mechanism: {len(scene.mechanism.bodies)} bodies, {len(scene.mechanism.joints)} hinges, "
           f"root {scene.mechanism.root}, loops cut at "

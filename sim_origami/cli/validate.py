@@ -27,8 +27,12 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     add_params(parser)
     parser.add_argument("--branch", help="one branch (default: every branch)")
     parser.add_argument("--preset", default="fast", choices=("fast", "accurate"))
-    parser.add_argument("--seed", default="closed", choices=("closed", "flat"),
-                        help="start on the branch at a closed pose, or at flat with a 1e-6 rad bias")  # fmt: skip
+    parser.add_argument(
+        "--seed",
+        default="closed",
+        choices=("closed", "flat"),
+        help="start at a closed pose on the branch, or 1e-4 rad from flat on it (with --preset accurate)",
+    )
     parser.add_argument("--out", type=Path, help="output folder (default runs/<scene>)")
     parser.add_argument("--render", action="store_true", help="also write frames/, fold.gif and fold.mp4")
     parser.add_argument("--json", action="store_true", help="print report.json to stdout")

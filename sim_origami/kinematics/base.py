@@ -45,9 +45,7 @@ class Kinematics(ABC):
         """Every motion branch with its input domain."""
 
     @abstractmethod
-    def evaluate(
-        self, branch: str, x: ArrayLike
-    ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
         """
         Output joints on one branch, without raising.
 
@@ -109,7 +107,7 @@ class Kinematics(ABC):
 
     def at(self, branch: str, x: float) -> dict[str, float]:
         """Output joints at one input value, by name."""
-        return dict(zip(self.joint_names, self.joint_angles(branch, x)[0].tolist()))
+        return dict(zip(self.joint_names, self.joint_angles(branch, x)[0].tolist(), strict=False))
 
 
 def domain_of(valid_at, lo: float, hi: float, anchor: float, samples: int = 4097) -> tuple[float, float]:

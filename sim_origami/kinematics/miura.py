@@ -66,7 +66,12 @@ def spinal_crease(alpha1: float, alpha2: float, theta: ArrayLike) -> NDArray[np.
 def fold_angles_from_creases(a: NDArray, b: NDArray, d: NDArray) -> NDArray[np.float64]:
     """Fold angles (n, 4) of creases a, b, c, d from the panel normals (digest A.3)."""
     c = np.broadcast_to([-1.0, 0.0, 0.0], a.shape)
-    n_ab, n_bc, n_cd, n_da = unit(np.cross(a, b)), unit(np.cross(b, c)), unit(np.cross(c, d)), unit(np.cross(d, a))
+    n_ab, n_bc, n_cd, n_da = (
+        unit(np.cross(a, b)),
+        unit(np.cross(b, c)),
+        unit(np.cross(c, d)),
+        unit(np.cross(d, a)),
+    )
     return np.stack(
         [
             signed_angle(n_da, n_ab, a),
@@ -117,7 +122,11 @@ class MiuraVertex(Kinematics):
         lim = self.theta_limit
         return (
             Branch("miura", "the paper's branch: crease a folds opposite to b, c and d", (-lim, lim)),
-            Branch("straight", "fold about the straight line a-c only: rho_b = rho_d = 0", (-np.pi / 2, np.pi / 2)),
+            Branch(
+                "straight",
+                "fold about the straight line a-c only: rho_b = rho_d = 0",
+                (-np.pi / 2, np.pi / 2),
+            ),
         )
 
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
@@ -142,7 +151,12 @@ class MiuraVertex(Kinematics):
         events = [Event("bifurcation", 0.0, BRANCHES, "flat state: the Miura and straight-fold branches cross")]
         for sign in (-1, 1):
             events.append(
-                Event("lock", sign * self.theta_limit, ("miura",), f"crease {crease} folds flat (seed 002 eqn 40)")
+                Event(
+                    "lock",
+                    sign * self.theta_limit,
+                    ("miura",),
+                    f"crease {crease} folds flat (seed 002 eqn 40)",
+                )
             )
             events.append(Event("lock", sign * np.pi / 2, ("straight",), "crease c folds flat (rho_c = pi)"))
         return tuple(events)

@@ -37,6 +37,9 @@ ANGLE_TOL = 1e-9
 # A fold angle below this fraction of the largest fold counts as unfolded when naming a root by its
 # sign pattern (the straight-fold root carries about 1e-16 rad there; real folds are not that small).
 ZERO_FOLD = 1e-8
+# Inputs below this (rad) are evaluated on the tangent at the flat state, from +/- TANGENT_STEP.
+TINY_INPUT = 1e-8
+TANGENT_STEP = 1e-5
 # Every branch name a degree-4 vertex can have (codes index this tuple).
 NAMES = ("S", "C", "odd1", "odd2", "odd3", "odd4", "straight13", "straight24")
 
@@ -98,7 +101,14 @@ def _last_two(alpha: NDArray, t1: NDArray, t2: NDArray) -> tuple[NDArray, NDArra
     The entries of M are written out (no (n, 3, 3) stacks): 5x faster than the matrix products.
     """
     a12, a23, _, a41 = alpha
-    c12, s12, c23, s23, c41, s41 = np.cos(a12), np.sin(a12), np.cos(a23), np.sin(a23), np.cos(a41), np.sin(a41)
+    c12, s12, c23, s23, c41, s41 = (
+        np.cos(a12),
+        np.sin(a12),
+        np.cos(a23),
+        np.sin(a23),
+        np.cos(a41),
+        np.sin(a41),
+    )
     c1, s1, c2, s2 = np.cos(t1), np.sin(t1), np.cos(t2), np.sin(t2)
     # A = Rx(a12) Rz(t2) Rx(a23), rows 0..2 (entries used below)
     a00, a01, a02 = c2, -s2 * c23, s2 * s23
@@ -158,9 +168,7 @@ class Vertex4(Kinematics):
             raise ParameterError(f"a degree-4 vertex needs 4 sector angles, got {alpha.size}")
         for i, a in enumerate(alpha, start=1):
             if not 0.0 < a < np.pi:
-                raise ParameterError(
-                    f"sector angle alpha{i} = {np.rad2deg(a):.6g} deg; each must lie in (0, 180) deg"
-                )
+                raise ParameterError(f"sector angle alpha{i} = {np.rad2deg(a):.6g} deg; each must lie in (0, 180) deg")
         total = float(np.sum(alpha))
         if abs(total - 2 * np.pi) > ANGLE_TOL:
             raise ParameterError(
@@ -232,6 +240,7 @@ class Vertex4(Kinematics):
             self.branch(branch)  # raises with the list of names
         x = np.atleast_1d(np.asarray(x, dtype=float))
         rho, real = self._roots(x)
+        real &= np.abs(x) <= np.pi  # an input fold angle lives in [-pi, pi]
         codes = self._codes(rho)
         values = np.full((x.size, 4), np.nan)
         valid = np.zeros(x.size, dtype=bool)
@@ -239,9 +248,13 @@ class Vertex4(Kinematics):
             hit = real & (codes[k] == NAMES.index(branch))
             values[hit] = rho[k, hit]
             valid |= hit
-        flat = x == 0.0
-        values[flat] = 0.0
-        valid |= flat
+        # At rounding-level folds the sign pattern is noise: use the branch's tangent at flat
+        # (central difference at +/- TANGENT_STEP; the neglected O(x^2) term is below 1e-16 rad).
+        tiny = np.abs(x) < TINY_INPUT
+        if np.any(tiny):
+            ends, _ = self.evaluate(branch, np.array([-TANGENT_STEP, TANGENT_STEP]))
+            values[tiny] = np.outer(x[tiny], (ends[1] - ends[0]) / (2 * TANGENT_STEP))
+            valid |= tiny
         return values, valid
 
     def _valid(self, branch: str):

@@ -6,8 +6,6 @@ rho_c = 2 theta. With `thickness` > 0 the panels are solids and collide, so the 
 P_ab meets P_bc, before the zero-thickness lock theta_limit.
 """
 
-import numpy as np
-
 from ..kinematics.miura import MiuraVertex
 from ..origami import vertex_mechanism
 from .base import Param, Scene, register

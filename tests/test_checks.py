@@ -1,0 +1,126 @@
+"""Checks (`sim_origami.checks`): verdicts, branch labels, path comparison and blockage assessment."""
+
+import numpy as np
+import pytest
+
+from sim_origami import scenes
+from sim_origami.checks.blockage import assess, first_contact
+from sim_origami.checks.branches import classify
+from sim_origami.checks.paths import compare
+from sim_origami.checks.verdict import Verdict
+from sim_origami.tolerances import TOLERANCES
+
+SCENE_NAMES = scenes.names()
+FORCE_LIMIT = 20.0
+
+
+def branch_names(scene) -> list[str]:
+    return [b.name for b in scene.kinematics.branches()]
+
+
+def closed_form_q(scene, branch: str, x: np.ndarray) -> np.ndarray:
+    """Mechanism angles (n, n_joints) of the closed form on `branch` at inputs x."""
+    return scene.loop_to_mechanism(scene.kinematics.loop_angles(scene.kinematics.joint_angles(branch, x)))
+
+
+def symmetric_inputs(scene) -> np.ndarray:
+    """Inputs through the flat state (x = 0 at index 10), inside every branch's domain."""
+    half = min(min(abs(lo), hi) for lo, hi in (b.domain for b in scene.kinematics.branches()))
+    return np.linspace(-0.9 * half, 0.9 * half, 21)
+
+
+@pytest.mark.parametrize(
+    ("measured", "tolerance", "passed"),
+    [(0.5, 1.0, True), (1.0, 1.0, True), (1.0 + 1e-12, 1.0, False), (0.0, 0.0, True), (np.nan, 1.0, False),
+     (np.inf, 1.0, False), (-np.inf, 0.0, True)],
+)  # fmt: skip
+def test_verdict_passes_exactly_when_measured_is_at_most_tolerance(measured, tolerance, passed):
+    verdict = Verdict("check", measured, tolerance)
+    assert verdict.passed is passed
+
+
+@pytest.mark.parametrize("name", SCENE_NAMES)
+def test_classify_leaves_flat_state_unlabelled_and_labels_the_branch_elsewhere(name):
+    scene = scenes.get(name).build()
+    x = symmetric_inputs(scene)
+    for branch in branch_names(scene):
+        labels = classify(scene.kinematics, x, scene.kinematics.joint_angles(branch, x))
+        assert labels.labels[10] == ""  # every branch passes through the flat state
+        assert labels.labels[:10] + labels.labels[11:] == (branch,) * 20
+        assert (labels.followed, labels.flips) == (branch, 0)
+
+
+@pytest.mark.parametrize("name", SCENE_NAMES)
+def test_classify_counts_a_switch_of_branch_as_a_flip(name):
+    scene = scenes.get(name).build()
+    first, second = branch_names(scene)[:2]
+    x = np.linspace(0.1, 0.5, 20)
+    outputs = np.vstack([scene.kinematics.joint_angles(first, x[:12]), scene.kinematics.joint_angles(second, x[12:])])
+    labels = classify(scene.kinematics, x, outputs)
+    assert labels.labels == (first,) * 12 + (second,) * 8
+    assert (labels.followed, labels.flips) == (first, 1)
+
+
+def test_classify_of_a_path_that_never_leaves_flat_follows_no_branch():
+    scene = scenes.get("vertex4").build()
+    x = np.zeros(5)
+    labels = classify(scene.kinematics, x, np.zeros((5, 4)))
+    assert labels == type(labels)(("",) * 5, "", 0)
+
+
+@pytest.mark.parametrize("name", SCENE_NAMES)
+def test_path_against_its_own_branch_agrees_and_against_another_branch_differs(name):
+    scene = scenes.get(name).build()
+    own, other = branch_names(scene)[:2]
+    x = np.linspace(*scene.branch_path(own), 30)
+    q = closed_form_q(scene, own, x)
+    assert compare(scene, own, q).max_error() <= TOLERANCES.closed_form_rad
+    # Measured 2.9 rad (vertex4) and 3.6 rad (miura): the branches fold different creases.
+    assert compare(scene, other, q).max_error() > 1.0
+
+
+def test_compare_measures_the_input_from_the_drive_joint():
+    scene = scenes.get("miura").build()  # drive_scale 2: rho_c = 2 theta
+    x = np.linspace(0.3, 0.6, 7)
+    path = compare(scene, "miura", closed_form_q(scene, "miura", x))
+    np.testing.assert_allclose(path.input, x, atol=TOLERANCES.closed_form_rad, rtol=0)
+
+
+def test_path_outside_the_branch_domain_has_infinite_error():
+    scene = scenes.get("vertex4").build()
+    odd1, odd2 = branch_names(scene)[:2]
+    hi = scene.kinematics.branch(odd1).domain[1]
+    assert scene.kinematics.branch(odd2).domain[1] > hi + 0.2
+    q = closed_form_q(scene, odd2, np.array([0.5 * hi, hi + 0.1]))
+    assert compare(scene, odd1, q).max_error() == np.inf
+
+
+def assessed(stop: float, target: float = 1.0, peak_force: float = 5.0):
+    """A synthetic run ramping from 0 to `stop` against a ramp to `target`, contact at 0.8."""
+    x = np.linspace(0.0, stop, 50)
+    force = np.linspace(0.0, peak_force, 50)
+    return assess(x, np.linspace(0.0, target, 50), force, FORCE_LIMIT, 0.8, 1.2)
+
+
+def test_blockage_assess_sees_a_run_that_reached_its_target_as_not_stopped():
+    result = assessed(stop=1.0 - 5e-4)
+    assert not result.stopped and not result.drive_saturated
+    assert (result.contact_input, result.analytic_limit) == (0.8, 1.2)
+
+
+def test_blockage_assess_sees_a_run_that_fell_short_as_stopped_with_its_error():
+    result = assessed(stop=0.805, peak_force=FORCE_LIMIT)
+    assert result.stopped and result.drive_saturated
+    assert result.stop_input == 0.805
+    np.testing.assert_allclose(result.error, 0.005, atol=1e-15, rtol=0)
+
+
+@pytest.mark.parametrize(("peak", "saturated"), [(0.998 * FORCE_LIMIT, False), (0.9995 * FORCE_LIMIT, True)])
+def test_blockage_assess_flags_saturation_at_the_force_limit(peak, saturated):
+    assert assessed(stop=0.9, peak_force=-peak).drive_saturated is saturated
+
+
+def test_first_contact_is_the_first_non_positive_distance():
+    x = np.linspace(0.0, 1.0, 6)
+    assert first_contact(x, np.array([0.3, 0.2, 0.1, 0.0, -0.1, 0.2])) == 3
+    assert first_contact(x, np.array([0.3, 0.2, 0.1, 0.05, 0.01, 0.2])) == -1

@@ -1,0 +1,206 @@
+"""MJCF generation (`sim_origami.mjcf`): structure, names, options and keyframes of compiled models."""
+
+import xml.etree.ElementTree as ET
+
+import mujoco
+import numpy as np
+import pytest
+
+from sim_origami import scenes
+from sim_origami.mjcf import ModelOptions, build_xml, preset_duration, qpos_order
+
+# Menagerie's top-level order; `visual` appears only in rendered models.
+MENAGERIE_ORDER = (
+    "compiler", "option", "custom", "visual", "default", "asset", "worldbody",
+    "contact", "equality", "actuator", "keyframe",
+)  # fmt: skip
+# MJCF numbers are written with 12 significant digits (mjcf._fmt): |rounding| <= 5e-12 for angles
+# and positions below 10; measured keyframe qpos error 2e-12 rad, closure-site gap 3e-12 m.
+MJCF_DIGITS_ATOL = 1e-11
+# Force range of the servo that validation.run_blockage assumes (20 N m at the drive joint).
+SERVO_FORCE_LIMIT = 20.0
+
+
+def thick_miura():
+    return scenes.get("miura").build(thickness=0.02)
+
+
+def compiled(scene, keyframes=None, **options) -> tuple[mujoco.MjModel, str]:
+    """Compiled model and its MJCF text."""
+    xml = build_xml(scene, ModelOptions(**options), keyframes)
+    return mujoco.MjModel.from_xml_string(xml), xml
+
+
+def names_of(model: mujoco.MjModel, obj: mujoco.mjtObj, count: int) -> set[str]:
+    return {mujoco.mj_id2name(model, obj, i) for i in range(count)}
+
+
+def all_scenes():
+    return [scenes.get(name).build() for name in scenes.names()]
+
+
+@pytest.mark.parametrize("name", scenes.names())
+@pytest.mark.parametrize("preset", ["fast", "accurate"])
+@pytest.mark.parametrize("drive", ["equality", "servo"])
+@pytest.mark.parametrize("render", [False, True])
+def test_generated_xml_compiles(name, preset, drive, render):
+    model, _ = compiled(scenes.get(name).build(), preset=preset, drive=drive, render=render)
+    assert model.njnt == len(scenes.get(name).build().mechanism.tree)
+
+
+def test_top_level_elements_follow_menagerie_order():
+    scene = thick_miura()
+    _, xml = compiled(
+        scene, {"miura": scene.pose("miura", 0.5)}, drive="servo", contact=True, render=True
+    )  # every section present
+    tags = [e.tag for e in ET.fromstring(xml) if isinstance(e.tag, str)]
+    assert tags == list(MENAGERIE_ORDER)
+
+
+@pytest.mark.parametrize("scene", all_scenes(), ids=scenes.names())
+def test_top_level_elements_of_a_plain_model_are_unique_and_ordered(scene):
+    _, xml = compiled(scene)
+    tags = [e.tag for e in ET.fromstring(xml) if isinstance(e.tag, str)]
+    assert tags == [t for t in MENAGERIE_ORDER if t in tags]
+    assert "visual" not in tags and "actuator" not in tags and "keyframe" not in tags
+
+
+@pytest.mark.parametrize("scene", all_scenes(), ids=scenes.names())
+def test_names_follow_the_scheme(scene):
+    model, _ = compiled(scene)
+    mech = scene.mechanism
+    panels = {b.name for b in mech.bodies}
+    assert names_of(model, mujoco.mjtObj.mjOBJ_BODY, model.nbody) == {"world"} | (panels - {mech.root})
+    assert panels == {f"panel_{i + 1}" for i in range(len(mech.bodies))}
+    assert names_of(model, mujoco.mjtObj.mjOBJ_GEOM, model.ngeom) == {f"{p}_solid" for p in panels}
+    assert names_of(model, mujoco.mjtObj.mjOBJ_JOINT, model.njnt) == {mech.joints[e.joint].name for e in mech.tree}
+    closures = {f"close_{mech.joints[i].name}_{k}" for i in mech.cut_joints for k in range(len(mech.joints[i].anchors))}
+    assert names_of(model, mujoco.mjtObj.mjOBJ_EQUALITY, model.neq) == closures | {f"drive_{scene.drive_joint}"}
+
+
+@pytest.mark.parametrize("scene", all_scenes(), ids=scenes.names())
+def test_closure_connects_join_parent_and_child_sites_on_the_cut_joint_bodies(scene):
+    model, _ = compiled(scene)
+    mech = scene.mechanism
+
+    def body_of(panel: str) -> int:
+        return 0 if panel == mech.root else model.body(panel).id
+
+    for i in mech.cut_joints:
+        joint = mech.joints[i]
+        for k, (on_parent, on_child) in enumerate(zip(*mech.anchor_points(i), strict=True)):
+            eq = model.equality(f"close_{joint.name}_{k}")
+            assert eq.type == mujoco.mjtEq.mjEQ_CONNECT and model.eq_objtype[eq.id] == mujoco.mjtObj.mjOBJ_SITE
+            child, parent = model.site(f"{joint.name}_child_{k}"), model.site(f"{joint.name}_parent_{k}")
+            assert (eq.obj1id, eq.obj2id) == (child.id, parent.id)
+            assert (parent.bodyid, child.bodyid) == (body_of(joint.parent), body_of(joint.child))
+            # Body frames are the flat sheet's frame, so sites sit at the anchors as given.
+            np.testing.assert_allclose(parent.pos, on_parent, atol=MJCF_DIGITS_ATOL, rtol=0)
+            np.testing.assert_allclose(child.pos, on_child, atol=MJCF_DIGITS_ATOL, rtol=0)
+
+
+@pytest.mark.parametrize("scene", all_scenes(), ids=scenes.names())
+def test_equality_drive_is_a_joint_equality_on_the_drive_joint(scene):
+    model, _ = compiled(scene)
+    eq = model.equality(f"drive_{scene.drive_joint}")
+    assert eq.type == mujoco.mjtEq.mjEQ_JOINT
+    assert eq.obj1id == model.joint(scene.drive_joint).id and eq.obj2id == -1
+    assert model.nu == 0
+
+
+@pytest.mark.parametrize("scene", all_scenes(), ids=scenes.names())
+def test_zero_thickness_scene_has_contact_disabled_no_pairs_and_no_render_assets(scene):
+    assert scene.contact_pairs == ()
+    model, xml = compiled(scene, contact=True)  # asking for contact changes nothing without pairs
+    assert model.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_CONTACT
+    assert model.npair == 0 and model.nexclude == 0
+    assert model.nlight == 0 and model.ntex == 0
+    assert "<light" not in xml and "<texture" not in xml and "<contact" not in xml
+
+
+@pytest.mark.parametrize("scene", all_scenes(), ids=scenes.names())
+def test_render_option_adds_light_and_skybox_texture(scene):
+    model, _ = compiled(scene, render=True)
+    assert model.nlight >= 1 and model.ntex >= 1
+
+
+@pytest.mark.parametrize("scene", [*all_scenes(), thick_miura()], ids=[*scenes.names(), "thick"])
+@pytest.mark.parametrize("preset", ["fast", "accurate"])
+def test_gravity_is_disabled(scene, preset):
+    model, _ = compiled(scene, preset=preset, contact=True)
+    assert model.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_GRAVITY
+
+
+def test_thick_miura_with_contact_has_exactly_the_scene_pairs_and_contact_enabled():
+    scene = thick_miura()
+    model, _ = compiled(scene, contact=True)
+    assert not model.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_CONTACT
+    geom = {i: mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, i) for i in range(model.ngeom)}
+    # MuJoCo may store a pair's geoms in either order.
+    pairs = {frozenset((geom[g1], geom[g2])) for g1, g2 in zip(model.pair_geom1, model.pair_geom2, strict=True)}
+    assert model.npair == len(scene.contact_pairs)
+    assert pairs == {frozenset((f"{a}_collision", f"{b}_collision")) for a, b in scene.contact_pairs}
+    # Only explicit pairs collide: every geom is out of the contype/conaffinity filter.
+    assert not np.any(model.geom_contype) and not np.any(model.geom_conaffinity)
+
+
+def test_thick_miura_without_contact_has_contact_disabled_and_no_collision_geoms():
+    model, _ = compiled(thick_miura(), contact=False)
+    assert model.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_CONTACT
+    assert model.npair == 0
+    assert not any(n.endswith("_collision") for n in names_of(model, mujoco.mjtObj.mjOBJ_GEOM, model.ngeom))
+
+
+@pytest.mark.parametrize("scene", [*all_scenes(), thick_miura()], ids=[*scenes.names(), "thick"])
+def test_servo_drive_is_a_force_limited_position_actuator_on_the_drive_joint(scene):
+    model, _ = compiled(scene, drive="servo", contact=True)
+    act = model.actuator(f"drive_{scene.drive_joint}")
+    assert model.nu == 1
+    assert act.trntype == mujoco.mjtTrn.mjTRN_JOINT and act.trnid[0] == model.joint(scene.drive_joint).id
+    # Position actuator: force = kp * (ctrl - qpos) - kv * qdot.
+    assert act.gaintype == mujoco.mjtGain.mjGAIN_FIXED and act.biastype == mujoco.mjtBias.mjBIAS_AFFINE
+    assert act.gainprm[0] > 0 and act.biasprm[1] == -act.gainprm[0] and act.biasprm[2] < 0
+    assert act.forcelimited
+    np.testing.assert_allclose(act.forcerange, [-SERVO_FORCE_LIMIT, SERVO_FORCE_LIMIT], atol=0, rtol=0)
+    with pytest.raises(KeyError):
+        model.equality(f"drive_{scene.drive_joint}")
+
+
+@pytest.mark.parametrize("scene", all_scenes(), ids=scenes.names())
+def test_keyframes_hold_the_closed_form_pose_of_each_branch(scene):
+    branches = [b.name for b in scene.kinematics.branches()]
+    poses = {b: scene.pose(b, 0.5 * sum(scene.branch_path(b))) for b in branches}
+    model, _ = compiled(scene, poses)
+    data = mujoco.MjData(model)
+    mech = scene.mechanism
+    for branch, pose in poses.items():
+        mujoco.mj_resetDataKeyframe(model, data, model.key(f"start_{branch}").id)
+        for e in mech.tree:
+            joint = mech.joints[e.joint].name
+            qpos = data.qpos[model.jnt_qposadr[model.joint(joint).id]]
+            np.testing.assert_allclose(qpos, pose[e.joint], atol=MJCF_DIGITS_ATOL, rtol=0, err_msg=joint)
+        # The hinges at the fold angles close the loop in MuJoCo too.
+        mujoco.mj_kinematics(model, data)
+        for i in mech.cut_joints:
+            for k in range(len(mech.joints[i].anchors)):
+                name = mech.joints[i].name
+                gap = data.site(f"{name}_child_{k}").xpos - data.site(f"{name}_parent_{k}").xpos
+                np.testing.assert_allclose(gap, 0.0, atol=MJCF_DIGITS_ATOL, rtol=0)
+
+
+@pytest.mark.parametrize("scene", all_scenes(), ids=scenes.names())
+def test_qpos_order_matches_the_compiled_hinge_addresses(scene):
+    model, _ = compiled(scene)
+    order = qpos_order(scene.mechanism)
+    assert [model.jnt_qposadr[model.joint(j).id] for j in order] == list(range(model.nq))
+
+
+@pytest.mark.parametrize("preset", ["fast", "accurate"])
+def test_preset_sweep_duration_is_the_compiled_custom_numeric(preset):
+    model, _ = compiled(all_scenes()[0], preset=preset)
+    assert model.numeric("sweep_duration").data[0] == preset_duration(preset) > 0
+
+
+def test_unknown_preset_raises_naming_it():
+    with pytest.raises(ValueError, match="turbo"):
+        build_xml(all_scenes()[0], ModelOptions(preset="turbo"))

@@ -1,0 +1,111 @@
+"""The scene registry (`sim_origami.scenes`): building, parameters and a first MuJoCo run of each scene."""
+
+import mujoco
+import numpy as np
+import pytest
+
+from sim_origami import scenes
+from sim_origami.errors import ParameterError
+from sim_origami.mjcf import ModelOptions
+from sim_origami.simulate import Bindings, compile_model
+from sim_origami.tolerances import TOLERANCES
+
+# Command-line values (degrees, metres) that keep each scene valid but differ from the defaults.
+USER_VALUES = {
+    "vertex4": {"alpha1": 70.0, "alpha3": 80.0, "length": 2.0},
+    "miura": {"alpha1": 40.0, "alpha2": 50.0, "length": 0.5},
+}
+
+
+def crease_angle_deg(scene, crease_a: str, crease_b: str) -> float:
+    """Angle in the flat sheet between two creases' directions (joint frame z axes), degrees."""
+    mech = scene.mechanism
+    za = mech.joints[mech.joint_index(crease_a)].frame_parent[:3, 2]
+    zb = mech.joints[mech.joint_index(crease_b)].frame_parent[:3, 2]
+    return float(np.rad2deg(np.arccos(np.clip(za @ zb, -1.0, 1.0))))
+
+
+def test_registry_lists_the_shipped_scenes_sorted():
+    assert scenes.names() == tuple(sorted(scenes.REGISTRY))
+    assert {"vertex4", "miura"} <= set(scenes.names())
+
+
+@pytest.mark.parametrize("name", scenes.names())
+def test_scene_builds_with_defaults_compiles_and_steps_without_mujoco_warnings(name):
+    scene = scenes.get(name).build()
+    assert scene.name == name
+    model, data = compile_model(scene, ModelOptions())
+    binds = Bindings(scene, model)
+    branch = scene.kinematics.branches()[0].name
+    start, _ = scene.branch_path(branch)
+    binds.set_pose(data, scene.pose(branch, start))
+    mujoco.mj_forward(model, data)
+    drive = model.equality(f"drive_{scene.drive_joint}").id
+    model.eq_data[drive, 0] = scene.drive_scale * start
+    for _ in range(50):
+        mujoco.mj_step(model, data)
+    # As MuJoCo Menagerie's model test: no warning of any kind was raised.
+    assert [w.number for w in data.warning] == [0] * len(data.warning)
+    assert np.all(np.isfinite(data.qpos))
+    # Held at a closed pose, the model stays there (measured drift 2e-13 rad).
+    held = binds.angles(scene, data.qpos[None])[0]
+    np.testing.assert_allclose(held, scene.pose(branch, start), atol=TOLERANCES.fast_rad, rtol=0)
+
+
+@pytest.mark.parametrize("name", scenes.names())
+def test_default_path_lies_inside_every_branch_domain(name):
+    scene = scenes.get(name).build()
+    for branch in scene.kinematics.branches():
+        start, stop = scene.branch_path(branch.name)
+        lo, hi = branch.domain
+        assert lo < start < stop < hi
+        assert np.all(np.isfinite(scene.pose(branch.name, stop)))
+
+
+def test_unknown_scene_raises_parameter_error_naming_it():
+    with pytest.raises(ParameterError, match="'origami9'"):
+        scenes.get("origami9")
+
+
+@pytest.mark.parametrize("name", scenes.names())
+def test_unknown_parameter_raises_parameter_error_naming_it(name):
+    scene_type = scenes.get(name)
+    with pytest.raises(ParameterError, match="'wingspan'"):
+        scene_type.build(wingspan=1.0)
+    with pytest.raises(ParameterError, match="'wingspan'"):
+        scene_type.build_from_user({"wingspan": 1.0})
+
+
+def test_vertex4_sectors_not_summing_to_360_deg_raise_parameter_error():
+    with pytest.raises(ParameterError, match="360"):
+        scenes.get("vertex4").build_from_user({"alpha1": 70.0})  # 70 + 100 + 90 + 110 = 370 deg
+
+
+@pytest.mark.parametrize("name", scenes.names())
+def test_build_from_user_converts_degrees_to_radians_and_keeps_metres(name):
+    scene_type = scenes.get(name)
+    user = USER_VALUES[name]
+    scene = scene_type.build_from_user(user)
+    units = {p.name: p.unit for p in scene_type.params}
+    for key, value in user.items():
+        expected = np.deg2rad(value) if units[key] == "deg" else value
+        np.testing.assert_allclose(scene.params[key], expected, atol=1e-15, rtol=0, err_msg=key)
+    # Parameters not given keep their defaults, converted the same way.
+    for p in scene_type.params:
+        if p.name not in user:
+            np.testing.assert_allclose(scene.params[p.name], p.to_api(p.default), atol=1e-15, rtol=0)
+
+
+def test_build_from_user_degrees_reach_the_geometry():
+    scene = scenes.get("vertex4").build_from_user(USER_VALUES["vertex4"])
+    # alpha1 is the sector between creases 1 and 2, alpha3 between creases 3 and 4.
+    np.testing.assert_allclose(crease_angle_deg(scene, "crease_1", "crease_2"), 70.0, atol=1e-9, rtol=0)
+    np.testing.assert_allclose(crease_angle_deg(scene, "crease_3", "crease_4"), 80.0, atol=1e-9, rtol=0)
+    anchors = scene.mechanism.joints[0].anchors
+    np.testing.assert_allclose(max(anchors), 2.0, atol=0, rtol=0)  # crease length in metres
+
+
+@pytest.mark.parametrize("name", scenes.names())
+def test_param_unit_conversion_round_trips(name):
+    for p in scenes.get(name).params:
+        np.testing.assert_allclose(p.to_user(p.to_api(p.default)), p.default, atol=1e-12, rtol=0)
