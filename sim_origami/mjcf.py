@@ -1,8 +1,8 @@
 """Mechanism + templates -> MJCF. The one place where MJCF names are made.
 
-Names: bodies as in the mechanism (`panel_<i>`), hinges as the mechanism's joints, meshes
-`<body>_solid` / `<body>_collision`, closure sites `<joint>_parent_<k>` / `<joint>_child_<k>`,
-connects `close_<joint>_<k>`, the drive `drive_<joint>`, keyframes `start_<branch>`.
+Names: bodies as in the mechanism (`panel_<i>`; the root's geoms sit on the world body), hinges
+as the mechanism's joints, meshes `<body>_solid` / `<body>_collision`, closure sites
+`<joint>_parent_<k>` / `<joint>_child_<k>`, connects `close_<joint>_<k>`, the drive `drive_<joint>`, keyframes `start_<branch>`.
 
 A hinge's qpos equals the mechanism's joint angle: a joint traversed from its child to its parent
 in the spanning tree gets the reversed axis. Each cut joint is closed by one site-based `connect`
@@ -17,6 +17,7 @@ from importlib import resources
 import numpy as np
 
 from . import __version__
+from .errors import ParameterError
 from .geometry import invert
 from .mechanism import Mechanism
 from .scenes.base import Scene
@@ -54,7 +55,7 @@ def preset_duration(preset: str) -> float:
 
 
 def _fmt(values) -> str:
-    return " ".join(f"{v:.12g}" for v in np.ravel(values))
+    return " ".join(repr(float(v)) for v in np.ravel(values))  # shortest exact round-trip
 
 
 def _quat(R: np.ndarray) -> np.ndarray:
@@ -161,7 +162,7 @@ def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarr
       Mechanism joint angles stored as keyframes `start_<name>`.
     """
     if options.preset not in PRESETS:
-        raise ValueError(f"unknown preset {options.preset!r}; presets are {', '.join(PRESETS)}")
+        raise ParameterError(f"unknown preset {options.preset!r}; presets are {', '.join(PRESETS)}")
     mechanism = scene.mechanism
     contact = options.contact and bool(scene.contact_pairs)
     root = ET.Element("mujoco", model=scene.name)

@@ -230,23 +230,31 @@ def test_vertex4_branch_domain_is_twice_the_fold_limit(pair):
     )
 
 
-@pytest.mark.parametrize("pair", PAIRS)
-def test_observe_of_loop_angles_reproduces_values(pair):
-    vertex = miura(*pair)
+def assert_observe_inverts_loop_angles(vertex: MiuraVertex) -> None:
+    """observe(loop_angles(values)) == values on both branches, up to 99% of each domain."""
     for branch in ("miura", "straight"):
         values = vertex.joint_angles(branch, domain_grid(vertex, branch, 0.99))
         # Measured <= 2.8e-13 (psi of a symmetric vertex as a_x -> 0); 1e-11 leaves 35x margin.
         assert_angles_close(vertex.observe(vertex.loop_angles(values)), values, atol=1e-11)
 
 
-@pytest.mark.parametrize("pair", PAIRS)
-def test_loop_angles_close_the_loop_over_the_whole_domain(pair):
-    vertex = miura(*pair)
+def assert_loop_angles_close_the_loop(vertex: MiuraVertex) -> None:
+    """The loop angles of the closed form close the loop over both whole closed domains."""
     system = vertex.loop_system()
     for branch in ("miura", "straight"):
         q = vertex.loop_angles(vertex.joint_angles(branch, domain_grid(vertex, branch)))
         # Measured <= 6.5e-16 including both locks; the required 1e-12 leaves 1500x margin.
         assert system.residual_norm(q).max() <= 1e-12
+
+
+@pytest.mark.parametrize("pair", PAIRS)
+def test_observe_of_loop_angles_reproduces_values(pair):
+    assert_observe_inverts_loop_angles(miura(*pair))
+
+
+@pytest.mark.parametrize("pair", PAIRS)
+def test_loop_angles_close_the_loop_over_the_whole_domain(pair):
+    assert_loop_angles_close_the_loop(miura(*pair))
 
 
 def test_loop_input_is_crease_c_at_twice_theta():
@@ -274,13 +282,8 @@ def test_numeric_follow_reproduces_phi_and_psi_through_observe(pair, sign):
 @given(MIURA_SECTOR_DEG, MIURA_SECTOR_DEG)
 def test_random_miura_vertices_close_and_observe_back(alpha1, alpha2):
     vertex = miura(alpha1, alpha2)
-    system = vertex.loop_system()
-    for branch in ("miura", "straight"):
-        values = vertex.joint_angles(branch, domain_grid(vertex, branch, 0.99))
-        q = vertex.loop_angles(values)
-        # Same measurements as the fixed pairs above (<= 6.5e-16 residual, <= 2.8e-13 observe).
-        assert system.residual_norm(q).max() <= 1e-12
-        assert_angles_close(vertex.observe(q), values, atol=1e-11)
+    assert_loop_angles_close_the_loop(vertex)
+    assert_observe_inverts_loop_angles(vertex)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -1,5 +1,7 @@
 """Degree-4 vertex closed form (`sim_origami.kinematics.vertex4`) against seed 003 and the loop solver."""
 
+import re
+
 import numpy as np
 import pytest
 from hypothesis import assume, given, settings
@@ -176,7 +178,7 @@ def test_closed_form_matches_multistart_solve(vertex_spec, fraction, sign):
     expected = np.concatenate([vertex.joint_angles(b.name, x) for b in vertex.branches()])
     assert len(found) == len(expected) == 2
     for q in expected:
-        # Simple roots: measured <= 1.3e-12 down to 0.05 of the reach; 1e-10 leaves 75x margin.
+        # Simple roots: measured <= 6.7e-13 over 60 random vertices; 1e-10 leaves 150x margin.
         assert np.min(np.max(np.abs(wrap(found - q)), axis=-1)) <= 1e-10
 
 
@@ -186,7 +188,8 @@ def test_central_symmetry_on_each_named_branch(vertex_spec):
     vertex = Vertex4(*vertex_spec)
     for branch in vertex.branches():
         lo, hi = branch.domain
-        x = np.linspace(0.0, min(-lo, hi), 101)[1:]
+        # Up to the locks, exclusive: the lock ends themselves have their own test below.
+        x = np.linspace(0.0, 0.999 * min(-lo, hi), 101)[1:]
         # Measured bit-exact (the closed form is odd in the input); 1e-15 only allows rounding.
         np.testing.assert_allclose(
             vertex.joint_angles(branch.name, -x), -vertex.joint_angles(branch.name, x), atol=1e-15, rtol=0
@@ -230,7 +233,7 @@ def test_flat_foldable_closed_form_equals_general_closed_form_on_modes_s_and_c(a
     # Inside the fold range; at +/-pi every crease is flat-folded and +pi, -pi are the same fold.
     x = np.linspace(-0.99 * np.pi, 0.99 * np.pi, 199)
     for mode in ("S", "C"):
-        # Measured <= 2.9e-13 over 200 random flat-foldable vertices; 1e-11 leaves 30x margin.
+        # Measured <= 7.2e-13 over 100 random flat-foldable vertices; 1e-11 leaves 14x margin.
         np.testing.assert_allclose(
             vertex.joint_angles(mode, x), flat_foldable_fold_angles(alpha, x, mode), atol=1e-11, rtol=0
         )
@@ -321,6 +324,25 @@ def test_joint_angles_accepts_a_sweep_of_the_whole_domain(branch):
     assert not np.isnan(values).any()
 
 
+# A vertex whose branch odd4 locks (|rho3| = pi) at |rho1| = 1.558144: found by a random search.
+LOCK_END_DEG = (67.5, 132.1, 26.1, 360.0 - (67.5 + 132.1 + 26.1))
+
+
+def test_symmetric_sweep_up_to_the_lock_stays_inside_the_domain():
+    # Central symmetry makes every domain symmetric; a sweep over [-hi, hi] lies inside [lo, hi]
+    # as soon as lo <= -hi, and must then evaluate everywhere.
+    vertex = Vertex4(np.deg2rad(LOCK_END_DEG))
+    lo, hi = vertex.branch("odd4").domain
+    # Both ends are bisected to ~1e-13 rad, so they agree to that.
+    np.testing.assert_allclose(-lo, hi, atol=1e-12, rtol=0)
+    x = np.linspace(-min(-lo, hi), min(-lo, hi), 11)
+    values, valid = vertex.evaluate("odd4", x)
+    assert valid.all(), f"inputs {x[~valid]!r} inside [{lo!r}, {hi!r}] reported invalid"
+    values, valid = vertex.evaluate("odd4", [lo, hi])
+    # At the lock crease 3 folds flat (|rho3| = pi): measured 4.4e-16; 1e-12 leaves 2000x margin.
+    np.testing.assert_allclose(np.abs(values[:, 2]), np.pi, atol=1e-12, rtol=0)
+
+
 @pytest.mark.parametrize("x", [1e-15, -1e-15, 4.440892098500626e-16])
 @pytest.mark.parametrize("branch", ["odd2", "odd3"])
 def test_rounding_level_inputs_are_inside_the_domain(branch, x):
@@ -349,6 +371,16 @@ def test_flat_input_is_valid_on_every_branch_and_exactly_flat():
 def test_non_developable_vertex_raises_parameter_error_naming_the_sum(alpha, total_deg):
     with pytest.raises(ParameterError, match=rf"sum to {total_deg} deg.*needs 360"):
         Vertex4(np.array(alpha))
+
+
+def test_sum_error_message_shows_how_far_the_sum_is_from_360():
+    # Off by 1e-6 rad = 5.7e-5 deg, far beyond the 1e-9 rad tolerance: the message must not claim
+    # that the sectors "sum to 360 deg".
+    alpha = np.array(CASE4_ALPHA) + np.array([1e-6, 0.0, 0.0, 0.0])
+    with pytest.raises(ParameterError) as error:
+        Vertex4(alpha)
+    stated = float(re.search(r"sum to (\S+) deg", str(error.value)).group(1))
+    assert stated != 360.0, f"message {str(error.value)!r} does not show the offending sum"
 
 
 @pytest.mark.parametrize(
