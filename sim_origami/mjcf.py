@@ -2,7 +2,8 @@
 
 Names: bodies as in the mechanism (`panel_<i>`; the root's geoms sit on the world body), hinges
 as the mechanism's joints, meshes `<body>_solid` / `<body>_collision`, closure sites
-`<joint>_parent_<k>` / `<joint>_child_<k>`, connects `close_<joint>_<k>`, the drive `drive_<joint>`, keyframes `start_<branch>`.
+`<joint>_parent_<k>` / `<joint>_child_<k>`, connects `close_<joint>_<k>`, the drive
+`drive_<joint>`, keyframes `start_<branch>`.
 
 A hinge's qpos equals the mechanism's joint angle: a joint traversed from its child to its parent
 in the spanning tree gets the reversed axis. Each cut joint is closed by one site-based `connect`

@@ -339,8 +339,10 @@ def test_symmetric_sweep_up_to_the_lock_stays_inside_the_domain():
     values, valid = vertex.evaluate("odd4", x)
     assert valid.all(), f"inputs {x[~valid]!r} inside [{lo!r}, {hi!r}] reported invalid"
     values, valid = vertex.evaluate("odd4", [lo, hi])
-    # At the lock crease 3 folds flat (|rho3| = pi): measured 4.4e-16; 1e-12 leaves 2000x margin.
-    np.testing.assert_allclose(np.abs(values[:, 2]), np.pi, atol=1e-12, rtol=0)
+    # At the lock crease 3 folds flat (|rho3| = pi). The two roots merge there (square root), and the
+    # ends sit EDGE_MARGIN = 1e-13 inside: measured 4.6e-7 off pi; 1e-6 leaves 2x margin.
+    assert valid.all()
+    np.testing.assert_allclose(np.abs(values[:, 2]), np.pi, atol=1e-6, rtol=0)
 
 
 @pytest.mark.parametrize("x", [1e-15, -1e-15, 4.440892098500626e-16])

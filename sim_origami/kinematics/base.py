@@ -110,12 +110,17 @@ class Kinematics(ABC):
         return dict(zip(self.joint_names, self.joint_angles(branch, x)[0].tolist(), strict=False))
 
 
+# Bisected domain ends are pulled inward by this much (rad): at the exact edge, validity can flip
+# with the last ulp of numpy's vectorised sin/cos, which depends on the array's length.
+EDGE_MARGIN = 1e-13
+
+
 def domain_of(valid_at, lo: float, hi: float, anchor: float, samples: int = 4097) -> tuple[float, float]:
     """
     The closed interval around `anchor` on which the vectorised predicate `valid_at` holds.
 
     Dense sampling of [lo, hi] finds the connected run through `anchor`; bisection refines both
-    ends to about 1e-13 rad.
+    ends to about 1e-13 rad, then pulls them EDGE_MARGIN inside.
     """
     grid = np.linspace(lo, hi, samples)
     ok = valid_at(grid)
@@ -138,6 +143,6 @@ def domain_of(valid_at, lo: float, hi: float, anchor: float, samples: int = 4097
             b = np.where(good, b, mid)
         return float(a[0])
 
-    start = grid[left] if left == 0 else refine(grid[left], grid[left - 1])
-    stop = grid[right] if right == samples - 1 else refine(grid[right], grid[right + 1])
-    return start, stop
+    start = grid[left] if left == 0 else refine(grid[left], grid[left - 1]) + EDGE_MARGIN
+    stop = grid[right] if right == samples - 1 else refine(grid[right], grid[right + 1]) - EDGE_MARGIN
+    return float(start), float(stop)

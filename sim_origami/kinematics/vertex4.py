@@ -172,7 +172,8 @@ class Vertex4(Kinematics):
         total = float(np.sum(alpha))
         if abs(total - 2 * np.pi) > ANGLE_TOL:
             raise ParameterError(
-                f"sector angles sum to {np.rad2deg(total):.6g} deg; a flat (developable) vertex needs 360"
+                f"sector angles sum to {np.rad2deg(total):.12g} deg ({np.rad2deg(total - 2 * np.pi):+.3g} deg); "
+                "a flat (developable) vertex needs 360"
             )
         if input_crease not in (1, 2, 3, 4):
             raise ParameterError(f"input crease {input_crease} does not exist; use 1 to 4")
