@@ -81,9 +81,16 @@ def closed_form_verdicts(scene: Scene, branch: str, x: np.ndarray) -> tuple[Verd
     )
 
 
-def path_events(scene: Scene, branch: str, x: np.ndarray, labels: tuple[str, ...]) -> tuple[dict, ...]:
-    """Closed-form events of `branch` inside the swept input range, with the branch taken after each."""
+def path_events(
+    scene: Scene, branch: str, x: np.ndarray, labels: tuple[str, ...], from_flat: bool = False
+) -> tuple[dict, ...]:
+    """
+    Closed-form events of `branch` inside the swept input range, with the branch taken after each.
+    A run seeded at the flat state starts at its bifurcation, which then counts as on the path.
+    """
     lo, hi = float(np.min(x)), float(np.max(x))
+    if from_flat:
+        lo, hi = min(lo, 0.0), max(hi, 0.0)
     out = []
     for e in scene.kinematics.events():
         if branch in e.branches and lo - 1e-9 <= e.input <= hi + 1e-9:
@@ -114,7 +121,7 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
     return BranchRun(
         requested=branch, followed=labels.followed, flips=labels.flips, dynamic=dynamic, dynamic_path=dyn,
         projection_path=proj, projection_residual_m=float(np.max(proj_traj.closure_residual)),
-        events=path_events(scene, branch, dyn.input, labels.labels), verdicts=verdicts,
+        events=path_events(scene, branch, dyn.input, labels.labels, from_flat=seed == "flat"), verdicts=verdicts,
     )  # fmt: skip
 
 

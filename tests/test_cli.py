@@ -98,3 +98,16 @@ def test_installed_script_runs():
     assert exe.exists(), "the console script is installed with the package"
     result = subprocess.run([str(exe), "--version"], capture_output=True, text=True, check=True)
     assert "sim_origami" in result.stdout and "MuJoCo" in result.stdout
+
+
+def test_validate_exits_1_when_the_engine_takes_another_branch(capsys, tmp_path):
+    # Seeded 1e-4 rad from flat towards S, the soft fast preset still takes C (spec mujoco.md 7):
+    # a real failure, reported as such, with the bifurcation and the branch taken after it.
+    argv = ["validate", "vertex4", "-p", "alpha3=120", "-p", "alpha4=80", "--seed", "flat", "--branch", "S"]
+    code, out, _ = run(capsys, *argv, "--out", str(tmp_path / "f"), "--json")
+    assert code == 1
+    doc = json.loads(out)
+    assert doc["passed"] is False
+    assert doc["branches"][0]["branch_followed"] == "C"
+    bifurcation = next(e for e in doc["events"] if e["kind"] == "bifurcation")
+    assert bifurcation["input_rad"] == 0.0 and bifurcation["branch_after"] == "C"
