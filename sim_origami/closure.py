@@ -32,7 +32,7 @@ class Loop:
         """Loop transforms T(q), (..., 4, 4), for joint vectors q of shape (..., n_joints)."""
         q = np.asarray(q, dtype=float)
         T = np.broadcast_to(np.eye(4), (*q.shape[:-1], 4, 4))
-        for j, s, L in zip(self.joints, self.signs, self.links, strict=False):
+        for j, s, L in zip(self.joints, self.signs, self.links, strict=True):
             T = T @ transform_z(s * q[..., j]) @ L
         return T
 

@@ -183,7 +183,7 @@ def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarr
         joint = mechanism.joints[i]
         equality.append(ET.Comment(f" loop cut at {joint.name}: anchors on its axis, away from shared vertices "))
         on_parent, on_child = mechanism.anchor_points(i)
-        for k, (p, c) in enumerate(zip(on_parent, on_child, strict=False)):
+        for k, (p, c) in enumerate(zip(on_parent, on_child, strict=True)):
             ET.SubElement(elements[joint.parent], "site", name=f"{joint.name}_parent_{k}", pos=_fmt(p))
             ET.SubElement(elements[joint.child], "site", name=f"{joint.name}_child_{k}", pos=_fmt(c))
             for side in ("parent", "child"):

@@ -94,7 +94,8 @@ def path_events(
     out = []
     for e in scene.kinematics.events():
         if branch in e.branches and lo - 1e-9 <= e.input <= hi + 1e-9:
-            after = next((lab for xi, lab in zip(x, labels, strict=False) if lab and abs(xi - e.input) > 1e-6), "")
+            past = [lab for xi, lab in zip(x, labels, strict=True) if lab and abs(xi - e.input) > 1e-6]
+            after = max(set(past), key=past.count) if past else ""  # the branch held after it
             out.append({"kind": e.kind, "input_rad": e.input, "branches": list(e.branches), "detail": e.detail,
                         "branch_after": after})  # fmt: skip
     return tuple(out)

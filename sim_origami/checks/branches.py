@@ -36,7 +36,7 @@ def classify(
     order = np.sort(dist, axis=0)
     nearest = np.argmin(dist, axis=0)
     clear = (order[1] > separation * order[0]) if len(names) > 1 else np.isfinite(order[0])
-    labels = tuple(names[k] if c else "" for k, c in zip(nearest, clear, strict=False))
+    labels = tuple(names[k] if c else "" for k, c in zip(nearest, clear, strict=True))
     told = [lab for lab in labels if lab]
     followed = max(set(told), key=told.count) if told else ""
     flips = sum(1 for a, b in itertools.pairwise(told) if a != b)

@@ -27,7 +27,7 @@ def run(args: argparse.Namespace) -> int:
     for b in kin.branches():
         values, valid = kin.evaluate(b.name, x)
         joints = {
-            name: [float(v) if ok else None for v, ok in zip(values[:, k], valid, strict=False)]
+            name: [float(v) if ok else None for v, ok in zip(values[:, k], valid, strict=True)]
             for k, name in enumerate(kin.joint_names)
         }
         branches.append({"name": b.name, "domain": list(b.domain), "joints": joints})

@@ -107,7 +107,7 @@ class Kinematics(ABC):
 
     def at(self, branch: str, x: float) -> dict[str, float]:
         """Output joints at one input value, by name."""
-        return dict(zip(self.joint_names, self.joint_angles(branch, x)[0].tolist(), strict=False))
+        return dict(zip(self.joint_names, self.joint_angles(branch, x)[0].tolist(), strict=True))
 
 
 # Bisected domain ends are pulled inward by this much (rad): at the exact edge, validity can flip
