@@ -212,3 +212,14 @@ def test_servo_run_stops_at_contact_input_only_when_contact_is_enabled(contact):
         # Free servo: 1 s of hold brings it to its target (measured 1.5e-7 rad short).
         assert abs(stop - lock) <= 1e-3
         assert not np.any(run.contacts)
+
+
+@pytest.mark.parametrize("branch", ["S", "C"])
+def test_flat_foldable_vertex_follows_both_branches_within_fast_tolerances(branch):
+    scene = flat_foldable_scene()
+    run = simulate(scene, branch)
+    path = compare(scene, branch, run.q)
+    assert path.max_error() <= TOLERANCES.fast_rad
+    assert np.max(run.closure_residual) <= TOLERANCES.fast_residual_m
+    labels = classify(scene.kinematics, path.input, path.simulated)
+    assert (labels.followed, labels.flips) == (branch, 0)
