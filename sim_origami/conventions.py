@@ -18,21 +18,14 @@ flat-foldable modes S and C) and followed by continuity, never by the +/- label 
 """
 
 import numpy as np
-
-VALLEY = "valley"
-MOUNTAIN = "mountain"
+from numpy.typing import ArrayLike, NDArray
 
 
-def deg_to_rad(value_deg: float) -> float:
-    """Degrees (command line) to radians (API, JSON)."""
-    return float(np.deg2rad(value_deg))
+def deg_to_rad(value_deg: ArrayLike) -> NDArray[np.float64]:
+    """Degrees (command line, tables) to radians (API, JSON)."""
+    return np.deg2rad(np.asarray(value_deg, dtype=float))
 
 
-def rad_to_deg(value_rad: float) -> float:
+def rad_to_deg(value_rad: ArrayLike) -> NDArray[np.float64]:
     """Radians (API, JSON) to degrees (command line, tables, plots)."""
-    return float(np.rad2deg(value_rad))
-
-
-def mountain_valley(rho: float) -> str:
-    """Crease assignment of a fold angle, seen from +z: rho > 0 is a valley."""
-    return VALLEY if rho > 0 else MOUNTAIN
+    return np.rad2deg(np.asarray(value_rad, dtype=float))

@@ -13,10 +13,6 @@ class DomainError(SimOrigamiError, ValueError):
     """An input angle outside the validity domain of the requested branch."""
 
 
-class AssemblyError(SimOrigamiError):
-    """A linkage whose loops cannot be closed (the closure residual stays large)."""
-
-
 class ConvergenceError(SimOrigamiError):
     """The numeric loop-closure solve did not converge."""
 

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from sim_origami import scenes
-from sim_origami.checks.blockage import assess, first_contact
+from sim_origami.checks.blockage import assess
 from sim_origami.checks.branches import classify
 from sim_origami.checks.paths import compare
 from sim_origami.checks.verdict import Verdict
@@ -118,9 +118,3 @@ def test_blockage_assess_sees_a_run_that_fell_short_as_stopped_with_its_error():
 @pytest.mark.parametrize(("peak", "saturated"), [(0.998 * FORCE_LIMIT, False), (0.9995 * FORCE_LIMIT, True)])
 def test_blockage_assess_flags_saturation_at_the_force_limit(peak, saturated):
     assert assessed(stop=0.9, peak_force=-peak).drive_saturated is saturated
-
-
-def test_first_contact_is_the_first_non_positive_distance():
-    x = np.linspace(0.0, 1.0, 6)
-    assert first_contact(x, np.array([0.3, 0.2, 0.1, 0.0, -0.1, 0.2])) == 3
-    assert first_contact(x, np.array([0.3, 0.2, 0.1, 0.05, 0.01, 0.2])) == -1

@@ -22,12 +22,6 @@ class Blockage:
         return abs(self.stop_input - self.contact_input)
 
 
-def first_contact(x: NDArray[np.float64], distance: NDArray[np.float64]) -> int:
-    """Index of the first sample whose signed distance is <= 0, or -1."""
-    hits = np.flatnonzero(distance <= 0.0)
-    return int(hits[0]) if len(hits) else -1
-
-
 def assess(
     input_sim: NDArray[np.float64],
     target: NDArray[np.float64],

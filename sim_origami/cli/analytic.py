@@ -3,9 +3,8 @@
 import argparse
 import json
 
-import numpy as np
-
 from .. import scenes
+from ..conventions import rad_to_deg
 from .options import add_params, parse_degrees, parse_params
 
 NAME = "analytic"
@@ -41,6 +40,6 @@ def run(args: argparse.Namespace) -> int:
         print("  " + " ".join(f"{n:>12s}" for n in (kin.input_name, *kin.joint_names)) + "  (deg)")
         for i, xi in enumerate(x):
             cells = [b["joints"][n][i] for n in kin.joint_names]
-            text = " ".join(f"{np.rad2deg(c):12.6f}" if c is not None else f"{'-':>12s}" for c in cells)
-            print(f"  {np.rad2deg(xi):12.6f} {text}")
+            text = " ".join(f"{rad_to_deg(c):12.6f}" if c is not None else f"{'-':>12s}" for c in cells)
+            print(f"  {rad_to_deg(xi):12.6f} {text}")
     return 0

@@ -2,9 +2,8 @@
 
 import argparse
 
-import numpy as np
-
 from .. import scenes
+from ..conventions import rad_to_deg
 from .options import add_params, parse_params
 
 NAME = "describe"
@@ -20,7 +19,7 @@ def run(args: argparse.Namespace) -> int:
     kind = scenes.get(args.scene)
     scene = kind.build_from_user(parse_params(args.param))
     kin = scene.kinematics
-    deg = np.rad2deg
+    deg = rad_to_deg
     print(f"{kind.name}: {kind.summary}")
     print("parameters:")
     for p in kind.params:

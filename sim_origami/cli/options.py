@@ -4,6 +4,7 @@ import argparse
 
 import numpy as np
 
+from ..conventions import deg_to_rad
 from ..errors import ParameterError
 
 
@@ -35,4 +36,4 @@ def parse_degrees(text: str) -> np.ndarray:
         raise ParameterError(f"--input {text!r} is not a comma-separated list of numbers (degrees)") from None
     if not values.size or not np.all(np.isfinite(values)):
         raise ParameterError(f"--input {text!r} needs finite values in degrees")
-    return np.deg2rad(values)
+    return deg_to_rad(values)
