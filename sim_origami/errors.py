@@ -13,6 +13,10 @@ class DomainError(SimOrigamiError, ValueError):
     """An input angle outside the validity domain of the requested branch."""
 
 
+class AssemblyError(SimOrigamiError):
+    """A linkage whose loop cannot be closed; the message names the closure residual."""
+
+
 class ConvergenceError(SimOrigamiError):
     """The numeric loop-closure solve did not converge."""
 

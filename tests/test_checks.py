@@ -11,6 +11,12 @@ from sim_origami.checks.verdict import Verdict
 from sim_origami.tolerances import TOLERANCES
 
 SCENE_NAMES = scenes.names()
+# Scenes whose branches cross at the flat state (origami vertices), and those with one branch.
+FLAT_SCENES = [
+    n for n in SCENE_NAMES if any(e.kind == "bifurcation" for e in scenes.get(n).build().kinematics.events())
+]
+MULTI_BRANCH_SCENES = [n for n in SCENE_NAMES if len(scenes.get(n).build().kinematics.branches()) > 1]
+SINGLE_BRANCH_SCENES = [n for n in SCENE_NAMES if len(scenes.get(n).build().kinematics.branches()) == 1]
 FORCE_LIMIT = 20.0
 
 
@@ -39,7 +45,7 @@ def test_verdict_passes_exactly_when_measured_is_at_most_tolerance(measured, tol
     assert verdict.passed is passed
 
 
-@pytest.mark.parametrize("name", SCENE_NAMES)
+@pytest.mark.parametrize("name", FLAT_SCENES)
 def test_classify_leaves_flat_state_unlabelled_and_labels_the_branch_elsewhere(name):
     scene = scenes.get(name).build()
     x = symmetric_inputs(scene)
@@ -50,7 +56,16 @@ def test_classify_leaves_flat_state_unlabelled_and_labels_the_branch_elsewhere(n
         assert (labels.followed, labels.flips) == (branch, 0)
 
 
-@pytest.mark.parametrize("name", SCENE_NAMES)
+@pytest.mark.parametrize("name", SINGLE_BRANCH_SCENES)
+def test_classify_labels_every_sample_of_a_single_branch_linkage(name):
+    scene = scenes.get(name).build()
+    branch = branch_names(scene)[0]
+    x = np.linspace(*scene.branch_path(branch), 20)
+    labels = classify(scene.kinematics, x, scene.kinematics.joint_angles(branch, x))
+    assert labels.labels == (branch,) * 20 and labels.flips == 0
+
+
+@pytest.mark.parametrize("name", FLAT_SCENES)
 def test_classify_counts_a_switch_of_branch_as_a_flip(name):
     scene = scenes.get(name).build()
     first, second = branch_names(scene)[:2]
@@ -68,7 +83,7 @@ def test_classify_of_a_path_that_never_leaves_flat_follows_no_branch():
     assert labels == type(labels)(("",) * 5, "", 0)
 
 
-@pytest.mark.parametrize("name", SCENE_NAMES)
+@pytest.mark.parametrize("name", MULTI_BRANCH_SCENES)
 def test_path_against_its_own_branch_agrees_and_against_another_branch_differs(name):
     scene = scenes.get(name).build()
     own, other = branch_names(scene)[:2]

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ..geometry import wrap
 from ..kinematics.base import Kinematics
 
 
@@ -32,7 +33,7 @@ def classify(
     dist = np.full((len(names), len(x)), np.inf)
     for i, name in enumerate(names):
         values, valid = kinematics.evaluate(name, x)
-        dist[i, valid] = np.max(np.abs(outputs[valid] - values[valid]), axis=1)
+        dist[i, valid] = np.max(np.abs(wrap(outputs[valid] - values[valid])), axis=1)
     order = np.sort(dist, axis=0)
     nearest = np.argmin(dist, axis=0)
     clear = (order[1] > separation * order[0]) if len(names) > 1 else np.isfinite(order[0])

@@ -5,6 +5,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ..geometry import wrap
 from ..scenes.base import Scene
 
 
@@ -18,8 +19,8 @@ class PathComparison:
 
     @property
     def error(self) -> NDArray[np.float64]:
-        """|simulated - analytic| (n, k); NaN where the input left the branch's domain."""
-        return np.abs(self.simulated - self.analytic)
+        """|simulated - analytic| (n, k), modulo 2 pi; NaN where the input left the branch's domain."""
+        return np.abs(wrap(self.simulated - self.analytic))
 
     def max_error(self) -> float:
         """Largest error over samples and joints (inf if the input ever left the domain)."""
