@@ -62,6 +62,10 @@ class Kinematics(ABC):
         """Bifurcations, locks and turning points of the motion."""
 
     @abstractmethod
+    def gruebler(self) -> int:
+        """Grubler-Kutzbach mobility count: n - 6 per spatial loop, n - 3 per spherical loop."""
+
+    @abstractmethod
     def loop_system(self) -> LoopSystem:
         """The linkage as closed chains of revolute joints (the numeric truth)."""
 

@@ -161,6 +161,9 @@ class MiuraVertex(Kinematics):
             events.append(Event("lock", sign * np.pi / 2, ("straight",), "crease c folds flat (rho_c = pi)"))
         return tuple(events)
 
+    def gruebler(self) -> int:
+        return self.vertex.gruebler()
+
     def loop_system(self) -> LoopSystem:
         return self.vertex.loop_system()
 

@@ -296,6 +296,10 @@ class Vertex4(Kinematics):
             return Event("lock", end, (name,), f"crease {k + 1} folds flat (|rho{k + 1}| = pi)")
         return Event("turning_point", end, (name,), "|C| = sqrt(A^2 + B^2): the input turns back")
 
+    def gruebler(self) -> int:
+        """One spherical loop of 4 revolute joints: 4 - 3."""
+        return 1
+
     def loop_system(self) -> LoopSystem:
         """Spherical D-H loop Rz(rho_1) Rx(alpha_1) ... Rz(rho_4) Rx(alpha_4) = I (seed 003 eqn 2-1)."""
         links = np.stack([transform(rot_x(a)) for a in self.alpha])
