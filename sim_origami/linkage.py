@@ -3,8 +3,8 @@
 Link k (k = 1..n) joins joint k to joint k+1. Its body frame is joint k's D-H frame after
 Rz(theta_k), so joint k+1 sits at `rows[k].link()` = Tz(R_k) Tx(a_k) Rx(alpha_k) in it, and joint k+1's
 angle is theta_(k+1) exactly (child link k+1 relative to parent link k about +z). Link n is the
-ground (fixed to the world); joint 1 is the input and joint n is cut to close the loop, with two
-anchors on its axis.
+ground (fixed to the world); the input joint stays in the spanning tree and one other joint is cut
+to close the loop, with two anchors on its axis.
 """
 
 import numpy as np
@@ -29,7 +29,9 @@ def bar(p0: np.ndarray, p1: np.ndarray, width: float) -> trimesh.Trimesh:
     return trimesh.creation.box(extents=(length, width, width), transform=T)
 
 
-def dh_mechanism(rows: tuple[DHRow, ...], *, width: float = 0.05, anchor: float = 0.5) -> Mechanism:
+def dh_mechanism(
+    rows: tuple[DHRow, ...], *, width: float = 0.05, anchor: float = 0.5, input_joint: int = 1
+) -> Mechanism:
     """
     Links and joints of a single D-H loop; joints are named joint_1 .. joint_n.
 
@@ -39,7 +41,10 @@ def dh_mechanism(rows: tuple[DHRow, ...], *, width: float = 0.05, anchor: float 
     width : float
       Side of the link bars (m).
     anchor : float
-      The cut joint n is closed at +/- `anchor` (m) along its axis from its D-H origin.
+      The cut joint is closed at +/- `anchor` (m) along its axis from its D-H origin.
+    input_joint : int
+      Joint (1-based) that is driven; it stays in the spanning tree, and the cut falls on the
+      highest-numbered joint that closes the loop (joint n unless that is the input).
     """
     n = len(rows)
     bodies = []
@@ -58,4 +63,4 @@ def dh_mechanism(rows: tuple[DHRow, ...], *, width: float = 0.05, anchor: float 
                 anchors=(-anchor, anchor),
             )
         )
-    return Mechanism(tuple(bodies), tuple(joints), root=f"link_{n}", keep=("joint_1",))
+    return Mechanism(tuple(bodies), tuple(joints), root=f"link_{n}", keep=(f"joint_{input_joint}",))
