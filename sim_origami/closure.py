@@ -175,7 +175,12 @@ class LoopSystem:
                 found.append(q)
         return np.array(found).reshape(-1, self.n_joints)
 
-    def mobility(self, q: ArrayLike, rtol: float = 1e-8) -> int:
-        """Instantaneous mobility: joints minus the numerical rank of the closure Jacobian."""
+    def mobility(self, q: ArrayLike, rtol: float = 1e-6) -> int:
+        """
+        Instantaneous mobility: joints minus the numerical rank of the closure Jacobian.
+
+        Singular values below rtol times the largest count as zero; the central-difference
+        Jacobian carries about 1e-9 of noise, far below the O(0.1) values of a regular pose.
+        """
         s = np.linalg.svd(self.jacobian(q), compute_uv=False)
         return self.n_joints - int(np.sum(s > rtol * max(s.max(initial=0.0), 1.0)))

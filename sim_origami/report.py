@@ -46,6 +46,7 @@ def as_dict(report: Report) -> dict:
                 "steps": run.dynamic.steps,
                 "step_cpu_time_s": run.dynamic.cpu_time_s,
                 "events": run.events,
+                "mobility": run.mobility,
                 "verdicts": [_verdict(v) for v in run.verdicts],
             }
         )

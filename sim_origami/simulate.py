@@ -308,3 +308,18 @@ def contact_input(scene: Scene, branch: str, start: float, stop: float, samples:
         else:
             lo = mid
     return float(hi)
+
+
+def mujoco_mobility(scene: Scene, q: NDArray[np.float64], rtol: float = 1e-6) -> int:
+    """
+    Instantaneous mobility in MuJoCo at mechanism angles q: hinges minus the numerical rank of
+    the closure rows of efc_J (the drive disabled). Redundant connect rows only lower the rank.
+    """
+    model, data = compile_model(scene, ModelOptions())
+    data.eq_active[model.equality(f"drive_{scene.drive_joint}").id] = 0
+    Bindings(scene, model).set_pose(data, q)
+    mujoco.mj_fwdPosition(model, data)
+    rows = data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY
+    J = data.efc_J.reshape(data.nefc, model.nv)[rows]
+    s = np.linalg.svd(J, compute_uv=False) if J.size else np.zeros(0)
+    return model.nv - int(np.sum(s > rtol * max(s.max(initial=0.0), 1.0)))

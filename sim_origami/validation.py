@@ -17,7 +17,7 @@ from .checks.paths import PathComparison, compare
 from .checks.verdict import Verdict
 from .errors import ParameterError
 from .scenes.base import Scene
-from .simulate import Trajectory, contact_input, project, simulate
+from .simulate import Trajectory, contact_input, mujoco_mobility, project, simulate
 from .tolerances import TOLERANCES
 
 # Samples of the closed form and of the numeric solve along each path.
@@ -36,6 +36,7 @@ class BranchRun:
     projection_path: PathComparison
     projection_residual_m: float
     events: tuple[dict, ...]
+    mobility: dict
     verdicts: tuple[Verdict, ...]
 
 
@@ -101,6 +102,23 @@ def path_events(
     return tuple(out)
 
 
+def mobility_report(scene: Scene, branch: str, start: float) -> dict:
+    """
+    Grubler-Kutzbach count next to the numerical rank of the closure Jacobian, from the numeric
+    loop and from MuJoCo's efc_J, at the path start and at each bifurcation point of the branch.
+    """
+    kin = scene.kinematics
+    loops = kin.loop_system()
+
+    def at(x: float) -> dict:
+        q_loop = kin.loop_angles(kin.joint_angles(branch, x))
+        return {"input_rad": x, "numeric": loops.mobility(q_loop[0]),
+                "mujoco": mujoco_mobility(scene, scene.loop_to_mechanism(q_loop)[0])}  # fmt: skip
+
+    points = [e.input for e in kin.events() if e.kind == "bifurcation" and branch in e.branches]
+    return {"gruebler": kin.gruebler(), "start": at(start), "bifurcations": [at(x) for x in points]}
+
+
 def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
     """MuJoCo dynamic run and projection on one branch, compared and classified."""
     dynamic = simulate(scene, branch, preset=preset, seed=seed)
@@ -109,6 +127,8 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
     start, stop = scene.branch_path(branch)
     proj_traj = project(scene, branch, np.linspace(start, stop, ANALYTIC_SAMPLES), preset=preset)
     proj = compare(scene, branch, proj_traj.q)
+    mobility = mobility_report(scene, branch, start)
+    disagree = sum(p["numeric"] != p["mujoco"] for p in [mobility["start"], *mobility["bifurcations"]])
     verdicts = (
         Verdict(f"{branch}: MuJoCo {preset} path error (rad)", dyn.max_error(), TOLERANCES.angle(preset),
                 "max over samples and joints of |sim - closed form at the simulated input|"),
@@ -118,11 +138,14 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
                 "Gauss-Newton on MuJoCo's equality residuals at each input"),
         Verdict(f"{branch}: branch followed", float(labels.followed != branch or labels.flips > 0), 0.0,
                 f"followed {labels.followed or 'none'}, {labels.flips} flips"),
+        Verdict(f"{branch}: mobility, numeric rank vs MuJoCo rank (poses that differ)", float(disagree), 0.0,
+                f"Kutzbach {mobility['gruebler']}, instantaneous {mobility['start']['numeric']} at the start"),
     )  # fmt: skip
     return BranchRun(
         requested=branch, followed=labels.followed, flips=labels.flips, dynamic=dynamic, dynamic_path=dyn,
         projection_path=proj, projection_residual_m=float(np.max(proj_traj.closure_residual)),
-        events=path_events(scene, branch, dyn.input, labels.labels, from_flat=seed == "flat"), verdicts=verdicts,
+        events=path_events(scene, branch, dyn.input, labels.labels, from_flat=seed == "flat"), mobility=mobility,
+        verdicts=verdicts,
     )  # fmt: skip
 
 
