@@ -62,6 +62,7 @@ def as_dict(report: Report) -> dict:
         "closure_residual_max_m": _num(max(np.max(r.dynamic.closure_residual) for r in report.runs)),
         "branches": branches,
         "events": [e for r in report.runs for e in r.events],
+        "bifurcation_study": list(report.bifurcations),
         "verdicts": [_verdict(v) for v in report.verdicts],
         "timings_s": report.timings,
         "passed": report.passed,

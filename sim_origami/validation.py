@@ -22,6 +22,9 @@ from .tolerances import TOLERANCES
 
 # Samples of the closed form and of the numeric solve along each path.
 ANALYTIC_SAMPLES = 200
+# Bifurcation study: seed offsets (rad of input) tried in turn, and the length of each run (rad).
+SEED_OFFSETS = (1e-4, 1e-3, 1e-2, 1e-1)
+STUDY_SPAN = 0.3
 
 
 @dataclass(frozen=True)
@@ -50,6 +53,7 @@ class Report:
     runs: tuple[BranchRun, ...]
     verdicts: tuple[Verdict, ...]
     blockage: Blockage | None
+    bifurcations: tuple[dict, ...] = ()
     timings: dict[str, float] = field(default_factory=dict)
 
     @property
@@ -117,6 +121,39 @@ def mobility_report(scene: Scene, branch: str, start: float) -> dict:
 
     points = [e.input for e in kin.events() if e.kind == "bifurcation" and branch in e.branches]
     return {"gruebler": kin.gruebler(), "start": at(start), "bifurcations": [at(x) for x in points]}
+
+
+def _followed(scene: Scene, branch: str, run: Trajectory) -> str:
+    path = compare(scene, branch, run.q)
+    return classify(scene.kinematics, path.input, path.simulated).followed
+
+
+def bifurcation_study(scene: Scene, preset: str) -> list[dict]:
+    """
+    At each bifurcation point x_b: for each branch through it, start MuJoCo on that branch (a closed
+    pose) at x_b + d for d in SEED_OFFSETS and drive STUDY_SPAN away; record the smallest d at which
+    the engine follows the branch. Unseeded: start at x_b itself, at rest, and record what it takes.
+    """
+    out = []
+    for event in scene.kinematics.events():
+        if event.kind != "bifurcation":
+            continue
+        xb = event.input
+        lo, hi = scene.kinematics.branch(event.branches[0]).domain
+        sign = 1.0 if hi - xb >= xb - lo else -1.0
+        seeded = {}
+        for branch in event.branches:
+            seeded[branch] = None
+            for d in SEED_OFFSETS:
+                start = xb + sign * d
+                run = simulate(scene, branch, preset=preset, start=start, stop=start + sign * STUDY_SPAN)
+                if _followed(scene, branch, run) == branch:
+                    seeded[branch] = d
+                    break
+        run = simulate(scene, event.branches[0], preset=preset, start=xb, stop=xb + sign * STUDY_SPAN)
+        out.append({"input_rad": xb, "branches": list(event.branches), "detail": event.detail,
+                    "seed_offset_followed_rad": seeded, "unseeded_followed": _followed(scene, event.branches[0], run)})  # fmt: skip
+    return out
 
 
 def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
@@ -199,5 +236,18 @@ def validate(scene: Scene, *, preset: str = "fast", branch: str | None = None, s
                 f"zero-thickness lock at {blockage.analytic_limit:.6f} rad",
             )
         )
+    t1 = time.thread_time()
+    study = tuple(bifurcation_study(scene, preset)) if branch is None else ()
+    for point in study:
+        never = [b for b, d in point["seed_offset_followed_rad"].items() if d is None]
+        verdicts.append(
+            Verdict(
+                f"bifurcation at {point['input_rad']:.6g} rad: branches MuJoCo never followed when seeded",
+                float(len(never)),
+                0.0,
+                f"{', '.join(never) or 'none'}; unseeded it took {point['unseeded_followed'] or 'no clear branch'}",
+            )  # fmt: skip
+        )
+    timings["bifurcation_study_cpu_s"] = time.thread_time() - t1
     timings["total_cpu_s"] = time.thread_time() - t0
-    return Report(scene, preset, seed, tuple(runs), tuple(verdicts), blockage, timings)
+    return Report(scene, preset, seed, tuple(runs), tuple(verdicts), blockage, study, timings)
