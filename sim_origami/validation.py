@@ -151,8 +151,16 @@ def bifurcation_study(scene: Scene, preset: str) -> list[dict]:
                     seeded[branch] = d
                     break
         run = simulate(scene, event.branches[0], preset=preset, start=xb, stop=xb + sign * STUDY_SPAN)
-        out.append({"input_rad": xb, "branches": list(event.branches), "detail": event.detail,
-                    "seed_offset_followed_rad": seeded, "unseeded_followed": _followed(scene, event.branches[0], run)})  # fmt: skip
+        unseeded = _followed(scene, event.branches[0], run)
+        out.append(
+            {
+                "input_rad": xb,
+                "branches": list(event.branches),
+                "detail": event.detail,
+                "seed_offset_followed_rad": seeded,
+                "unseeded_followed": unseeded,
+            }
+        )
     return out
 
 
@@ -246,7 +254,7 @@ def validate(scene: Scene, *, preset: str = "fast", branch: str | None = None, s
                 float(len(never)),
                 0.0,
                 f"{', '.join(never) or 'none'}; unseeded it took {point['unseeded_followed'] or 'no clear branch'}",
-            )  # fmt: skip
+            )
         )
     timings["bifurcation_study_cpu_s"] = time.thread_time() - t1
     timings["total_cpu_s"] = time.thread_time() - t0
