@@ -45,6 +45,7 @@ def vertex_mechanism(
     root: int = 1,
     keep: tuple[int, ...] = (),
     names: tuple[str, ...] | None = None,
+    heights: ArrayLike | None = None,
 ) -> Mechanism:
     """
     A single flat-sheet vertex of degree n as panels and crease hinges.
@@ -66,24 +67,32 @@ def vertex_mechanism(
       Creases (1-based) that must stay in the spanning tree (the driven ones).
     names : tuple of str, optional
       Crease names (default crease_1 ... crease_n); panels are panel_1 ... panel_n.
+    heights : (n,) float, optional
+      Thick-panel origami (seed 003 ch. 4): hinge i lies on the line through (0, 0, heights[i]) along
+      d_i, and panel i is a slab filling the gap between the planes of its two hinges (thickness =
+      link length). Panels then carry collision solids inset by `inset` from both creases.
     """
     alpha = np.asarray(alpha, dtype=float)
     n = len(alpha)
     d = crease_directions(alpha)
     names = names or tuple(f"crease_{i + 1}" for i in range(n))
     solid_t = thickness if thickness > 0 else NOMINAL_THICKNESS * length
+    h = np.zeros(n) if heights is None else np.asarray(heights, dtype=float)
     bodies = []
     for i in range(n):
         outline = sector_outline(d[i], alpha[i], length)
+        low, gap = min(h[i], h[(i + 1) % n]), abs(h[(i + 1) % n] - h[i])
+        slab = (gap, low) if heights is not None and gap > 0 else (thickness, None)
+        solid = prism(outline, *slab) if slab[0] > 0 else prism(outline, solid_t)
         collision = None
-        if thickness > 0:
+        if slab[0] > 0:
             distances = np.zeros(len(outline))
             distances[0] = distances[-1] = inset  # the two crease edges meet at vertex 0
-            collision = prism(inset_outline(outline, distances), thickness)
-        bodies.append(Body(f"panel_{i + 1}", prism(outline, solid_t), collision, PALETTE[i % len(PALETTE)]))
+            collision = prism(inset_outline(outline, distances), *slab)
+        bodies.append(Body(f"panel_{i + 1}", solid, collision, PALETTE[i % len(PALETTE)]))
     joints = []
     for i in range(n):
-        frame = frame_along(d[i])
+        frame = frame_along(d[i], (0.0, 0.0, h[i]))
         joints.append(
             Joint(
                 names[i],

@@ -43,16 +43,18 @@ def inset_outline(outline: ArrayLike, distances: ArrayLike) -> NDArray[np.float6
     return np.array(out)
 
 
-def prism(outline: ArrayLike, thickness: float) -> trimesh.Trimesh:
+def prism(outline: ArrayLike, thickness: float, bottom: float | None = None) -> trimesh.Trimesh:
     """
-    Closed prism of a convex CCW outline (k, 2), z in [-thickness/2, thickness/2].
+    Closed prism of a convex CCW outline (k, 2), z in [bottom, bottom + thickness]
+    (default bottom: -thickness/2, the mid-surface on z = 0).
 
     Faces are written directly (fans on the caps, two triangles per side), outward-facing.
     """
     p = np.asarray(outline, dtype=float)
     k = len(p)
-    z = np.full((k, 1), thickness / 2)
-    vertices = np.vstack([np.hstack([p, -z]), np.hstack([p, z])])
+    z0 = -thickness / 2 if bottom is None else bottom
+    low, high = np.full((k, 1), z0), np.full((k, 1), z0 + thickness)
+    vertices = np.vstack([np.hstack([p, low]), np.hstack([p, high])])
     bottom = [[0, i + 1, i] for i in range(1, k - 1)]
     top = [[k, k + i, k + i + 1] for i in range(1, k - 1)]
     sides = []

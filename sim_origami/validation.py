@@ -195,9 +195,10 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
 
 
 def run_blockage(scene: Scene, branch: str) -> tuple[Blockage, float]:
-    """Force-limited servo from the path start to the branch's lock, then held for 1 s."""
-    start, _ = scene.branch_path(branch)
-    lock = scene.kinematics.branch(branch).domain[1]
+    """Force-limited servo from the path start to the branch's end in the direction of travel, held 1 s."""
+    start, stop = scene.branch_path(branch)
+    lo, hi = scene.kinematics.branch(branch).domain
+    lock = hi if stop >= start else lo
     t0 = time.thread_time()
     touch = contact_input(scene, branch, start, lock)
     run = simulate(scene, branch, drive="servo", contact=True, start=start, stop=lock, hold=1.0)

@@ -37,6 +37,8 @@ ANGLE_TOL = 1e-9
 # A fold angle below this fraction of the largest fold counts as unfolded when naming a root by its
 # sign pattern (the straight-fold root carries about 1e-16 rad there; real folds are not that small).
 ZERO_FOLD = 1e-8
+# A fold this close to +/- pi (rad, a few ulps) is folded flat; its sign is ambiguous.
+FLAT_FOLD = 1e-14
 # Inputs below this (rad) are evaluated on the tangent at the flat state, from +/- TANGENT_STEP.
 TINY_INPUT = 1e-8
 TANGENT_STEP = 1e-5
@@ -204,7 +206,20 @@ class Vertex4(Kinematics):
         return np.roll(rho, self._shift, axis=-1), real
 
     def _codes(self, rho: NDArray[np.float64]) -> NDArray[np.int8]:
-        """Index into NAMES of each configuration's branch (..., 4) from its fold signs; -1 if none."""
+        """
+        Index into NAMES of each configuration's branch (..., 4) from its fold signs; -1 if none.
+
+        A fold within FLAT_FOLD of +/- pi is folded flat and pi = -pi, so its sign may match either way
+        (a domain end where the roots merge on a crease at pi, found by the property tests).
+        """
+        codes = self._sign_codes(rho)
+        at_pi = np.abs(rho) > np.pi - FLAT_FOLD
+        if np.any(at_pi):
+            other = self._sign_codes(np.where(at_pi, -rho, rho))
+            codes = np.where(codes == -1, other, codes)
+        return codes
+
+    def _sign_codes(self, rho: NDArray[np.float64]) -> NDArray[np.int8]:
         scale = np.max(np.abs(rho), axis=-1, keepdims=True)
         sign = np.where(np.abs(rho) <= ZERO_FOLD * scale, 0, np.sign(rho)).astype(np.int8)
         codes = np.full(rho.shape[:-1], -1, dtype=np.int8)
