@@ -35,9 +35,10 @@ class ModelOptions:
     """What one compiled model needs: preset, drive kind, contact, render assets, keyframes."""
 
     preset: str = "fast"
-    drive: str = "equality"  # "equality": kinematic tracking; "servo": force-limited actuator
+    drive: str = "equality"  # "equality": kinematic tracking; "servo": force-limited actuator; "none"
     contact: bool = False
     render: bool = False
+    gravity: bool = False  # the scene's gravity (m/s^2, its root frame) and the energy flag
 
 
 def template(name: str) -> ET.Element:
@@ -175,6 +176,11 @@ def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarr
         _merge(root, template(name))
     if contact:
         root.find("option/flag").set("contact", "enable")
+    if options.gravity:
+        # free motion under gravity (e.g. the IFToMM A04 benchmark): energy reported, not dissipated
+        root.find("option").set("gravity", _fmt(scene.gravity))
+        root.find("option/flag").set("gravity", "enable")
+        root.find("option/flag").set("energy", "enable")
     _add_meshes(_section(root, "asset"), mechanism)
     elements = _add_bodies(_section(root, "worldbody"), mechanism, contact)
 
@@ -199,7 +205,7 @@ def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarr
         ET.SubElement(equality, "joint", name=drive, joint1=scene.drive_joint, polycoef="0 0 0 0 0").set(
             "class", "drive"
         )
-    else:
+    elif options.drive == "servo":
         actuator = _section(root, "actuator")
         actuator.append(ET.Comment(" input: force-limited servo, so that contact can stop the motion "))
         ET.SubElement(actuator, "position", name=drive, joint=scene.drive_joint).set("class", "servo")

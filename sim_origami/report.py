@@ -63,6 +63,7 @@ def as_dict(report: Report) -> dict:
         "branches": branches,
         "events": [e for r in report.runs for e in r.events],
         "bifurcation_study": list(report.bifurcations),
+        "free_run": report.free_run,
         "verdicts": [_verdict(v) for v in report.verdicts],
         "timings_s": report.timings,
         "passed": report.passed,

@@ -323,3 +323,41 @@ def mujoco_mobility(scene: Scene, q: NDArray[np.float64], rtol: float = 1e-6) ->
     J = data.efc_J.reshape(data.nefc, model.nv)[rows]
     s = np.linalg.svd(J, compute_uv=False) if J.size else np.zeros(0)
     return model.nv - int(np.sum(s > rtol * max(s.max(initial=0.0), 1.0)))
+
+
+@dataclass(frozen=True)
+class FreeRun:
+    """Free motion under gravity: joint angles, total energy (J) and CPU time (s) of the stepping."""
+
+    time: NDArray[np.float64]
+    q: NDArray[np.float64]
+    energy: NDArray[np.float64]
+    closure_residual: NDArray[np.float64]
+    cpu_time_s: float
+    steps: int
+
+
+def simulate_free(scene: Scene, branch: str, start: float, duration: float, *, preset: str = "accurate") -> FreeRun:
+    """
+    Release the scene at rest from the closed pose on `branch` at input `start`, under its gravity,
+    with no drive, and record joint angles and total (kinetic + potential) energy.
+    """
+    model, data = compile_model(scene, ModelOptions(preset=preset, drive="none", gravity=True))
+    binds = Bindings(scene, model)
+    binds.set_pose(data, start_pose(scene, branch, start))
+    mujoco.mj_forward(model, data)
+    n = round(duration / model.opt.timestep)
+    qpos_log, energy = np.empty((n, model.nq)), np.empty(n + 1)
+    energy[0] = data.energy.sum()
+    with captured_warnings() as messages:
+        qpos, step = data.qpos, mujoco.mj_step
+        cpu = time.thread_time()
+        for k in range(n):
+            step(model, data)
+            qpos_log[k] = qpos
+            energy[k + 1] = data.energy[0] + data.energy[1]
+        cpu = time.thread_time() - cpu
+        _check(data, messages, duration)
+    _, residual = _residuals(scene, model, data, binds, qpos_log)
+    t = model.opt.timestep * np.arange(1, n + 1)
+    return FreeRun(t, binds.angles(scene, qpos_log), energy, residual, cpu, n)

@@ -17,11 +17,14 @@ from .checks.paths import PathComparison, compare
 from .checks.verdict import Verdict
 from .errors import ParameterError
 from .scenes.base import Scene
-from .simulate import Trajectory, contact_input, mujoco_mobility, project, simulate
+from .simulate import Trajectory, contact_input, mujoco_mobility, project, simulate, simulate_free
 from .tolerances import TOLERANCES
 
 # Samples of the closed form and of the numeric solve along each path.
 ANALYTIC_SAMPLES = 200
+# Free runs (scenes with gravity) last this long (s), as the IFToMM A04 benchmark; OpenSim's time for it.
+FREE_DURATION = 10.0
+OPENSIM_A04_S = 0.258
 # Bifurcation study: seed offsets (rad of input) tried in turn, and the length of each run (rad).
 SEED_OFFSETS = (1e-4, 1e-3, 1e-2, 1e-1)
 STUDY_SPAN = 0.3
@@ -54,6 +57,7 @@ class Report:
     verdicts: tuple[Verdict, ...]
     blockage: Blockage | None
     bifurcations: tuple[dict, ...] = ()
+    free_run: dict | None = None
     timings: dict[str, float] = field(default_factory=dict)
 
     @property
@@ -207,6 +211,25 @@ def run_blockage(scene: Scene, branch: str) -> tuple[Blockage, float]:
     return result, time.thread_time() - t0
 
 
+def run_free(scene: Scene, preset: str) -> tuple[dict, list[Verdict]]:
+    """Release the scene at rest under gravity for FREE_DURATION s: energy drift and path error."""
+    run = simulate_free(scene, scene.free_branch, scene.free_start, FREE_DURATION, preset=preset)
+    path = compare(scene, scene.free_branch, run.q)
+    drift = float(np.max(np.abs(run.energy - run.energy[0])))
+    doc = {"duration_s": FREE_DURATION, "steps": run.steps, "step_cpu_time_s": run.cpu_time_s,
+           "opensim_time_s": OPENSIM_A04_S, "opensim_over_mujoco": OPENSIM_A04_S / run.cpu_time_s,
+           "energy_initial_J": float(run.energy[0]), "energy_drift_max_J": drift,
+           "angle_error_max_rad": path.max_error(), "closure_residual_max_m": float(np.max(run.closure_residual)),
+           "input_range_rad": [float(np.min(path.input)), float(np.max(path.input))]}  # fmt: skip
+    verdicts = [
+        Verdict(f"free run ({FREE_DURATION:g} s under gravity): energy drift (J)", drift, TOLERANCES.energy(preset),
+                f"E0 = {run.energy[0]:.6g} J; {run.cpu_time_s:.3g} s CPU (OpenSim: {OPENSIM_A04_S} s)"),
+        Verdict("free run: path error against the closed form (rad)", path.max_error(), TOLERANCES.angle(preset),
+                "unforced motion stays on the closed-form branch"),
+    ]  # fmt: skip
+    return doc, verdicts
+
+
 def validate(scene: Scene, *, preset: str = "fast", branch: str | None = None, seed: str = "closed") -> Report:
     """
     Cross-check a scene on one branch (or all of them).
@@ -245,6 +268,10 @@ def validate(scene: Scene, *, preset: str = "fast", branch: str | None = None, s
                 f"zero-thickness lock at {blockage.analytic_limit:.6f} rad",
             )
         )
+    free = None
+    if scene.gravity is not None:
+        free, free_verdicts = run_free(scene, preset)
+        verdicts += free_verdicts
     t1 = time.thread_time()
     study = tuple(bifurcation_study(scene, preset)) if branch is None else ()
     for point in study:
@@ -259,4 +286,4 @@ def validate(scene: Scene, *, preset: str = "fast", branch: str | None = None, s
         )
     timings["bifurcation_study_cpu_s"] = time.thread_time() - t1
     timings["total_cpu_s"] = time.thread_time() - t0
-    return Report(scene, preset, seed, tuple(runs), tuple(verdicts), blockage, study, timings)
+    return Report(scene, preset, seed, tuple(runs), tuple(verdicts), blockage, study, free, timings)

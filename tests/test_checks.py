@@ -13,7 +13,9 @@ from sim_origami.tolerances import TOLERANCES
 SCENE_NAMES = scenes.names()
 # Scenes whose branches cross at the flat state (origami vertices), and those with one branch.
 FLAT_SCENES = [
-    n for n in SCENE_NAMES if any(e.kind == "bifurcation" for e in scenes.get(n).build().kinematics.events())
+    n
+    for n in SCENE_NAMES
+    if any(e.kind == "bifurcation" and e.input == 0.0 for e in scenes.get(n).build().kinematics.events())
 ]
 MULTI_BRANCH_SCENES = [n for n in SCENE_NAMES if len(scenes.get(n).build().kinematics.branches()) > 1]
 SINGLE_BRANCH_SCENES = [n for n in SCENE_NAMES if len(scenes.get(n).build().kinematics.branches()) == 1]

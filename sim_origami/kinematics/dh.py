@@ -29,3 +29,44 @@ def dh_loop(rows: tuple[DHRow, ...]) -> LoopSystem:
     """The closed chain Rz(theta_1) L_1 ... Rz(theta_n) L_n = I over joints 1..n."""
     links = np.stack([r.link() for r in rows])
     return LoopSystem(len(rows), (Loop(tuple(range(len(rows))), links, (1,) * len(rows)),))
+
+
+def _signed_angle(u: np.ndarray, v: np.ndarray, k: np.ndarray) -> float:
+    """Angle from u to v about unit k, after projecting both onto the plane normal to k."""
+    u = u - k * (u @ k)
+    v = v - k * (v @ k)
+    return float(np.arctan2(np.cross(u, v) @ k, u @ v))
+
+
+def dh_from_axes(points: np.ndarray, dirs: np.ndarray) -> tuple[tuple[DHRow, ...], np.ndarray]:
+    """
+    D-H rows and joint angles of a closed loop of revolute axes (seed 001 §2.0 procedure).
+
+    Parameters
+    ----------
+    points, dirs : (n, 3) float
+      A point on each axis and its unit direction, in loop order.
+
+    Returns
+    -------
+    rows : D-H rows of joints 1..n; angles : (n,) theta_i of this configuration (rad).
+    """
+    P, s = np.asarray(points, float), np.asarray(dirs, float)
+    s = s / np.linalg.norm(s, axis=1, keepdims=True)
+    n = len(P)
+    foot_out, foot_in, x_axis, a, alpha = [None] * n, [None] * n, [None] * n, np.zeros(n), np.zeros(n)
+    for i in range(n):
+        j = (i + 1) % n
+        w, b = P[i] - P[j], s[i] @ s[j]
+        d, e, den = s[i] @ w, s[j] @ w, 1.0 - b * b
+        if den < 1e-12:
+            raise ValueError(f"axes {i + 1} and {j + 1} are parallel: their common normal is not unique")
+        foot_out[i] = P[i] + (b * e - d) / den * s[i]
+        foot_in[j] = P[j] + (e - b * d) / den * s[j]
+        gap = foot_in[j] - foot_out[i]
+        a[i] = np.linalg.norm(gap)
+        x_axis[j] = gap / a[i] if a[i] > 1e-12 else np.cross(s[i], s[j]) / np.linalg.norm(np.cross(s[i], s[j]))
+        alpha[i] = _signed_angle(s[i], s[j], x_axis[j])
+    theta = np.array([_signed_angle(x_axis[i], x_axis[(i + 1) % n], s[i]) for i in range(n)])
+    R = np.array([(foot_out[i] - foot_in[i]) @ s[i] for i in range(n)])
+    return tuple(DHRow(float(R[i]), float(a[i]), float(alpha[i])) for i in range(n)), theta

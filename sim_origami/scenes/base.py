@@ -63,6 +63,9 @@ class Scene:
     drive_scale: float
     path: tuple[float, float]
     contact_pairs: tuple[tuple[str, str], ...] = ()
+    gravity: tuple[float, float, float] | None = None  # m/s^2 in the root's frame: adds a free run
+    free_start: float = 0.0  # input (rad) at which the free run is released at rest
+    free_branch: str = ""  # branch of that start pose
     notes: str = ""
 
     def loop_to_mechanism(self, q_loop: ArrayLike) -> NDArray[np.float64]:
