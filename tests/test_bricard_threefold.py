@@ -161,6 +161,27 @@ def test_closed_form_closes_the_loop_over_the_whole_domain(alpha, branch):
     assert np.max(np.abs(m.closure(values[:, 0], values[:, 1]))) < 1e-13
 
 
+@pytest.mark.parametrize("alpha", ALPHAS)
+def test_tan_half_forms_6_50_to_6_52(alpha):
+    m = model(alpha)
+    c = np.cos(alpha * DEG)
+    x = inputs(m, ALONG, 1441, shrink=0.999)
+    t1 = np.tan(x / 2)
+    den = 4 * c * c * t1**2 - t1**2 - 1
+    root = np.sqrt((1 + t1**2) * (4 * c * c * t1**2 - t1**2 + 3))
+    usable = np.abs(den) > 1e-3  # (6-51) is 0/0-prone where phi passes pi
+    for branch, sign in ((ALONG, -1.0), (AGAINST, 1.0)):
+        phi = m.joint_angles(branch, x)[:, 1]
+        t2 = np.tan(phi / 2)
+        # (6-50) on tan halves, where both are moderate (terms up to 20^4; measured worst 9.5e-12)
+        small = (np.abs(t1) <= 20) & (np.abs(t2) <= 20)
+        f = (4 * c * c - 1) * t1**2 * t2**2 - 8 * c * t1 * t2 - t1**2 - t2**2 + 3
+        assert np.max(np.abs(f[small])) < 1e-10
+        # (6-51, 6-52): along is the '-' sign, against the '+' sign (measured worst 3.2e-13 rad)
+        printed = 2 * np.arctan((4 * c * t1 + sign * root) / den)
+        assert np.max(np.abs(wrap(printed - phi))[usable]) < 1e-11
+
+
 @HYPOTHESIS
 @given(
     alpha=st.one_of(st.floats(0.5, 179.5), st.floats(180.5, 359.5)),

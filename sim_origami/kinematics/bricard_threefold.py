@@ -20,11 +20,12 @@ discriminant D = A^2 + B^2 - C^2 reduces to (4 cos^2 a - 1) + 4 sin^2 a cos^2(th
 Branches are named by geometry. Let u be the threefold symmetry axis, oriented so that the screw
 carrying joint 1's frame onto joint 3's is a +120 deg turn about u (R13 = Rz(theta) Rx(a) Rz(phi) Rx(-a)
 in frame 1, so u = vee(R13 - R13^T) / sqrt 3). Then z_2 . u = (A sin phi - B cos phi) / sqrt 3 = sin(spread)
-|(A, B)| / sqrt 3, so the "+" root is exactly the configuration in which the axes of joints 2, 4, 6
+|(A, B)| / sqrt 3, so the "+" root of this atan2 form is exactly the configuration in which the axes of joints 2, 4, 6
 lean along u, and the "-" root the one in which they lean against it; they meet (z_2 . u = 0, the
 even axes square to the symmetry axis) only at the turning points and the bundle, never inside a
-domain, so each name is smooth over its open domain. At theta = 0, phi = +120 deg (along) or -120 deg
-(against) for every alpha, since F(0, phi) = 1 + 2 cos phi.
+domain, so each name is smooth over its open domain. In the tan-half form (6-51, 6-52) the along
+branch is the '-' sign and the against branch the '+' sign, for every alpha. At theta = 0,
+phi = +120 deg (along) or -120 deg (against) for every alpha, since F(0, phi) = 1 + 2 cos phi.
 
 Only cos a and sin^2 a enter: alpha and 2 pi - alpha give the same motion (the seed's printed axis
 orientation, twists 300/60 deg, and 60/300 deg), and pi - alpha negates phi and swaps the names.
@@ -157,13 +158,13 @@ class BricardThreefold(Kinematics):
             Branch(
                 ALONG,
                 f"the axes of joints 2, 4, 6 lean along the threefold axis u (z2 . u > 0), {lean}; "
-                "phi = +120 deg at theta = 0; the '+' root of (6-51, 6-52)",
+                "phi = +120 deg at theta = 0; the '-' sign of (6-51, 6-52)",
                 domain,
             ),
             Branch(
                 AGAINST,
                 f"the axes of joints 2, 4, 6 lean against the threefold axis u (z2 . u < 0), {lean}; "
-                "phi = -120 deg at theta = 0; the '-' root of (6-51, 6-52)",
+                "phi = -120 deg at theta = 0; the '+' sign of (6-51, 6-52)",
                 domain,
             ),
         )
