@@ -119,6 +119,16 @@ class Kinematics(ABC):
 EDGE_MARGIN = 1e-13
 
 
+class JointSpaceKinematics(Kinematics):
+    """A model whose output joints are its loop joints (the hinge angles), in the same order."""
+
+    def observe(self, q_loop: ArrayLike) -> NDArray[np.float64]:
+        return np.asarray(q_loop, dtype=float).reshape(-1, len(self.joint_names))
+
+    def loop_angles(self, values: ArrayLike) -> NDArray[np.float64]:
+        return np.asarray(values, dtype=float).reshape(-1, len(self.joint_names))
+
+
 def domain_of(valid_at, lo: float, hi: float, anchor: float, samples: int = 4097) -> tuple[float, float]:
     """
     The closed interval around `anchor` on which the vectorised predicate `valid_at` holds.

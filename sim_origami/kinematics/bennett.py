@@ -12,16 +12,15 @@ theta2 is written as 2 atan2(K cos(theta1/2), sin(theta1/2)), continuous over th
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..closure import LoopSystem
 from ..errors import AssemblyError, ParameterError
-from .base import Branch, Event, Kinematics
-from .dh import DHRow, dh_loop
+from .base import Branch, Event
+from .dh import DHKinematics, DHRow
 
 # |a sin(beta) - b sin(alpha)| above this (m) breaks the Bennett condition.
 CONDITION_TOL = 1e-9
 
 
-class Bennett(Kinematics):
+class Bennett(DHKinematics):
     """
     Bennett linkage driven by theta1.
 
@@ -80,19 +79,3 @@ class Bennett(Kinematics):
 
     def events(self) -> tuple[Event, ...]:
         return ()
-
-    def loop_system(self) -> LoopSystem:
-        return dh_loop(self.rows)
-
-    def loop_input(self) -> tuple[int, float]:
-        return 0, 1.0
-
-    def observe(self, q_loop: ArrayLike) -> NDArray[np.float64]:
-        return np.asarray(q_loop, dtype=float).reshape(-1, 4)
-
-    def loop_angles(self, values: ArrayLike) -> NDArray[np.float64]:
-        return np.asarray(values, dtype=float).reshape(-1, 4)
-
-    def gruebler(self) -> int:
-        """Kutzbach count of a single spatial loop of 4 revolute joints: 4 - 6."""
-        return -2

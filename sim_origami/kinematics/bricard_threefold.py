@@ -36,10 +36,9 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..closure import LoopSystem
 from ..errors import ParameterError
-from .base import Branch, Event, Kinematics, domain_of
-from .dh import DHRow, dh_loop
+from .base import Branch, Event, domain_of
+from .dh import DHKinematics, DHRow
 
 ALONG = "even-axes-along"
 AGAINST = "even-axes-against"
@@ -50,7 +49,7 @@ AGAINST = "even-axes-against"
 SPECIAL_TOL = 1e-13
 
 
-class BricardThreefold(Kinematics):
+class BricardThreefold(DHKinematics):
     """
     Threefold-symmetric Bricard linkage driven by theta1.
 
@@ -188,19 +187,3 @@ class BricardThreefold(Kinematics):
             )
             return tuple(Event("turning_point", end, both, detail) for end in (lo, hi))
         return ()
-
-    def gruebler(self) -> int:
-        """Kutzbach count of a single spatial loop of 6 revolute joints: 6 - 6."""
-        return 0
-
-    def loop_system(self) -> LoopSystem:
-        return dh_loop(self.rows)
-
-    def loop_input(self) -> tuple[int, float]:
-        return 0, 1.0
-
-    def observe(self, q_loop: ArrayLike) -> NDArray[np.float64]:
-        return np.asarray(q_loop, dtype=float).reshape(-1, 6)
-
-    def loop_angles(self, values: ArrayLike) -> NDArray[np.float64]:
-        return np.asarray(values, dtype=float).reshape(-1, 6)

@@ -10,6 +10,7 @@ import numpy as np
 
 from ..closure import Loop, LoopSystem
 from ..geometry import rot_x, transform
+from .base import JointSpaceKinematics
 
 
 @dataclass(frozen=True)
@@ -29,6 +30,25 @@ def dh_loop(rows: tuple[DHRow, ...]) -> LoopSystem:
     """The closed chain Rz(theta_1) L_1 ... Rz(theta_n) L_n = I over joints 1..n."""
     links = np.stack([r.link() for r in rows])
     return LoopSystem(len(rows), (Loop(tuple(range(len(rows))), links, (1,) * len(rows)),))
+
+
+class DHKinematics(JointSpaceKinematics):
+    """
+    A single D-H loop whose joint angles are the outputs theta1..thetan. Subclasses give `rows`
+    and `input_joint` (1-based, default 1); the Kutzbach count of one spatial loop is n - 6.
+    """
+
+    input_joint: int = 1
+    rows: tuple[DHRow, ...]
+
+    def loop_system(self) -> LoopSystem:
+        return dh_loop(self.rows)
+
+    def loop_input(self) -> tuple[int, float]:
+        return self.input_joint - 1, 1.0
+
+    def gruebler(self) -> int:
+        return len(self.rows) - 6
 
 
 def _signed_angle(u: np.ndarray, v: np.ndarray, k: np.ndarray) -> float:

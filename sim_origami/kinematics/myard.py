@@ -18,15 +18,14 @@ lies in a mirror plane that swaps axes 2 <-> 5 and 3 <-> 4 (measured to 1e-15).
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..closure import LoopSystem
 from ..errors import ParameterError
-from .base import Branch, Event, Kinematics
-from .dh import DHRow, dh_loop
+from .base import Branch, Event
+from .dh import DHKinematics, DHRow
 
 BRANCH = "plane_symmetric"
 
 
-class Myard(Kinematics):
+class Myard(DHKinematics):
     """
     Myard linkage driven by theta3.
 
@@ -40,6 +39,7 @@ class Myard(Kinematics):
     """
 
     input_name = "theta3"
+    input_joint = 3
     joint_names = ("theta1", "theta2", "theta3", "theta4", "theta5")
 
     def __init__(self, a23: float, alpha12: float):
@@ -87,19 +87,3 @@ class Myard(Kinematics):
 
     def events(self) -> tuple[Event, ...]:
         return ()
-
-    def loop_system(self) -> LoopSystem:
-        return dh_loop(self.rows)
-
-    def loop_input(self) -> tuple[int, float]:
-        return 2, 1.0
-
-    def observe(self, q_loop: ArrayLike) -> NDArray[np.float64]:
-        return np.asarray(q_loop, dtype=float).reshape(-1, 5)
-
-    def loop_angles(self, values: ArrayLike) -> NDArray[np.float64]:
-        return np.asarray(values, dtype=float).reshape(-1, 5)
-
-    def gruebler(self) -> int:
-        """Kutzbach count of a single spatial loop of 5 revolute joints: 5 - 6."""
-        return -1

@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..closure import Loop, LoopSystem
 from ..errors import ParameterError
 from ..geometry import frame_along, invert
-from .base import Branch, Event, Kinematics
+from .base import Branch, Event, JointSpaceKinematics
 from .vertex4 import ANGLE_TOL, Vertex4
 
 LAYOUTS = {"staircase": "S", "zigzag": "C"}
@@ -30,7 +30,7 @@ def hinge_heights(alpha: ArrayLike, b: float, layout: str) -> NDArray[np.float64
     return np.array([0.0, a, a - b, -b])
 
 
-class ThickVertex4(Kinematics):
+class ThickVertex4(JointSpaceKinematics):
     """
     Thick flat-foldable four-crease vertex driven by crease 1.
 
@@ -77,18 +77,12 @@ class ThickVertex4(Kinematics):
     def gruebler(self) -> int:
         return -2
 
+    def loop_input(self) -> tuple[int, float]:
+        return 0, 1.0
+
     def loop_system(self) -> LoopSystem:
         """Rotations about the lifted hinge lines: F_k Rz(q_k) inv(F_k) around the vertex."""
         d = np.stack([[np.cos(t), np.sin(t), 0.0] for t in np.concatenate([[0.0], np.cumsum(self.alpha)[:-1]])])
         frames = [frame_along(d[k], (0.0, 0.0, self.heights[k])) for k in range(4)]
         links = np.stack([invert(frames[k]) @ frames[(k + 1) % 4] for k in range(4)])
         return LoopSystem(4, (Loop((0, 1, 2, 3), links, (1, 1, 1, 1)),))
-
-    def loop_input(self) -> tuple[int, float]:
-        return 0, 1.0
-
-    def observe(self, q_loop: ArrayLike) -> NDArray[np.float64]:
-        return np.asarray(q_loop, dtype=float).reshape(-1, 4)
-
-    def loop_angles(self, values: ArrayLike) -> NDArray[np.float64]:
-        return np.asarray(values, dtype=float).reshape(-1, 4)

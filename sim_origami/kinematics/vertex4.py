@@ -30,7 +30,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..closure import Loop, LoopSystem
 from ..errors import ParameterError
 from ..geometry import rot_x, transform
-from .base import Branch, Event, Kinematics, domain_of
+from .base import Branch, Event, JointSpaceKinematics, domain_of
 
 # Sum of sector angles and supplementary pairs are compared at this absolute tolerance (rad).
 ANGLE_TOL = 1e-9
@@ -152,7 +152,7 @@ def flat_foldable_fold_angles(alpha: ArrayLike, rho1: ArrayLike, mode: str) -> N
     return 2 * np.arctan(t)
 
 
-class Vertex4(Kinematics):
+class Vertex4(JointSpaceKinematics):
     """
     A developable degree-4 vertex driven by the fold angle of one crease.
 
@@ -322,9 +322,3 @@ class Vertex4(Kinematics):
 
     def loop_input(self) -> tuple[int, float]:
         return self.input_crease - 1, 1.0
-
-    def observe(self, q_loop: ArrayLike) -> NDArray[np.float64]:
-        return np.asarray(q_loop, dtype=float).reshape(-1, 4)
-
-    def loop_angles(self, values: ArrayLike) -> NDArray[np.float64]:
-        return np.asarray(values, dtype=float).reshape(-1, 4)
