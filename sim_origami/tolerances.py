@@ -18,7 +18,9 @@ class Tolerances:
     closed_form_residual: float = 1e-12
     # MuJoCo path error, preset fast (RK4 5 ms, 2 s sweep), default sweeps: general vertex 1.0e-7,
     # flat-foldable vertex branch S 2.1e-7, Miura 30/60 6.9e-8, Bennett 6.9e-8, thick vertex 2.0e-7,
-    # Myard 3.9e-7 rad (1.0e-6 at alpha12 = 70 deg, where theta1 moves twice as fast as the input).
+    # Myard 3.9e-7 rad (1.0e-6 at alpha12 = 70 deg, where theta1 moves twice as fast as the input),
+    # thick Myard 3.6e-7, threefold Bricard 1.3e-7. Loops ill-conditioned along their whole motion
+    # (thick diamond 1.7e-6, plane-symmetric Bricard case 10 9.4e-7) carry a Scene.tolerance_scale.
     fast_rad: float = 4e-6
     # Preset accurate (RK4 0.1 ms, 4 s sweep): worst 6.2e-11 rad (flat-foldable, branch S).
     accurate_rad: float = 1e-9

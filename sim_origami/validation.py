@@ -179,7 +179,8 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
     mobility = mobility_report(scene, branch, start)
     disagree = sum(p["numeric"] != p["mujoco"] for p in [mobility["start"], *mobility["bifurcations"]])
     verdicts = (
-        Verdict(f"{branch}: MuJoCo {preset} path error (rad)", dyn.max_error(), TOLERANCES.angle(preset),
+        Verdict(f"{branch}: MuJoCo {preset} path error (rad)", dyn.max_error(),
+                TOLERANCES.angle(preset) * scene.tolerance_scale,
                 "max over samples and joints of |sim - closed form at the simulated input|"),
         Verdict(f"{branch}: MuJoCo {preset} closure residual (m)", float(np.max(dynamic.closure_residual)),
                 TOLERANCES.residual(preset), "largest gap between paired closure sites"),
@@ -224,7 +225,8 @@ def run_free(scene: Scene, preset: str) -> tuple[dict, list[Verdict]]:
     verdicts = [
         Verdict(f"free run ({FREE_DURATION:g} s under gravity): energy drift (J)", drift, TOLERANCES.energy(preset),
                 f"E0 = {run.energy[0]:.6g} J; {run.cpu_time_s:.3g} s CPU (OpenSim: {OPENSIM_A04_S} s)"),
-        Verdict("free run: path error against the closed form (rad)", path.max_error(), TOLERANCES.angle(preset),
+        Verdict("free run: path error against the closed form (rad)", path.max_error(),
+                TOLERANCES.angle(preset) * scene.tolerance_scale,
                 "unforced motion stays on the closed-form branch"),
     ]  # fmt: skip
     return doc, verdicts

@@ -92,8 +92,8 @@ def test_path_against_its_own_branch_agrees_and_against_another_branch_differs(n
     x = np.linspace(*scene.branch_path(own), 30)
     q = closed_form_q(scene, own, x)
     assert compare(scene, own, q).max_error() <= TOLERANCES.closed_form_rad
-    # Measured 2.9 rad (vertex4) and 3.6 rad (miura): the branches fold different creases.
-    assert compare(scene, other, q).max_error() > 1.0
+    # Measured 2.9 rad (vertex4), 3.6 rad (miura); case 10's Bricard paths are at most 0.962 rad apart.
+    assert compare(scene, other, q).max_error() > 0.5
 
 
 def test_compare_measures_the_input_from_the_drive_joint():

@@ -1,6 +1,17 @@
 """Scene registry. Importing this package registers every scene module listed here."""
 
-from . import bennett, bricard_threefold, iftomm_a04, miura, myard, thick_vertex4, vertex4  # noqa: F401
+from . import (  # noqa: F401  (registration side effect)
+    bennett,
+    bricard_plane,
+    bricard_threefold,
+    iftomm_a04,
+    miura,
+    myard,
+    thick_diamond,
+    thick_vertex4,
+    thick_vertex5,
+    vertex4,
+)
 from .base import REGISTRY, Param, Scene, SceneType, get, names, register
 
 __all__ = ["REGISTRY", "Param", "Scene", "SceneType", "get", "names", "register"]

@@ -66,6 +66,9 @@ class Scene:
     gravity: tuple[float, float, float] | None = None  # m/s^2 in the root's frame: adds a free run
     free_start: float = 0.0  # input (rad) at which the free run is released at rest
     free_branch: str = ""  # branch of that start pose
+    # Multiplies the MuJoCo (fast/accurate) angle tolerances for loops that are ill-conditioned along
+    # their whole motion; each scene that sets it states the measured singular value behind it.
+    tolerance_scale: float = 1.0
     notes: str = ""
 
     def loop_to_mechanism(self, q_loop: ArrayLike) -> NDArray[np.float64]:
@@ -91,11 +94,11 @@ class Scene:
         return self.kinematics.observe(self.mechanism_to_loop(q))
 
     def branch_path(self, branch: str) -> tuple[float, float]:
-        """The default sweep clipped to 95% of the branch's domain."""
+        """The default sweep, kept 5% of the branch's domain away from each end."""
         lo, hi = self.kinematics.branch(branch).domain
-        start, stop = self.path
-        clip = lambda v: float(np.clip(v, 0.95 * lo, 0.95 * hi))  # noqa: E731
-        return clip(start), clip(stop)
+        margin = 0.05 * (hi - lo)
+        start, stop = np.clip(self.path, lo + margin, hi - margin)
+        return float(start), float(stop)
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,512 @@
+"""Plane-symmetric Bricard 6R (`sim_origami.kinematics.bricard_plane`, scene `bricard-plane`) against seed 000
+Part II (M4 to M7), the numeric loop solver and MuJoCo."""
+
+import numpy as np
+import pytest
+
+import sim_origami.scenes.bricard_plane  # noqa: F401  (registers the scene)
+from sim_origami import scenes
+from sim_origami.errors import AssemblyError, DomainError, ParameterError
+from sim_origami.geometry import wrap
+from sim_origami.kinematics.bricard_plane import (
+    FIG_4_5,
+    M7,
+    TABLE_4_1,
+    Geometry,
+    PlaneSymmetricBricard,
+    closure_coefficients,
+    path_one,
+    path_two,
+    theta1_fractions,
+    theta4_fraction,
+)
+from sim_origami.tolerances import TOLERANCES
+from sim_origami.validation import validate
+
+DEG = np.pi / 180
+# Validation case 15 (seed000 §5): offsets that expose the sign of eqn 4-6c.
+OFFSETS = Geometry(1.3, 0.7, 1.1, 0.9, 0.4, 1.2, 0.3, -0.5)
+# Published angles carry 4 decimals (degrees): half a unit of the last place, plus rounding of the
+# printed inputs (e.g. 158.5428 deg); the largest difference measured below is 5.0e-5 deg.
+PUBLISHED_DEG = 6e-5
+
+
+def model(g: Geometry, **options) -> PlaneSymmetricBricard:
+    return PlaneSymmetricBricard(g.a, g.b, g.c, g.alpha, g.beta, g.gamma, g.R2, g.R3, **options)
+
+
+def random_offset_geometries(count: int, seed: int) -> list[Geometry]:
+    """General geometries with offsets R2, R3 (no special relation among the parameters)."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(count):
+        a, b, c = rng.uniform(0.3, 2.0, 3)
+        alpha, beta, gamma = rng.uniform(-np.pi, np.pi, 3)
+        R2, R3 = rng.uniform(-1.0, 1.0, 2)
+        out.append(Geometry(a, b, c, alpha, beta, gamma, R2, R3))
+    return out
+
+
+def closure_over_domains(kin: PlaneSymmetricBricard, samples: int = 2001) -> float:
+    """Largest closure residual over every branch's whole domain, its ends and theta2 = 0, +-pi."""
+    loops = kin.loop_system()
+    worst = 0.0
+    for b in kin.branches():
+        lo, hi = b.domain
+        x = np.concatenate([np.linspace(lo, hi, samples), [0.0, np.pi, -np.pi]])
+        values, valid = kin.evaluate(b.name, x)
+        assert np.all(valid[:samples])
+        assert np.all(np.isfinite(values[valid])) and np.all(np.isnan(values[~valid]))
+        worst = max(worst, float(np.max(loops.residual_norm(values[valid]))))
+    return worst
+
+
+# ---------------------------------------------------------------------------------------------
+# Eqn 4-6c: the corrected sign of C
+# ---------------------------------------------------------------------------------------------
+
+
+def textbook_configurations(g: Geometry, theta2: np.ndarray, printed_c: bool) -> np.ndarray:
+    """Both roots by eqn 4-15 with n = tan(theta3/2), theta1 by eqn 4-7, theta4 by appendix (3,1)."""
+    A, B, C = closure_coefficients(g, theta2, printed_c=printed_c)
+    with np.errstate(invalid="ignore"):  # the printed C leaves Delta < 0 at some inputs
+        root = np.sqrt(B * B - 4 * A * C)
+    out = []
+    for sign in (1.0, -1.0):
+        t3 = 2 * np.arctan((-B + sign * root) / (2 * A))
+        Y13, X13, _, _ = theta1_fractions(g, theta2, t3)
+        Y31, X31 = theta4_fraction(g, theta2, t3)
+        t1, t4 = 2 * np.arctan2(Y13, X13), 2 * np.arctan2(Y31, X31)
+        out.append(np.stack([t1, theta2, t3, t4, t3, theta2], -1))
+    return np.concatenate(out)
+
+
+def test_corrected_c_closes_with_offsets_and_the_printed_c_does_not():
+    theta2 = np.deg2rad(np.linspace(-120.0, -30.0, 91))  # inside both of OFFSETS' domains
+    loops = model(OFFSETS).loop_system()
+    corrected = textbook_configurations(OFFSETS, theta2, printed_c=False)
+    # Measured 7.6e-14 (the model's half-angle pair form: 8.5e-15 on the same inputs).
+    assert np.max(loops.residual_norm(corrected)) <= TOLERANCES.closed_form_residual
+    printed = textbook_configurations(OFFSETS, theta2, printed_c=True)
+    ok = np.all(np.isfinite(printed), axis=1)
+    # Measured 1.69 (seed000 reports up to 0.23 over 72 random offset cases): far above 0.01.
+    assert np.max(loops.residual_norm(printed[ok])) > 0.01
+    # The same on random offset geometries, over their first branch's domain: measured 0.055 to 7.4
+    # (the model closes them to 5.6e-14, test below).
+    for g in random_offset_geometries(6, seed=7):
+        kin = model(g)
+        lo, hi = kin.branches()[0].domain
+        x = wrap(np.linspace(lo, hi, 101)[1:-1])
+        printed = textbook_configurations(g, x, printed_c=True)
+        ok = np.all(np.isfinite(printed), axis=1)
+        assert np.max(kin.loop_system().residual_norm(printed[ok])) > 0.01
+
+
+# ---------------------------------------------------------------------------------------------
+# Closure over every branch's domain
+# ---------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("case", [5, 6, 8, 9, 10])
+def test_closed_form_closes_over_every_branch_domain_of_table_4_1(case):
+    # Measured worst 4.8e-14 (case 5, whose A, B, C vanish together at theta2 = 0), 4.3e-15 (case 10).
+    assert closure_over_domains(model(TABLE_4_1[case])) <= TOLERANCES.closed_form_residual
+
+
+def test_closed_form_closes_for_random_offsets_and_the_fig_4_5_geometry():
+    geometries = [*random_offset_geometries(6, seed=7), OFFSETS, FIG_4_5]
+    for g in geometries:
+        kin = model(g)
+        assert kin.branches(), g
+        # Measured worst 5.6e-14 over these 8 geometries.
+        assert closure_over_domains(kin) <= TOLERANCES.closed_form_residual, g
+
+
+def test_general_solution_reproduces_eqns_4_33_and_4_34_through_the_bifurcations():
+    for case in (8, 10):
+        explicit, general = model(TABLE_4_1[case]), model(TABLE_4_1[case], explicit=False)
+        assert {b.name for b in explicit.branches()} == {b.name for b in general.branches()}
+        x = np.concatenate([np.linspace(-np.pi, np.pi, 20001), [0.0, 1e-9, -1e-9, np.pi, -np.pi]])
+        for b in explicit.branches():
+            a, _ = explicit.evaluate(b.name, x)
+            g, _ = general.evaluate(b.name, x)
+            # Measured 2.0e-14 rad: the general root, sign-tracked through Delta's double zeros at
+            # theta2 = 0 and pi, is the analytic continuation of each path.
+            assert np.max(np.abs(wrap(a - g))) <= TOLERANCES.closed_form_rad
+
+
+def test_path_one_holds_for_every_a_equal_b_plus_c_and_path_two_needs_b_equal_c():
+    x = np.linspace(-np.pi, np.pi, 721)
+    for beta in (-0.4, 0.3, 1.1, 2.0):
+        family = Geometry(3.1, 1.2, 1.9, np.pi - 2 * beta, beta, -beta)  # a = b + c, b != c
+        loops = model(family).loop_system()
+        # Measured 4.7e-15: eqn 4-33 is not limited to case 10 [NEW].
+        assert np.max(loops.residual_norm(path_one(beta, x))) <= TOLERANCES.closed_form_residual
+        # Measured >= 8.3e-2: path II is case 10's alone (b = c).
+        assert np.max(loops.residual_norm(path_two(beta, x))) > 1e-3
+        case10 = model(Geometry(2.0, 1.0, 1.0, np.pi - 2 * beta, beta, -beta)).loop_system()
+        assert np.max(case10.residual_norm(path_two(beta, x))) <= TOLERANCES.closed_form_residual
+
+
+# ---------------------------------------------------------------------------------------------
+# Published numbers (seed000 §5, Chapter 4)
+# ---------------------------------------------------------------------------------------------
+
+
+def angles_deg(kin: PlaneSymmetricBricard, branch: str, theta2_deg: float) -> np.ndarray:
+    return np.rad2deg(wrap(kin.joint_angles(branch, np.deg2rad(theta2_deg))[0]))
+
+
+def assert_published(measured: np.ndarray, expected: tuple[float, ...]) -> None:
+    np.testing.assert_allclose(np.rad2deg(wrap(np.deg2rad(measured - np.array(expected)))), 0.0, atol=PUBLISHED_DEG)
+
+
+@pytest.mark.parametrize(
+    "case, branch, theta2, expected",
+    [
+        (10, "theta1_eq_theta4", 60, (-147.7958, 60, 143.1301, -147.7958, 143.1301, 60)),
+        (10, "theta1_plus_theta4_eq_2theta2", 60, (-133.1736, 60, 126.8699, -106.8264, 126.8699, 60)),
+        (10, "theta1_eq_theta4", 120, (-98.2132, 120, 90, -98.2132, 90, 120)),
+        (10, "theta1_plus_theta4_eq_2theta2", 120, (-75.1782, 120, 67.3801, -44.8218, 67.3801, 120)),
+        (5, "all_joints_move", 60, (144.8396, 60, 16.2602, -177.6924, 16.2602, 60)),
+        (5, "all_joints_move", 120, (80.5145, 120, 46.3972, -174.1674, 46.3972, 120)),
+        (6, "all_joints_move", 60, (-46.8264, 60, 101.5370, 46.8264, 101.5370, 60)),
+        (6, "all_joints_move", 120, (0, 120, 0, 120, 0, 120)),
+        (8, "theta1_eq_theta4", np.rad2deg(0.5), (-165.4487, 28.6479, 163.2275, -165.4487, 163.2275, 28.6479)),
+        (8, "theta1_eq_theta4", np.rad2deg(2.0), (-104.1839, 114.5916, 96.0782, -104.1839, 96.0782, 114.5916)),
+        (9, "theta3_180_at_theta2_180", 90, (140.7460, 90, 150.3342, 71.4318, 150.3342, 90)),
+        (9, "theta3_0_at_theta2_180", 90, (101.5496, 90, 69.0589, -132.7723, 69.0589, 90)),
+        (9, "theta3_180_at_theta2_180", 150, (157.9355, 150, 173.0647, -90.2700, 173.0647, 150)),
+        (9, "theta3_0_at_theta2_180", 150, (33.2749, 150, 17.8935, -40.4613, 17.8935, 150)),
+    ],
+)
+def test_published_configurations_of_table_4_1(case, branch, theta2, expected):
+    # Case 8's inputs are 0.5 and 2 rad (printed as 28.6479 and 114.5916 deg).
+    assert_published(angles_deg(model(TABLE_4_1[case]), branch, theta2), expected)
+
+
+def test_published_configurations_of_the_fig_4_5_geometry_and_the_offset_case():
+    fig = model(FIG_4_5)
+    assert_published(angles_deg(fig, "all_joints_move", 60), (113.7818, 60, -136.7224, 170.0617, -136.7224, 60))
+    assert_published(angles_deg(fig, "all_joints_move", 120), (138.8478, 120, 146.9081, 37.1804, 146.9081, 120))
+    offsets = model(OFFSETS)
+    found = {name: angles_deg(offsets, name, -110) for name in (b.name for b in offsets.branches())
+             if offsets.evaluate(name, -110 * DEG)[1][0]}  # fmt: skip
+    assert len(found) == 2
+    expected = [
+        (-80.8970, -110, -49.5009, 96.0363, -49.5009, -110),
+        (97.6558, -110, -97.2543, -29.8270, -97.2543, -110),
+    ]
+    for exp in expected:
+        assert any(np.max(np.abs(wrap(np.deg2rad(v - np.array(exp))))) < PUBLISHED_DEG * DEG for v in found.values())
+
+
+def test_fig_4_5_bennett_branch_obeys_tan_theta1_tan_theta2_equal_sqrt2_and_published_values():
+    kin = model(FIG_4_5)
+    x = np.linspace(-np.pi, np.pi, 361)[1:-1]
+    values = kin.joint_angles("bennett_theta3_pi", x)
+    # Branch: theta3 = theta5 = pi, theta4 = theta1, theta6 = theta2 (measured to 3.1e-15 rad).
+    assert np.max(np.abs(wrap(values[:, 2] - np.pi))) < 1e-12
+    assert np.max(np.abs(wrap(values[:, 3] - values[:, 0]))) < 1e-12
+    product = np.tan(values[:, 0] / 2) * np.tan(x / 2)
+    # Measured relative error 2.7e-14 away from theta2 = 0 (where tan(theta1/2) blows up).
+    away = np.abs(x) > 0.05
+    np.testing.assert_allclose(product[away], np.sqrt(2), rtol=1e-9)
+    for theta1, theta2 in ((30, 158.5428), (90, 109.4712), (150, 41.5071)):
+        assert_published(angles_deg(kin, "bennett_theta3_pi", theta2), (theta1, theta2, 180, theta1, 180, theta2))
+
+
+def test_case_9_bennett_branch_closes_and_meets_both_halves_at_the_published_configurations():
+    kin = model(TABLE_4_1[9])
+    loops = kin.loop_system()
+    theta1 = np.deg2rad(np.array([30.0, 60.0, 90.0, 120.0, 150.0, 170.0]))
+    theta3 = 2 * np.arctan(-np.tan(theta1 / 2) / np.sqrt(2))  # seed000 M5, Fig. 4-4 [NEW]
+    q = np.stack([theta1, np.full(6, np.pi), theta3, theta1, theta3, np.full(6, np.pi)], -1)
+    # Measured 1.1e-15: the Bennett 4R theta2 = theta6 = pi of eqn 4-30.
+    assert np.max(loops.residual_norm(q)) <= TOLERANCES.closed_form_residual
+    np.testing.assert_allclose(np.rad2deg(theta3), [-21.4572, -44.4153, -70.5288, -101.5370, -138.4929, -165.8935],
+                               atol=PUBLISHED_DEG)  # fmt: skip
+    meets = {e.branches[0]: e for e in kin.events() if e.kind == "bifurcation"}
+    assert set(meets) == {"theta3_0_at_theta2_180", "theta3_180_at_theta2_180"}
+    for name, expected in (
+        ("theta3_0_at_theta2_180", (0, 180, 0, 0, 0, 180)),
+        ("theta3_180_at_theta2_180", (180,) * 6),
+    ):
+        assert meets[name].input == pytest.approx(np.pi, abs=1e-12)
+        assert "Bennett" in meets[name].detail
+        assert_published(angles_deg(kin, name, 180.0), expected)
+
+
+# ---------------------------------------------------------------------------------------------
+# Classification (Table 4-1), case 7, domains and events
+# ---------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "case, a_zero, delta, branches",
+    [
+        (5, True, "positive", ("all_joints_move", "bennett_theta3_pi")),
+        (6, True, "positive", ("all_joints_move", "only_joints_2_6_move")),
+        (7, False, "negative", ()),
+        (8, False, "zero", ("theta1_eq_theta4",)),
+        (9, False, "mixed", ("theta3_0_at_theta2_180", "theta3_180_at_theta2_180")),
+        (10, False, "positive", ("theta1_eq_theta4", "theta1_plus_theta4_eq_2theta2")),
+    ],
+)
+def test_table_4_1_classification_and_branch_names(case, a_zero, delta, branches):
+    kin = model(TABLE_4_1[case])
+    c = kin.classification()
+    assert c.a_identically_zero is a_zero
+    assert c.delta == delta
+    assert c.structure is (case == 7)
+    assert tuple(sorted(b.name for b in kin.branches())) == branches
+    assert kin.gruebler() == 0
+
+
+def test_case_7_is_a_rigid_structure_assembled_only_at_theta2_pi():
+    kin = model(TABLE_4_1[7])
+    assert kin.branches() == ()
+    # Delta <= -16 at every finite theta2 (seed000: "Delta <= -16"): measured max -16.00000000000001.
+    assert kin.classification().delta_range[1] == pytest.approx(-16.0, abs=1e-9)
+    [(x0, q)] = kin.isolated_assemblies()
+    # [NEW] At theta2 = pi (m infinite, outside eqn 4-15) the loop closes: measured residual 9.5e-16,
+    # so "the loop cannot be assembled" (seed000 §5 case 9) holds only for finite theta2.
+    assert x0 == pytest.approx(np.pi)
+    np.testing.assert_allclose(wrap(q - np.array([0, np.pi, np.pi, 0, np.pi, np.pi])), 0.0, atol=1e-9)
+    loops = kin.loop_system()
+    assert loops.residual_norm(q) <= TOLERANCES.closed_form_residual
+    # Rigid: no closed configuration at nearby inputs (measured: none from 24 random starts each).
+    for x in (np.pi - 0.05, 3.0, 2.0, 0.5):
+        assert len(loops.assemblies(1, x, starts=24)) == 0
+    events = [e for e in kin.events() if e.kind == "isolated_assembly"]
+    assert len(events) == 1 and events[0].branches == ()
+
+
+def test_case_7_scene_is_refused_as_a_structure_with_one_line():
+    with pytest.raises(AssemblyError) as info:
+        scenes.get("bricard-plane").build_from_user({"case": 7})
+    message = str(info.value)
+    assert message.startswith("case 7 is a structure: Delta < 0 for every theta2")
+    assert message.endswith("it has no motion") and "\n" not in message
+    assert "(0, 180, 180, 0, 180, 180) deg" in message
+
+
+def test_case_9_theta2_covers_only_part_of_the_circle_and_turns_back():
+    kin = model(TABLE_4_1[9])
+    for b in kin.branches():
+        lo, hi = b.domain
+        # seed000: Delta >= 0 iff |theta2| >= 71.67 deg (60.2 % of the circle).
+        assert np.rad2deg(lo) == pytest.approx(71.6692, abs=1e-4)
+        assert np.rad2deg(hi) == pytest.approx(360 - 71.6692, abs=1e-4)
+        assert "not fully rotatable" in b.description and "60.2 %" in b.description
+    turning = sorted(e.input for e in kin.events() if e.kind == "turning_point")
+    np.testing.assert_allclose(turning, list(kin.branches()[0].domain), atol=0)
+    # Inputs are taken modulo 2 pi; |theta2| < 71.67 deg has no configuration.
+    name = kin.branches()[0].name
+    a, valid_a = kin.evaluate(name, [-2.0, -2.0 + 2 * np.pi, 0.5])
+    assert valid_a.tolist() == [True, True, False]
+    np.testing.assert_allclose(wrap(a[0] - a[1])[[0, 2, 3]], 0.0, atol=1e-12)
+    assert np.all(np.isnan(a[2]))
+    with pytest.raises(DomainError, match=r"theta2 = 0\.5 rad"):
+        kin.joint_angles(name, 0.5)
+
+
+def test_case_9_one_loop_of_both_halves_turns_theta1_once_theta3_once_and_theta4_three_times_back():
+    kin = model(TABLE_4_1[9])
+    (lo, hi) = kin.branches()[0].domain
+    ends = {b.name: kin.joint_angles(b.name, [lo, hi]) for b in kin.branches()}
+    a, b = ends["theta3_0_at_theta2_180"], ends["theta3_180_at_theta2_180"]
+    # Forward along one half, back along the other: the closed curve of seed000's "one branch if
+    # theta1 is the input" (the halves meet at the turning points, to 1e-6 rad).
+    turns = ((a[1] - a[0]) + (b[0] - b[1])) / (2 * np.pi)
+    assert np.max(np.abs(turns - np.round(turns))) < 1e-5
+    t1, t3, t4 = np.round(turns[[0, 2, 3]]).astype(int)
+    assert abs(t1) == 1 and t3 == t1 and t4 == -3 * t1  # per turn of theta1: +1, -3 (seed000 case 9)
+
+
+def test_fig_4_5_one_turn_of_theta2_turns_theta1_minus_three_theta3_two_theta4_one():
+    kin = model(FIG_4_5)
+    ends = kin.joint_angles("all_joints_move", [-np.pi, np.pi])
+    turns = (ends[1] - ends[0]) / (2 * np.pi)
+    np.testing.assert_allclose(turns[[0, 2, 3]], [-3, 2, 1], atol=1e-9)
+
+
+def test_case_10_bifurcations_are_the_two_collinear_configurations_on_both_paths():
+    kin = model(TABLE_4_1[10])
+    bif = sorted((e for e in kin.events() if e.kind == "bifurcation"), key=lambda e: e.input)
+    assert [e.input for e in bif] == [0.0, np.pi]
+    names = {"theta1_eq_theta4", "theta1_plus_theta4_eq_2theta2"}
+    for e, expected in zip(bif, [(180, 0, 180, 180, 180, 0), (0, 180, 0, 0, 0, 180)], strict=True):
+        assert set(e.branches) == names
+        for name in names:
+            assert_published(angles_deg(kin, name, np.rad2deg(e.input)), expected)
+        assert "instantaneous mobility 2" in e.detail
+
+
+@pytest.mark.parametrize("case, explicit, count", [(10, True, 2), (10, False, 2), (5, True, 1), (6, True, 2)])
+def test_each_branch_keeps_its_name_and_identity_through_the_crossings(case, explicit, count):
+    kin = model(TABLE_4_1[case], explicit=explicit)
+    crossings = [e for e in kin.events() if e.kind == "bifurcation" and len(e.branches) == 2]
+    assert len(crossings) == count
+    for e in crossings:
+        x = e.input + np.array([-1e-3, -1e-6, 0.0, 1e-6, 1e-3])
+        for name in e.branches:
+            v = kin.joint_angles(name, x)
+            # Continuous through the crossing: the +/- root labels swap there, the names do not. Over
+            # 2e-6 rad of input the joints move at most 1.5e-5 rad (slope 7.5, case 6's theta1).
+            assert np.max(np.abs(wrap(v[1:] - v[:-1]))) < 1e-2
+            assert np.max(np.abs(wrap(v[3] - v[1]))) < 1e-4
+            t1, t3, t4 = v[:, 0], v[:, 2], v[:, 3]
+            identity = {
+                "theta1_eq_theta4": t1 - t4,
+                "theta1_plus_theta4_eq_2theta2": t1 + t4 - 2 * x,
+                "bennett_theta3_pi": np.stack([t3 - np.pi, t1 - t4]),
+                "only_joints_2_6_move": np.stack([t1 - np.pi, t3 - np.pi, t4 - np.pi]),
+            }.get(name)
+            if identity is not None:
+                assert np.max(np.abs(wrap(identity))) < 1e-12
+            else:  # all_joints_move: the other branch's identity fails away from the crossing
+                assert abs(float(wrap(t3[0] - np.pi))) > 1e-4
+
+
+def test_evaluate_contract_nan_outside_unknown_branch_and_inputs_modulo_two_pi():
+    kin = model(TABLE_4_1[10])
+    values, valid = kin.evaluate("theta1_eq_theta4", [0.3, 0.3 + 2 * np.pi, np.nan])
+    assert valid.tolist() == [True, True, False]
+    np.testing.assert_allclose(wrap(values[0] - values[1])[[0, 2, 3]], 0.0, atol=1e-12)
+    assert np.all(np.isnan(values[2]))
+    with pytest.raises(ParameterError, match="theta1_eq_theta4"):
+        kin.evaluate("plus", 0.3)
+    assert kin.loop_input() == (1, 1.0)
+    assert kin.joint_names == ("theta1", "theta2", "theta3", "theta4", "theta5", "theta6")
+
+
+# ---------------------------------------------------------------------------------------------
+# Closed form against the numeric loop solver
+# ---------------------------------------------------------------------------------------------
+
+
+# Continuation keeps to its branch this far from a bifurcation: at 0.05 rad from theta2 = 0 the two
+# case-10 paths differ by 0.016 rad and the secant predictor jumped to the other one (0.96 rad off).
+CLEAR = 0.25
+
+
+@pytest.mark.parametrize("case", [5, 6, 9, 10])
+def test_closed_form_matches_numeric_continuation_on_every_branch(case):
+    scene = scenes.get("bricard-plane").build(case=float(case))
+    kin = scene.kinematics
+    loops = kin.loop_system()
+    for b in kin.branches():
+        lo, hi = b.domain
+        # The default sweep, and a longer one between the events, CLEAR rad away from each.
+        events = sorted(e.input for e in kin.events())
+        start, stop = scene.branch_path(b.name)
+        left = max([lo, *[e for e in events if e < start]]) + CLEAR
+        right = min([hi, *[e for e in events if e > stop]]) - CLEAR
+        for x in (np.linspace(start, stop, 100), np.linspace(left, right, 200)):
+            values = kin.joint_angles(b.name, x)
+            numeric = loops.follow(values[0], 1, x)
+            # Measured worst 1.1e-13 rad (case 10 path II: the numeric solve stops at a 1e-14 residual
+            # on a nearly singular loop, 5th/1st singular value of the joint lines <= 0.04).
+            assert np.max(np.abs(numeric - values)) <= TOLERANCES.closed_form_rad, (b.name, x[0], x[-1])
+
+
+def test_closed_form_matches_numeric_continuation_with_offsets():
+    kin = model(OFFSETS)
+    loops = kin.loop_system()
+    for b in kin.branches():
+        lo, hi = b.domain
+        x = np.linspace(lo + 0.1, hi - 0.1, 150)
+        values = kin.joint_angles(b.name, x)
+        # Measured 5.0e-14 rad.
+        assert np.max(np.abs(loops.follow(values[0], 1, x) - values)) <= TOLERANCES.closed_form_rad
+
+
+# ---------------------------------------------------------------------------------------------
+# Scene and MuJoCo
+# ---------------------------------------------------------------------------------------------
+
+
+def test_scene_defaults_are_case_10_and_presets_override_the_geometry():
+    scene_type = scenes.get("bricard-plane")
+    scene = scene_type.build()
+    assert scene.params["case"] == 10.0
+    assert {b.name for b in scene.kinematics.branches()} == {"theta1_eq_theta4", "theta1_plus_theta4_eq_2theta2"}
+    assert scene.drive_joint == "joint_2" and scene.loop_joints == tuple(f"joint_{i}" for i in range(1, 7))
+    preset = scene_type.build_from_user({"case": 9, "a": 7.0})
+    assert preset.params["a"] == 3.0  # Table 4-1 case 9, not the given a
+    fields = ("a", "b", "c", "alpha", "beta", "gamma", "R2", "R3")
+    user = {"case": 0.0} | {f: getattr(OFFSETS, f) for f in fields}
+    for f in ("alpha", "beta", "gamma"):
+        user[f] = np.rad2deg(user[f])
+    custom = scene_type.build_from_user(user)
+    given = custom.kinematics.geometry
+    np.testing.assert_allclose([getattr(given, f) for f in fields], [getattr(OFFSETS, f) for f in fields], atol=1e-15)
+    assert len(custom.kinematics.branches()) == 4
+    for bad in (4, 11, 5.5):
+        with pytest.raises(ParameterError, match="case"):
+            scene_type.build_from_user({"case": bad})
+
+
+@pytest.mark.parametrize("case", [5, 6, 8, 9, 10])
+def test_default_sweep_lies_inside_every_domain_and_clear_of_every_event(case):
+    scene = scenes.get("bricard-plane").build(case=float(case))
+    for b in scene.kinematics.branches():
+        start, stop = scene.branch_path(b.name)
+        lo, hi = b.domain
+        assert lo < start < stop < hi
+        for e in scene.kinematics.events():
+            assert not start - 0.1 < e.input < stop + 0.1
+
+
+@pytest.mark.parametrize("case", [10, 6])
+def test_mujoco_validation_passes(case, capsys):
+    report = validate(scenes.get("bricard-plane").build(case=float(case)))
+    with capsys.disabled():
+        for run in report.runs:
+            fast, projection = run.dynamic_path.max_error(), run.projection_path.max_error()
+            closure = np.max(run.dynamic.closure_residual)
+            print(f"\ncase {case} {run.requested}: fast {fast:.2e} rad, projection {projection:.2e} rad, "
+                  f"closure {closure:.2e} m (projection {run.projection_residual_m:.2e} m)")  # fmt: skip
+    failed = [v for v in [*report.verdicts, *(v for r in report.runs for v in r.verdicts)] if not v.passed]
+    assert report.passed, failed
+    assert {r.followed for r in report.runs} == {b.name for b in report.scene.kinematics.branches()}
+
+
+# ---------------------------------------------------------------------------------------------
+# M7: A == B == C == 0
+# ---------------------------------------------------------------------------------------------
+
+
+def test_m7_double_rocker_closes_and_meets_the_eqn_4_37ab_chains_at_plus_minus_60_deg():
+    kin = model(M7)
+    c = kin.classification()
+    assert c.a_identically_zero and c.delta == "zero"
+    names = sorted(b.name for b in kin.branches())
+    assert names == ["double_rocker_theta6_97_at_theta2_0", "double_rocker_theta6_m97_at_theta2_0"]
+    for b in kin.branches():
+        # Real only for |theta2| <= 99.59 deg (seed000 M7).
+        assert np.rad2deg(b.domain[1]) == pytest.approx(99.5941, abs=1e-4)
+        values = kin.joint_angles(b.name, np.linspace(*b.domain, 801))
+        assert np.all(values[:, [0, 3]] == 0.0)
+    # Measured 8.2e-15 over both halves.
+    assert closure_over_domains(kin) <= TOLERANCES.closed_form_residual
+    multi = sorted((e for e in kin.events() if e.kind == "bifurcation"), key=lambda e: e.input)
+    assert [round(np.rad2deg(e.input), 9) for e in multi] == [-60.0, 60.0]
+    loops = kin.loop_system()
+    for s in (0.3, -2.0, np.pi):  # eqn 4-37a: theta1 = -theta4 free (validation case 16)
+        q = np.deg2rad([np.rad2deg(s), 60, 120, -np.rad2deg(s), 120, 60])
+        # Measured 1.1e-15.
+        assert loops.residual_norm(q) <= TOLERANCES.closed_form_residual
+    rocker = kin.joint_angles("double_rocker_theta6_97_at_theta2_0", np.pi / 3)[0]
+    np.testing.assert_allclose(wrap(rocker - np.deg2rad([0, 60, 120, 0, 120, 60])), 0.0, atol=1e-12)
+
+
+def test_m7_principal_arcsin_does_not_close():
+    theta2 = np.linspace(-1.5, 1.5, 31)
+    m = np.tan(theta2 / 2)
+    t6 = 2 * np.arctan2(-4 * m + np.sqrt(3 * (7 * m * m + 3) * (7 - 5 * m * m)), 15 * m * m + 7)
+    t3 = np.arcsin((np.sin(t6) - np.sin(theta2)) / 4) - theta2
+    q = np.stack([0 * m, theta2, t3, 0 * m, -(theta2 + t3 + t6), t6], -1)
+    # Measured 16.0 (seed000 §2 item 10: "error about 15"); the supplementary branch closes (above).
+    assert np.max(model(M7).loop_system().residual_norm(q)) > 1.0
