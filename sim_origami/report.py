@@ -102,7 +102,7 @@ def curves_csv(report: Report) -> str:
     return buf.getvalue()
 
 
-def _plain(value):
+def plain(value):
     """JSON fallback for numpy scalars and arrays."""
     if isinstance(value, np.generic | np.ndarray):
         return value.tolist()
@@ -113,6 +113,6 @@ def write(report: Report, out: str | Path) -> dict[str, Path]:
     """Write report.json and curves.csv into `out` (atomically); returns their paths."""
     out = Path(out)
     return {
-        "report": write_text(out / "report.json", json.dumps(as_dict(report), indent=2, default=_plain) + "\n"),
+        "report": write_text(out / "report.json", json.dumps(as_dict(report), indent=2, default=plain) + "\n"),
         "curves": write_text(out / "curves.csv", curves_csv(report)),
     }

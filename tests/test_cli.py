@@ -111,3 +111,10 @@ def test_validate_exits_1_when_the_engine_takes_another_branch(capsys, tmp_path)
     assert doc["branches"][0]["branch_followed"] == "C"
     bifurcation = next(e for e in doc["events"] if e["kind"] == "bifurcation")
     assert bifurcation["input_rad"] == 0.0 and bifurcation["branch_after"] == "C"
+
+
+def test_report_booleans_are_json_booleans(capsys, tmp_path):
+    code, out, _ = run(capsys, "validate", "thick-vertex4", "--out", str(tmp_path / "t"), "--json")
+    assert code == 0
+    block = json.loads(out)["blockage"]
+    assert block["stopped"] is True and block["drive_saturated"] is True

@@ -32,6 +32,6 @@ def assess(
 ) -> Blockage:
     """The run stopped if its final input falls short of the final target by more than 1 mrad."""
     stop = float(input_sim[-1])
-    stopped = abs(target[-1] - stop) > 1e-3
+    stopped = bool(abs(target[-1] - stop) > 1e-3)
     saturated = bool(np.max(np.abs(force)) >= 0.999 * force_limit)
     return Blockage(stop, contact_input, analytic_limit, stopped, saturated)

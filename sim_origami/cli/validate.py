@@ -11,7 +11,7 @@ from tqdm import tqdm
 from .. import scenes
 from ..errors import ParameterError
 from ..files import write_text
-from ..report import as_dict, write
+from ..report import as_dict, plain, write
 from ..validation import validate
 from .options import add_params, parse_params
 
@@ -53,7 +53,7 @@ def run_one(scene, args, out: Path) -> dict:
         frames = render_frames(scene, q[np.linspace(0, len(q) - 1, FRAMES).astype(int)], out)
         doc["render"] = {"gl_renderer": frames.gl_renderer, "seconds_per_frame": frames.seconds_per_frame,
                          "frames": len(frames.pngs)}  # fmt: skip
-        write_text(out / "report.json", json.dumps(doc, indent=2, default=float) + "\n")
+        write_text(out / "report.json", json.dumps(doc, indent=2, default=plain) + "\n")
     return doc
 
 
@@ -80,14 +80,14 @@ def run(args: argparse.Namespace) -> int:
             docs.append(run_one(scenes.get(name).build(), args, out / name))
         table = "\n".join([HEADER, *map(summary_line, docs)])
         write_text(out / "summary.md", f"# sim_origami validation ({args.preset})\n\n{table}\n")
-        write_text(out / "summary.json", json.dumps(docs, indent=2, default=float) + "\n")
+        write_text(out / "summary.json", json.dumps(docs, indent=2, default=plain) + "\n")
         print(table)
         return 0 if all(d["passed"] for d in docs) else 1
     scene = scenes.get(args.scene).build_from_user(parse_params(args.param))
     out = args.out or Path("runs") / scene.name
     doc = run_one(scene, args, out)
     if args.json:
-        print(json.dumps(doc, indent=2, default=float))
+        print(json.dumps(doc, indent=2, default=plain))
     else:
         print("\n".join([HEADER, summary_line(doc)]))
         for v in doc["verdicts"] + [v for b in doc["branches"] for v in b["verdicts"]]:
