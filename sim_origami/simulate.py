@@ -185,7 +185,7 @@ def simulate(
     binds.set_pose(data, start_pose(scene, branch, start))
     mujoco.mj_forward(model, data)
 
-    T = duration or preset_duration(preset)
+    T = duration or preset_duration(preset) * scene.sweep_time_scale
     h = model.opt.timestep
     n = round((T + hold) / h)
     if n < 2:

@@ -16,13 +16,11 @@ class Tolerances:
     # Closure residual of a closed form (product of joint transforms): worst 7.3e-16 (origami),
     # 5.3e-15 (Myard with a23 = 10 m).
     closed_form_residual: float = 1e-12
-    # MuJoCo path error, preset fast (RK4 5 ms, 2 s sweep), default sweeps: general vertex 1.0e-7,
-    # flat-foldable vertex branch S 2.1e-7, Miura 30/60 6.9e-8, Bennett 6.9e-8, thick vertex 2.0e-7,
-    # Myard 3.9e-7 rad (1.0e-6 at alpha12 = 70 deg, where theta1 moves twice as fast as the input),
-    # thick Myard 3.6e-7, threefold Bricard 1.3e-7. Loops ill-conditioned along their whole motion
-    # (thick diamond 1.7e-6, plane-symmetric Bricard case 10 9.4e-7) carry a Scene.tolerance_scale.
-    fast_rad: float = 4e-6
-    # Preset accurate (RK4 0.1 ms, 4 s sweep): worst 6.2e-11 rad (flat-foldable, branch S).
+    # MuJoCo path error, preset fast (RK4 5 ms; 2 s sweeps, slower where a scene's sweep_time_scale
+    # says so), default sweeps of every scene: worst 9.3e-8 rad (vertex4 odd1; run `validate --all`).
+    # Non-default geometries measured: flat-foldable vertex branch S 2.1e-7, Myard alpha12 = 70 deg 1.6e-7.
+    fast_rad: float = 1e-6
+    # Preset accurate (RK4 0.1 ms, 8 s sweep, scaled per scene): worst measured 1e-10 rad (thick diamond).
     accurate_rad: float = 1e-9
     # Kinematic projection (Gauss-Newton on MuJoCo's efc_pos to 1e-14 m): worst 2.0e-15 rad.
     projection_rad: float = 1e-13

@@ -180,7 +180,7 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
     disagree = sum(p["numeric"] != p["mujoco"] for p in [mobility["start"], *mobility["bifurcations"]])
     verdicts = (
         Verdict(f"{branch}: MuJoCo {preset} path error (rad)", dyn.max_error(),
-                TOLERANCES.angle(preset) * scene.tolerance_scale,
+                TOLERANCES.angle(preset),
                 "max over samples and joints of |sim - closed form at the simulated input|"),
         Verdict(f"{branch}: MuJoCo {preset} closure residual (m)", float(np.max(dynamic.closure_residual)),
                 TOLERANCES.residual(preset), "largest gap between paired closure sites"),
@@ -226,7 +226,7 @@ def run_free(scene: Scene, preset: str) -> tuple[dict, list[Verdict]]:
         Verdict(f"free run ({FREE_DURATION:g} s under gravity): energy drift (J)", drift, TOLERANCES.energy(preset),
                 f"E0 = {run.energy[0]:.6g} J; {run.cpu_time_s:.3g} s CPU (OpenSim: {OPENSIM_A04_S} s)"),
         Verdict("free run: path error against the closed form (rad)", path.max_error(),
-                TOLERANCES.angle(preset) * scene.tolerance_scale,
+                TOLERANCES.angle(preset),
                 "unforced motion stays on the closed-form branch"),
     ]  # fmt: skip
     return doc, verdicts

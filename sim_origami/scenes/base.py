@@ -66,9 +66,10 @@ class Scene:
     gravity: tuple[float, float, float] | None = None  # m/s^2 in the root's frame: adds a free run
     free_start: float = 0.0  # input (rad) at which the free run is released at rest
     free_branch: str = ""  # branch of that start pose
-    # Multiplies the MuJoCo (fast/accurate) angle tolerances for loops that are ill-conditioned along
-    # their whole motion; each scene that sets it states the measured singular value behind it.
-    tolerance_scale: float = 1.0
+    # Quasi-static sweeps of loops that are ill-conditioned along their whole motion run this many times
+    # slower than the preset's; the soft closures' angle error falls as the square of the sweep time
+    # (measured 4.0x per doubling on every scene). Each scene that sets it states its measured error.
+    sweep_time_scale: float = 1.0
     notes: str = ""
 
     def loop_to_mechanism(self, q_loop: ArrayLike) -> NDArray[np.float64]:
