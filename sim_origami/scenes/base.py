@@ -95,9 +95,12 @@ class Scene:
         return self.kinematics.observe(self.mechanism_to_loop(q))
 
     def branch_path(self, branch: str) -> tuple[float, float]:
-        """The default sweep, kept 5% of the branch's domain away from each end."""
+        """
+        The default sweep, kept clear of the domain's ends by 5% of the larger end (so a symmetric
+        domain [-L, L] allows [-0.95 L, 0.95 L]), at most a quarter of the domain's width.
+        """
         lo, hi = self.kinematics.branch(branch).domain
-        margin = 0.05 * (hi - lo)
+        margin = min(0.05 * max(abs(lo), abs(hi)), 0.25 * (hi - lo))
         start, stop = np.clip(self.path, lo + margin, hi - margin)
         return float(start), float(stop)
 
