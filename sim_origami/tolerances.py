@@ -20,11 +20,12 @@ class Tolerances:
     # says so), default sweeps of every scene: worst 9.3e-8 rad (vertex4 odd1; run `validate --all`).
     # Non-default geometries measured: flat-foldable vertex branch S 2.1e-7, Myard alpha12 = 70 deg 1.6e-7.
     fast_rad: float = 1e-6
-    # Preset accurate (RK4 0.1 ms, 8 s sweep, scaled per scene): worst measured 1e-10 rad (thick diamond).
+    # Preset accurate (RK4 0.1 ms, 8 s sweep x sweep_time_scale): every scene's default sweeps <= 8.4e-11
+    # rad (thick diamond; Myard 7.8e-11, Bricard case 10 7.8e-11, vertex4 1.3e-11).
     accurate_rad: float = 1e-9
     # Kinematic projection (Gauss-Newton on MuJoCo's efc_pos to 1e-14 m): worst 2.0e-15 rad.
     projection_rad: float = 1e-13
-    # Closure-site gap (m, 1 m links): fast worst 2.1e-7 (Myard), accurate 3.2e-11. Projection stops once
+    # Closure-site gap (m, 1 m links): fast worst 2.1e-7 (Myard), accurate 2.5e-11. Projection stops once
     # every equality row is below 1e-14 m, so a gap can reach sqrt(3) 1e-14 (measured 1.2e-14).
     fast_residual_m: float = 2e-6
     accurate_residual_m: float = 5e-10
