@@ -46,6 +46,7 @@ def vertex_mechanism(
     keep: tuple[int, ...] = (),
     names: tuple[str, ...] | None = None,
     heights: ArrayLike | None = None,
+    anchors: tuple[float, ...] = (0.5, 1.0),
 ) -> Mechanism:
     """
     A single flat-sheet vertex of degree n as panels and crease hinges.
@@ -71,6 +72,9 @@ def vertex_mechanism(
       Thick-panel origami (seed 003 ch. 4): hinge i lies on the line through (0, 0, heights[i]) along
       d_i, and panel i is a slab filling the gap between the planes of its two hinges (thickness =
       link length). Panels then carry collision solids inset by `inset` from both creases.
+    anchors : tuple of float
+      Where a cut crease is closed, as fractions of `length` along its hinge from the hinge point;
+      the default keeps clear of the vertex that every crease of a zero-thickness vertex shares.
     """
     alpha = np.asarray(alpha, dtype=float)
     n = len(alpha)
@@ -100,7 +104,7 @@ def vertex_mechanism(
                 child=f"panel_{i + 1}",
                 frame_parent=frame,
                 frame_child=frame,
-                anchors=(0.5 * length, length),  # on the crease, away from the shared vertex
+                anchors=tuple(a * length for a in anchors),
             )
         )
     return Mechanism(tuple(bodies), tuple(joints), f"panel_{root}", tuple(names[k - 1] for k in keep))

@@ -14,7 +14,6 @@ from ..kinematics.thick_diamond import ThickDiamond
 from ..origami import vertex_mechanism
 from .base import Param, Scene, register
 from .thick_vertex4 import RELIEF
-from .thick_vertex5 import close_at
 
 PARAMS = (
     Param("alpha", "deg", 30.0, "sector angle in (0, 45]; sectors a, 180 - 2a, a, a, 180 - 2a, a"),
@@ -44,13 +43,19 @@ def build(alpha: float, p: float, q: float, r: float, length: float) -> Scene:
     kinematics = ThickDiamond(alpha, p, q, r)
     keep = tuple(k for k in range(1, 7) if k != CUT)
     mechanism = vertex_mechanism(
-        kinematics.sectors, length=length, inset=RELIEF * q, root=ROOT, keep=keep, heights=kinematics.heights
+        kinematics.sectors,
+        length=length,
+        inset=RELIEF * q,
+        root=ROOT,
+        keep=keep,
+        heights=kinematics.heights,
+        anchors=ANCHORS,
     )
     return Scene(
         name="thick-diamond",
         params={"alpha": alpha, "p": p, "q": q, "r": r, "length": length},
         kinematics=kinematics,
-        mechanism=close_at(mechanism, CUT, length, ANCHORS),
+        mechanism=mechanism,
         loop_joints=tuple(f"crease_{k}" for k in range(1, 7)),
         drive_joint="crease_1",
         drive_scale=1.0,

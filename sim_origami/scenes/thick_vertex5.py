@@ -51,25 +51,21 @@ def panel3_slab(kinematics: ThickVertex5, length: float, inset: float) -> Body:
     return Body("panel_3", prism(outline, kinematics.a23, top - kinematics.a23), collision, PALETTE[2])
 
 
-def close_at(mechanism: Mechanism, crease: int, length: float, anchors: tuple[float, ...]) -> Mechanism:
-    """The mechanism with crease `crease`'s closure points at `anchors` (fractions of `length`) on its hinge."""
-    name = f"crease_{crease}"
-    joints = tuple(
-        dataclasses.replace(j, anchors=tuple(a * length for a in anchors)) if j.name == name else j
-        for j in mechanism.joints
-    )
-    return dataclasses.replace(mechanism, joints=joints)
-
-
 def thick_vertex5_mechanism(kinematics: ThickVertex5, length: float) -> Mechanism:
     """Slab panels on the lifted hinges; panel ROOT fixed, every crease but CUT (so crease 1, the input) in the tree."""
     inset = RELIEF * kinematics.b
     keep = tuple(k for k in range(1, 6) if k != CUT)
     mechanism = vertex_mechanism(
-        kinematics.sectors, length=length, inset=inset, root=ROOT, keep=keep, heights=kinematics.heights
+        kinematics.sectors,
+        length=length,
+        inset=inset,
+        root=ROOT,
+        keep=keep,
+        heights=kinematics.heights,
+        anchors=ANCHORS,
     )
     bodies = tuple(panel3_slab(kinematics, length, inset) if b.name == "panel_3" else b for b in mechanism.bodies)
-    return close_at(dataclasses.replace(mechanism, bodies=bodies), CUT, length, ANCHORS)
+    return dataclasses.replace(mechanism, bodies=bodies)
 
 
 @register("thick-vertex5", "thick-panel five-crease vertex = Myard linkage (seed 003 M12), input rho1", PARAMS)
