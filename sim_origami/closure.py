@@ -38,18 +38,33 @@ class Loop:
 
 
 @dataclass(frozen=True)
+class Coupling:
+    """A linear joint coupling q[joint] = scale * q[other] (an imposed symmetry or a periodic copy)."""
+
+    joint: int
+    other: int
+    scale: float = 1.0
+
+
+@dataclass(frozen=True)
 class LoopSystem:
-    """All independent loops of a mechanism over one vector of `n_joints` joint angles."""
+    """All independent loops of a mechanism over one vector of `n_joints` joint angles, plus couplings."""
 
     n_joints: int
     loops: tuple[Loop, ...]
+    couplings: tuple[Coupling, ...] = ()
 
     def residual(self, q: ArrayLike) -> NDArray[np.float64]:
-        """Closure residual (..., 6 * n_loops): per loop, rotation vector then translation."""
+        """
+        Closure residual (..., 6 * n_loops + n_couplings): per loop, rotation vector then translation;
+        then q[joint] - scale * q[other] (rad) per coupling.
+        """
+        q = np.asarray(q, dtype=float)
         parts = []
         for loop in self.loops:
             T = loop.product(q)
             parts += [rotation_vector(T[..., :3, :3]), T[..., :3, 3]]
+        parts += [(q[..., c.joint] - c.scale * q[..., c.other])[..., None] for c in self.couplings]
         return np.concatenate(parts, axis=-1)
 
     def residual_norm(self, q: ArrayLike) -> NDArray[np.float64]:
@@ -57,7 +72,7 @@ class LoopSystem:
         return np.max(np.abs(self.residual(q)), axis=-1)
 
     def jacobian(self, q: ArrayLike, step: float = 1e-7) -> NDArray[np.float64]:
-        """Closure Jacobian (6 * n_loops, n_joints) at one configuration, central differences."""
+        """Closure Jacobian (n_residuals, n_joints) at one configuration, central differences."""
         q = np.asarray(q, dtype=float)
         dq = np.eye(self.n_joints) * step
         qs = np.concatenate([q + dq, q - dq])

@@ -11,7 +11,9 @@ lie on the crease with z = +d_i, `parent` is the clockwise panel and `child` the
 one, so q is the fold angle rho of `sim_origami.conventions`.
 
 A breadth-first spanning tree from the root body (fixed to the world) keeps the joints that must
-be driven; every other joint is cut and becomes a loop closure.
+be driven or coupled; every other joint is cut and becomes a loop closure. A coupling
+(joint, other, scale) imposes q_joint = scale * q_other (a symmetry the model assumes, or the
+periodic copy of a crease outside a unit cell); both joints must be in the tree.
 """
 
 from collections import deque
@@ -22,7 +24,7 @@ import numpy as np
 import trimesh
 from numpy.typing import ArrayLike, NDArray
 
-from .closure import Loop, LoopSystem
+from .closure import Coupling, Loop, LoopSystem
 from .errors import ParameterError
 from .geometry import invert, transform_z
 
@@ -61,12 +63,13 @@ class TreeEdge:
 
 @dataclass(frozen=True)
 class Mechanism:
-    """Bodies and joints; `root` is fixed to the world, joints in `keep` stay in the tree."""
+    """Bodies and joints; `root` is fixed to the world, joints in `keep` and in couplings stay in the tree."""
 
     bodies: tuple[Body, ...]
     joints: tuple[Joint, ...]
     root: str
     keep: tuple[str, ...] = field(default=())
+    couplings: tuple[tuple[str, str, float], ...] = field(default=())
 
     def __post_init__(self):
         names = [b.name for b in self.bodies]
@@ -76,6 +79,14 @@ class Mechanism:
             for b in (j.parent, j.child):
                 if b not in names:
                     raise ParameterError(f"joint {j.name!r} names unknown body {b!r}")
+        tree = {self.joints[e.joint].name for e in self.tree} if self.couplings else set()
+        for joint, other, _ in self.couplings:
+            for name in (joint, other):
+                self.joint_index(name)
+                if name not in tree:
+                    raise ParameterError(
+                        f"coupled joint {name!r} was cut to close a loop; couplings need joints of the spanning tree"
+                    )
 
     def joint_index(self, name: str) -> int:
         """Position of joint `name` in `joints`."""
@@ -89,7 +100,7 @@ class Mechanism:
         """
         Spanning-tree edges in breadth-first order from the root.
 
-        Joints are taken Kruskal-style, those in `keep` first, so a kept joint is never cut;
+        Joints are taken Kruskal-style, those in `keep` or a coupling first, so they are not cut;
         the chosen joints are then oriented breadth-first from the root.
         """
         names = [b.name for b in self.bodies]
@@ -102,7 +113,8 @@ class Mechanism:
             return b
 
         chosen = set()
-        for i in sorted(range(len(self.joints)), key=lambda i: (self.joints[i].name not in self.keep, i)):
+        wanted = set(self.keep) | {name for c in self.couplings for name in c[:2]}
+        for i in sorted(range(len(self.joints)), key=lambda i: (self.joints[i].name not in wanted, i)):
             a, b = find(self.joints[i].parent), find(self.joints[i].child)
             if a != b:
                 group[a] = b
@@ -190,7 +202,8 @@ class Mechanism:
             factors = [self._step(i, frm) for i, frm in steps]
             links = [invert(factors[k][2]) @ factors[(k + 1) % len(factors)][0] for k in range(len(factors))]
             loops.append(Loop(tuple(i for i, _ in steps), np.array(links), tuple(f[1] for f in factors)))
-        return LoopSystem(len(self.joints), tuple(loops))
+        couplings = tuple(Coupling(self.joint_index(a), self.joint_index(b), scale) for a, b, scale in self.couplings)
+        return LoopSystem(len(self.joints), tuple(loops), couplings)
 
     def anchor_points(self, i: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Closure anchor points (k, 3) of joint i in its parent's and its child's body frames."""

@@ -1,9 +1,10 @@
 """Mechanism + templates -> MJCF. The one place where MJCF names are made.
 
-Names: bodies as in the mechanism (`panel_<i>`; the root's geoms sit on the world body), hinges
-as the mechanism's joints, meshes `<body>_solid` / `<body>_collision`, closure sites
-`<joint>_parent_<k>` / `<joint>_child_<k>`, connects `close_<joint>_<k>`, the drive
-`drive_<joint>`, keyframes `start_<branch>`.
+Names: bodies as in the mechanism (`panel_<i>`, `link_<i>` or a crease pattern's faces; the root's
+geoms sit on the world body), hinges as the mechanism's joints, meshes `<body>_solid` /
+`<body>_collision`, closure sites `<joint>_parent_<k>` / `<joint>_child_<k>`, connects
+`close_<joint>_<k>`, joint couplings `couple_<joint>_<other>`, the drive `drive_<joint>`, keyframes
+`start_<branch>`.
 
 A hinge's qpos equals the mechanism's joint angle: a joint traversed from its child to its parent
 in the spanning tree gets the reversed axis. Each cut joint is closed by one site-based `connect`
@@ -198,6 +199,14 @@ def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarr
                 equality, "connect", name=f"close_{joint.name}_{k}",
                 site1=f"{joint.name}_child_{k}", site2=f"{joint.name}_parent_{k}",
             ).set("class", "closure")  # fmt: skip
+
+    if mechanism.couplings:
+        equality.append(ET.Comment(" couplings q1 = c q2: symmetry the model assumes, or periodic copies of creases "))
+    for joint, other, scale in mechanism.couplings:
+        ET.SubElement(
+            equality, "joint", name=f"couple_{joint}_{other}", joint1=joint, joint2=other,
+            polycoef=_fmt([0.0, scale, 0.0, 0.0, 0.0]),
+        ).set("class", "closure")  # fmt: skip
 
     drive = f"drive_{scene.drive_joint}"
     if options.drive == "equality":

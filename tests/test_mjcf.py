@@ -71,12 +71,14 @@ def test_names_follow_the_scheme(scene):
     mech = scene.mechanism
     panels = {b.name for b in mech.bodies}
     assert names_of(model, mujoco.mjtObj.mjOBJ_BODY, model.nbody) == {"world"} | (panels - {mech.root})
-    kind = "link" if mech.bodies[0].name.startswith("link") else "panel"  # origami panels or linkage links
-    assert panels == {f"{kind}_{i + 1}" for i in range(len(mech.bodies))}
+    assert len(panels) == len(mech.bodies)  # vertex panels, linkage links or crease-pattern faces, unique
     assert names_of(model, mujoco.mjtObj.mjOBJ_GEOM, model.ngeom) == {f"{p}_solid" for p in panels}
     assert names_of(model, mujoco.mjtObj.mjOBJ_JOINT, model.njnt) == {mech.joints[e.joint].name for e in mech.tree}
     closures = {f"close_{mech.joints[i].name}_{k}" for i in mech.cut_joints for k in range(len(mech.joints[i].anchors))}
-    assert names_of(model, mujoco.mjtObj.mjOBJ_EQUALITY, model.neq) == closures | {f"drive_{scene.drive_joint}"}
+    couplings = {f"couple_{a}_{b}" for a, b, _ in mech.couplings}
+    assert names_of(model, mujoco.mjtObj.mjOBJ_EQUALITY, model.neq) == closures | couplings | {
+        f"drive_{scene.drive_joint}"
+    }
 
 
 @pytest.mark.parametrize("scene", all_scenes(), ids=scenes.names())
