@@ -1,4 +1,4 @@
-"""Origami vertices as mechanisms: sector panels joined by crease hinges.
+"""Origami as mechanisms: single vertices (sector panels) and crease patterns (face panels) joined by hinges.
 
 Frames follow `sim_origami.conventions`: the flat sheet in the world XY plane, vertex at the
 origin, crease i along d_i at angle alpha_1 + ... + alpha_(i-1). Panel i lies between creases i
@@ -10,6 +10,7 @@ Every body frame is the world frame of the flat sheet.
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .creases import CreasePattern
 from .geometry import frame_along
 from .mechanism import Body, Joint, Mechanism
 from .solids import inset_outline, prism, sector_outline
@@ -108,3 +109,44 @@ def vertex_mechanism(
             )
         )
     return Mechanism(tuple(bodies), tuple(joints), f"panel_{root}", tuple(names[k - 1] for k in keep))
+
+
+def pattern_mechanism(
+    pattern: CreasePattern,
+    *,
+    root: str,
+    keep: tuple[str, ...] = (),
+    couplings: tuple[tuple[str, str, float], ...] = (),
+    anchors: tuple[float, ...] = (0.5, 1.0),
+) -> Mechanism:
+    """
+        A crease pattern as a mechanism: faces as bodies (frames = the flat sheet's world frame),
+        creases as hinges on their hinge lines (`creases` module for signs), a spanning tree from `root`.
+
+        Faces are slabs between the lowest and the highest hinge on their edges (thick panels), or
+        nominal plates of NOMINAL_THICKNESS x the longest crease when all their hinges lie in the sheet;
+        they carry no collision solids. `anchors` are where a cut crease is closed, as fractions of its
+        length from its start; the default keeps clear of the start vertex, which may be a point that no
+    fold moves (a connect there has a zero Jacobian, and MuJoCo drops its rows).
+    """
+    nominal = NOMINAL_THICKNESS * max(pattern.length(c) for c in pattern.creases)
+    heights: dict[str, list[float]] = {name: [] for name in pattern.face_names}
+    for crease in pattern.creases:
+        for face in pattern.crease_faces(crease):
+            heights[face].append(crease.height)
+    bodies = []
+    for k, (name, face) in enumerate(zip(pattern.face_names, pattern.faces, strict=True)):
+        low, high = min(heights[name], default=0.0), max(heights[name], default=0.0)
+        solid = (
+            prism(pattern.vertices[list(face)], high - low, low)
+            if high > low
+            else prism(pattern.vertices[list(face)], nominal)
+        )
+        bodies.append(Body(name, solid, None, PALETTE[k % len(PALETTE)]))
+    joints = []
+    for crease in pattern.creases:
+        parent, child = pattern.crease_faces(crease)
+        frame = pattern.hinge_frame(crease)
+        span = pattern.length(crease)
+        joints.append(Joint(crease.name, parent, child, frame, frame, tuple(a * span for a in anchors)))
+    return Mechanism(tuple(bodies), tuple(joints), root, keep, couplings)
