@@ -152,6 +152,7 @@ def simulate(
     contact: bool = False,
     duration: float | None = None,
     hold: float = 0.0,
+    initial: NDArray[np.float64] | None = None,
 ) -> Trajectory:
     """
     Drive the scene's input from `start` to `stop` (radians) along a minimum-jerk ramp.
@@ -168,6 +169,10 @@ def simulate(
       Enable the scene's contact pairs (thick panels).
     duration, hold : float
       Sweep time (default: the preset's) and extra time holding the final target.
+    initial : (n_joints,) float, optional
+      Mechanism angles to start from instead of the closed form's pose on `branch` at `start` (e.g. a
+      pose of another model, to see which branch this mechanism takes from it); the drive starts at
+      its angle there.
     """
     default_start, default_stop = scene.branch_path(branch)
     start = default_start if start is None else start
@@ -182,7 +187,9 @@ def simulate(
         raise DomainError(f"unknown drive {drive!r}; use 'equality' or 'servo'")
     model, data = compile_model(scene, ModelOptions(preset=preset, drive=drive, contact=contact))
     binds = Bindings(scene, model)
-    binds.set_pose(data, start_pose(scene, branch, start))
+    if initial is not None:
+        start = float(initial[scene.mechanism.joint_index(scene.drive_joint)]) / scene.drive_scale
+    binds.set_pose(data, start_pose(scene, branch, start) if initial is None else np.asarray(initial, dtype=float))
     mujoco.mj_forward(model, data)
 
     T = duration or preset_duration(preset) * scene.sweep_time_scale

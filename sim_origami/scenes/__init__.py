@@ -11,6 +11,7 @@ from . import (  # noqa: F401  (registration side effect)
     thick_vertex4,
     thick_vertex5,
     vertex4,
+    waterbomb,
 )
 from .base import REGISTRY, Param, Scene, SceneType, get, names, register
 

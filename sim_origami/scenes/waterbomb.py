@@ -1,0 +1,63 @@
+"""Scenes `waterbomb-vertex` and `waterbomb-thick`: the symmetric waterbomb cell (seed 000 ch. 5, M8, M9).
+
+Both are the same two-vertex cell (`kinematics.waterbomb`): ten triangular faces, eleven crease hinges, the
+periodic copies B1 = A4 and B5 = A6 as joint couplings, driven at crease A4. The zero-thickness cell also
+carries the seed's symmetry couplings (A3 = A5 = A6 = A2, B6 = B2) and has four branches from flat; the thick
+cell (hinges on panel surfaces) carries none and has one, path I, with the same fold angles: the thick
+model is kinematically equivalent to the zero-thickness path I and loses the bifurcation.
+Thick faces are slabs spanning their hinges' heights, for inertia and rendering; they carry no collision
+solids (the blocked cases alpha + beta >= 90 deg are outside the model's domain).
+"""
+
+from ..kinematics.waterbomb import CREASES, Waterbomb
+from ..origami import pattern_mechanism
+from .base import Param, Scene, register
+
+ANGLES = (
+    Param("alpha", "deg", 40.0, "design angle alpha (sector at A next to the vertical creases)"),
+    Param("beta", "deg", 40.0, "design angle beta; alpha + beta < 90"),
+    Param("t", "m", 0.5, "half-width of one base"),
+)
+THICK = (
+    Param("mu", "", 0.5, "thickness ratio mu (B's link 34 over link 23); mu = 1 with alpha = beta keeps path II"),
+    Param("a", "m", 0.05, "thickness unit a' (B's link 23)"),
+)
+# Default sweep of x = rho_A4 (rad), kept where the cell is well conditioned. MuJoCo's joint couplings are
+# soft (constraint softness R ~ 1e-4 x the joint-space inverse inertia, 100-1000x that of a connect row),
+# and near the flat bifurcation and the folded end (smallest closure singular value 0.09 -> 0.007 at -2.6)
+# their violation is amplified: fast, 2 s sweep, path I measured 2.0e-2 rad over -0.4..-2.6, 1.2e-4 over
+# -0.5..-1.8; the error falls as the square of the sweep time (1.8e-6 at 8x).
+PATH = (-0.5, -1.8)
+SWEEP_TIME_SCALE = 16.0
+# The thick cell's closure is thin in the direction of its hinge offsets: with a = 0.02 m the projection's
+# angle error was 1.9e-13 rad (0.05 m: 2.8e-14) and the fast path error 5.6e-7 (0.05 m: 1.1e-7).
+ROOT, DRIVE = "A12", "A4"
+
+
+def _scene(name: str, kinematics: Waterbomb, params: dict[str, float], notes: str) -> Scene:
+    mechanism = pattern_mechanism(
+        kinematics.pattern, root=ROOT, keep=(DRIVE,), couplings=tuple((a, b, 1.0) for a, b in kinematics.couplings)
+    )
+    return Scene(
+        name=name, params=params, kinematics=kinematics, mechanism=mechanism, loop_joints=CREASES,
+        drive_joint=DRIVE, drive_scale=1.0, path=PATH, sweep_time_scale=SWEEP_TIME_SCALE, notes=notes,
+    )  # fmt: skip
+
+
+@register("waterbomb-vertex", "symmetric waterbomb cell, zero thickness: two spherical 6R vertices (seed 000 M8), "
+          "input rho_A4", ANGLES)  # fmt: skip
+def build_vertex(alpha: float, beta: float, t: float) -> Scene:
+    return _scene(
+        "waterbomb-vertex", Waterbomb(alpha, beta, t), {"alpha": alpha, "beta": beta, "t": t},
+        "couplings: periodic B1 = A4, B5 = A6; symmetry A3 = A5 = A6 = A2, B6 = B2 (eqns 5-3 to 5-5)",
+    )  # fmt: skip
+
+
+@register("waterbomb-thick", "symmetric waterbomb cell with thick panels: two plane-symmetric Bricard linkages "
+          "(seed 000 M9), input rho_A4", ANGLES + THICK)  # fmt: skip
+def build_thick(alpha: float, beta: float, t: float, mu: float, a: float) -> Scene:
+    return _scene(
+        "waterbomb-thick", Waterbomb(alpha, beta, t, mu, a), {"alpha": alpha, "beta": beta, "t": t, "mu": mu, "a": a},
+        "couplings: periodic B1 = A4, B5 = A6 only; hinge heights (2 + mu) a on A's valleys, (1 + mu) a on B2, B6, "
+        "2 a on B4; qpos = fold angle of the zero-thickness cell",
+    )  # fmt: skip

@@ -1,0 +1,193 @@
+"""Symmetric waterbomb cell (`kinematics.waterbomb`, scenes `waterbomb-vertex` and `waterbomb-thick`) against
+seed 000 ch. 5 (digest M8, M9, validation cases 17 to 21), the loop solver and MuJoCo."""
+
+import numpy as np
+import pytest
+
+from sim_origami import scenes
+from sim_origami.checks.branches import classify
+from sim_origami.checks.paths import compare
+from sim_origami.errors import ParameterError
+from sim_origami.geometry import wrap
+from sim_origami.kinematics.dh import DHRow, dh_loop
+from sim_origami.kinematics.waterbomb import (
+    CREASES,
+    DEGREE4,
+    LINE,
+    PLANE,
+    STRAIGHT,
+    Waterbomb,
+    plane_blockage,
+)
+from sim_origami.simulate import simulate
+from sim_origami.tolerances import TOLERANCES
+
+DEG = np.pi / 180
+# The seed prints 4 decimals (deg): half a unit of the last digit, in radians.
+PUBLISHED = 5e-5 * DEG
+B_ORDER = ("B1", "B2", "A2", "B4", "B5", "B6")  # B's creases 1..6 (B3 is A2)
+
+
+def dihedrals(model: Waterbomb, branch: str, phi1_deg: float, order=B_ORDER) -> np.ndarray:
+    """Seed dihedrals phi = pi - |rho| (deg) of the creases in `order` at phi1 (deg)."""
+    q = dict(zip(CREASES, model.joint_angles(branch, -(np.pi - phi1_deg * DEG))[0], strict=True))
+    return np.rad2deg([np.pi - abs(q[c]) for c in order])
+
+
+@pytest.mark.parametrize(
+    ("alpha", "beta", "line", "plane"),
+    [
+        (40, 40, (90, 19.7022, 74.9074, 90, 74.9074, 19.7022), (90, 60.8109, 74.9074, 31.6217, 74.9074, 60.8109)),
+        (35, 45, (90, 19.7022, 78.6454, 90, 78.6454, 19.7022), (90, 83.2113, 78.6454, 1.2332, 78.6454, 83.2113)),
+    ],
+)
+def test_case18_vertex_b_dihedrals(alpha, beta, line, plane):
+    model = Waterbomb(alpha * DEG, beta * DEG, 0.5)
+    np.testing.assert_allclose(dihedrals(model, LINE, 90) * DEG, np.array(line) * DEG, atol=PUBLISHED, rtol=0)
+    np.testing.assert_allclose(dihedrals(model, PLANE, 90) * DEG, np.array(plane) * DEG, atol=PUBLISHED, rtol=0)
+
+
+@pytest.mark.parametrize(("phi1", "phi2"), [(90, 74.9074), (150, 141.4421), (30, 23.1990)])
+def test_case17_vertex_a(phi1, phi2):
+    got = dihedrals(Waterbomb(40 * DEG, 40 * DEG, 0.5), LINE, phi1, order=("A2",))[0]
+    assert abs(got - phi2) * DEG <= PUBLISHED
+
+
+@pytest.mark.parametrize(
+    ("alpha", "beta", "rows"),
+    [  # (phi1, phi3, path I phi2, path II phi2, path II phi4), table 18b, 3 decimals
+        (40, 40, ((150, 141.442, 65.892, 130.916, 111.833), (60, 47.717, 11.450, 37.433, 14.866))),
+        (35, 45, ((120, 109.647, 33.479, 105.903, 48.135), (60, 50.622, 11.450, 71.965, -44.050))),
+    ],
+)
+def test_case18b_sweeps_including_blocked_phi4(alpha, beta, rows):
+    model = Waterbomb(alpha * DEG, beta * DEG, 0.5)
+    for phi1, phi3, line2, plane2, plane4 in rows:
+        line = dihedrals(model, LINE, phi1)
+        q = dict(zip(CREASES, model.joint_angles(PLANE, -(np.pi - phi1 * DEG))[0], strict=True))
+        # phi4 < 0 is crease B4 folded past flat: rho_B4 beyond -pi, wrapped to (0, pi]
+        phi4 = np.rad2deg(np.pi + q["B4"]) if q["B4"] < 0 else np.rad2deg(q["B4"] - np.pi)
+        got = np.array([line[2], line[1], dihedrals(model, PLANE, phi1)[1], phi4])
+        np.testing.assert_allclose(got, [phi3, line2, plane2, plane4], atol=5e-4, rtol=0)
+
+
+def test_case19_blockage_onsets_of_path_two():
+    # phi1* = pi + x* (deg): 35/45 89.148, 30/60 113.196 (alpha + beta = 90 is outside the model, formula only)
+    assert 180 + np.rad2deg(plane_blockage(35 * DEG, 45 * DEG)) == pytest.approx(89.148, abs=5e-4)
+    assert 180 + np.rad2deg(plane_blockage(50 * DEG, 50 * DEG)) == pytest.approx(90.488, abs=5e-4)
+    assert 180 + np.rad2deg(plane_blockage(40 * DEG, 55 * DEG)) == pytest.approx(109.972, abs=5e-4)
+    assert plane_blockage(40 * DEG, 40 * DEG) is None  # (a): alpha = beta < 45 deg, path II smooth
+    events = [e for e in Waterbomb(35 * DEG, 45 * DEG, 0.5).events() if e.branches == (PLANE,)]
+    assert [e.kind for e in events] == ["lock", "lock"] and events[0].input == -events[1].input
+
+
+@pytest.mark.parametrize(("alpha", "beta"), [(40, 40), (35, 45), (20, 30), (10, 70), (44, 45)])
+@pytest.mark.parametrize("mu", [None, 0.5, 2.0])
+def test_closed_forms_close_the_cell_and_match_the_numeric_solve(alpha, beta, mu):
+    model = Waterbomb(alpha * DEG, beta * DEG, 0.5, mu, 0.03)
+    loops = model.loop_system()
+    for branch in model.branches():
+        q = model.joint_angles(branch.name, np.linspace(-np.pi + 0.01, -0.01, 301))
+        assert np.max(loops.residual_norm(q)) <= TOLERANCES.closed_form_residual  # measured <= 1.4e-15
+        # the numeric solve stops at 1e-14 residual, so it is good to 1e-14 / sigma_min: within the default
+        # sweep (-1.8..-0.5) measured <= 1.4e-13; towards -2.8 and -0.3 up to 7.9e-12 (sigma_min -> 0.005)
+        x = np.linspace(-1.8, -0.5, 201)
+        q = model.joint_angles(branch.name, x)
+        numeric = loops.follow(q[0], CREASES.index("A4"), x)
+        assert np.max(np.abs(wrap(numeric - q))) <= TOLERANCES.closed_form_rad
+
+
+@pytest.mark.parametrize(("alpha", "beta", "mu"), [(35, 45, 0.5), (40, 40, 1.0), (20, 30, 2.0)])
+def test_thick_cell_matches_the_seed_dh_linkages(alpha, beta, mu):
+    """Eqns 5-11 and 5-12 (the seed's D-H Bricard loops of A and B) close at our path I through the seed's
+    joint maps: the hinge heights of the cell are an independent, equivalent reconstruction."""
+    a, b, ap = alpha * DEG, beta * DEG, 0.03
+    A = (DHRow(0, (2 + mu) * ap, 2 * np.pi - a), DHRow(0, 0, np.pi - 2 * a), DHRow(0, (2 + mu) * ap, a),
+         DHRow(0, (2 + mu) * ap, 2 * np.pi - a), DHRow(0, 0, np.pi + 2 * a), DHRow(0, (2 + mu) * ap, a))  # fmt: skip
+    B = (DHRow(0, (1 + mu) * ap, np.pi - a - b), DHRow(0, ap, b), DHRow(0, mu * ap, 2 * np.pi - a),
+         DHRow(0, mu * ap, a), DHRow(0, ap, 2 * np.pi - b), DHRow(0, (1 + mu) * ap, np.pi + a + b))  # fmt: skip
+    model = Waterbomb(a, b, 0.5, mu, ap)
+    for phi1 in (30, 90, 150):
+        fa = dihedrals(model, LINE, phi1, order=("A1", "A2", "A3", "A4", "A5", "A6")) * DEG
+        fb = dihedrals(model, LINE, phi1) * DEG
+        delta = (2 * np.pi - fa[0], fa[1], np.pi + fa[2], 2 * np.pi - fa[3], np.pi + fa[4], fa[5])
+        omega = (2 * np.pi - fb[0], np.pi - fb[1], fb[2], 2 * np.pi - fb[3], fb[4], np.pi - fb[5])
+        assert dh_loop(A).residual_norm(delta) <= 1e-14  # measured <= 4e-16
+        assert dh_loop(B).residual_norm(omega) <= 1e-14
+
+
+def test_case20_thick_b_dh_angles():
+    model = Waterbomb(35 * DEG, 45 * DEG, 0.5, 0.5, 0.05)
+    fb = dihedrals(model, LINE, 90)
+    omega = np.array([360 - fb[0], 180 - fb[1], fb[2], 360 - fb[3], fb[4], 180 - fb[5]])
+    published = np.array([-90, 160.2978, 78.6454, -90, 78.6454, 160.2978]) % 360
+    np.testing.assert_allclose(omega % 360 * DEG, published * DEG, atol=PUBLISHED, rtol=0)
+
+
+def test_branches_by_thickness():
+    assert [b.name for b in Waterbomb(0.7, 0.7, 0.5).branches()] == [LINE, PLANE, DEGREE4, STRAIGHT]
+    assert [b.name for b in Waterbomb(0.7, 0.7, 0.5, 0.5, 0.05).branches()] == [LINE]
+    # eqn 5-22b: alpha = beta and mu = 1 keeps path II in the thick cell (case 21)
+    model = Waterbomb(40 * DEG, 40 * DEG, 0.5, 1.0, 0.05)
+    assert [b.name for b in model.branches()] == [LINE, PLANE]
+    q = model.joint_angles(PLANE, np.linspace(-3.0, -0.1, 50))
+    assert np.max(model.loop_system().residual_norm(q)) <= 1e-14
+
+
+def test_other_branches_are_not_motions_of_the_thick_cell():
+    zero, thick = Waterbomb(0.7, 0.7, 0.5), Waterbomb(0.7, 0.7, 0.5, 0.5, 0.05)
+    loops = thick.loop_system()
+    for branch in (PLANE, DEGREE4, STRAIGHT):
+        # measured >= 1.7e-3 at x = -0.05 (and growing with x)
+        assert loops.residual_norm(zero.joint_angles(branch, -0.05))[0] >= 1e-3
+
+
+def test_mobility_drops_at_flat_with_thickness():
+    zero, thick = Waterbomb(0.7, 0.7, 0.5), Waterbomb(0.7, 0.7, 0.5, 0.5, 0.05)
+    assert zero.loop_system().mobility(np.zeros(11)) == 3
+    assert thick.loop_system().mobility(np.zeros(11)) == 2
+    for model in (zero, thick):
+        assert model.loop_system().mobility(model.joint_angles(LINE, -1.0)[0]) == 1
+
+
+def test_thick_mujoco_follows_path_one_from_every_zero_thickness_branch():
+    """The thick cell, started at a pose of each zero-thickness branch near flat, ends on path I."""
+    zero = scenes.get("waterbomb-vertex").build()
+    thick = scenes.get("waterbomb-thick").build()
+    drive = thick.mechanism.joint_index(thick.drive_joint)
+    for branch in (LINE, PLANE, DEGREE4, STRAIGHT):
+        run = simulate(thick, LINE, initial=zero.pose(branch, -0.05), stop=-1.0)
+        labels = classify(zero.kinematics, run.q[:, drive], thick.outputs(run.q))
+        assert (labels.followed, labels.flips) == (LINE, 0)
+        path = compare(thick, LINE, run.q)
+        assert np.max(np.abs(path.error[len(path.error) // 2 :])) <= TOLERANCES.fast_rad  # measured 2.4e-8
+
+
+def test_zero_thickness_mujoco_follows_each_branch_and_thick_equals_path_one():
+    zero = scenes.get("waterbomb-vertex").build()
+    thick = scenes.get("waterbomb-thick").build()
+    for branch in zero.kinematics.branches():
+        path = compare(zero, branch.name, simulate(zero, branch.name).q)
+        assert path.max_error() <= TOLERANCES.fast_rad  # measured <= 4.6e-7 (path I)
+    thick_path = compare(thick, LINE, simulate(thick, LINE).q)
+    # the thick run against the ZERO-thickness closed form: kinematic equivalence, measured 1.1e-7
+    zero_values = zero.kinematics.joint_angles(LINE, thick_path.input)
+    assert np.max(np.abs(thick_path.simulated - zero_values)) <= TOLERANCES.fast_rad
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"alpha": 45 * DEG, "beta": 45 * DEG}, "alpha \\+ beta = 90"),
+        ({"alpha": 0.0}, "alpha = 0 deg"),
+        ({"t": -1.0}, "half-width t = -1"),
+    ],
+)
+def test_bad_geometry_is_refused(kwargs, match):
+    with pytest.raises(ParameterError, match=match):
+        scenes.get("waterbomb-vertex").build(**kwargs)
+
+
+def test_bad_thickness_is_refused():
+    with pytest.raises(ParameterError, match="mu > 0 and a > 0"):
+        scenes.get("waterbomb-thick").build(mu=0.0)
