@@ -10,7 +10,12 @@ import numpy as np
 
 from . import __version__
 from .files import write_text
+from .fold import write_fold
+from .geometry import wrap
 from .validation import Report
+
+# Frames of the simulated motion written to motion.fold (evenly spaced over the first run).
+FOLD_FRAMES = 60
 
 
 def _num(value: float) -> float | None:
@@ -109,10 +114,22 @@ def plain(value):
     raise TypeError(f"cannot write {type(value).__name__} to JSON")
 
 
+def motion_fold(report: Report, out: Path) -> Path:
+    """The first run's simulated fold angles as a multi-frame FOLD file (at most FOLD_FRAMES frames)."""
+    scene, run = report.scene, report.runs[0]
+    rows = np.unique(np.linspace(0, len(run.dynamic.q) - 1, FOLD_FRAMES).astype(int))
+    columns = [scene.mechanism.joint_index(c.name) for c in scene.pattern.creases]
+    title = f"{scene.name}: MuJoCo {report.preset}, branch {run.requested}"
+    return write_fold(out, scene.pattern, wrap(run.dynamic.q[np.ix_(rows, columns)]), title=title)
+
+
 def write(report: Report, out: str | Path) -> dict[str, Path]:
-    """Write report.json and curves.csv into `out` (atomically); returns their paths."""
+    """Write report.json, curves.csv and, for crease-pattern scenes, motion.fold into `out` (atomically)."""
     out = Path(out)
-    return {
+    paths = {
         "report": write_text(out / "report.json", json.dumps(as_dict(report), indent=2, default=plain) + "\n"),
         "curves": write_text(out / "curves.csv", curves_csv(report)),
     }
+    if report.scene.pattern is not None:
+        paths["fold"] = motion_fold(report, out / "motion.fold")
+    return paths

@@ -8,6 +8,7 @@ from sim_origami import scenes
 from sim_origami.checks.branches import classify
 from sim_origami.checks.paths import compare
 from sim_origami.errors import ParameterError
+from sim_origami.fold import read_fold
 from sim_origami.geometry import wrap
 from sim_origami.kinematics.dh import DHRow, dh_loop
 from sim_origami.kinematics.waterbomb import (
@@ -19,8 +20,10 @@ from sim_origami.kinematics.waterbomb import (
     Waterbomb,
     plane_blockage,
 )
+from sim_origami.report import FOLD_FRAMES, write
 from sim_origami.simulate import simulate
 from sim_origami.tolerances import TOLERANCES
+from sim_origami.validation import validate
 
 DEG = np.pi / 180
 # The seed prints 4 decimals (deg): half a unit of the last digit, in radians.
@@ -191,3 +194,17 @@ def test_bad_geometry_is_refused(kwargs, match):
 def test_bad_thickness_is_refused():
     with pytest.raises(ParameterError, match="mu > 0 and a > 0"):
         scenes.get("waterbomb-thick").build(mu=0.0)
+
+
+def test_report_exports_the_simulated_motion_as_a_multi_frame_fold_file():
+    scene = scenes.get("waterbomb-thick").build()
+    report = validate(scene)
+    path = write(report, "out")["fold"]
+    fold = read_fold(path)
+    assert fold.frames.shape == (FOLD_FRAMES, len(CREASES))
+    q = report.runs[0].dynamic.q
+    columns = [scene.mechanism.joint_index(c) for c in CREASES]
+    # creases come back in the pattern's order (named e<k>) with the hinge heights of the thick cell
+    np.testing.assert_allclose(fold.frames[-1], q[-1, columns], atol=1e-12, rtol=0)
+    assert [c.height for c in fold.pattern.creases] == [c.height for c in scene.pattern.creases]
+    assert fold.pattern.loop_system().residual_norm(fold.frames).max() <= TOLERANCES.fast_residual_m

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..creases import CreasePattern
 from ..errors import ParameterError
 from ..kinematics.base import Kinematics
 from ..mechanism import Mechanism
@@ -52,6 +53,8 @@ class Scene:
     path : (start, stop)
       Default input sweep in radians (inside every branch's domain unless per-branch).
     contact_pairs : pairs of body names that may really collide (thick panels); empty = no contact.
+    pattern : the crease pattern the mechanism was built from (its crease names are the joints), if any;
+      reports then export the simulated motion as a multi-frame FOLD file.
     """
 
     name: str
@@ -71,6 +74,7 @@ class Scene:
     # (measured 4.0x per doubling on every scene). Each scene that sets it states its measured error.
     sweep_time_scale: float = 1.0
     notes: str = ""
+    pattern: CreasePattern | None = None
 
     def loop_to_mechanism(self, q_loop: ArrayLike) -> NDArray[np.float64]:
         """Mechanism joint angles (n, n_joints) from loop joint angles (n, n_loop)."""

@@ -41,6 +41,7 @@ def _scene(name: str, kinematics: Waterbomb, params: dict[str, float], notes: st
     return Scene(
         name=name, params=params, kinematics=kinematics, mechanism=mechanism, loop_joints=CREASES,
         drive_joint=DRIVE, drive_scale=1.0, path=PATH, sweep_time_scale=SWEEP_TIME_SCALE, notes=notes,
+        pattern=kinematics.pattern,
     )  # fmt: skip
 
 
