@@ -35,7 +35,7 @@ def plot_report(report: Report, path: str | Path) -> Path:
             top.plot(np.rad2deg(sim.input[pick]), np.rad2deg(sim.simulated[pick, k]), "o", ms=3.5,
                      mfc="none", color=c)  # fmt: skip
             bottom.semilogy(np.rad2deg(sim.input), np.maximum(sim.error[:, k], 1e-17), color=c, lw=1)
-        top.set_title(f"{report.scene.name}: branch {run.requested} (followed {run.followed or '-'})")
+        top.set_title(f"{report.scene.name}: branch {run.requested}\n(followed {run.followed or '-'})", fontsize=10)
         top.set_xlabel(f"{kin.input_name} (deg)")
         top.set_ylabel("joint angle (deg)")
         top.legend(fontsize=8, ncol=2)

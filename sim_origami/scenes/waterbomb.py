@@ -26,9 +26,10 @@ THICK = (
 # soft (constraint softness R ~ 1e-4 x the joint-space inverse inertia, 100-1000x that of a connect row),
 # and near the flat bifurcation and the folded end (smallest closure singular value 0.09 -> 0.007 at -2.6)
 # their violation is amplified: fast, 2 s sweep, path I measured 2.0e-2 rad over -0.4..-2.6, 1.2e-4 over
-# -0.5..-1.8; the error falls as the square of the sweep time (1.8e-6 at 8x).
+# -0.5..-1.8; the error falls as the square of the sweep time (1.8e-6 at 8x, 4.6e-7 at 16x, 1.1e-7 at 32x;
+# thick cell 2.7e-8 at 32x).
 PATH = (-0.5, -1.8)
-SWEEP_TIME_SCALE = 16.0
+SWEEP_TIME_SCALE = 32.0
 # The thick cell's closure is thin in the direction of its hinge offsets: with a = 0.02 m the projection's
 # angle error was 1.9e-13 rad (0.05 m: 2.8e-14) and the fast path error 5.6e-7 (0.05 m: 1.1e-7).
 ROOT, DRIVE = "A12", "A4"
