@@ -95,6 +95,15 @@ class CreasePattern:
         x, y = self.vertices[crease.start]
         return frame_along(self.direction(crease), (x, y, crease.height))
 
+    def touching_faces(self) -> tuple[tuple[str, str], ...]:
+        """Pairs of faces that share a vertex (so touch in every pose), sorted by face order."""
+        at: dict[int, set[int]] = {}
+        for f, face in enumerate(self.faces):
+            for v in face:
+                at.setdefault(v, set()).add(f)
+        pairs = {(a, b) for group in at.values() for a in group for b in group if a < b}
+        return tuple((self.face_names[a], self.face_names[b]) for a, b in sorted(pairs))
+
     def interior_vertices(self) -> tuple[int, ...]:
         """Vertices that faces surround completely; each is a loop of the creases meeting there."""
         out = []

@@ -170,6 +170,8 @@ def _load(source: str | os.PathLike | Mapping[str, Any]) -> Mapping[str, Any]:
         doc = json.loads(Path(source).read_text())
     except json.JSONDecodeError as err:
         raise ParameterError(f"{source} is not JSON ({err}); a FOLD file is a JSON object") from err
+    except OSError as err:
+        raise ParameterError(f"cannot read FOLD file {source}: {err.strerror}") from err
     if not isinstance(doc, dict):
         raise ParameterError(f"{source} holds a JSON {type(doc).__name__}; a FOLD file is a JSON object")
     return doc

@@ -137,6 +137,19 @@ def _add_bodies(world: ET.Element, mechanism: Mechanism, contact: bool) -> dict[
     return elements
 
 
+def _add_self_contact(root: ET.Element, scene: Scene) -> None:
+    """Collision solids collide by contype/conaffinity; bodies that share a vertex are excluded."""
+    for geom in root.iter("geom"):
+        if geom.get("class") == "collision":
+            geom.set("contype", "1")
+            geom.set("conaffinity", "1")
+    section = _section(root, "contact")
+    section.append(ET.Comment(" panels that share a vertex touch in every pose: excluded "))
+    body = {name: ("world" if name == scene.mechanism.root else name) for name in scene.pattern.face_names}
+    for a, b in scene.pattern.touching_faces():
+        ET.SubElement(section, "exclude", body1=body[a], body2=body[b])
+
+
 def qpos_order(mechanism: Mechanism) -> list[str]:
     """Hinge names in MuJoCo's qpos order: depth-first over the nested bodies."""
     children: dict[str, list] = {}
@@ -167,7 +180,7 @@ def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarr
     if options.preset not in PRESETS:
         raise ParameterError(f"unknown preset {options.preset!r}; presets are {', '.join(PRESETS)}")
     mechanism = scene.mechanism
-    contact = options.contact and bool(scene.contact_pairs)
+    contact = options.contact and (bool(scene.contact_pairs) or scene.self_contact)
     root = ET.Element("mujoco", model=scene.name)
     root.append(ET.Comment(f" sim_origami {__version__}, scene {scene.name}; {scene.notes} "))
     fragments = ["base.xml", f"options/{options.preset}.xml", "defaults.xml"]
@@ -219,7 +232,9 @@ def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarr
         actuator.append(ET.Comment(" input: force-limited servo, so that contact can stop the motion "))
         ET.SubElement(actuator, "position", name=drive, joint=scene.drive_joint).set("class", "servo")
 
-    if contact:
+    if contact and scene.self_contact:
+        _add_self_contact(root, scene)
+    if contact and scene.contact_pairs:
         pairs = _section(root, "contact")
         pairs.append(ET.Comment(" only panels that fold onto each other may touch; all others share a vertex "))
         for a, b in scene.contact_pairs:

@@ -118,16 +118,18 @@ def pattern_mechanism(
     keep: tuple[str, ...] = (),
     couplings: tuple[tuple[str, str, float], ...] = (),
     anchors: tuple[float, ...] = (0.5, 1.0),
+    collision_inset: float | None = None,
 ) -> Mechanism:
     """
-        A crease pattern as a mechanism: faces as bodies (frames = the flat sheet's world frame),
-        creases as hinges on their hinge lines (`creases` module for signs), a spanning tree from `root`.
+    A crease pattern as a mechanism: faces as bodies (frames = the flat sheet's world frame), creases as
+    hinges on their hinge lines (`creases` module for signs), a spanning tree from `root`.
 
-        Faces are slabs between the lowest and the highest hinge on their edges (thick panels), or
-        nominal plates of NOMINAL_THICKNESS x the longest crease when all their hinges lie in the sheet;
-        they carry no collision solids. `anchors` are where a cut crease is closed, as fractions of its
-        length from its start; the default keeps clear of the start vertex, which may be a point that no
-    fold moves (a connect there has a zero Jacobian, and MuJoCo drops its rows).
+    Faces are slabs between the lowest and the highest hinge on their edges (thick panels), or nominal
+    plates of NOMINAL_THICKNESS x the longest crease when all their hinges lie in the sheet. With
+    `collision_inset` (m) they also carry a collision solid: the same slab inset by that much from every
+    edge, so that neighbours touch only when folded onto each other. `anchors` are where a cut crease is
+    closed, as fractions of its length from its start; the default keeps clear of the start vertex, which
+    may be a point that no fold moves (a connect there has a zero Jacobian, and MuJoCo drops its rows).
     """
     nominal = NOMINAL_THICKNESS * max(pattern.length(c) for c in pattern.creases)
     heights: dict[str, list[float]] = {name: [] for name in pattern.face_names}
@@ -137,12 +139,12 @@ def pattern_mechanism(
     bodies = []
     for k, (name, face) in enumerate(zip(pattern.face_names, pattern.faces, strict=True)):
         low, high = min(heights[name], default=0.0), max(heights[name], default=0.0)
-        solid = (
-            prism(pattern.vertices[list(face)], high - low, low)
-            if high > low
-            else prism(pattern.vertices[list(face)], nominal)
-        )
-        bodies.append(Body(name, solid, None, PALETTE[k % len(PALETTE)]))
+        outline = pattern.vertices[list(face)]
+        slab = (high - low, low) if high > low else (nominal, None)
+        collision = None
+        if collision_inset is not None:
+            collision = prism(inset_outline(outline, np.full(len(outline), collision_inset)), *slab)
+        bodies.append(Body(name, prism(outline, *slab), collision, PALETTE[k % len(PALETTE)]))
     joints = []
     for crease in pattern.creases:
         parent, child = pattern.crease_faces(crease)

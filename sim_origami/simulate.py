@@ -26,8 +26,9 @@ from .scenes.base import Scene
 
 # Closure residual is measured on at most this many samples of a run (after mj_kinematics each).
 RESIDUAL_SAMPLES = 400
-# Projection stops when MuJoCo's equality residual (m) falls below this.
-PROJECTION_TOL = 1e-14
+# Projection stops when MuJoCo's equality residual (m) falls below this (1e-14 left up to 1.8e-13 rad of angle
+# error on ill-conditioned loops; 1e-15 at most 2.3e-14, still within 20 Gauss-Newton steps).
+PROJECTION_TOL = 1e-15
 
 
 @dataclass(frozen=True)
@@ -97,6 +98,15 @@ class Bindings:
         q = np.zeros((len(qpos), len(scene.mechanism.joints)))
         q[:, self.tree_joints] = qpos[:, self.qpos_of]
         return scene.mechanism.complete(q)
+
+
+def constraint_jacobian(model: mujoco.MjModel, data: mujoco.MjData) -> NDArray[np.float64]:
+    """efc_J as a dense (nefc, nv) array, whether MuJoCo stored it dense or sparse (jacobian auto: nv >= 60)."""
+    if not mujoco.mj_isSparse(model):
+        return data.efc_J[: data.nefc * model.nv].reshape(data.nefc, model.nv)
+    dense = np.zeros((data.nefc, model.nv))
+    mujoco.mju_sparse2dense(dense, data.efc_J, data.efc_J_rownnz, data.efc_J_rowadr, data.efc_J_colind)
+    return dense
 
 
 def _check(data: mujoco.MjData, messages: list[str], t: float) -> None:
@@ -262,7 +272,7 @@ def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: s
                 r = data.efc_pos[rows]
                 if np.max(np.abs(r), initial=0.0) < PROJECTION_TOL:
                     break
-                J = data.efc_J.reshape(data.nefc, model.nv)[rows][:, free]
+                J = constraint_jacobian(model, data)[rows][:, free]
                 data.qpos[free] -= np.linalg.lstsq(J, r, rcond=None)[0]  # hinges: qpos index = dof index
             qpos_log[k] = data.qpos
         _check(data, messages, 0.0)
@@ -327,7 +337,7 @@ def mujoco_mobility(scene: Scene, q: NDArray[np.float64], rtol: float = 1e-6) ->
     Bindings(scene, model).set_pose(data, q)
     mujoco.mj_fwdPosition(model, data)
     rows = data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY
-    J = data.efc_J.reshape(data.nefc, model.nv)[rows]
+    J = constraint_jacobian(model, data)[rows]
     s = np.linalg.svd(J, compute_uv=False) if J.size else np.zeros(0)
     return model.nv - int(np.sum(s > rtol * max(s.max(initial=0.0), 1.0)))
 

@@ -111,7 +111,9 @@ def test_equality_drive_is_a_joint_equality_on_the_drive_joint(scene):
     assert model.nu == 0
 
 
-@pytest.mark.parametrize("scene", [s for s in all_scenes() if not s.contact_pairs], ids=lambda s: s.name)
+@pytest.mark.parametrize(
+    "scene", [s for s in all_scenes() if not s.contact_pairs and not s.self_contact], ids=lambda s: s.name
+)
 def test_zero_thickness_scene_has_contact_disabled_no_pairs_and_no_render_assets(scene):
     assert scene.contact_pairs == ()
     model, xml = compiled(scene, contact=True)  # asking for contact changes nothing without pairs
@@ -119,6 +121,18 @@ def test_zero_thickness_scene_has_contact_disabled_no_pairs_and_no_render_assets
     assert model.npair == 0 and model.nexclude == 0
     assert model.nlight == 0 and model.ntex == 0
     assert "<light" not in xml and "<texture" not in xml and "<contact" not in xml
+
+
+@pytest.mark.parametrize("scene", [s for s in all_scenes() if s.self_contact], ids=lambda s: s.name)
+def test_self_contact_collides_every_panel_pair_that_shares_no_vertex(scene):
+    model, _ = compiled(scene, contact=True)
+    assert not model.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_CONTACT
+    collision = [g for g in range(model.ngeom) if model.geom(g).name.endswith("_collision")]
+    assert len(collision) == len(scene.mechanism.bodies)
+    assert all(model.geom_contype[g] == 1 and model.geom_conaffinity[g] == 1 for g in collision)
+    assert model.nexclude == len(scene.pattern.touching_faces())
+    plain, _ = compiled(scene)
+    assert plain.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_CONTACT and plain.nexclude == 0
 
 
 @pytest.mark.parametrize("scene", all_scenes(), ids=scenes.names())

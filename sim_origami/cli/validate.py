@@ -12,6 +12,7 @@ from .. import scenes
 from ..errors import ParameterError
 from ..files import write_text
 from ..report import as_dict, plain, write
+from ..scenes.fold_file import fold_scene
 from ..validation import validate
 from .options import add_params, parse_params
 
@@ -22,8 +23,10 @@ FRAMES = 60
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("scene", nargs="?", help="scene name (see list); omit with --all")
+    parser.add_argument("scene", nargs="?", help="scene name (see list); omit with --all or --fold")
     parser.add_argument("--all", action="store_true", help="every scene with its defaults, plus a summary")
+    parser.add_argument("--fold", type=Path, help="a FOLD 1.2 file with a folded state: numeric reference")
+    parser.add_argument("--input", help="with --fold: the driven crease, e<edge index> (default: the most folded)")
     add_params(parser)
     parser.add_argument("--branch", help="one branch (default: every branch)")
     parser.add_argument("--preset", default="fast", choices=("fast", "accurate"))
@@ -69,8 +72,10 @@ HEADER = ("| scene | result | branches followed | max angle error (rad) | max cl
 
 
 def run(args: argparse.Namespace) -> int:
-    if args.all == bool(args.scene):
-        raise ParameterError("give either a SCENE or --all")
+    if sum((args.all, bool(args.scene), args.fold is not None)) != 1:
+        raise ParameterError("give one of a SCENE, --all or --fold FILE")
+    if args.input and args.fold is None:
+        raise ParameterError("--input names the driven crease of a --fold pattern")
     if args.all:
         if args.param or args.branch:
             raise ParameterError("--all runs every scene with its defaults; -p and --branch need a SCENE")
@@ -83,7 +88,12 @@ def run(args: argparse.Namespace) -> int:
         write_text(out / "summary.json", json.dumps(docs, indent=2, default=plain) + "\n")
         print(table)
         return 0 if all(d["passed"] for d in docs) else 1
-    scene = scenes.get(args.scene).build_from_user(parse_params(args.param))
+    if args.fold is not None:
+        if args.param:
+            raise ParameterError("-p sets a registered scene's parameters; a --fold pattern has none")
+        scene = fold_scene(args.fold, args.input)
+    else:
+        scene = scenes.get(args.scene).build_from_user(parse_params(args.param))
     out = args.out or Path("runs") / scene.name
     doc = run_one(scene, args, out)
     if args.json:

@@ -6,6 +6,7 @@ from . import (  # noqa: F401  (registration side effect)
     bricard_threefold,
     iftomm_a04,
     miura,
+    miura_sheet,
     myard,
     thick_diamond,
     thick_vertex4,

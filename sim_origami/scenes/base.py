@@ -53,6 +53,8 @@ class Scene:
     path : (start, stop)
       Default input sweep in radians (inside every branch's domain unless per-branch).
     contact_pairs : pairs of body names that may really collide (thick panels); empty = no contact.
+    self_contact : every pair of bodies that shares no vertex of `pattern` may collide (large sheets, where
+      explicit pairs would number in the tens of thousands); needs the bodies' collision solids.
     pattern : the crease pattern the mechanism was built from (its crease names are the joints), if any;
       reports then export the simulated motion as a multi-frame FOLD file.
     """
@@ -75,6 +77,7 @@ class Scene:
     sweep_time_scale: float = 1.0
     notes: str = ""
     pattern: CreasePattern | None = None
+    self_contact: bool = False
 
     def loop_to_mechanism(self, q_loop: ArrayLike) -> NDArray[np.float64]:
         """Mechanism joint angles (n, n_joints) from loop joint angles (n, n_loop)."""

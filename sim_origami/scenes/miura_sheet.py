@@ -1,0 +1,45 @@
+"""Scene `miura-sheet`: a Miura-ori sheet of rows x cols panels, driven by one vertical crease.
+
+Every panel is a body; the spanning tree keeps rows x cols - 1 hinges and every other crease (one per interior
+vertex) is closed by two connects. The closed form is `kinematics.miura_sheet` (mode S at every vertex).
+"""
+
+import numpy as np
+
+from ..kinematics.miura_sheet import MiuraSheet
+from ..origami import pattern_mechanism
+from .base import Param, Scene, register
+
+PARAMS = (
+    Param("rows", "", 4, "panels along y (>= 2)"),
+    Param("cols", "", 4, "panels along x (>= 2)"),
+    Param("a", "m", 0.5, "panel width along x"),
+    Param("b", "m", 0.5, "vertical panel edge"),
+    Param("gamma", "deg", 60.0, "panel angle between a vertical and a zigzag edge, in (0, 90)"),
+)
+# Default sweep: 5% to 90% of the fold range (-pi, pi) of the input crease.
+PATH = (0.05 * np.pi, 0.9 * np.pi)
+# The soft closures' error grows with the sheet (inertia carried through more closures): fast, 2 s sweep,
+# 4.1e-6 rad (4 x 4), 9.4e-5 (8 x 8), 1.2e-3 (16 x 16, 5.3 s CPU dense, 2.7 s sparse); it falls as the square
+# of the sweep time, so the default 4 x 4 sheet is swept 8x slower.
+SWEEP_TIME_SCALE = 8.0
+# Collision solids are inset from every panel edge by this fraction of the shorter side: panels sharing a
+# vertex are excluded anyway, the inset keeps the others from touching through the nominal plate thickness.
+INSET = 0.05
+
+
+@register("miura-sheet", "Miura-ori sheet of rows x cols panels (flat-foldable vertices in mode S), input one "
+          "vertical crease", PARAMS)  # fmt: skip
+def build(rows: float, cols: float, a: float, b: float, gamma: float) -> Scene:
+    kinematics = MiuraSheet(rows, cols, a, b, gamma)
+    pattern = kinematics.pattern
+    drive = kinematics.input_crease
+    root = pattern.crease_faces(pattern.creases[[c.name for c in pattern.creases].index(drive)])[0]
+    mechanism = pattern_mechanism(pattern, root=root, keep=(drive,), collision_inset=INSET * min(a, b))
+    return Scene(
+        name="miura-sheet", params={"rows": rows, "cols": cols, "a": a, "b": b, "gamma": gamma},
+        kinematics=kinematics, mechanism=mechanism, loop_joints=tuple(c.name for c in pattern.creases),
+        drive_joint=drive, drive_scale=1.0, path=PATH, pattern=pattern, sweep_time_scale=SWEEP_TIME_SCALE,
+        self_contact=True,
+        notes=f"{int(rows)} x {int(cols)} panels; input {drive}",
+    )  # fmt: skip
