@@ -4,6 +4,7 @@ from . import (  # noqa: F401  (registration side effect)
     bennett,
     bricard_plane,
     bricard_threefold,
+    corrugated,
     iftomm_a04,
     miura,
     miura_sheet,

@@ -1,0 +1,58 @@
+"""Scene `corrugated-unit`: double-corrugated unit P or Q as a 3 x 3 Kokotsakis mesh (seed 003 §3.2.2, M7).
+
+Nine parallelogram faces (`kinematics.corrugated.unit_pattern`), twelve crease hinges, the central face
+fixed and the seed's input crease driven (P: AD = theta_1a, Q: AF = theta_2f). The spanning tree keeps
+the four inner creases and one outer crease per corner face; the other four outer creases are closed by
+connects, one loop per vertex. There are no M/V joint limits, so the flat state is the bifurcation of
+all six rigid mode combinations (the kinematics' branches); the default sweep starts away from it.
+"""
+
+from ..errors import ParameterError
+from ..kinematics.corrugated import CorrugatedUnit
+from ..origami import pattern_mechanism
+from .base import Param, Scene, register
+
+PARAMS = (
+    Param("unit", "", 0.0, "which unit: 0 = P (parallelogram ABCD), 1 = Q (parallelogram ABEF)"),
+    Param("alpha", "deg", 135.0, "design angle alpha (largest sector, P's angle at A); seed Fig 3-2"),
+    Param("beta", "deg", 60.0, "design angle beta (Q's angle at A)"),
+    Param("gamma", "deg", 45.0, "design angle gamma = 180 - alpha, the smallest sector"),
+    Param("delta", "deg", 120.0, "design angle delta = 180 - beta"),
+    Param("L1", "m", 1.0, "|AB|"),
+    Param("L2", "m", 1.0, "|AD| (P), and Q's outer creases"),
+    Param("L3", "m", 1.0, "|AF| (Q), and P's outer creases"),
+)
+# Default sweep of the input (rad): from 0.3 (the closure's smallest singular value grows with the fold
+# from 0 at flat) to 2.0, short of the fully folded lock at pi where the largest gains (9.9 on Q's SSCC)
+# drive some creases towards pi fast.
+PATH = (0.3, 2.0)
+# The error comes from the start of the sweep (ill-conditioned near flat) and falls as the square of the
+# sweep time: fast, worst branch (P CSCS, Q SCSC: the branches with the smallest gains, 0.18 and 0.16)
+# measured 1.1e-5 rad at 1x, 7.1e-7 at 4x, 1.8e-7 at 8x, 4.6e-8 at 16x (others <= 8.8e-9 at 16x);
+# 0.18 s of CPU per run.
+SWEEP_TIME_SCALE = 16.0
+
+
+@register("corrugated-unit", "double-corrugated unit P or Q (seed 003 M7), 3 x 3 mesh of 4 flat-foldable "
+          "vertices; branches = the six rigid vertex-mode combinations", PARAMS)  # fmt: skip
+def build(unit: float, alpha: float, beta: float, gamma: float, delta: float, L1: float, L2: float, L3: float) -> Scene:
+    if unit not in (0.0, 1.0):
+        raise ParameterError(f"unit = {unit:g}; use 0 for P or 1 for Q")
+    name = "PQ"[int(unit)]
+    kinematics = CorrugatedUnit(name, (alpha, beta, gamma, delta), (L1, L2, L3))
+    drive = kinematics.input_name.removeprefix("rho")
+    mechanism = pattern_mechanism(kinematics.pattern, root=name, keep=(drive,))
+    params = {"unit": unit, "alpha": alpha, "beta": beta, "gamma": gamma, "delta": delta, "L1": L1, "L2": L2, "L3": L3}
+    return Scene(
+        name="corrugated-unit",
+        params=params,
+        kinematics=kinematics,
+        mechanism=mechanism,
+        loop_joints=kinematics.model.crease_names,
+        drive_joint=drive,
+        drive_scale=1.0,
+        path=PATH,
+        sweep_time_scale=SWEEP_TIME_SCALE,
+        notes=f"unit {name}; hinge qpos = fold angle rho (> 0 valley from +z); no M/V joint limits",
+        pattern=kinematics.pattern,
+    )
