@@ -129,6 +129,48 @@ class LoopSystem:
             return q
         raise ConvergenceError(f"loop closure did not converge: residual {np.max(np.abs(r)):.3g} > tolerance {tol:g}")
 
+    def solve_signed(
+        self, signs: ArrayLike, input_joint: int, x: float, *, tol: float = 1e-14, max_iter: int = 200
+    ) -> tuple[NDArray[np.float64], float]:
+        """
+        Close the loops at q[input_joint] = x with every other joint held to the sign of `signs` (+1, -1),
+        as mountain/valley joint ranges would: q = signs pi sigmoid(u), strictly inside (0, pi) or (-pi, 0).
+
+        Levenberg-Marquardt in u from q = signs |x|; stops below `tol` or when no step lowers the residual.
+        Returns (q, largest |residual|): the residual stalls above zero when no configuration with these
+        signs closes (a rigid-foldability verdict, not a convergence failure, so nothing is raised).
+        """
+        s = np.asarray(signs, dtype=float)
+        free = np.arange(self.n_joints) != input_joint
+        u = np.full(self.n_joints, np.log(abs(x) / (np.pi - abs(x))))
+
+        def q_of(u: NDArray[np.float64]) -> NDArray[np.float64]:
+            q = s * np.pi / (1.0 + np.exp(-np.clip(u, -700.0, 700.0)))
+            q[input_joint] = x
+            return q
+
+        q = q_of(u)
+        r = self.residual(q)
+        damping = 1e-6
+        for _ in range(max_iter):
+            if np.max(np.abs(r)) < tol:
+                break
+            rate = q[free] * (1.0 - q[free] / (s[free] * np.pi))  # dq/du
+            J = self.jacobian(q)[:, free] * rate
+            JtJ = J.T @ J
+            step = np.linalg.solve(JtJ + damping * np.diag(np.diag(JtJ) + 1e-12), -J.T @ r)
+            trial = u.copy()
+            trial[free] += step
+            r_trial = self.residual(q_of(trial))
+            if np.sum(r_trial**2) < np.sum(r**2):
+                u, q, r = trial, q_of(trial), r_trial
+                damping = max(damping * 0.1, 1e-12)
+            else:
+                damping *= 10.0
+                if damping > 1e8:
+                    break
+        return q, float(np.max(np.abs(r)))
+
     def follow(
         self, q_start: ArrayLike, input_joint: int, values: ArrayLike, *, tol: float = 1e-14
     ) -> NDArray[np.float64]:

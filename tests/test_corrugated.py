@@ -13,7 +13,6 @@ from sim_origami.checks.paths import compare
 from sim_origami.errors import ParameterError
 from sim_origami.geometry import wrap
 from sim_origami.kinematics.corrugated import (
-    CLOSED_TOL,
     VERTEX_CREASES,
     CorrugatedUnit,
     UnitModel,
@@ -22,6 +21,7 @@ from sim_origami.kinematics.corrugated import (
     unit_pattern,
     verdict_table,
 )
+from sim_origami.kinematics.numeric_pattern import FOLDABLE_TOL
 from sim_origami.origami import pattern_mechanism
 from sim_origami.simulate import simulate
 from sim_origami.tolerances import TOLERANCES
@@ -89,7 +89,7 @@ def test_numeric_verdict_closes_rigid_classes_and_stalls_on_locked_ones(tables):
     for unit in "PQ":
         for r in tables[unit]:
             if r.numeric:
-                assert r.residual <= CLOSED_TOL  # measured <= 9.7e-15 (solve and continuation to 2 rad)
+                assert r.residual <= FOLDABLE_TOL  # measured <= 9.7e-15 (solve and continuation to 2 rad)
             else:
                 # the sign-constrained solve stalls: measured >= 3.6e-5 at input 0.02 (independent of the
                 # iteration count from 200 to 1000; it grows as x^2 or x, a true positive minimum)

@@ -52,7 +52,9 @@ from numpy.typing import ArrayLike, NDArray
 from ..closure import LoopSystem
 from ..creases import Crease, CreasePattern
 from ..errors import ParameterError
-from .base import Branch, Event, JointSpaceKinematics
+from .base import Branch, Event
+from .fixed_modes import FixedModeKinematics
+from .numeric_pattern import foldable_with_signs
 from .vertex4 import ANGLE_TOL, flat_foldable_multipliers
 
 UNITS = ("P", "Q")
@@ -89,12 +91,6 @@ INPUT = {"P": "AD", "Q": "AF"}  # the seed's theta_1a and theta_2f
 MODES = ("S", "C")
 # Loop gains within this of 1 count as closed (the multipliers carry rounding only, about 1e-15).
 GAIN_TOL = 1e-9
-# Numeric verdict: the sign-constrained solve at these inputs (rad) closes to SOLVE_TOL or stalls; a
-# closed start is then continued to FOLLOW_TO (rad) and must keep its signs and close to CLOSED_TOL.
-PROBE_INPUTS = (0.02, 0.1)
-FOLLOW_TO = 2.0
-SOLVE_TOL = 1e-14
-CLOSED_TOL = 1e-12
 
 
 def _e(angle: float) -> NDArray[np.float64]:
@@ -205,7 +201,7 @@ class ClassVerdict:
     """
     One M/V class: its mode combinations (vertex order of VERTEX_CREASES), a representative assignment
     (input crease V), its size (assignments in the orbit), the loop gain K, and both verdicts.
-    `residual` is the numeric solve's closure residual (rad): <= CLOSED_TOL when it closed, else where
+    `residual` is the numeric solve's closure residual (rad): <= FOLDABLE_TOL when it closed, else where
     it stalled.
     """
 
@@ -351,72 +347,10 @@ class UnitModel:
             rep = next(s for s in orbit if s[self.input] > 0)
             modes = tuple(sorted({self.vertex_modes(s) for s in orbit}))
             gain = self.loop_gain(modes[0])
-            numeric, residual = numeric_verdict(loops, rep, self.input)
+            numeric, residual = foldable_with_signs(loops, rep, self.input)
             assignment = {n: "V" if s > 0 else "M" for n, s in zip(self.crease_names, rep, strict=True)}
             rows.append(ClassVerdict(modes, assignment, len(orbit), gain, abs(gain - 1) <= GAIN_TOL, numeric, residual))
         return tuple(sorted(rows, key=lambda r: (not r.analytic, r.modes)))
-
-
-def signed_solve(
-    loops: LoopSystem, signs: ArrayLike, input_joint: int, x: float, *, max_iter: int = 200
-) -> tuple[NDArray[np.float64], float]:
-    """
-    Close the loops at q[input_joint] = x over fold angles of fixed signs, as M/V joint ranges do:
-    q = signs pi sigmoid(u), so each free fold stays strictly inside (0, pi) or (-pi, 0).
-
-    Levenberg-Marquardt in u from q = signs |x|; stops below SOLVE_TOL or when no step lowers the
-    residual. Returns (q, max |residual|): the residual stalls above zero when no configuration with
-    these signs closes.
-    """
-    s = np.asarray(signs, dtype=float)
-    free = np.arange(loops.n_joints) != input_joint
-    u = np.full(loops.n_joints, np.log(abs(x) / (np.pi - abs(x))))
-
-    def q_of(u: NDArray[np.float64]) -> NDArray[np.float64]:
-        q = s * np.pi / (1.0 + np.exp(-np.clip(u, -700.0, 700.0)))
-        q[input_joint] = x
-        return q
-
-    q = q_of(u)
-    r = loops.residual(q)
-    damping = 1e-6
-    for _ in range(max_iter):
-        if np.max(np.abs(r)) < SOLVE_TOL:
-            break
-        rate = q[free] * (1.0 - q[free] / (s[free] * np.pi))  # dq/du
-        J = loops.jacobian(q)[:, free] * rate
-        JtJ = J.T @ J
-        step = np.linalg.solve(JtJ + damping * np.diag(np.diag(JtJ) + 1e-12), -J.T @ r)
-        trial = u.copy()
-        trial[free] += step
-        r_trial = loops.residual(q_of(trial))
-        if np.sum(r_trial**2) < np.sum(r**2):
-            u, q, r = trial, q_of(trial), r_trial
-            damping = max(damping * 0.1, 1e-12)
-        else:
-            damping *= 10.0
-            if damping > 1e8:
-                break
-    return q, float(np.max(np.abs(r)))
-
-
-def numeric_verdict(loops: LoopSystem, signs: ArrayLike, input_joint: int) -> tuple[bool, float]:
-    """
-    (rigidly foldable, residual): the sign-constrained solve at each PROBE_INPUTS value; if every one
-    closes, continuation to FOLLOW_TO must keep the signs, close to CLOSED_TOL and end with mobility 1.
-    The residual is the largest met (rad).
-    """
-    s = np.asarray(signs)
-    worst = 0.0
-    for x in PROBE_INPUTS:
-        q, residual = signed_solve(loops, s, input_joint, x * s[input_joint])
-        worst = max(worst, residual)
-        if residual > CLOSED_TOL:
-            return False, worst
-    path = loops.follow(q, input_joint, s[input_joint] * np.linspace(PROBE_INPUTS[-1], FOLLOW_TO, 40), tol=SOLVE_TOL)
-    worst = max(worst, float(np.max(loops.residual_norm(path))))
-    kept = bool(np.all(np.sign(path) == s))
-    return kept and worst <= CLOSED_TOL and loops.mobility(path[-1]) == 1, worst
 
 
 def verdict_table(unit: str, sectors: ArrayLike) -> tuple[ClassVerdict, ...]:
@@ -461,7 +395,7 @@ def mode_couplings(unit: str, modes: str) -> tuple[tuple[str, str, float], ...]:
     return tuple(out)
 
 
-class CorrugatedUnit(JointSpaceKinematics):
+class CorrugatedUnit(FixedModeKinematics):
     """
     A double-corrugated unit driven by x = rho_AD (P) or rho_AF (Q), rad, without M/V limits.
 
@@ -485,27 +419,17 @@ class CorrugatedUnit(JointSpaceKinematics):
         self.pattern = self.model.pattern
         self.input_name = f"rho{INPUT[unit]}"
         self.joint_names = tuple(f"rho{n}" for n in self.model.crease_names)
-        self._gains = {m: self.model.gains(m) for m in rigid_modes(self.model)}
+        self.ratios = {m: self.model.gains(m) for m in rigid_modes(self.model)}
 
     def branches(self) -> tuple[Branch, ...]:
         order = ", ".join(self.model.vertices)
         return tuple(
             Branch(m, f"vertex modes ({order}) = ({', '.join(m)}); tan(rho/2) = g tan(x/2) per crease", (-np.pi, np.pi))
-            for m in self._gains
+            for m in self.ratios
         )
 
-    def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-        if branch not in self._gains:
-            self.branch(branch)  # raises with the list of names
-        x = np.atleast_1d(np.asarray(x, dtype=float))
-        valid = np.abs(x) <= np.pi
-        half = x[:, None] / 2
-        values = 2.0 * np.arctan2(self._gains[branch] * np.sin(half), np.cos(half))
-        values[~valid] = np.nan
-        return values, valid
-
     def events(self) -> tuple[Event, ...]:
-        names = tuple(self._gains)
+        names = tuple(self.ratios)
         detail = "fully folded flat: every crease at |rho| = pi, panels stacked"
         return (
             Event("bifurcation", 0.0, names, "flat state: every rigid mode combination passes through it"),

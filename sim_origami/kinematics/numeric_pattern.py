@@ -36,6 +36,15 @@ CLOSE_TOL = 1e-13
 POLISH_TOL = 1e-15
 # A target may be off by this much (rad) from the closed state it stands for (FOLD files round angles).
 TARGET_TOL = 1e-2
+# Rigid foldability from an M/V assignment: sign-held solves at PROBE_INPUTS (rad, from flat) or at FOLD_FROM
+# (then inwards) close to SIGNED_TOL or stall; the path over [0.1, FOLLOW_TO] must keep its signs, close to
+# FOLDABLE_TOL and have mobility 1 (double-corrugated units: rigid classes <= 9.7e-15, locked ones stall at
+# >= 3.6e-5; square twist: rigid <= 8e-15, locked >= 1e-4).
+PROBE_INPUTS = (0.02, 0.1)
+FOLLOW_TO = 2.0
+FOLD_FROM = 2.5
+SIGNED_TOL = 1e-14
+FOLDABLE_TOL = 1e-12
 
 
 class PatternPath(JointSpaceKinematics):
@@ -172,3 +181,33 @@ class PatternPath(JointSpaceKinematics):
 
     def loop_input(self) -> tuple[int, float]:
         return self.input_index, 1.0
+
+
+def foldable_with_signs(loops: LoopSystem, signs: ArrayLike, input_joint: int) -> tuple[bool, float]:
+    """
+    (rigidly foldable with these fold signs, smallest stalled residual or largest closed one, rad or m).
+
+    Two starts, because a sign-held solve from a uniform guess near flat misses the closed pose of patterns
+    whose creases fold at very different rates (the square twist at alpha <= 135 deg stalls at 2e-4 from
+    flat but closes from its folded end): sign-held solves (`LoopSystem.solve_signed`) at PROBE_INPUTS rising
+    from flat, or one at FOLD_FROM followed inwards. Either must give a closed path over [PROBE_INPUTS[-1],
+    FOLLOW_TO] that keeps every sign with mobility 1. No configuration with these signs near the path: the
+    residual stalls, not rigidly foldable.
+    """
+    s = np.asarray(signs, dtype=float)
+    grid = s[input_joint] * np.linspace(PROBE_INPUTS[-1], FOLLOW_TO, 40)
+    stalled = np.inf
+    for start in (PROBE_INPUTS, (FOLD_FROM,)):
+        for x in start:
+            q, residual = loops.solve_signed(s, input_joint, x * s[input_joint], tol=SIGNED_TOL)
+            if residual > FOLDABLE_TOL:
+                stalled = min(stalled, residual)
+                break
+        else:
+            values = grid if start == PROBE_INPUTS else np.concatenate([[FOLD_FROM * s[input_joint]], grid[::-1]])
+            path = loops.follow(q, input_joint, values, tol=SIGNED_TOL)
+            worst = float(np.max(loops.residual_norm(path)))
+            if np.all(np.sign(path) == s) and worst <= FOLDABLE_TOL and loops.mobility(path[-1]) == 1:
+                return True, worst
+            stalled = min(stalled, worst)
+    return False, stalled

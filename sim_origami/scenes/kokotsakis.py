@@ -1,0 +1,51 @@
+"""Scene `kokotsakis`: 3x3 Kokotsakis meshes of four degree-4 vertices (seed 003 §2.5, digest M3-M5).
+
+Nine panels (central, four sides, four corners) as bodies, twelve crease hinges, the central panel fixed and
+inner crease AB driven (`kinematics.kokotsakis`). The spanning tree keeps the four inner creases and one
+outer crease per corner panel; the other outer crease of each corner panel is cut and closed by connects,
+one per vertex loop. `case` picks the seed's mesh: 1 = Example 1 (rotation case, identical generic vertices,
+eqn 2-34), 2 = Example 2 (variant rotation case, flat-foldable vertices, eqn 2-38), 3 = the two-fold case with
+identical (mirrored) vertices [RECON].
+"""
+
+from ..errors import ParameterError
+from ..kinematics.kokotsakis import INPUT, Kokotsakis, example
+from ..origami import pattern_mechanism
+from .base import Param, Scene, register
+
+PARAMS = (
+    Param("case", "", 1.0, "1 = Example 1 (eqn 2-34), 2 = Example 2 (eqn 2-38), 3 = two-fold case [RECON]"),
+    Param("outer", "m", 0.5, "length of the eight outer creases (central sides |AB| = |BC| = 1 m)"),
+)
+# Default sweep of x = rho_AB (rad) per case, clipped to each branch's domain by Scene.branch_path, kept away
+# from the flat bifurcation, where the closure's smallest nonzero singular value vanishes (measured about 0.73 x
+# on case 1 odd2, 0.28 x on odd3). Case 2 starts at 0.5: mode S folds BC only about 0.09 x as far as AB, so its
+# smallest nonzero singular value is 0.021 at x = 0.3 (0.036 at 0.5) and the numeric solve, stopped at a 1e-14
+# residual, was off by 7.4e-13 rad there (5.5e-14 from 0.5).
+PATHS = {1: (0.3, 1.1), 2: (0.5, 1.5), 3: (0.3, 1.1)}
+# The fast preset's error peaks just after the sweep starts (where the closure is thinnest and the minimum-jerk
+# ramp accelerates hardest) and falls as the square of the sweep time. Measured at the 2 s sweep: case 1 odd2
+# 4.3e-7, odd3 1.1e-6 (4x: 2.8e-8, 7.3e-8); case 2 from 0.5 C 2.2e-7, S 1.1e-5 (4x: 6.7e-7; 16x: C 9.0e-10,
+# S 4.3e-8); case 3 up to 8.7e-7 (odd3; 4x: 5.6e-8). Each run costs 0.01 s of CPU per 1x.
+SWEEP_TIME_SCALE = {1: 4.0, 2: 16.0, 3: 4.0}
+
+
+def _case(value: float) -> int:
+    """The integer case number of a float parameter; ParameterError otherwise."""
+    if value not in PATHS:
+        raise ParameterError(f"case = {value:g}; the Kokotsakis cases are {', '.join(str(c) for c in PATHS)}")
+    return int(value)
+
+
+@register("kokotsakis", "3x3 Kokotsakis mesh of four degree-4 vertices (seed 003 M5), case 1-3, input rho_AB", PARAMS)
+def build(case: float, outer: float) -> Scene:
+    number = _case(case)
+    kinematics = Kokotsakis(example(number), outer=outer)
+    mechanism = pattern_mechanism(kinematics.pattern, root="central", keep=(INPUT,))
+    return Scene(
+        name="kokotsakis", params={"case": float(number), "outer": outer}, kinematics=kinematics,
+        mechanism=mechanism, loop_joints=kinematics.creases, drive_joint=INPUT, drive_scale=1.0, path=PATHS[number],
+        sweep_time_scale=SWEEP_TIME_SCALE[number], pattern=kinematics.pattern,
+        notes="hinge qpos = fold angle rho (> 0 valley seen from +z); central panel fixed; one connect pair per "
+              "vertex loop on a cut outer crease",
+    )  # fmt: skip
