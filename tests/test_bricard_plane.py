@@ -6,7 +6,7 @@ import pytest
 
 import sim_origami.scenes.bricard_plane  # noqa: F401  (registers the scene)
 from sim_origami import scenes
-from sim_origami.errors import AssemblyError, DomainError, ParameterError
+from sim_origami.errors import AssemblyError, ConvergenceError, DomainError, ParameterError
 from sim_origami.geometry import wrap
 from sim_origami.kinematics.bricard_plane import (
     FIG_4_5,
@@ -20,6 +20,7 @@ from sim_origami.kinematics.bricard_plane import (
     theta1_fractions,
     theta4_fraction,
 )
+from sim_origami.kinematics.dh import dh_loop
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
 
@@ -510,3 +511,41 @@ def test_m7_principal_arcsin_does_not_close():
     q = np.stack([0 * m, theta2, t3, 0 * m, -(theta2 + t3 + t6), t6], -1)
     # Measured 16.0 (seed000 §2 item 10: "error about 15"); the supplementary branch closes (above).
     assert np.max(model(M7).loop_system().residual_norm(q)) > 1.0
+
+
+def _local_dof(g: Geometry, held: tuple[int, ...], seed: int = 1) -> int:
+    """Local DOF of the 6R with joints `held` (0-based) fixed at pi: a closed pose from random starts, then
+    the free joints minus the rank of the closure Jacobian restricted to them."""
+    loops = dh_loop(g.rows)
+    fixed = np.zeros(6, dtype=bool)
+    fixed[list(held)] = True
+    rng = np.random.default_rng(seed)
+    for _ in range(50):
+        q0 = rng.uniform(-np.pi, np.pi, 6)
+        q0[list(held)] = np.pi
+        try:
+            q = loops.solve(q0, fixed, tol=1e-13)
+        except ConvergenceError:
+            continue
+        s = np.linalg.svd(loops.jacobian(q)[:, ~fixed], compute_uv=False)
+        return int(np.sum(~fixed)) - int(np.sum(s > 1e-6 * s.max()))
+    raise AssertionError("no closed pose found")
+
+
+@pytest.mark.parametrize(
+    ("geometry", "held", "dof"),
+    [
+        # seed000 M5: theta1 = pi gives a 5R of local DOF 2 in the three examples of the text
+        (Geometry(3, 2, 1, 0.0, 0.0, 0.0), (0,), 2),  # planar: joints 2 and 6 coincide
+        (Geometry(0, 0, 0, np.pi / 4, np.pi / 3, np.pi / 5), (0,), 2),  # spherical 4R plus a rotation
+        (Geometry(1, 1, 1, np.pi / 2, 0.0, np.pi / 2), (0,), 2),  # serial chain, effective joints 2/6 and 3/5
+        # theta2 = theta6 = pi: Bennett 4R under eqn 4-30 (both conditions), local DOF 1
+        (Geometry(3, 2, 1, np.pi / 12, np.pi / 3, np.pi / 4), (1, 5), 1),
+        (Geometry(1, 3, 2, np.pi / 2, np.pi / 6, np.pi / 3), (1, 5), 1),
+        # theta3 = theta5 = pi: Bennett 4R under eqn 4-31 (both conditions), local DOF 1
+        (Geometry(1, 3, 2, np.pi / 4, np.pi / 3, 7 * np.pi / 12), (2, 4), 1),
+        (Geometry(1, 2, 3, np.pi / 6, np.pi / 2, np.pi / 3), (2, 4), 1),
+    ],
+)
+def test_derived_5r_and_4r_linkages_have_the_local_dof_of_the_text(geometry, held, dof):
+    assert _local_dof(geometry, held) == dof
