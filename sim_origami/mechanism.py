@@ -79,7 +79,7 @@ class Mechanism:
             for b in (j.parent, j.child):
                 if b not in names:
                     raise ParameterError(f"joint {j.name!r} names unknown body {b!r}")
-        tree = {self.joints[e.joint].name for e in self.tree} if self.couplings else set()
+        tree = self.tree_joint_names() if self.couplings else set()
         for joint, other, _ in self.couplings:
             for name in (joint, other):
                 self.joint_index(name)
@@ -135,6 +135,10 @@ class Mechanism:
         if missing:
             raise ParameterError(f"bodies {sorted(missing)} are not connected to root {self.root!r}")
         return tuple(edges)
+
+    def tree_joint_names(self) -> set[str]:
+        """Names of the joints kept in the spanning tree."""
+        return {self.joints[e.joint].name for e in self.tree}
 
     @cached_property
     def cut_joints(self) -> tuple[int, ...]:

@@ -20,6 +20,7 @@ from sim_origami.kinematics.waterbomb import (
     Waterbomb,
     plane_blockage,
 )
+from sim_origami.kinematics.waterbomb_sheet import WaterbombSheet
 from sim_origami.report import FOLD_FRAMES, write
 from sim_origami.simulate import simulate
 from sim_origami.tolerances import TOLERANCES
@@ -208,3 +209,29 @@ def test_report_exports_the_simulated_motion_as_a_multi_frame_fold_file():
     np.testing.assert_allclose(fold.frames[-1], q[-1, columns], atol=1e-12, rtol=0)
     assert [c.height for c in fold.pattern.creases] == [c.height for c in scene.pattern.creases]
     assert fold.pattern.loop_system().residual_norm(fold.frames).max() <= TOLERANCES.fast_residual_m
+
+
+@pytest.mark.parametrize(("rows", "cols"), [(2, 2), (3, 3), (2, 4)])
+def test_tessellation_closes_on_every_cell_branch_including_its_c_vertices(rows, cols):
+    sheet = WaterbombSheet(40 * DEG, 40 * DEG, 0.5, rows, cols)
+    kinds = set(sheet.kinds)
+    assert kinds == {"A1", "A2", "A3", "A4", "A5", "A6", "B2", "B6", "B4"}
+    plain = sheet.pattern.loop_system()  # per-vertex closure only (A, B and C vertices), no couplings
+    x = np.linspace(-3.0, 3.0, 61)
+    for branch in sheet.branches():
+        q = sheet.joint_angles(branch.name, x)
+        assert np.max(plain.residual_norm(q)) <= TOLERANCES.closed_form_residual  # measured <= 8.9e-16
+        coupled = sheet.loop_system()
+        assert coupled.mobility(q[20]) == 1  # symmetric folding: one DOF
+    assert sheet.loop_system().mobility(np.zeros(len(sheet.joint_names))) == 3  # flat: four branches meet
+
+
+def test_waterbomb_sheet_scene_follows_path_one_in_mujoco():
+    scene = scenes.get("waterbomb-sheet").build()
+    path = compare(scene, LINE, simulate(scene, LINE).q)
+    assert path.max_error() <= TOLERANCES.fast_rad  # measured 5.5e-8 at the 64x sweep (2.2e-7 at 32x)
+
+
+def test_waterbomb_sheet_bad_size():
+    with pytest.raises(ParameterError, match="rows = 1"):
+        scenes.get("waterbomb-sheet").build(rows=1)

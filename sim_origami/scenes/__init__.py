@@ -14,6 +14,8 @@ from . import (  # noqa: F401  (registration side effect)
     thick_diamond,
     thick_vertex4,
     thick_vertex5,
+    triangle_twist,
+    twist_6r,
     vertex4,
     waterbomb,
 )

@@ -1,4 +1,4 @@
-"""Scenes `waterbomb-vertex` and `waterbomb-thick`: the symmetric waterbomb cell (seed 000 ch. 5, M8, M9).
+"""Scenes `waterbomb-vertex`, `waterbomb-thick` and `waterbomb-sheet`: the symmetric waterbomb (seed 000 ch. 5).
 
 Both are the same two-vertex cell (`kinematics.waterbomb`): ten triangular faces, eleven crease hinges, the
 periodic copies B1 = A4 and B5 = A6 as joint couplings, driven at crease A4. The zero-thickness cell also
@@ -6,10 +6,15 @@ carries the seed's symmetry couplings (A3 = A5 = A6 = A2, B6 = B2) and has four 
 cell (hinges on panel surfaces) carries none and has one, path I, with the same fold angles: the thick
 model is kinematically equivalent to the zero-thickness path I and loses the bifurcation.
 Thick faces are slabs spanning their hinges' heights, for inertia and rendering; they carry no collision
-solids (the blocked cases alpha + beta >= 90 deg are outside the model's domain).
+solids: the seed's panel placement (Fig. 5-8) is lost, and such slabs, inset 1e-3 m from every edge, already
+interpenetrate around vertex B (faces B45/B61 and A32/B12) at rho_A4 = -0.537 rad, where the seed reports no
+interference for alpha <= 45 deg, so a contact "blockage" there would be an artefact of the reconstruction.
+`waterbomb-sheet` is the zero-thickness tessellation of rows x cols bases (`kinematics.waterbomb_sheet`): every
+crease folds as its type in the cell, checked by the sheet's own closure at A, B and C vertices.
 """
 
 from ..kinematics.waterbomb import CREASES, Waterbomb
+from ..kinematics.waterbomb_sheet import WaterbombSheet
 from ..origami import pattern_mechanism
 from .base import Param, Scene, register
 
@@ -62,4 +67,35 @@ def build_thick(alpha: float, beta: float, t: float, mu: float, a: float) -> Sce
         "waterbomb-thick", Waterbomb(alpha, beta, t, mu, a), {"alpha": alpha, "beta": beta, "t": t, "mu": mu, "a": a},
         "couplings: periodic B1 = A4, B5 = A6 only; hinge heights (2 + mu) a on A's valleys, (1 + mu) a on B2, B6, "
         "2 a on B4; qpos = fold angle of the zero-thickness cell",
+    )  # fmt: skip
+
+
+# The 2 x 2 sheet carries 18 couplings: fast at 32x measured 1.4e-7 .. 6.7e-7 rad over the four branches
+# (A-straight-B-degree4 worst), so it is swept twice as slowly again.
+SHEET_SWEEP_TIME_SCALE = 64.0
+SHEET = (
+    Param("rows", "", 2, "rows of bases (>= 2)"),
+    Param("cols", "", 2, "bases per row (>= 2)"),
+)
+
+
+@register("waterbomb-sheet", "zero-thickness waterbomb tessellation of rows x cols bases in the seed's symmetric "
+          "folding (seed 000 M8), input one A4 crease", ANGLES + SHEET)  # fmt: skip
+def build_sheet(alpha: float, beta: float, t: float, rows: float, cols: float) -> Scene:
+    kinematics = WaterbombSheet(alpha, beta, t, rows, cols)
+    pattern, drive = kinematics.pattern, kinematics.input_crease
+    root = pattern.crease_faces(pattern.creases[[c.name for c in pattern.creases].index(drive)])[0]
+    # MuJoCo couples tree hinges only: each symmetry class is coupled to its first hinge in the spanning tree
+    # (the cut creases follow from the closures).
+    tree = pattern_mechanism(pattern, root=root, keep=(drive,)).tree_joint_names()
+    couplings = []
+    for names in kinematics.classes().values():
+        kept = [n for n in names if n in tree]
+        couplings += [(n, kept[0], 1.0) for n in kept[1:]]
+    mechanism = pattern_mechanism(pattern, root=root, keep=(drive,), couplings=tuple(couplings))
+    return Scene(
+        name="waterbomb-sheet", params={"alpha": alpha, "beta": beta, "t": t, "rows": rows, "cols": cols},
+        kinematics=kinematics, mechanism=mechanism, loop_joints=tuple(c.name for c in pattern.creases),
+        drive_joint=drive, drive_scale=1.0, path=PATH, sweep_time_scale=SHEET_SWEEP_TIME_SCALE, pattern=pattern,
+        notes=f"{int(rows)} x {int(cols)} bases; {len(couplings)} symmetry couplings on tree hinges",
     )  # fmt: skip
