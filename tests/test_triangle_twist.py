@@ -1,0 +1,407 @@
+"""Triangle twist (`kinematics.triangle_twist`, scene `triangle-twist`) and its 6R linkages (`kinematics.twist_6r`,
+scene `triangle-twist-6r`) against seed 000 ch. 3 (digest M1 to M3, validation cases 1 to 6), the numeric loop
+closure and MuJoCo."""
+
+import numpy as np
+import pytest
+
+import sim_origami.scenes.twist_6r  # noqa: F401  (registers `triangle-twist-6r`)
+from sim_origami import scenes
+from sim_origami.checks.blockage import assess
+from sim_origami.checks.paths import compare
+from sim_origami.errors import DomainError, ParameterError
+from sim_origami.fold import read_fold
+from sim_origami.geometry import wrap
+from sim_origami.kinematics.dh import DHRow, dh_loop
+from sim_origami.kinematics.numeric_pattern import foldable_with_signs
+from sim_origami.kinematics.triangle_twist import (
+    CREASES,
+    INPUT,
+    LOCKED_SCHEMES,
+    MODE_OF,
+    RIGID_SCHEMES,
+    VERTICES,
+    Z1,
+    Z4,
+    TriangleTwist,
+    TwistAngles,
+    assignment,
+    check_types,
+    crease_pattern,
+    epsilon_formula,
+    example_angles,
+    loop_gain,
+    mu,
+    scheme_class,
+    sign_consistent_types,
+    tan_ratios,
+    verdict_table,
+)
+from sim_origami.kinematics.twist_6r import TwistSixR, compatible_angles, dh_rows
+from sim_origami.kinematics.vertex4 import Vertex4
+from sim_origami.report import write
+from sim_origami.scenes.triangle_twist import assigned  # (also registers `triangle-twist`)
+from sim_origami.simulate import simulate
+from sim_origami.tolerances import TOLERANCES
+from sim_origami.validation import validate
+
+DEG = np.pi / 180
+# Half a unit of the last printed decimal (degrees -> rad where the quantity is an angle).
+DEC4 = 5e-5 * DEG
+DEC3 = 5e-4 * DEG
+# The servo's force range (mjcf_templates/defaults.xml, class servo), N m.
+SERVO_LIMIT = 20.0
+FIG_3_5 = (55.0, 50.0, 50.0, 45.0)
+SIX_R = ("A3", "B2", "B3", "C2", "C3", "A2")  # joints z1..z6 of the 6R (digest M3)
+
+
+def angles_deg(alpha, beta, gamma, delta, epsilon) -> TwistAngles:
+    return TwistAngles(*(float(v) * DEG for v in (alpha, beta, gamma, delta, epsilon)))
+
+
+def vertex_folds(q: np.ndarray, v: str) -> np.ndarray:
+    """Fold angles (n, 4) of vertex v's creases z1..z4 from joint angles (n, 9) in CREASES order."""
+    return q[:, [CREASES.index(n) for n in (Z1[v], f"{v}2", f"{v}3", Z4[v])]]
+
+
+# --- M1: the degree-4 vertex (validation cases 1, 2; digest correction 1) ---------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("mode", "published"), [("S", (0.3, -0.7621, -0.3, -0.7621)), ("C", (0.3, -0.1960, 0.3, 0.1960))]
+)
+def test_case1_2_spherical_4r_vertex_families(mode, published):
+    """Vertex-I (eqn 3-3a) is our mode S, Vertex-II (3-3b) mode C: same D-H twists, same signs."""
+    a12, a23 = 0.6, 1.2
+    got = Vertex4([a12, a23, np.pi - a12, np.pi - a23]).joint_angles(mode, 0.3)[0]
+    np.testing.assert_allclose(got, published, atol=5e-5, rtol=0)  # 4 decimals (rad): measured <= 4.8e-5
+    # eqn 3-4a, fourth ratio CORRECTED (digest 2.1): tan(phi4/2)/tan(phi1/2) = s-/s+ with phi = pi - |theta|
+    if mode == "S":
+        ratio = np.tan((np.pi - abs(got[3])) / 2) / np.tan((np.pi - abs(got[0])) / 2)
+        assert ratio == pytest.approx(np.sin((a23 - a12) / 2) / np.sin((a23 + a12) / 2), rel=1e-13)  # 4.4e-16
+        assert abs(ratio - 1.0) > 0.5  # the printed s-/s- = 1
+
+
+# --- M2: pattern, schemes, verdicts -----------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("scheme", RIGID_SCHEMES + LOCKED_SCHEMES)
+def test_pattern_vertices_have_the_seed_sectors_and_assignment_obeys_maekawa(scheme):
+    types, angles = example_angles(scheme)
+    pattern = crease_pattern(angles, 1.0, 0.5, types)
+    assert (len(pattern.faces), len(pattern.creases), len(pattern.interior_vertices())) == (7, 9, 3)
+    letters = {c.name: c.assignment for c in pattern.creases}
+    for k, v in enumerate(pattern.interior_vertices()):
+        around = pattern.vertex_creases(v)
+        names = [pattern.creases[i].name for i, _ in around]
+        first = names.index(Z1[VERTICES[k]])
+        d = [around[(first + i) % 4][1] for i in range(4)]  # z1..z4, counter-clockwise
+        sectors = [np.arctan2(np.cross(d[i], d[(i + 1) % 4])[2], d[i] @ d[(i + 1) % 4]) % (2 * np.pi) for i in range(4)]
+        c, p = angles.corners_and_pleats()[k]
+        np.testing.assert_allclose(sectors, [p, np.pi - c, np.pi - p, c], atol=1e-14, rtol=0)  # eqn 3-5
+        mv = [letters[names[(first + i) % 4]] for i in range(4)]
+        assert abs(mv.count("M") - mv.count("V")) == 2  # Maekawa (eqn 2-21)
+        odd = {"S": 0, "P": 1, "Q": 2, "R": 3}[types[k]]  # the crease that folds opposite to the other three
+        assert mv.count(mv[odd]) == 1
+
+
+def test_case3_compatible_epsilon_against_the_seed():
+    """Eqn 3-12 (Fig. 3-5, scheme SSP) and the PSR formula; 4 printed decimals (deg)."""
+    for (alpha, beta, gamma, delta), published in (((55, 50, 50, 45), 35.4368), ((55, 50, 45, 45), 33.5166)):
+        eps = epsilon_formula("SSP", alpha * DEG, beta * DEG, gamma * DEG, delta * DEG)
+        assert abs(eps - published * DEG) <= DEC4  # ours 35.436776, 33.516640
+    assert abs(epsilon_formula("PSR", 30 * DEG, 80 * DEG, 90 * DEG, 45 * DEG) - 7.0355 * DEG) <= DEC4  # 7.035508
+    eps = epsilon_formula("PSR", 60 * DEG, 60 * DEG, 90 * DEG, 45 * DEG)
+    assert abs(eps - (-25.5288) * DEG) <= DEC4 and eps < 0  # -25.528779: no compatible pattern
+    # Fig. 3-5: its only motion is SSP, with the digest's M/V (AB, BC, CA, A2, A3, B2, B3, C2, C3)
+    model = TriangleTwist(angles_deg(*FIG_3_5, 35.436775581528764))
+    assert [b.name for b in model.branches()] == ["SSP"]
+    assert assignment(model.angles, "SSP") == "VMMVVMMVM"
+    # [NEW] the PSR example realises RSP (A has gamma > alpha: type R), a rotation of PRS
+    angles = angles_deg(30, 80, 90, 45, 7.035508176743184)
+    assert TriangleTwist(angles).branches()[0].name == "RSP" and scheme_class("RSP") == "PRS"
+
+
+def test_verdict_table_reproduces_the_seed_eight_rigid_four_never():
+    table = verdict_table()
+    assert [v.name for v in table] == list(RIGID_SCHEMES + LOCKED_SCHEMES)
+    for v in table:
+        rigid = v.name in RIGID_SCHEMES
+        assert v.rigid_analytic == v.rigid_numeric == rigid
+        assert scheme_class(v.types) == v.name and v.mixed == rigid  # locked: every mu on one side of 1
+        if rigid:
+            assert abs(np.prod(v.mu) - 1.0) <= 1e-12  # eqn 3-11; measured <= 4.4e-16
+            assert v.residual <= 1e-13  # signed path closed to <= 5.7e-15 (PQQ)
+        else:
+            assert abs(np.prod(v.mu) - 1.0) >= 0.5  # measured 24.4 (PPP), 2.24, 0.961, 0.666 (QSS)
+            assert v.residual >= 1e-5  # stalls: measured 1.1e-3, 3.9e-4, 1.3e-3, 1.2e-4 (QSS)
+    # M/V split (up to a global flip): the prose's 6M/3V for PQQ and QQQ, not Table 3-1's 5M/4V (digest 2.25)
+    split = {v.name: sorted((v.assignment.count("M"), v.assignment.count("V"))) for v in table}
+    assert split["PQQ"] == split["QQQ"] == [3, 6] and split["PSS"] == [4, 5]
+
+
+def test_loop_gain_is_the_inverse_mu_product_and_locked_classes_never_reach_one():
+    rng = np.random.default_rng(3)
+    checked = 0
+    for _ in range(200):
+        a, b = rng.uniform(10, 160, 2)
+        if a + b > 170:
+            continue
+        angles = angles_deg(a, b, *rng.uniform(5, 175, 3))
+        for types in sign_consistent_types(angles):
+            product = np.prod([mu(t, c, p) for t, (c, p) in zip(types, angles.corners_and_pleats(), strict=True)])
+            assert loop_gain(angles, types) == pytest.approx(1.0 / product, rel=1e-12)  # measured <= 9.3e-14
+            assert product > 0  # each realised type's mu is positive (eqns 3-17)
+            if scheme_class(types) in LOCKED_SCHEMES:
+                assert abs(product - 1.0) > 1e-3  # measured >= 0.45
+            checked += 1
+    assert checked > 300
+
+
+def test_case4_all_pleats_parallel_never_folds():
+    """gamma = delta = epsilon: eqn 3-16 (with the digest's two restored factors) and no scheme with gain 1."""
+    rng = np.random.default_rng(7)
+    for _ in range(100):
+        a, b = rng.uniform(5, 170, 2)
+        g = rng.uniform(5, 175)
+        if a + b > 175:
+            continue
+        a, b, g = a * DEG, b * DEG, g * DEG
+        num = np.cos((a + g) / 2) * np.cos((b + g) / 2) * np.cos((a + b - g) / 2)
+        den = np.cos((a - g) / 2) * np.cos((b - g) / 2) * np.cos((a + b + g) / 2)
+        restored = 2 * np.sin(a / 2) * np.sin(b / 2) * np.sin(g / 2) * np.sin((a + b) / 2)
+        assert num - den == pytest.approx(restored, abs=1e-14)  # measured <= 2.4e-16
+        try:
+            angles = TwistAngles(a, b, g, g, g)
+        except ParameterError:
+            continue  # a pleat collinear with an edge
+        assert all(abs(loop_gain(angles, t) - 1.0) > 1e-6 for t in sign_consistent_types(angles))  # >= 1.1e-3
+    # numerically: none of the four sign-consistent schemes of one parallel pattern folds
+    angles = angles_deg(60, 50, 40, 40, 40)
+    loops = crease_pattern(angles, 1.0, 0.5).loop_system()
+    for types in sign_consistent_types(angles):
+        rigid, residual = foldable_with_signs(loops, np.sign(tan_ratios(angles, types)), CREASES.index(INPUT))
+        assert not rigid and residual >= 1e-6  # stalls at 1.3e-2 (PPP) down to 2.6e-5 (SPS)
+
+
+@pytest.mark.parametrize("scheme", RIGID_SCHEMES)
+def test_closed_form_closes_matches_the_numeric_solve_and_the_vertex_modes(scheme):
+    types, angles = example_angles(scheme)
+    model = TriangleTwist(angles, 1.0, 0.5)
+    loops = model.loop_system()
+    q = model.joint_angles(types, np.linspace(-np.pi, np.pi, 1001))
+    assert np.max(loops.residual_norm(q)) <= TOLERANCES.closed_form_residual  # measured <= 2.1e-15
+    assert np.max(np.abs(np.abs(q[[0, -1]]) - np.pi)) <= 1e-15  # every crease folds flat at x = +-pi
+    for v, mode in zip(VERTICES, (MODE_OF[t] for t in types), strict=True):
+        r1, r2, r3, r4 = vertex_folds(q, v).T
+        sign = 1.0 if mode == "C" else -1.0  # C: rho3 = rho1, rho4 = -rho2; S: rho3 = -rho1, rho4 = rho2
+        assert np.max(np.abs(wrap(r3 - sign * r1))) <= 1e-14 and np.max(np.abs(wrap(r4 + sign * r2))) <= 1e-14
+    x = np.linspace(0.3, 2.8, 60)
+    q = model.joint_angles(types, x)
+    numeric = loops.follow(q[0], CREASES.index(INPUT), x)
+    assert np.max(np.abs(wrap(numeric - q))) <= TOLERANCES.closed_form_rad  # measured <= 1.2e-14
+    assert loops.mobility(np.zeros(9)) == 3 and loops.mobility(q[0]) == 1  # flat: 9 - rank 6
+    # the seed's 1-DOF kinematics tan(phi4/2) = mu tan(phi1/2) at every vertex, phi = pi - |rho|
+    for k, v in enumerate(VERTICES):
+        f1, f4 = (np.pi - np.abs(vertex_folds(q, v)[:, i]) for i in (0, 3))
+        m = mu(types[k], *angles.corners_and_pleats()[k])
+        np.testing.assert_allclose(np.tan(f4 / 2), m * np.tan(f1 / 2), rtol=1e-12)  # measured <= 2.9e-15
+
+
+def test_validate_every_rigid_scheme():
+    for k, scheme in enumerate(RIGID_SCHEMES, start=1):
+        report = validate(scenes.get("triangle-twist").build(scheme=float(k)))
+        assert report.passed, (scheme, [v.name for r in report.runs for v in r.verdicts if not v.passed])
+        (run,) = report.runs
+        assert scheme_class(run.requested) == scheme and run.followed == run.requested and run.flips == 0
+        # fast preset, 8x sweep over 0.5..2.4 rad: measured <= 2.8e-8 (QSR); projection <= 1.2e-14
+        assert run.dynamic_path.max_error() <= 1e-7
+        assert run.mobility["start"]["numeric"] == run.mobility["start"]["mujoco"] == 1
+        if scheme == "PSS":  # the seed's Fig. 3-5: its simulated motion as a FOLD file closes the pattern's loops
+            fold = read_fold(write(report, "out")["fold"])
+            assert fold.pattern.loop_system().residual_norm(fold.frames).max() <= TOLERANCES.fast_residual_m  # 1.3e-9
+
+
+def test_locked_scheme_cannot_leave_flat_in_mujoco_the_rigid_one_can():
+    """Fig. 3-5 angles with couplings imposing PPP (never rigid, gain 1.3e-3), PSS (gain 0.134 here) or SSP (rigid)."""
+    angles = TriangleTwist(angles_deg(*FIG_3_5, 35.436775581528764)).angles
+    for types, locked in (("PPP", True), ("PSS", True), ("SSP", False)):
+        scene = assigned(types, angles)
+        run = simulate(scene, "SSP", start=0.0, stop=1.0, drive="servo", hold=1.0)  # "SSP": the flat start pose
+        x = run.q[:, scene.mechanism.joint_index(INPUT)]
+        result = assess(x, run.target, run.drive_force, SERVO_LIMIT, float("nan"), 0.0)
+        assert result.stopped == result.drive_saturated == locked
+        if locked:
+            # the soft couplings give way under 20 N m: any hinge measured 3.3e-4 (PPP), 1.3e-3 (PSS) rad
+            assert np.max(np.abs(run.q)) <= 1e-2
+        else:  # from flat (a singular pose), drive force <= 0.015 N m: measured 6.1e-9
+            assert compare(scene, "SSP", run.q).max_error() <= TOLERANCES.fast_rad
+
+
+# --- M3: the derived 6R linkages (validation cases 5, 6; digest corrections 4 to 6) ------------------------------
+
+
+def test_case5_dh_data_and_motion_against_the_seed():
+    model = TwistSixR(compatible_angles(*(v * DEG for v in FIG_3_5)))
+    twists = wrap([r.alpha for r in model.rows])
+    np.testing.assert_allclose(twists, np.array([-5, 130, -9.5632, 105, 14.5632, 125]) * DEG, atol=DEC4, rtol=0)
+    R = [r.R for r in model.rows]
+    np.testing.assert_allclose(R, [8.11314, -8.789374, 2.959639, -3.609461, -2.416104, 1.828703], atol=5e-6, rtol=0)
+    assert all(r.a == 0 for r in model.rows) and abs(model.bricard_sum()) <= 1e-13  # eqn 2-14: 1.4e-14
+    assert (model.ka, model.kb) == pytest.approx((1.641116, 1.478778), abs=5e-7)
+    assert model.ka * model.kb == pytest.approx(2.4268, abs=5e-5)
+    published = {30: (-66.0696, -47.4736), 60: (-108.9688, -86.9116), 90: (-135.2111, -117.2886),
+                 120: (-153.2360, -141.2359), 150: (-167.3989, -161.4540)}  # fmt: skip
+    loops = model.loop_system()
+    for t1, (t2, t3) in published.items():
+        q = model.joint_angles("SSP", t1 * DEG)
+        np.testing.assert_allclose(q[0], np.array([t1, t2, t3, t1, t2, -t3]) * DEG, atol=DEC4, rtol=0)
+        assert loops.residual_norm(q)[0] <= 1e-14  # digest: <= 4e-15; measured <= 3.3e-15
+    # eqn 3-39 as printed (tan(theta2/2) = +Ka Kb tan(theta1/2), ..., theta4 = -theta1) misses closure
+    x = np.linspace(-3, 3, 61)
+    t2, t3 = 2 * np.arctan(model.ka * model.kb * np.tan(x / 2)), 2 * np.arctan(model.ka * np.tan(x / 2))
+    assert np.max(loops.residual_norm(np.stack([x, t2, t3, -x, t2, t3], -1))) >= 1.0  # measured 1.88
+
+
+@pytest.mark.parametrize(
+    ("joint", "published"),
+    [(0, (17.19, -40.28, -27.86, 17.19, -40.28, 27.86)), (1, (-7.13, 17.19, 11.67, -7.13, 17.19, -11.67)),
+     (2, (-10.52, 25.20, 17.19, -10.52, 25.20, -17.19)), (5, (10.52, -25.20, -17.19, 10.52, -25.20, 17.19))],
+)  # fmt: skip
+def test_case5_one_held_joint_admits_one_configuration(joint, published):
+    model = TwistSixR(compatible_angles(*(v * DEG for v in FIG_3_5)))
+    found = model.loop_system().assemblies(joint, 0.3, starts=32, seed=1)
+    assert len(found) == 1  # a single branch: every random start lands on the same pose
+    np.testing.assert_allclose(found[0], np.array(published) * DEG, atol=0.005 * DEG, rtol=0)  # 2 decimals: <= 0.0043
+    # and it is the closed form's pose at the theta1 it has
+    assert np.max(np.abs(wrap(model.joint_angles("SSP", found[0][0])[0] - found[0]))) <= 1e-12
+
+
+def test_case6_parallel_pleats_the_new_6r():
+    model = TwistSixR(compatible_angles(55 * DEG, 50 * DEG, 45 * DEG, 45 * DEG))
+    assert model.angles.epsilon == pytest.approx(33.5166 * DEG, abs=DEC4)
+    twists = wrap([r.alpha for r in model.rows])
+    np.testing.assert_allclose(twists, np.array([0, 130, -11.4834, 105, 11.4834, 125]) * DEG, atol=DEC4, rtol=0)
+    R = [r.R for r in model.rows]
+    np.testing.assert_allclose(R, [0, -0.707107, 2.352154, -3.012110, -2.816828, 2.199659], atol=5e-7, rtol=0)
+    assert model.rows[0].a == pytest.approx(0.707107, abs=5e-7)
+    assert model.bricard_sum() == pytest.approx(4.685016, abs=5e-7)  # with R1 = 0 (digest §6.2)
+    assert (model.ka, model.ka * model.kb) == pytest.approx((1.5498, 2.2918), abs=5e-5)
+    np.testing.assert_allclose(model.joint_angles("SSP", -np.pi / 2)[0], np.array([-90, 90, 0, 0, 0, 0]) * DEG,
+                               atol=1e-15)  # fmt: skip
+    published = np.array([28.648, -60.977, -138.111, 118.648, -150.977, 138.111]) * DEG
+    np.testing.assert_allclose(model.joint_angles("SSP", 0.5)[0], published, atol=DEC3, rtol=0)
+
+
+@pytest.mark.parametrize("angles", [FIG_3_5, (55, 50, 45, 45), (55, 50, 40, 45), (55, 50, 60, 30), (70, 40, 30, 35)])
+def test_6r_is_the_pattern_without_its_triangle(angles):
+    """The pattern's SSP pleat folds (+ the D-H flat offsets) are the 6R's joints: the 6R closed form, the printed
+    D-H data and the crease pattern agree. With gamma < delta or delta < epsilon the seed's absolute values in
+    eqn 3-38 miss closure [NEW]; the signed offsets close."""
+    six = TwistSixR(compatible_angles(*(v * DEG for v in angles)))
+    origami = TriangleTwist(six.angles)
+    x = np.linspace(-3.0, 3.0, 61)
+    assert [b.name for b in origami.branches()] == [six.branch_name]
+    rho = dict(zip(CREASES, origami.joint_angles(six.branch_name, x).T, strict=True))
+    theta = np.stack([rho[c] for c in SIX_R], -1) + six.offsets
+    assert np.max(six.loop_system().residual_norm(theta)) <= 1e-14  # measured <= 4.4e-15
+    closed = six.joint_angles(six.branch_name, theta[:, 0])
+    assert np.max(np.abs(wrap(closed - theta))) <= 1e-14  # measured <= 8.9e-16
+    numeric = six.loop_system().follow(closed[35], 0, theta[35:55, 0])
+    assert np.max(np.abs(wrap(numeric - closed[35:55]))) <= TOLERANCES.closed_form_rad  # measured <= 2.3e-14
+    printed = tuple(
+        DHRow(np.copysign(abs(r.R), s), r.a, r.alpha) for r, s in zip(six.rows, (1, -1, 1, -1, -1, 1), strict=True)
+    )
+    g, d, e = six.angles.gamma, six.angles.delta, six.angles.epsilon
+    if g >= d > e and g > e:
+        assert np.max(dh_loop(printed).residual_norm(theta)) <= 1e-14
+    else:
+        assert np.max(dh_loop(printed).residual_norm(theta)) >= 1.0  # measured 1.53 to 1.73
+    assert six.loop_system().mobility(np.zeros(6) + six.offsets) == 3  # flat: rank 3 of 6
+
+
+def test_fig35_modes_always_have_a_compatible_epsilon():
+    """[NEW] Eqn 3-12 gives epsilon in (0, pi) for any corners and pleats: modes S, S, C always fold (module note)."""
+    rng = np.random.default_rng(11)
+    names = set()
+    for _ in range(300):
+        a, b = rng.uniform(5, 170, 2)
+        if a + b > 175:
+            continue
+        try:
+            six = TwistSixR(compatible_angles(a * DEG, b * DEG, *rng.uniform(5, 175, 2) * DEG))
+        except ParameterError:
+            continue  # collinear creases somewhere
+        assert 0 < six.angles.epsilon < np.pi
+        assert loop_gain(six.angles, six.branch_name) == pytest.approx(1.0, abs=5e-12)  # measured <= 4.6e-13
+        names.add(six.branch_name)
+    assert {"SSP", "QSR", "SQR", "QQP"} <= names  # the same modes realise other types elsewhere
+
+
+@pytest.mark.parametrize("gamma", [50.0, 45.0])
+def test_validate_6r(gamma):
+    report = validate(scenes.get("triangle-twist-6r").build(gamma=gamma * DEG))
+    assert report.passed, [v.name for r in report.runs for v in r.verdicts if not v.passed]
+    (run,) = report.runs
+    # fast preset, 8x sweep over psi1 = 0.5..2.4 rad: measured 2.2e-8 (gamma 50), 1.6e-8 (gamma = delta)
+    assert run.dynamic_path.max_error() <= 1e-7 and run.followed == "SSP"
+
+
+# --- bad input ---------------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("values", "match"),
+    [
+        ((0, 50, 50, 45, 35), "alpha = 0 deg; it must lie in"),
+        ((55, 50, 50, 180, 35), "delta = 180 deg; it must lie in"),
+        ((100, 80, 50, 45, 35), "alpha \\+ beta = 180 deg; a triangle needs"),
+        ((55, 50, 55, 45, 35), "vertex A: pleat angle 55 deg equals c = 55 deg"),
+        ((55, 50, 50, 130, 35), "vertex B: pleat angle 130 deg equals 180 - c = 130 deg"),
+    ],
+)
+def test_bad_angles_are_refused(values, match):
+    with pytest.raises(ParameterError, match=match):
+        angles_deg(*values)
+
+
+def test_bad_schemes_and_patterns_are_refused():
+    angles = angles_deg(*FIG_3_5, 35.436775581528764)
+    with pytest.raises(ParameterError, match="scheme 'PX': give one type, P, Q, R or S"):
+        check_types("PX")
+    with pytest.raises(ParameterError, match=r"scheme 'PPS' has 1 vertices of type R or S; .* even number"):
+        check_types("PPS")
+    with pytest.raises(ParameterError, match=r"vertex A \(corner 55 deg, pleat 50 deg\) is type S, not Q"):
+        tan_ratios(angles, "QQP")
+    with pytest.raises(ParameterError, match="unknown scheme 'XYZ'"):
+        example_angles("XYZ")
+    with pytest.raises(ParameterError, match="pleat = 0 m; it must be positive"):
+        crease_pattern(angles, 1.0, 0.0)
+    with pytest.raises(ParameterError, match="no M-V scheme folds rigidly at these angles: loop gains"):
+        TriangleTwist(angles_deg(*FIG_3_5, 30.0))
+    model = TriangleTwist(angles)
+    with pytest.raises(ParameterError, match="unknown branch 'PSS'"):
+        model.joint_angles("PSS", 0.5)
+    with pytest.raises(DomainError, match=r"rhoAB = 3\.2 rad is outside branch 'SSP'"):
+        model.joint_angles("SSP", 3.2)
+
+
+@pytest.mark.parametrize(
+    ("scene", "values", "match"),
+    [
+        ("triangle-twist", {"scheme": 0.0}, "scheme = 0; it must be a whole number from 1 to 8"),
+        ("triangle-twist", {"scheme": 2.5}, "scheme = 2.5; it must be a whole number"),
+        ("triangle-twist", {"d": -1.0}, "d = -1 m; it must be positive"),
+        ("triangle-twist-6r", {"gamma": 0.0}, r"gamma = 0 deg; it must lie in \(0, 180\) deg"),
+        ("triangle-twist-6r", {"gamma": 125 * DEG}, "vertex A: pleat angle 125 deg equals 180 - c = 125 deg"),
+        ("triangle-twist-6r", {"d": 0.0}, "d = 0 m; it must be positive"),
+    ],
+)
+def test_bad_scene_parameters_are_refused(scene, values, match):
+    with pytest.raises(ParameterError, match=match):
+        scenes.get(scene).build(**values)
+
+
+def test_6r_with_a_second_parallel_pair_is_refused():
+    with pytest.raises(ParameterError, match="delta = epsilon = 40 deg: two pleats of one panel are parallel"):
+        dh_rows(angles_deg(55, 50, 50, 40, 40), 1.0)
