@@ -70,6 +70,13 @@ class CreasePattern:
                 out[a, b] = f
         return out
 
+    def crease(self, name: str) -> Crease:
+        """The crease called `name`; ParameterError listing the names otherwise."""
+        for crease in self.creases:
+            if crease.name == name:
+                return crease
+        raise ParameterError(f"unknown crease {name!r}; creases are {[c.name for c in self.creases]}")
+
     def crease_faces(self, crease: Crease) -> tuple[str, str]:
         """(right face, left face) of a crease: the joint's parent and child."""
         left = self._edge_face.get((crease.start, crease.end))

@@ -9,8 +9,8 @@ all six rigid mode combinations (the kinematics' branches); the default sweep st
 
 from ..errors import ParameterError
 from ..kinematics.corrugated import CorrugatedUnit
-from ..origami import pattern_mechanism
 from .base import Param, Scene, register
+from .patterns import pattern_scene
 
 PARAMS = (
     Param("unit", "", 0.0, "which unit: 0 = P (parallelogram ABCD), 1 = Q (parallelogram ABEF)"),
@@ -41,18 +41,15 @@ def build(unit: float, alpha: float, beta: float, gamma: float, delta: float, L1
     name = "PQ"[int(unit)]
     kinematics = CorrugatedUnit(name, (alpha, beta, gamma, delta), (L1, L2, L3))
     drive = kinematics.input_name.removeprefix("rho")
-    mechanism = pattern_mechanism(kinematics.pattern, root=name, keep=(drive,))
     params = {"unit": unit, "alpha": alpha, "beta": beta, "gamma": gamma, "delta": delta, "L1": L1, "L2": L2, "L3": L3}
-    return Scene(
-        name="corrugated-unit",
-        params=params,
-        kinematics=kinematics,
-        mechanism=mechanism,
-        loop_joints=kinematics.model.crease_names,
-        drive_joint=drive,
-        drive_scale=1.0,
+    return pattern_scene(
+        "corrugated-unit",
+        params,
+        kinematics,
+        kinematics.pattern,
+        drive=drive,
         path=PATH,
+        root=name,
         sweep_time_scale=SWEEP_TIME_SCALE,
         notes=f"unit {name}; hinge qpos = fold angle rho (> 0 valley from +z); no M/V joint limits",
-        pattern=kinematics.pattern,
     )

@@ -12,8 +12,8 @@ import numpy as np
 from ..errors import ParameterError
 from ..fold import read_fold
 from ..kinematics.numeric_pattern import PatternPath
-from ..origami import pattern_mechanism
 from .base import Scene
+from .patterns import pattern_scene
 
 # The default sweep runs from this fraction of the folded state's input to the state.
 SWEEP_FROM = 0.3
@@ -44,11 +44,13 @@ def fold_scene(path: str | Path, input_crease: str | None = None) -> Scene:
     names = [c.name for c in pattern.creases]
     drive = input_crease or names[int(np.argmax(np.abs(target)))]
     kinematics = PatternPath(pattern, drive, target)
-    mechanism = pattern_mechanism(pattern, root=pattern.crease_faces(pattern.creases[names.index(drive)])[0],
-                                  keep=(drive,))  # fmt: skip
     x_target = float(target[names.index(drive)])
-    return Scene(
-        name=f"fold-{Path(path).stem}", params={}, kinematics=kinematics, mechanism=mechanism, loop_joints=tuple(names),
-        drive_joint=drive, drive_scale=1.0, path=(SWEEP_FROM * x_target, x_target), pattern=pattern,
+    return pattern_scene(
+        f"fold-{Path(path).stem}",
+        {},
+        kinematics,
+        pattern,
+        drive=drive,
+        path=(SWEEP_FROM * x_target, x_target),
         notes=f"from {Path(path).name}: numeric reference traced through its folded state, input {drive}",
-    )  # fmt: skip
+    )

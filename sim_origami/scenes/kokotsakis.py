@@ -10,8 +10,8 @@ identical (mirrored) vertices [RECON].
 
 from ..errors import ParameterError
 from ..kinematics.kokotsakis import INPUT, Kokotsakis, example
-from ..origami import pattern_mechanism
 from .base import Param, Scene, register
+from .patterns import pattern_scene
 
 PARAMS = (
     Param("case", "", 1.0, "1 = Example 1 (eqn 2-34), 2 = Example 2 (eqn 2-38), 3 = two-fold case [RECON]"),
@@ -41,11 +41,9 @@ def _case(value: float) -> int:
 def build(case: float, outer: float) -> Scene:
     number = _case(case)
     kinematics = Kokotsakis(example(number), outer=outer)
-    mechanism = pattern_mechanism(kinematics.pattern, root="central", keep=(INPUT,))
-    return Scene(
-        name="kokotsakis", params={"case": float(number), "outer": outer}, kinematics=kinematics,
-        mechanism=mechanism, loop_joints=kinematics.creases, drive_joint=INPUT, drive_scale=1.0, path=PATHS[number],
-        sweep_time_scale=SWEEP_TIME_SCALE[number], pattern=kinematics.pattern,
+    return pattern_scene(
+        "kokotsakis", {"case": float(number), "outer": outer}, kinematics, kinematics.pattern, drive=INPUT,
+        path=PATHS[number], root="central", sweep_time_scale=SWEEP_TIME_SCALE[number],
         notes="hinge qpos = fold angle rho (> 0 valley seen from +z); central panel fixed; one connect pair per "
               "vertex loop on a cut outer crease",
     )  # fmt: skip

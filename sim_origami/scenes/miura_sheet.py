@@ -7,8 +7,8 @@ vertex) is closed by two connects. The closed form is `kinematics.miura_sheet` (
 import numpy as np
 
 from ..kinematics.miura_sheet import MiuraSheet
-from ..origami import pattern_mechanism
 from .base import Param, Scene, register
+from .patterns import pattern_scene
 
 PARAMS = (
     Param("rows", "", 4, "panels along y (>= 2)"),
@@ -32,14 +32,16 @@ INSET = 0.05
           "vertical crease", PARAMS)  # fmt: skip
 def build(rows: float, cols: float, a: float, b: float, gamma: float) -> Scene:
     kinematics = MiuraSheet(rows, cols, a, b, gamma)
-    pattern = kinematics.pattern
-    drive = kinematics.input_crease
-    root = pattern.crease_faces(pattern.creases[[c.name for c in pattern.creases].index(drive)])[0]
-    mechanism = pattern_mechanism(pattern, root=root, keep=(drive,), collision_inset=INSET * min(a, b))
-    return Scene(
-        name="miura-sheet", params={"rows": rows, "cols": cols, "a": a, "b": b, "gamma": gamma},
-        kinematics=kinematics, mechanism=mechanism, loop_joints=tuple(c.name for c in pattern.creases),
-        drive_joint=drive, drive_scale=1.0, path=PATH, pattern=pattern, sweep_time_scale=SWEEP_TIME_SCALE,
+    params = {"rows": rows, "cols": cols, "a": a, "b": b, "gamma": gamma}
+    return pattern_scene(
+        "miura-sheet",
+        params,
+        kinematics,
+        kinematics.pattern,
+        drive=kinematics.input_crease,
+        path=PATH,
+        sweep_time_scale=SWEEP_TIME_SCALE,
+        collision_inset=INSET * min(a, b),
         self_contact=True,
-        notes=f"{int(rows)} x {int(cols)} panels; input {drive}",
-    )  # fmt: skip
+        notes=f"{int(rows)} x {int(cols)} panels; input {kinematics.input_crease}",
+    )

@@ -16,9 +16,9 @@ flat with the servo saturated; CCSS and CSCS reach the target with at most 0.14 
 """
 
 from ..creases import CreasePattern
-from ..kinematics.square_twist import CREASES, EDGES, INPUT, VERTICES, SquareTwist, check_modes, crease_pattern
-from ..origami import pattern_mechanism
+from ..kinematics.square_twist import EDGES, INPUT, VERTICES, SquareTwist, check_modes, crease_pattern
 from .base import Param, Scene, register
+from .patterns import pattern_scene
 
 PARAMS = (
     Param("alpha", "deg", 150.0, "sector angle between pleat 1 and square edge 2 at each vertex; 90 < alpha < 180"),
@@ -40,13 +40,9 @@ def _scene(
     couplings: tuple[tuple[str, str, float], ...],
     notes: str,
 ) -> Scene:
-    mechanism = pattern_mechanism(pattern, root=ROOT, keep=(INPUT,), couplings=couplings)
     params = {"alpha": kinematics.alpha, "side": kinematics.side, "pleat": kinematics.pleat}
-    return Scene(
-        name=name, params=params, kinematics=kinematics, mechanism=mechanism, loop_joints=CREASES,
-        drive_joint=INPUT, drive_scale=1.0, path=PATH, sweep_time_scale=SWEEP_TIME_SCALE, notes=notes,
-        pattern=pattern,
-    )  # fmt: skip
+    return pattern_scene(name, params, kinematics, pattern, drive=INPUT, path=PATH, root=ROOT, couplings=couplings,
+                         sweep_time_scale=SWEEP_TIME_SCALE, notes=notes)  # fmt: skip
 
 
 @register("square-twist", "square twist, zero thickness: four flat-foldable vertices round a square (seed 003 M9), "

@@ -14,7 +14,6 @@ Not registered: a locked sheet has nothing to validate; it serves blockage runs.
 
 from ..errors import ParameterError
 from ..kinematics.triangle_twist import (
-    CREASES,
     INPUT,
     RIGID_SCHEMES,
     VERTICES,
@@ -24,8 +23,8 @@ from ..kinematics.triangle_twist import (
     example_angles,
     modes_of,
 )
-from ..origami import pattern_mechanism
 from .base import Param, Scene, register
+from .patterns import pattern_scene
 
 PARAMS = (
     Param("scheme", "", 4.0, "rigid scheme class: " + ", ".join(f"{k + 1} {s}" for k, s in enumerate(RIGID_SCHEMES))),
@@ -51,12 +50,8 @@ def scheme_name(scheme: float) -> str:
 
 
 def _scene(name: str, kinematics: TriangleTwist, params: dict, couplings: tuple, notes: str) -> Scene:
-    mechanism = pattern_mechanism(kinematics.pattern, root=ROOT, keep=(INPUT,), couplings=couplings)
-    return Scene(
-        name=name, params=params, kinematics=kinematics, mechanism=mechanism, loop_joints=CREASES,
-        drive_joint=INPUT, drive_scale=1.0, path=PATH, sweep_time_scale=SWEEP_TIME_SCALE, notes=notes,
-        pattern=kinematics.pattern,
-    )  # fmt: skip
+    return pattern_scene(name, params, kinematics, kinematics.pattern, drive=INPUT, path=PATH, root=ROOT,
+                         couplings=couplings, sweep_time_scale=SWEEP_TIME_SCALE, notes=notes)  # fmt: skip
 
 
 @register("triangle-twist", "generalised triangle twist, zero thickness: three flat-foldable vertices round a "

@@ -13,10 +13,11 @@ interference for alpha <= 45 deg, so a contact "blockage" there would be an arte
 crease folds as its type in the cell, checked by the sheet's own closure at A, B and C vertices.
 """
 
-from ..kinematics.waterbomb import CREASES, Waterbomb
+from ..kinematics.waterbomb import Waterbomb
 from ..kinematics.waterbomb_sheet import WaterbombSheet
 from ..origami import pattern_mechanism
 from .base import Param, Scene, register
+from .patterns import pattern_scene
 
 ANGLES = (
     Param("alpha", "deg", 40.0, "design angle alpha (sector at A next to the vertical creases)"),
@@ -41,14 +42,19 @@ ROOT, DRIVE = "A12", "A4"
 
 
 def _scene(name: str, kinematics: Waterbomb, params: dict[str, float], notes: str) -> Scene:
-    mechanism = pattern_mechanism(
-        kinematics.pattern, root=ROOT, keep=(DRIVE,), couplings=tuple((a, b, 1.0) for a, b in kinematics.couplings)
+    couplings = tuple((a, b, 1.0) for a, b in kinematics.couplings)
+    return pattern_scene(
+        name,
+        params,
+        kinematics,
+        kinematics.pattern,
+        drive=DRIVE,
+        path=PATH,
+        root=ROOT,
+        couplings=couplings,
+        sweep_time_scale=SWEEP_TIME_SCALE,
+        notes=notes,
     )
-    return Scene(
-        name=name, params=params, kinematics=kinematics, mechanism=mechanism, loop_joints=CREASES,
-        drive_joint=DRIVE, drive_scale=1.0, path=PATH, sweep_time_scale=SWEEP_TIME_SCALE, notes=notes,
-        pattern=kinematics.pattern,
-    )  # fmt: skip
 
 
 @register("waterbomb-vertex", "symmetric waterbomb cell, zero thickness: two spherical 6R vertices (seed 000 M8), "
@@ -84,18 +90,22 @@ SHEET = (
 def build_sheet(alpha: float, beta: float, t: float, rows: float, cols: float) -> Scene:
     kinematics = WaterbombSheet(alpha, beta, t, rows, cols)
     pattern, drive = kinematics.pattern, kinematics.input_crease
-    root = pattern.crease_faces(pattern.creases[[c.name for c in pattern.creases].index(drive)])[0]
     # MuJoCo couples tree hinges only: each symmetry class is coupled to its first hinge in the spanning tree
     # (the cut creases follow from the closures).
-    tree = pattern_mechanism(pattern, root=root, keep=(drive,)).tree_joint_names()
+    tree = pattern_mechanism(pattern, root=pattern.crease_faces(pattern.crease(drive))[0], keep=(drive,))
     couplings = []
     for names in kinematics.classes().values():
-        kept = [n for n in names if n in tree]
+        kept = [n for n in names if n in tree.tree_joint_names()]
         couplings += [(n, kept[0], 1.0) for n in kept[1:]]
-    mechanism = pattern_mechanism(pattern, root=root, keep=(drive,), couplings=tuple(couplings))
-    return Scene(
-        name="waterbomb-sheet", params={"alpha": alpha, "beta": beta, "t": t, "rows": rows, "cols": cols},
-        kinematics=kinematics, mechanism=mechanism, loop_joints=tuple(c.name for c in pattern.creases),
-        drive_joint=drive, drive_scale=1.0, path=PATH, sweep_time_scale=SHEET_SWEEP_TIME_SCALE, pattern=pattern,
+    params = {"alpha": alpha, "beta": beta, "t": t, "rows": rows, "cols": cols}
+    return pattern_scene(
+        "waterbomb-sheet",
+        params,
+        kinematics,
+        pattern,
+        drive=drive,
+        path=PATH,
+        couplings=tuple(couplings),
+        sweep_time_scale=SHEET_SWEEP_TIME_SCALE,
         notes=f"{int(rows)} x {int(cols)} bases; {len(couplings)} symmetry couplings on tree hinges",
-    )  # fmt: skip
+    )

@@ -1,0 +1,37 @@
+"""Scenes built on a crease pattern: mechanism, loop joints and FOLD export all come from the pattern.
+
+The loop joints are the pattern's creases in their order (the kinematics' loop-joint order must be the same),
+the drive crease stays in the spanning tree, and the fixed body defaults to the face on its right.
+"""
+
+from ..creases import CreasePattern
+from ..kinematics.base import Kinematics
+from ..origami import pattern_mechanism
+from .base import Scene
+
+
+def pattern_scene(
+    name: str,
+    params: dict[str, float],
+    kinematics: Kinematics,
+    pattern: CreasePattern,
+    *,
+    drive: str,
+    path: tuple[float, float],
+    root: str | None = None,
+    couplings: tuple[tuple[str, str, float], ...] = (),
+    sweep_time_scale: float = 1.0,
+    notes: str = "",
+    collision_inset: float | None = None,
+    self_contact: bool = False,
+) -> Scene:
+    """A Scene whose mechanism is `pattern_mechanism(pattern)`, driven at crease `drive` (input = its fold angle)."""
+    root = root or pattern.crease_faces(pattern.crease(drive))[0]
+    mechanism = pattern_mechanism(
+        pattern, root=root, keep=(drive,), couplings=couplings, collision_inset=collision_inset
+    )
+    return Scene(
+        name=name, params=params, kinematics=kinematics, mechanism=mechanism,
+        loop_joints=tuple(c.name for c in pattern.creases), drive_joint=drive, drive_scale=1.0, path=path,
+        sweep_time_scale=sweep_time_scale, notes=notes, pattern=pattern, self_contact=self_contact,
+    )  # fmt: skip
