@@ -28,7 +28,7 @@ ORDER = (
     "compiler", "option", "size", "custom", "visual", "default", "asset", "worldbody",
     "contact", "equality", "actuator", "sensor", "keyframe",
 )  # fmt: skip
-PRESETS = ("fast", "accurate")
+PRESETS = ("fast", "stiff", "accurate")
 
 
 @dataclass(frozen=True)

@@ -153,7 +153,7 @@ def simulate(
     scene: Scene,
     branch: str,
     *,
-    preset: str = "fast",
+    preset: str | None = None,
     start: float | None = None,
     stop: float | None = None,
     seed: str = "closed",
@@ -171,8 +171,8 @@ def simulate(
     ----------
     branch : str
       Analytic branch to start on (seed 'closed') or to bias towards (seed 'flat').
-    preset : 'fast' or 'accurate'
-      Integrator, step, constraint stiffness and sweep duration (mjcf_templates/options/).
+    preset : 'fast', 'stiff' or 'accurate'
+      Integrator, step, constraint stiffness and sweep duration (mjcf_templates/options/); default the scene's.
     drive : 'equality' or 'servo'
       Kinematic tracking, or a force-limited position servo (blockage runs).
     contact : bool
@@ -184,6 +184,7 @@ def simulate(
       pose of another model, to see which branch this mechanism takes from it); the drive starts at
       its angle there.
     """
+    preset = preset or scene.preset
     default_start, default_stop = scene.branch_path(branch)
     start = default_start if start is None else start
     stop = default_stop if stop is None else stop
@@ -249,11 +250,12 @@ def simulate(
     )  # fmt: skip
 
 
-def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: str = "fast") -> Trajectory:
+def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: str | None = None) -> Trajectory:
     """
     Kinematic projection: at each input, Gauss-Newton on MuJoCo's equality residuals (efc_pos,
     efc_J rows of the closures) over the free hinges, continued from the previous solution.
     """
+    preset = preset or scene.preset
     model, data = compile_model(scene, ModelOptions(preset=preset))
     binds = Bindings(scene, model)
     drive_eq = model.equality(f"drive_{scene.drive_joint}").id

@@ -17,8 +17,8 @@ class Tolerances:
     # 5.3e-15 (Myard with a23 = 10 m).
     closed_form_residual: float = 1e-12
     # MuJoCo path error, preset fast (RK4 5 ms; 2 s sweeps, slower where a scene's sweep_time_scale
-    # says so), default sweeps of every scene: worst 1.1e-7 rad (waterbomb-vertex path I, 32x sweep), else
-    # 9.3e-8 (vertex4 odd1; run `validate --all`).
+    # says so), default sweeps of every scene with its own preset (fast or stiff, held to the same tolerance):
+    # worst 9.3e-8 rad (vertex4 odd1; run `validate --all`).
     # Non-default geometries measured: flat-foldable vertex branch S 2.1e-7, Myard alpha12 = 70 deg 1.6e-7.
     fast_rad: float = 1e-6
     # Preset accurate (RK4 0.1 ms, 8 s sweep x sweep_time_scale): every scene's default sweeps <= 8.4e-11
@@ -43,16 +43,18 @@ class Tolerances:
 
     def energy(self, preset: str) -> float:
         """Energy-drift tolerance (J) of a free run with this preset."""
-        return {"fast": self.fast_energy, "accurate": self.accurate_energy}[preset]
+        return {"fast": self.fast_energy, "stiff": self.fast_energy, "accurate": self.accurate_energy}[preset]
 
     def angle(self, mode: str) -> float:
-        """Path-error tolerance (rad) for a run mode: 'fast', 'accurate' or 'projection'."""
-        return {"fast": self.fast_rad, "accurate": self.accurate_rad, "projection": self.projection_rad}[mode]
+        """Path-error tolerance (rad) for a run mode: 'fast' or 'stiff' (held to the same), 'accurate', 'projection'."""
+        return {"fast": self.fast_rad, "stiff": self.fast_rad, "accurate": self.accurate_rad,
+                "projection": self.projection_rad}[mode]  # fmt: skip
 
     def residual(self, mode: str) -> float:
         """Closure-residual tolerance (m) for a run mode."""
         return {
             "fast": self.fast_residual_m,
+            "stiff": self.fast_residual_m,
             "accurate": self.accurate_residual_m,
             "projection": self.projection_residual_m,
         }[mode]

@@ -16,6 +16,7 @@ from .checks.branches import classify
 from .checks.paths import PathComparison, compare
 from .checks.verdict import Verdict
 from .errors import ParameterError
+from .mjcf import PRESETS
 from .scenes.base import Scene
 from .simulate import Trajectory, contact_input, mujoco_mobility, project, simulate, simulate_free
 from .tolerances import TOLERANCES
@@ -232,7 +233,7 @@ def run_free(scene: Scene, preset: str) -> tuple[dict, list[Verdict]]:
     return doc, verdicts
 
 
-def validate(scene: Scene, *, preset: str = "fast", branch: str | None = None, seed: str = "closed") -> Report:
+def validate(scene: Scene, *, preset: str | None = None, branch: str | None = None, seed: str = "closed") -> Report:
     """
     Cross-check a scene on one branch (or all of them).
 
@@ -241,8 +242,9 @@ def validate(scene: Scene, *, preset: str = "fast", branch: str | None = None, s
     ParameterError
       For an unknown branch or preset.
     """
-    if preset not in ("fast", "accurate"):
-        raise ParameterError(f"unknown preset {preset!r}; presets are fast, accurate")
+    preset = preset or scene.preset
+    if preset not in PRESETS:
+        raise ParameterError(f"unknown preset {preset!r}; presets are {', '.join(PRESETS)}")
     names = [branch] if branch else [b.name for b in scene.kinematics.branches()]
     for name in names:
         scene.kinematics.branch(name)

@@ -32,6 +32,7 @@ def run(args: argparse.Namespace) -> int:
     print(f"mechanism: {len(scene.mechanism.bodies)} bodies, {len(scene.mechanism.joints)} hinges, "
           f"root {scene.mechanism.root}, loops cut at "
           f"{', '.join(scene.mechanism.joints[i].name for i in scene.mechanism.cut_joints) or 'none'}")  # fmt: skip
+    print(f"preset: {scene.preset}, sweep {scene.sweep_time_scale:g}x the preset's duration")
     print("branches:")
     for b in kin.branches():
         lo, hi = b.domain

@@ -75,6 +75,9 @@ class Scene:
     # slower than the preset's; the soft closures' angle error falls as the square of the sweep time
     # (measured 4.0x per doubling on every scene). Each scene that sets it states its measured error.
     sweep_time_scale: float = 1.0
+    # The preset runs use unless told otherwise, chosen per scene from `scripts/preset_compare.py` ('fast' on
+    # single well-conditioned loops, 'stiff' on coupled or ill-conditioned multi-loop scenes).
+    preset: str = "fast"
     notes: str = ""
     pattern: CreasePattern | None = None
     self_contact: bool = False

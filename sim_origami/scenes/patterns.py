@@ -21,6 +21,7 @@ def pattern_scene(
     root: str | None = None,
     couplings: tuple[tuple[str, str, float], ...] = (),
     sweep_time_scale: float = 1.0,
+    preset: str = "fast",
     notes: str = "",
     collision_inset: float | None = None,
     self_contact: bool = False,
@@ -33,5 +34,5 @@ def pattern_scene(
     return Scene(
         name=name, params=params, kinematics=kinematics, mechanism=mechanism,
         loop_joints=tuple(c.name for c in pattern.creases), drive_joint=drive, drive_scale=1.0, path=path,
-        sweep_time_scale=sweep_time_scale, notes=notes, pattern=pattern, self_contact=self_contact,
+        sweep_time_scale=sweep_time_scale, preset=preset, notes=notes, pattern=pattern, self_contact=self_contact,
     )  # fmt: skip

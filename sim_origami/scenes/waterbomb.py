@@ -33,9 +33,11 @@ THICK = (
 # and near the flat bifurcation and the folded end (smallest closure singular value 0.09 -> 0.007 at -2.6)
 # their violation is amplified: fast, 2 s sweep, path I measured 2.0e-2 rad over -0.4..-2.6, 1.2e-4 over
 # -0.5..-1.8; the error falls as the square of the sweep time (1.8e-6 at 8x, 4.6e-7 at 16x, 1.1e-7 at 32x;
-# thick cell 2.7e-8 at 32x).
+# thick cell 2.7e-8 at 32x). The stiff preset (Euler 1.25 ms, closures 2.5 ms) does better at equal CPU: worst
+# branch 3.8e-7 at 4x, 9.5e-8 at 8x (cell and thick cell alike), so these scenes run stiff at 16x.
 PATH = (-0.5, -1.8)
-SWEEP_TIME_SCALE = 32.0
+PRESET = "stiff"
+SWEEP_TIME_SCALE = 16.0
 # The thick cell's closure is thin in the direction of its hinge offsets: with a = 0.02 m the projection's
 # angle error was 1.9e-13 rad (0.05 m: 2.8e-14) and the fast path error 5.6e-7 (0.05 m: 1.1e-7).
 ROOT, DRIVE = "A12", "A4"
@@ -53,6 +55,7 @@ def _scene(name: str, kinematics: Waterbomb, params: dict[str, float], notes: st
         root=ROOT,
         couplings=couplings,
         sweep_time_scale=SWEEP_TIME_SCALE,
+        preset=PRESET,
         notes=notes,
     )
 
@@ -77,8 +80,8 @@ def build_thick(alpha: float, beta: float, t: float, mu: float, a: float) -> Sce
 
 
 # The 2 x 2 sheet carries 18 couplings: fast at 32x measured 1.4e-7 .. 6.7e-7 rad over the four branches
-# (A-straight-B-degree4 worst), so it is swept twice as slowly again.
-SHEET_SWEEP_TIME_SCALE = 64.0
+# (A-straight-B-degree4 worst), 1.7e-7 at 64x; stiff 7.2e-7 at 4x, 1.8e-7 at 8x: stiff at 16x.
+SHEET_SWEEP_TIME_SCALE = 16.0
 SHEET = (
     Param("rows", "", 2, "rows of bases (>= 2)"),
     Param("cols", "", 2, "bases per row (>= 2)"),
@@ -107,5 +110,6 @@ def build_sheet(alpha: float, beta: float, t: float, rows: float, cols: float) -
         path=PATH,
         couplings=tuple(couplings),
         sweep_time_scale=SHEET_SWEEP_TIME_SCALE,
+        preset=PRESET,
         notes=f"{int(rows)} x {int(cols)} bases; {len(couplings)} symmetry couplings on tree hinges",
     )
