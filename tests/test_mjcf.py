@@ -40,7 +40,7 @@ def all_scenes():
 
 
 @pytest.mark.parametrize("name", scenes.names())
-@pytest.mark.parametrize("preset", ["fast", "accurate"])
+@pytest.mark.parametrize("preset", ["fast", "stiff", "accurate"])
 @pytest.mark.parametrize("drive", ["equality", "servo"])
 @pytest.mark.parametrize("render", [False, True])
 def test_generated_xml_compiles(name, preset, drive, render):
@@ -142,7 +142,7 @@ def test_render_option_adds_light_and_skybox_texture(scene):
 
 
 @pytest.mark.parametrize("scene", [*all_scenes(), thick_miura()], ids=[*scenes.names(), "thick"])
-@pytest.mark.parametrize("preset", ["fast", "accurate"])
+@pytest.mark.parametrize("preset", ["fast", "stiff", "accurate"])
 def test_gravity_is_disabled(scene, preset):
     model, _ = compiled(scene, preset=preset, contact=True)
     assert model.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_GRAVITY
@@ -212,7 +212,7 @@ def test_qpos_order_matches_the_compiled_hinge_addresses(scene):
     assert [model.jnt_qposadr[model.joint(j).id] for j in order] == list(range(model.nq))
 
 
-@pytest.mark.parametrize("preset", ["fast", "accurate"])
+@pytest.mark.parametrize("preset", ["fast", "stiff", "accurate"])
 def test_preset_sweep_duration_is_the_compiled_custom_numeric(preset):
     model, _ = compiled(all_scenes()[0], preset=preset)
     assert model.numeric("sweep_duration").data[0] == preset_duration(preset) > 0
@@ -221,3 +221,10 @@ def test_preset_sweep_duration_is_the_compiled_custom_numeric(preset):
 def test_unknown_preset_raises_naming_it():
     with pytest.raises(ValueError, match="turbo"):
         build_xml(all_scenes()[0], ModelOptions(preset="turbo"))
+
+
+def test_stiff_preset_is_semi_implicit_euler_with_closures_at_twice_its_step():
+    model, _ = compiled(scenes.get("waterbomb-vertex").build(), preset="stiff")
+    assert model.opt.integrator == mujoco.mjtIntegrator.mjINT_EULER and model.opt.timestep == 0.00125
+    closures = [i for i in range(model.neq) if model.equality(i).name.startswith(("close_", "couple_"))]
+    assert closures and all(model.eq_solref[i, 0] == 2 * model.opt.timestep for i in closures)

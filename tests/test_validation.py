@@ -9,6 +9,7 @@ from sim_origami import scenes
 from sim_origami.checks.paths import compare
 from sim_origami.checks.verdict import Verdict
 from sim_origami.errors import ParameterError
+from sim_origami.simulate import simulate
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
 
@@ -74,3 +75,10 @@ def test_validate_rejects_an_unknown_branch_naming_it():
 def test_validate_rejects_an_unknown_preset_naming_it():
     with pytest.raises(ParameterError, match="'turbo'"):
         validate(scenes.get("vertex4").build(), preset="turbo")
+
+
+def test_a_scene_runs_its_own_preset_unless_told_otherwise():
+    scene = scenes.get("waterbomb-thick").build()
+    assert scene.preset == "stiff"  # chosen by scripts/preset_compare.py (README, accuracy and speed)
+    run = simulate(scene, "line-symmetric")
+    assert run.preset == "stiff" and simulate(scene, "line-symmetric", preset="fast").preset == "fast"
