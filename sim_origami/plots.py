@@ -48,3 +48,39 @@ def plot_report(report: Report, path: str | Path) -> Path:
         fig.savefig(tmp, dpi=110, format="png")
     plt.close(fig)
     return Path(path)
+
+
+def plot_sweep(rows: list[dict], names: list[str], path: str | Path) -> Path:
+    """
+    A sweep's max angle error (rad, log): against the first parameter (one axis), or as a map over the first
+    two (later axes folded in by their worst value). Failed points are marked with a cross.
+    """
+    error = np.array([r["angle_error_max_rad"] for r in rows], dtype=float)
+    failed = np.array([not r["passed"] for r in rows])
+    x = np.array([r[names[0]] for r in rows], dtype=float)
+    fig, ax = plt.subplots(figsize=(6.5, 4.5), constrained_layout=True)
+    if len(names) == 1:
+        ax.semilogy(x, np.maximum(error, 1e-17), "o-", ms=3)
+        ax.plot(x[failed], np.full(failed.sum(), np.nanmax(error, initial=1.0)), "rx", label="failed")
+        ax.set_xlabel(names[0])
+        ax.set_ylabel("max angle error (rad)")
+    else:
+        y = np.array([r[names[1]] for r in rows], dtype=float)
+        xs, ys = np.unique(x), np.unique(y)
+        grid = np.full((len(ys), len(xs)), np.nan)
+        for xi, yi, e in zip(x, y, error, strict=True):
+            i, j = np.searchsorted(ys, yi), np.searchsorted(xs, xi)
+            if np.isfinite(e):
+                grid[i, j] = e if np.isnan(grid[i, j]) else max(grid[i, j], e)
+        image = ax.pcolormesh(xs, ys, np.log10(grid), shading="nearest")
+        fig.colorbar(image, ax=ax, label="log10 max angle error (rad)")
+        ax.plot(x[failed], y[failed], "rx", label="failed")
+        ax.set_xlabel(names[0])
+        ax.set_ylabel(names[1])
+    if failed.any():
+        ax.legend(fontsize=8)
+    ax.set_title(f"{len(rows)} points, {int(failed.sum())} failed", fontsize=10)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=110, format="png")
+    plt.close(fig)
+    return Path(path)

@@ -9,9 +9,9 @@ import sys
 
 from .. import __version__
 from ..errors import SimOrigamiError
-from . import analytic, bench, describe, list_scenes, validate
+from . import analytic, bench, describe, list_scenes, sweep, validate
 
-COMMANDS = (list_scenes, describe, analytic, validate, bench)
+COMMANDS = (list_scenes, describe, analytic, validate, sweep, bench)
 
 
 class _Parser(argparse.ArgumentParser):

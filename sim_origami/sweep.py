@@ -1,0 +1,165 @@
+"""Parameter sweeps: one light cross-check per grid point, in parallel, as a table.
+
+Each point builds the scene from command-line units (degrees, metres) and, on every branch, checks the closed
+form's loop residual and runs MuJoCo with the scene's preset over its default sweep (path error against the
+closed form, closure gap, branch followed); the numeric continuation, projection and bifurcation study of a
+full `validate` are left out so that thousands of points stay cheap. A point that fails (bad geometry, a
+linkage that cannot be assembled, a MuJoCo warning) is recorded with its error message, never fatal.
+
+Execution: local processes by default (`concurrent.futures`), or a Dask distributed cluster given its
+scheduler address; both run the same picklable `run_point`.
+"""
+
+import csv
+import io
+import itertools
+import os
+import time
+from collections.abc import Callable, Iterator
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .errors import ParameterError
+from .files import atomic_path, write_text
+
+METRICS = ("passed", "angle_error_max_rad", "closure_residual_max_m", "closed_form_residual_max",
+           "branches_followed", "cpu_s", "error")  # fmt: skip
+
+
+@dataclass(frozen=True)
+class Axis:
+    """One swept parameter and its values, in command-line units (degrees, metres)."""
+
+    name: str
+    values: tuple[float, ...]
+
+
+def parse_axis(text: str) -> Axis:
+    """'NAME=START:STOP:STEP' (STOP included when the steps land on it) -> Axis; ParameterError otherwise."""
+    name, sep, spec = text.partition("=")
+    parts = spec.split(":")
+    if not sep or not name or len(parts) != 3:
+        raise ParameterError(f"grid axis {text!r} is not NAME=START:STOP:STEP")
+    try:
+        start, stop, step = (float(p) for p in parts)
+    except ValueError:
+        raise ParameterError(f"grid axis {text!r}: START, STOP and STEP must be numbers") from None
+    if not step > 0 or stop < start:
+        raise ParameterError(f"grid axis {text!r}: needs STEP > 0 and STOP >= START")
+    count = int(np.floor((stop - start) / step + 1e-9)) + 1
+    return Axis(name.strip(), tuple(float(v) for v in start + step * np.arange(count)))
+
+
+def grid_points(axes: list[Axis]) -> list[dict[str, float]]:
+    """Every combination of the axes' values (the last axis varies fastest)."""
+    names = [a.name for a in axes]
+    return [dict(zip(names, combo, strict=True)) for combo in itertools.product(*(a.values for a in axes))]
+
+
+def run_point(scene_name: str, params: dict[str, float], preset: str | None = None) -> dict:
+    """The light cross-check of one grid point (module docstring); never raises."""
+    from . import scenes
+    from .checks.branches import classify
+    from .checks.paths import compare
+    from .simulate import simulate
+    from .tolerances import TOLERANCES
+
+    row: dict = dict(params)
+    t0 = time.process_time()
+    try:
+        scene = scenes.get(scene_name).build_from_user(params)
+        kin, loops = scene.kinematics, scene.kinematics.loop_system()
+        errors, gaps, residuals, followed = [], [], [], []
+        for branch in kin.branches():
+            start, stop = scene.branch_path(branch.name)
+            x = np.linspace(start, stop, 50)
+            residuals.append(float(np.max(loops.residual_norm(kin.loop_angles(kin.joint_angles(branch.name, x))))))
+            run = simulate(scene, branch.name, preset=preset)
+            path = compare(scene, branch.name, run.q)
+            errors.append(path.max_error())
+            gaps.append(float(np.max(run.closure_residual)))
+            followed.append(classify(kin, path.input, path.simulated).followed)
+        used = preset or scene.preset
+        passed = (max(errors) <= TOLERANCES.angle(used) and max(gaps) <= TOLERANCES.residual(used)
+                  and max(residuals) <= TOLERANCES.closed_form_residual
+                  and followed == [b.name for b in kin.branches()])  # fmt: skip
+        row |= {"passed": bool(passed), "angle_error_max_rad": max(errors), "closure_residual_max_m": max(gaps),
+                "closed_form_residual_max": max(residuals), "branches_followed": ";".join(followed),
+                "error": ""}  # fmt: skip
+    except Exception as exc:  # a failed point is data: record it and go on
+        row |= {"passed": False, "angle_error_max_rad": float("nan"), "closure_residual_max_m": float("nan"),
+                "closed_form_residual_max": float("nan"), "branches_followed": "",
+                "error": f"{type(exc).__name__}: {exc}"}  # fmt: skip
+    row["cpu_s"] = time.process_time() - t0
+    return row
+
+
+def _local(tasks: list[tuple], workers: int) -> Iterator[dict]:
+    with ProcessPoolExecutor(max_workers=workers) as pool:
+        futures = [pool.submit(run_point, *task) for task in tasks]
+        for future in as_completed(futures):
+            yield future.result()
+
+
+def _dask(tasks: list[tuple], scheduler: str) -> Iterator[dict]:
+    from dask.distributed import Client
+    from dask.distributed import as_completed as dask_completed
+
+    with Client(scheduler) as client:
+        futures = client.map(run_point, *zip(*tasks, strict=True), pure=False)
+        for future in dask_completed(futures):
+            yield future.result()
+
+
+def sweep(
+    scene_name: str,
+    axes: list[Axis],
+    *,
+    preset: str | None = None,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    progress: Callable[[Iterator[dict], int], Iterator[dict]] | None = None,
+) -> list[dict]:
+    """
+    Run `run_point` over the grid; rows in grid order.
+
+    Parameters
+    ----------
+    workers : local processes (default: the machine's cores); ignored with `scheduler`.
+    scheduler : a Dask distributed scheduler address (e.g. tcp://10.0.0.5:8786), or None for local processes.
+    progress : wraps the stream of finished rows (e.g. a tqdm bar), given the number of points.
+    """
+    from . import scenes
+
+    kind = scenes.get(scene_name)
+    known = {p.name for p in kind.params}
+    for axis in axes:
+        if axis.name not in known:
+            raise ParameterError(f"unknown parameter {axis.name!r} for scene {scene_name!r}; parameters are "
+                                 f"{', '.join(sorted(known))}")  # fmt: skip
+    points = grid_points(axes)
+    tasks = [(scene_name, p, preset) for p in points]
+    stream = _dask(tasks, scheduler) if scheduler else _local(tasks, workers or os.cpu_count() or 1)
+    rows = list(progress(stream, len(tasks)) if progress else stream)
+    order = {tuple(p.values()): k for k, p in enumerate(points)}
+    return sorted(rows, key=lambda r: order[tuple(r[a.name] for a in axes)])
+
+
+def write_tables(rows: list[dict], out: Path) -> dict[str, Path]:
+    """sweep.csv and sweep.parquet in `out`, each written atomically."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    columns = list(rows[0])
+    buf = io.StringIO()
+    writer = csv.DictWriter(buf, fieldnames=columns)
+    writer.writeheader()
+    writer.writerows(rows)
+    paths = {"csv": write_text(out / "sweep.csv", buf.getvalue())}
+    with atomic_path(out / "sweep.parquet") as tmp:
+        pq.write_table(pa.Table.from_pylist(rows), tmp)
+    paths["parquet"] = out / "sweep.parquet"
+    return paths
