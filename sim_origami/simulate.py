@@ -109,12 +109,19 @@ def constraint_jacobian(model: mujoco.MjModel, data: mujoco.MjData) -> NDArray[n
     return dense
 
 
-def _check(data: mujoco.MjData, messages: list[str], t: float) -> None:
+def _check(data: mujoco.MjData, messages: list[str], context: str) -> None:
+    """Raise SimulationError naming the run's configuration if MuJoCo warned or qpos is not finite."""
     bad = [mujoco.mjtWarning(i).name for i in range(len(data.warning)) if data.warning[i].number > 0]
     if bad or messages or not np.all(np.isfinite(data.qpos)):
         names = ", ".join(bad) or "non-finite qpos"
         detail = f": {messages[0].strip()}" if messages else ""
-        raise SimulationError(f"MuJoCo warning {names} at t = {t:.4g} s{detail}")
+        raise SimulationError(f"{context}: MuJoCo warning {names}{detail}")
+
+
+def _context(scene: Scene, branch: str, preset: str, how: str) -> str:
+    """The configuration of a run, for error messages (radians, metres)."""
+    params = ", ".join(f"{k}={v:.6g}" for k, v in scene.params.items())
+    return f"scene {scene.name} ({params}), branch {branch}, preset {preset}, {how}"
 
 
 def start_pose(scene: Scene, branch: str, start: float) -> NDArray[np.float64]:
@@ -241,7 +248,9 @@ def simulate(
                 contacts[k] = data.ncon
                 force[k] = data.actuator_force[act]
             cpu = time.thread_time() - cpu
-        _check(data, messages, float(t[-1]))
+        _check(
+            data, messages, _context(scene, branch, preset, f"{drive} drive {start:.6g} -> {stop:.6g} rad in {T:g} s")
+        )
     index, residual = _residuals(scene, model, data, binds, qpos_log)
     return Trajectory(
         scene=scene.name, branch=branch, mode=f"dynamic/{drive}", preset=preset, time=t, target=x,
@@ -277,7 +286,7 @@ def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: s
                 J = constraint_jacobian(model, data)[rows][:, free]
                 data.qpos[free] -= np.linalg.lstsq(J, r, rcond=None)[0]  # hinges: qpos index = dof index
             qpos_log[k] = data.qpos
-        _check(data, messages, 0.0)
+        _check(data, messages, _context(scene, branch, preset, "projection"))
     cpu = time.thread_time() - cpu
     index, residual = _residuals(scene, model, data, binds, qpos_log)
     return Trajectory(
@@ -376,7 +385,7 @@ def simulate_free(scene: Scene, branch: str, start: float, duration: float, *, p
             qpos_log[k] = qpos
             energy[k + 1] = data.energy[0] + data.energy[1]
         cpu = time.thread_time() - cpu
-        _check(data, messages, duration)
+        _check(data, messages, _context(scene, branch, preset, f"free run of {duration:g} s from {start:.6g} rad"))
     _, residual = _residuals(scene, model, data, binds, qpos_log)
     t = model.opt.timestep * np.arange(1, n + 1)
     return FreeRun(t, binds.angles(scene, qpos_log), energy, residual, cpu, n)
