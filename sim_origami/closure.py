@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .errors import ConvergenceError
-from .geometry import rotation_vector, transform_z, wrap
+from .geometry import left_jacobian_inverse, rotation_vector, transform_z, wrap
 
 
 @dataclass(frozen=True)
@@ -71,13 +71,30 @@ class LoopSystem:
         """Largest absolute closure residual component, (...)."""
         return np.max(np.abs(self.residual(q)), axis=-1)
 
-    def jacobian(self, q: ArrayLike, step: float = 1e-7) -> NDArray[np.float64]:
-        """Closure Jacobian (n_residuals, n_joints) at one configuration, central differences."""
+    def jacobian(self, q: ArrayLike) -> NDArray[np.float64]:
+        """
+        Closure Jacobian (n_residuals, n_joints) at one configuration, exact.
+
+        Turning joint k moves a loop's end by the joint's twist in the loop's base frame: axis w = s_k z_k
+        through the joint's origin p_k. The end's translation t changes by w x (t - p_k) and its rotation
+        vector phi by Jl^-1(phi) w (inverse left Jacobian of SO(3); the identity once the loop is closed).
+        """
         q = np.asarray(q, dtype=float)
-        dq = np.eye(self.n_joints) * step
-        qs = np.concatenate([q + dq, q - dq])
-        r = self.residual(qs)
-        return ((r[: self.n_joints] - r[self.n_joints :]) / (2 * step)).T
+        J = np.zeros((6 * len(self.loops) + len(self.couplings), self.n_joints))
+        for m, loop in enumerate(self.loops):
+            T = np.eye(4)
+            axes, points = np.zeros((len(loop.joints), 3)), np.zeros((len(loop.joints), 3))
+            for k, (s, L) in enumerate(zip(loop.signs, loop.links, strict=True)):
+                T = T @ transform_z(s * q[loop.joints[k]])
+                axes[k], points[k] = s * T[:3, 2], T[:3, 3]
+                T = T @ L
+            rows = np.vstack([(left_jacobian_inverse(rotation_vector(T[:3, :3])) @ axes.T),
+                              np.cross(axes, T[:3, 3] - points).T])  # fmt: skip
+            np.add.at(J[6 * m : 6 * m + 6].T, list(loop.joints), rows.T)  # a joint may be in several loops
+        for c, coupling in enumerate(self.couplings):
+            J[6 * len(self.loops) + c, coupling.joint] += 1.0
+            J[6 * len(self.loops) + c, coupling.other] -= coupling.scale
+        return J
 
     def solve(
         self,
@@ -236,8 +253,8 @@ class LoopSystem:
         """
         Instantaneous mobility: joints minus the numerical rank of the closure Jacobian.
 
-        Singular values below rtol times the largest count as zero; the central-difference
-        Jacobian carries about 1e-9 of noise, far below the O(0.1) values of a regular pose.
+        Singular values below rtol times the largest count as zero (the Jacobian is exact, so only rounding
+        is below it; a regular pose keeps O(0.1) values).
         """
         s = np.linalg.svd(self.jacobian(q), compute_uv=False)
         return self.n_joints - int(np.sum(s > rtol * max(s.max(initial=0.0), 1.0)))
