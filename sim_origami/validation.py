@@ -20,6 +20,7 @@ from .mjcf import PRESETS
 from .scenes.base import Scene
 from .simulate import Trajectory, contact_input, mujoco_mobility, project, simulate, simulate_free
 from .tolerances import TOLERANCES
+from .truss import truss_mobility
 
 # Samples of the closed form and of the numeric solve along each path.
 ANALYTIC_SAMPLES = 200
@@ -114,15 +115,18 @@ def path_events(
 def mobility_report(scene: Scene, branch: str, start: float) -> dict:
     """
     Grubler-Kutzbach count next to the numerical rank of the closure Jacobian, from the numeric
-    loop and from MuJoCo's efc_J, at the path start and at each bifurcation point of the branch.
+    loop and from MuJoCo's efc_J, and the truss method's mobility and states of self-stress (seed 001),
+    at the path start and at each bifurcation point of the branch.
     """
     kin = scene.kinematics
     loops = kin.loop_system()
 
     def at(x: float) -> dict:
         q_loop = kin.loop_angles(kin.joint_angles(branch, x))
-        return {"input_rad": x, "numeric": loops.mobility(q_loop[0]),
-                "mujoco": mujoco_mobility(scene, scene.loop_to_mechanism(q_loop)[0])}  # fmt: skip
+        q = scene.loop_to_mechanism(q_loop)[0]
+        truss = truss_mobility(scene, q)
+        return {"input_rad": x, "numeric": loops.mobility(q_loop[0]), "mujoco": mujoco_mobility(scene, q),
+                "truss": truss.mobility, "truss_self_stress": truss.self_stress}  # fmt: skip
 
     points = [e.input for e in kin.events() if e.kind == "bifurcation" and branch in e.branches]
     return {"gruebler": kin.gruebler(), "start": at(start), "bifurcations": [at(x) for x in points]}
@@ -178,7 +182,9 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
     proj_traj = project(scene, branch, np.linspace(start, stop, ANALYTIC_SAMPLES), preset=preset)
     proj = compare(scene, branch, proj_traj.q)
     mobility = mobility_report(scene, branch, start)
-    disagree = sum(p["numeric"] != p["mujoco"] for p in [mobility["start"], *mobility["bifurcations"]])
+    disagree = sum(
+        len({p["numeric"], p["mujoco"], p["truss"]}) > 1 for p in [mobility["start"], *mobility["bifurcations"]]
+    )
     verdicts = (
         Verdict(f"{branch}: MuJoCo {preset} path error (rad)", dyn.max_error(),
                 TOLERANCES.angle(preset),
@@ -189,7 +195,7 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
                 "Gauss-Newton on MuJoCo's equality residuals at each input"),
         Verdict(f"{branch}: branch followed", float(labels.followed != branch or labels.flips > 0), 0.0,
                 f"followed {labels.followed or 'none'}, {labels.flips} flips"),
-        Verdict(f"{branch}: mobility, numeric rank vs MuJoCo rank (poses that differ)", float(disagree), 0.0,
+        Verdict(f"{branch}: mobility, numeric rank vs MuJoCo rank vs truss (poses that differ)", float(disagree), 0.0,
                 f"Kutzbach {mobility['gruebler']}, instantaneous {mobility['start']['numeric']} at the start"),
     )  # fmt: skip
     return BranchRun(

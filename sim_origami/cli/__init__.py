@@ -9,9 +9,9 @@ import sys
 
 from .. import __version__
 from ..errors import SimOrigamiError
-from . import analytic, bench, describe, list_scenes, sweep, validate
+from . import analytic, bench, describe, list_scenes, mobility, sweep, validate
 
-COMMANDS = (list_scenes, describe, analytic, validate, sweep, bench)
+COMMANDS = (list_scenes, describe, analytic, validate, mobility, sweep, bench)
 
 
 class _Parser(argparse.ArgumentParser):

@@ -1,0 +1,880 @@
+"""The truss method (seed 001 ch. 2-3): a linkage as a pin-jointed truss, its mobility, states of
+self-stress and redundant bars, and a predictor-corrector path follower with bifurcation handling.
+
+Construction (seed 001 §1.1). Every revolute joint gives two nodes on its axis, shared by its two
+bodies: its frame origin P (the D-H foot, or the crease's start vertex) and P' = P + l z with l the
+joint's largest |anchor|, so z points from P to P' (the seed's "A, A'"). A spherical joint gives one
+node at its frame origin. Points of one body that coincide are one node (Myard: joints 3 and 4 meet,
+link 34 becomes the triangle C C' C''); points of different bodies are never merged, even where they
+coincide at some pose (the Bricard bundle). A body whose nodes are collinear gets an auxiliary node
+(unless it is a plain bar between two spherical joints, whose idle spin the seed does not count), and
+one with four or more coplanar nodes gets one off its plane, AUX_OFFSET times its size from its
+centroid. Each body is then braced minimally: the bars already present between its nodes (a joint
+bar is counted once for both its bodies) and further bars, in node order, while they raise the rank,
+up to 3k - 6 for k nodes. So each body is isostatic and b - r counts only the loops' overconstraint.
+
+Matrices (seed 001 §1.2). The compatibility matrix C (b x 3j) maps nodal displacements d to bar
+elongations; its rows hold unit bar directions (the seed's Eq. 1-15 divided by each bar's length,
+same rank and null spaces, dimensionless singular values); the equilibrium matrix is H = C^T.
+A joint coupling q_a = c q_b of the mechanism adds one row l_char (w_a - c w_b) with w the joint
+rate (rad per unit displacement) of the least-squares rigid motion of each body's nodes.
+
+Counts (seed 001 §1.3): r = numerical rank of [C; K], m = 3j - 6 - r mechanisms (DOF, rigid motions
+removed), s = b + c - r states of self-stress (redundant constraints), Maxwell's 3j - 6 - b - c = m - s.
+
+Units: lengths in the mechanism's unit, angles in radians; positions in the mechanism's world frame
+(the root body's frame), where the root body's nodes stay fixed while a path is followed.
+"""
+
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .errors import AssemblyError, ConvergenceError, ParameterError
+from .geometry import invert, wrap
+from .mechanism import Mechanism
+
+if TYPE_CHECKING:
+    from .scenes.base import Scene
+
+# Relative rank threshold: singular values below RANK_RTOL x the largest count as zero (seed 001
+# §1.3 uses 1e-9 for exact coordinates). Measured on every registered scene at its start pose and its
+# bifurcation points: kept values >= 1.5e-4 of the largest (triangle-twist-6r), dropped ones <= 1e-15.
+RANK_RTOL = 1e-9
+# Points of one body closer than this x the mechanism's size are one node.
+MERGE_RTOL = 1e-9
+# A node's positions from its bodies' poses may differ by this x the size (an unclosed q is refused).
+CLOSURE_RTOL = 1e-8
+# Auxiliary nodes sit this far (x the body's size) off the line or plane of a degenerate body's nodes.
+AUX_OFFSET = 0.3
+# A bar takes part in a state of self-stress when its entry in the orthonormal self-stress basis exceeds this.
+STRESS_TOL = 1e-6
+
+
+@dataclass(frozen=True)
+class Hinge:
+    """A mechanism joint in the truss: `nodes` = (P, P') for a revolute joint, (centre,) for a spherical one."""
+
+    name: str
+    parent: str
+    child: str
+    nodes: tuple[int, ...]
+    frame_parent: NDArray[np.float64]
+    frame_child: NDArray[np.float64]
+
+    @property
+    def revolute(self) -> bool:
+        return len(self.nodes) == 2
+
+
+@dataclass(frozen=True)
+class Truss:
+    """
+    Nodes and bars of a linkage at one configuration.
+
+    Attributes
+    ----------
+    node_names : joint name (P), joint name + "'" (P'), body + "*" (auxiliary); merged points take the first name.
+    nodes : (j, 3) positions in the world frame.
+    bars : (b, 2) node indices; `lengths` (b,) their rest lengths, from the bodies' own geometry.
+    joint_bar : (b,) True for the bar P P' of a revolute joint.
+    bar_body : (b,) the body that braces each bar ("" for a joint bar, which belongs to both its bodies).
+    body_nodes, body_local : each body's node indices and their coordinates in the body frame.
+    hinges : the mechanism's joints; `couplings` (hinge a, hinge b, c): q_a = c q_b.
+    angles0 : (len(hinges),) joint angles at the configuration the truss was built at (rad).
+    ground : the body fixed while a path is followed.
+    scale : characteristic length (largest joint-node spacing l).
+    """
+
+    node_names: tuple[str, ...]
+    nodes: NDArray[np.float64]
+    bars: NDArray[np.int64]
+    lengths: NDArray[np.float64]
+    joint_bar: NDArray[np.bool_]
+    bar_body: tuple[str, ...]
+    body_nodes: dict[str, NDArray[np.int64]]
+    body_local: dict[str, NDArray[np.float64]]
+    hinges: tuple[Hinge, ...]
+    couplings: tuple[tuple[int, int, float], ...]
+    angles0: NDArray[np.float64]
+    ground: str
+    scale: float
+
+    def bar_names(self) -> tuple[str, ...]:
+        """'P-Q' for every bar."""
+        return tuple(f"{self.node_names[p]}-{self.node_names[q]}" for p, q in self.bars)
+
+    def without(self, bars: Sequence[int]) -> "Truss":
+        """The same truss with bars `bars` removed (seed 001 ch. 3: redundant-bar removal)."""
+        bad = [k for k in bars if not 0 <= k < len(self.bars)]
+        if bad:
+            raise ParameterError(f"bars {bad} do not exist; this truss has bars 0 .. {len(self.bars) - 1}")
+        keep = np.ones(len(self.bars), dtype=bool)
+        keep[list(bars)] = False
+        names = tuple(n for n, k in zip(self.bar_body, keep, strict=True) if k)
+        return replace(self, bars=self.bars[keep], lengths=self.lengths[keep], joint_bar=self.joint_bar[keep],
+                       bar_body=names)  # fmt: skip
+
+
+# -- construction ----------------------------------------------------------------------------------------------
+
+
+def _find(group: list[int], i: int) -> int:
+    while group[i] != i:
+        group[i] = group[group[i]]
+        i = group[i]
+    return i
+
+
+def _joint_points(mechanism: Mechanism, spherical: set[str]) -> tuple[list[tuple[str, str, NDArray]], float]:
+    """Candidate points (label, body, local xyz): P and P' per revolute joint, the centre per spherical one."""
+    points, spans = [], []
+    for j in mechanism.joints:
+        span = max((abs(a) for a in j.anchors), default=0.0)
+        if j.name not in spherical and not span > 0:
+            raise ParameterError(f"joint {j.name!r} has anchors {j.anchors}; a revolute joint needs one off its origin")
+        spans.append(span)
+        for body, frame in ((j.parent, j.frame_parent), (j.child, j.frame_child)):
+            points.append((j.name, body, frame[:3, 3].copy()))
+            if j.name not in spherical:
+                points.append((j.name + "'", body, frame[:3, 3] + span * frame[:3, 2]))
+    return points, max(spans, default=1.0) or 1.0
+
+
+def _merge(points: list[tuple[str, str, NDArray]], tol: float) -> tuple[list[str], dict[tuple[str, str], int]]:
+    """Union of the labels whose points coincide in a common body; returns node names and (label, body) -> node."""
+    labels = list(dict.fromkeys(p[0] for p in points))
+    index = {lab: k for k, lab in enumerate(labels)}
+    group = list(range(len(labels)))
+    for a, (la, ba, xa) in enumerate(points):
+        for lb, bb, xb in points[a + 1 :]:
+            if ba == bb and np.linalg.norm(xa - xb) < tol:
+                ra, rb = _find(group, index[la]), _find(group, index[lb])
+                group[max(ra, rb)] = min(ra, rb)
+    roots = sorted({_find(group, k) for k in range(len(labels))})
+    node_of_root = {r: n for n, r in enumerate(roots)}
+    names = [labels[r] for r in roots]
+    node = {(lab, body): node_of_root[_find(group, index[lab])] for lab, body, _ in points}
+    return names, node
+
+
+def _span(local: NDArray, tol: float) -> tuple[int, NDArray, NDArray]:
+    """(dimension of the affine hull, centroid, principal directions) of points (k, 3)."""
+    centre = local.mean(axis=0)
+    if len(local) < 2:
+        return 0, centre, np.eye(3)
+    _, s, vt = np.linalg.svd(local - centre)
+    return int(np.sum(s > tol)), centre, vt
+
+
+def _auxiliary(local: NDArray, plain_bar: bool, tol: float) -> list[NDArray]:
+    """Auxiliary points (body frame) that make a degenerate body rigid: off its line, then off its plane."""
+    extra: list[NDArray] = []
+    dim, centre, vt = _span(local, tol)
+    size = max(float(np.max(np.linalg.norm(local - centre, axis=1))), tol)
+    if dim == 1 and not plain_bar:
+        extra.append(centre + AUX_OFFSET * size * vt[1])
+        dim = 2
+    if dim == 2 and len(local) + len(extra) >= 4:
+        _, centre, vt = _span(np.vstack([local, *extra]), tol)
+        extra.append(centre + AUX_OFFSET * size * vt[2])
+    return extra
+
+
+def _bar_row(local: NDArray, p: int, q: int) -> NDArray:
+    """Row of a body's own rigidity matrix (3k,) for the bar p-q, unit direction."""
+    row = np.zeros(local.size)
+    u = (local[p] - local[q]) / np.linalg.norm(local[p] - local[q])
+    row[3 * p : 3 * p + 3], row[3 * q : 3 * q + 3] = u, -u
+    return row
+
+
+def _brace(local: NDArray, existing: list[tuple[int, int]]) -> list[tuple[int, int]]:
+    """Extra bars (local indices) raising a body's rigidity rank to 3k - 6 (1 for two nodes), in node order."""
+    k = len(local)
+    target = 1 if k == 2 else max(3 * k - 6, 0)
+    basis: list[NDArray] = []
+
+    def independent(row: NDArray) -> bool:
+        for b in basis:
+            row = row - (row @ b) * b
+        if np.linalg.norm(row) > 1e-9:
+            basis.append(row / np.linalg.norm(row))
+            return True
+        return False
+
+    for p, q in existing:
+        independent(_bar_row(local, p, q))
+    added = []
+    for p in range(k):
+        for q in range(p + 1, k):
+            if len(basis) >= target:
+                return added
+            if (p, q) not in existing and independent(_bar_row(local, p, q)):
+                added.append((p, q))
+    if len(basis) < target:
+        raise AssemblyError(f"a body with {k} nodes reached rigidity rank {len(basis)} < {target}")
+    return added
+
+
+def _body_nodes(
+    mechanism: Mechanism, points: list, node: dict, names: list[str], tol: float
+) -> tuple[dict[str, NDArray], dict[str, NDArray]]:
+    """Per body: node indices and local coordinates, with auxiliary nodes appended to `names`."""
+    revolute_bodies = {b for lab, b, _ in points if lab.endswith("'")}
+    body_nodes, body_local = {}, {}
+    for body in (b.name for b in mechanism.bodies):
+        seen: dict[int, NDArray] = {}
+        for lab, b, x in points:
+            if b == body:
+                seen.setdefault(node[(lab, b)], x)
+        idx, local = list(seen), [seen[i] for i in seen]
+        for x in _auxiliary(np.array(local).reshape(-1, 3), body not in revolute_bodies and len(idx) == 2, tol):
+            names.append(f"{body}*" if f"{body}*" not in names else f"{body}*{len(idx)}")
+            idx.append(len(names) - 1)
+            local.append(x)
+        body_nodes[body], body_local[body] = np.array(idx, dtype=int), np.array(local).reshape(-1, 3)
+    return body_nodes, body_local
+
+
+def _bars(
+    body_nodes: dict[str, NDArray], body_local: dict[str, NDArray], joint_pairs: list[tuple[int, ...]], tol: float
+) -> tuple[NDArray, NDArray, NDArray, tuple[str, ...]]:
+    """Joint bars, then each body's minimal bracing: (bars (b, 2), rest lengths, joint-bar flags, owners)."""
+    owner = {(min(p, q), max(p, q)): "" for p, q in joint_pairs}
+    length: dict[tuple[int, int], float] = {}
+    for body, idx in body_nodes.items():
+        local, pos = body_local[body], {n: k for k, n in enumerate(idx)}
+        existing = sorted((pos[p], pos[q]) if pos[p] < pos[q] else (pos[q], pos[p])
+                          for p, q in owner if p in pos and q in pos)  # fmt: skip
+        for p, q in existing + _brace(local, existing):
+            key = (min(idx[p], idx[q]), max(idx[p], idx[q]))
+            owner.setdefault(key, body)
+            length[key] = float(np.linalg.norm(local[p] - local[q]))
+    if min(length.values(), default=1.0) < tol or len(length) != len(owner):
+        raise AssemblyError("a bar joins two coincident nodes, or a joint bar lies in no body")
+    pairs = np.array(list(owner), dtype=int).reshape(-1, 2)
+    joint = np.array([owner[key] == "" for key in owner], dtype=bool)
+    return pairs, np.array([length[key] for key in owner]), joint, tuple(owner.values())
+
+
+def _positions(
+    mechanism: Mechanism,
+    q: NDArray,
+    body_nodes: dict[str, NDArray],
+    body_local: dict[str, NDArray],
+    n_nodes: int,
+    tol: float,
+) -> NDArray:
+    """World node positions at joint angles q: mean over the node's bodies; AssemblyError if they disagree."""
+    poses = mechanism.body_poses(q)
+    seen: list[list[NDArray]] = [[] for _ in range(n_nodes)]
+    for body, idx in body_nodes.items():
+        world = body_local[body] @ poses[body][:3, :3].T + poses[body][:3, 3]
+        for n, x in zip(idx, world, strict=True):
+            seen[n].append(x)
+    nodes = np.array([np.mean(xs, axis=0) for xs in seen])
+    gap = max(float(np.max(np.linalg.norm(np.array(xs) - x, axis=1))) for xs, x in zip(seen, nodes, strict=True))
+    if gap > tol:
+        raise AssemblyError(f"the loops are not closed at q: a shared node differs by {gap:.3g} between its bodies "
+                            f"(limit {tol:.3g}, CLOSURE_RTOL x the truss size)")  # fmt: skip
+    return nodes
+
+
+def truss_of(mechanism: Mechanism, q: ArrayLike, spherical: Sequence[str] = ()) -> Truss:
+    """
+    The equivalent truss of `mechanism` at joint angles q (rad, (n_joints,), every loop closed).
+
+    Joints named in `spherical` become spherical joints (one node at the frame origin): e.g. joints 3
+    and 4 of the Bennett linkage give its RSSR form (seed 001 §2.2). Their angles are then undefined.
+    """
+    q = np.asarray(q, dtype=float)
+    if q.shape != (len(mechanism.joints),) or not np.all(np.isfinite(q)):
+        raise ParameterError(f"q has shape {q.shape} with finite={bool(np.all(np.isfinite(q)))}; "
+                             f"it must hold {len(mechanism.joints)} finite joint angles (rad)")  # fmt: skip
+    balls = set(spherical)
+    for name in balls:
+        mechanism.joint_index(name)
+    points, scale = _joint_points(mechanism, balls)
+    names, node = _merge(points, MERGE_RTOL * scale)
+    body_nodes, body_local = _body_nodes(mechanism, points, node, names, MERGE_RTOL * scale)
+    hinges, pairs = [], []
+    for j in mechanism.joints:
+        ids = (node[(j.name, j.parent)],) + (() if j.name in balls else (node[(j.name + "'", j.parent)],))
+        if len(set(ids)) < len(ids):
+            raise ParameterError(f"joint {j.name!r}: its two axis nodes coincide (anchor {j.anchors} too short)")
+        hinges.append(Hinge(j.name, j.parent, j.child, ids, j.frame_parent, j.frame_child))
+        if len(ids) == 2:
+            pairs.append(ids)
+    bars, lengths, joint_bar, owner = _bars(body_nodes, body_local, pairs, MERGE_RTOL * scale)
+    nodes = _positions(mechanism, q, body_nodes, body_local, len(names), CLOSURE_RTOL * scale)
+    index = {h.name: i for i, h in enumerate(hinges)}
+    couplings = []
+    for a, b, c in mechanism.couplings:
+        if a in balls or b in balls:
+            raise ParameterError(f"coupling {a} = {c:g} x {b} names a spherical joint; couplings need revolute joints")
+        couplings.append((index[a], index[b], float(c)))
+    return Truss(tuple(names), nodes, bars, lengths, joint_bar, owner, body_nodes, body_local, tuple(hinges),
+                 tuple(couplings), q.copy(), mechanism.root, scale)  # fmt: skip
+
+
+# -- matrices and counts ---------------------------------------------------------------------------------------
+
+
+def compatibility(truss: Truss, x: ArrayLike | None = None) -> NDArray[np.float64]:
+    """Compatibility matrix C (b, 3j) at node positions x (default: the truss's): unit bar directions."""
+    x = truss.nodes if x is None else np.asarray(x, dtype=float)
+    if x.shape != truss.nodes.shape or not np.all(np.isfinite(x)):
+        raise ParameterError(f"node positions of shape {x.shape} (finite: {bool(np.all(np.isfinite(x)))}); "
+                             f"they must be {truss.nodes.shape} and finite")  # fmt: skip
+    p, q = truss.bars[:, 0], truss.bars[:, 1]
+    u = x[p] - x[q]
+    length = np.linalg.norm(u, axis=1, keepdims=True)
+    if np.any(length == 0):
+        raise ParameterError(f"bar {truss.bar_names()[int(np.argmin(length))]} has zero length at these positions")
+    u = u / length
+    C = np.zeros((len(truss.bars), 3 * len(x)))
+    rows = np.arange(len(truss.bars))
+    for k in range(3):
+        C[rows, 3 * p + k] = u[:, k]
+        C[rows, 3 * q + k] = -u[:, k]
+    return C
+
+
+def _body_rates(truss: Truss, body: str, x: NDArray) -> NDArray[np.float64]:
+    """(3, 3j): angular velocity of `body` (least-squares rigid motion of its nodes) from nodal velocities."""
+    idx = truss.body_nodes[body]
+    r = x[idx] - x[idx].mean(axis=0)
+    A = np.zeros((3 * len(idx), 6))
+    for k, v in enumerate(r):
+        A[3 * k : 3 * k + 3, :3] = np.eye(3)
+        A[3 * k : 3 * k + 3, 3:] = [[0, v[2], -v[1]], [-v[2], 0, v[0]], [v[1], -v[0], 0]]  # w x r = -[r]x w
+    W = np.zeros((3, 3 * len(x)))
+    cols = (3 * idx[:, None] + np.arange(3)).ravel()
+    W[:, cols] = np.linalg.pinv(A)[3:]
+    return W
+
+
+def joint_rates(truss: Truss, x: ArrayLike | None = None) -> NDArray[np.float64]:
+    """(n_revolute, 3j): each revolute joint's rate (rad per unit displacement) from nodal velocities."""
+    x = truss.nodes if x is None else np.asarray(x, dtype=float)
+    rows = []
+    for h in truss.hinges:
+        if h.revolute:
+            z = x[h.nodes[1]] - x[h.nodes[0]]
+            rows.append(z / np.linalg.norm(z) @ (_body_rates(truss, h.child, x) - _body_rates(truss, h.parent, x)))
+    return np.array(rows).reshape(-1, 3 * len(x))
+
+
+def coupling_rows(truss: Truss, x: ArrayLike | None = None) -> NDArray[np.float64]:
+    """(n_couplings, 3j): scale x (rate of q_a - c q_b), dimensionless like the rows of C."""
+    x = truss.nodes if x is None else np.asarray(x, dtype=float)
+    if not truss.couplings:
+        return np.zeros((0, 3 * len(x)))
+    revolute = [i for i, h in enumerate(truss.hinges) if h.revolute]
+    R = joint_rates(truss, x)
+    at = {i: k for k, i in enumerate(revolute)}
+    return np.array([truss.scale * (R[at[a]] - c * R[at[b]]) for a, b, c in truss.couplings])
+
+
+def constraints(truss: Truss, x: ArrayLike | None = None) -> NDArray[np.float64]:
+    """[C; K]: bar rows then coupling rows, (b + c, 3j)."""
+    return np.vstack([compatibility(truss, x), coupling_rows(truss, x)])
+
+
+def _padded_svd(M: NDArray) -> tuple[NDArray, NDArray, NDArray]:
+    """Full SVD with the singular values padded by zeros to the column count: (U, s (n,), Vt)."""
+    U, s, Vt = np.linalg.svd(M, full_matrices=True)
+    return U, np.concatenate([s, np.zeros(M.shape[1] - len(s))]), Vt
+
+
+@dataclass(frozen=True)
+class Counts:
+    """
+    Truss counts at one configuration (seed 001 §1.3).
+
+    nodes j, bars b, couplings c, rank r of [C; K], mobility m = 3j - 6 - r, self_stress s = b + c - r,
+    maxwell = 3j - 6 - b - c (= m - s), redundant: names of the bars that carry a state of self-stress
+    (each one can be removed without changing r), kept / dropped: the smallest singular value counted in
+    the rank and the largest one counted as zero, both relative to the largest.
+    """
+
+    nodes: int
+    bars: int
+    couplings: int
+    rank: int
+    mobility: int
+    self_stress: int
+    maxwell: int
+    redundant: tuple[str, ...]
+    kept: float
+    dropped: float
+
+
+def analyse(truss: Truss, x: ArrayLike | None = None, rtol: float = RANK_RTOL) -> Counts:
+    """Mobility, self-stress and redundant bars of `truss` at positions x (default: its own)."""
+    M = constraints(truss, x)
+    U, s, _ = _padded_svd(M)
+    rel = s / s.max()
+    r = int(np.sum(rel > rtol))
+    j, b, c = len(truss.nodes), len(truss.bars), len(truss.couplings)
+    stress = U[:b, r:]
+    redundant = tuple(n for n, w in zip(truss.bar_names(), stress, strict=True) if np.linalg.norm(w) > STRESS_TOL)
+    kept = float(rel[r - 1]) if r else 0.0
+    dropped = float(rel[r]) if r < len(rel) else 0.0
+    return Counts(j, b, c, r, 3 * j - 6 - r, b + c - r, 3 * j - 6 - b - c, redundant, kept, dropped)
+
+
+def removable_bars(truss: Truss) -> tuple[int, ...]:
+    """
+    Seed 001 §1.7 (ch. 3): s body bars of ONE body whose removal keeps the rank (joint bars stay), giving a
+    non-overconstrained truss with the same mobility (Bennett -> RSSR, Myard -> RRSRR / RSRRR).
+
+    Bodies are tried in order. A body's bars are projected off the row space of all other rows and kept
+    greedily, in order, while they raise the rank; the rest are removable when there are exactly s of them.
+    AssemblyError when no single body carries all s redundancies (removing bars of several links changes
+    the topology).
+    """
+    M = constraints(truss)
+    floor = RANK_RTOL * np.linalg.svd(M, compute_uv=False).max()
+    s = analyse(truss).self_stress
+    if s == 0:
+        return ()
+    for body in truss.body_nodes:
+        mine = [k for k, owner in enumerate(truss.bar_body) if owner == body]
+        _, sv, vt = np.linalg.svd(np.delete(M, mine, axis=0), full_matrices=False)
+        basis = vt[sv > floor]
+        left = M[mine] - (M[mine] @ basis.T) @ basis
+        kept: list[int] = []
+        for i in range(len(mine)):
+            if np.linalg.matrix_rank(left[[*kept, i]], tol=floor) > len(kept):
+                kept.append(i)
+        if len(mine) - len(kept) == s:
+            return tuple(k for i, k in enumerate(mine) if i not in kept)
+    raise AssemblyError(f"no single body carries all {s} redundant bars; removing bars of several links changes "
+                        "the topology (seed 001 §1.7)")  # fmt: skip
+
+
+# -- poses and joint angles from node positions ----------------------------------------------------------------
+
+
+def body_poses(truss: Truss, x: ArrayLike | None = None) -> dict[str, NDArray[np.float64]]:
+    """World pose (4, 4) of every body with 3+ non-collinear nodes: least-squares rigid fit (Kabsch)."""
+    x = truss.nodes if x is None else np.asarray(x, dtype=float)
+    out = {}
+    for body, idx in truss.body_nodes.items():
+        local = truss.body_local[body]
+        if _span(local, MERGE_RTOL * truss.scale)[0] < 2:
+            continue
+        a, w = local - local.mean(0), x[idx] - x[idx].mean(0)
+        U, _, Vt = np.linalg.svd(w.T @ a)
+        D = np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Vt))])
+        T = np.eye(4)
+        T[:3, :3] = U @ D @ Vt
+        T[:3, 3] = x[idx].mean(0) - T[:3, :3] @ local.mean(0)
+        out[body] = T
+    return out
+
+
+def joint_angles(truss: Truss, x: ArrayLike | None = None) -> NDArray[np.float64]:
+    """
+    Angles (rad, in (-pi, pi]) of the revolute joints, in `hinges` order, from node positions; the
+    mechanism's convention: child relative to parent about the joint's z. Spherical joints are skipped.
+    """
+    poses = body_poses(truss, x)
+    out = []
+    for h in truss.hinges:
+        if h.revolute:
+            M = invert(h.frame_parent) @ invert(poses[h.parent]) @ poses[h.child] @ h.frame_child
+            out.append(np.arctan2(M[1, 0], M[0, 0]))
+    return np.array(out)
+
+
+def revolute_names(truss: Truss) -> tuple[str, ...]:
+    """Names of the revolute joints: the order of `joint_angles`."""
+    return tuple(h.name for h in truss.hinges if h.revolute)
+
+
+# -- predictor-corrector path following (seed 001 §1.4, §1.5) ---------------------------------------------------
+
+# Newton corrector: at most this many iterations to bring every bar-length error below CORRECTOR_TOL x scale.
+CORRECTOR_ITERATIONS = 12
+CORRECTOR_TOL = 1e-13
+# Step control on the arc length in node space (x scale): first step, largest step, smallest before giving up.
+# A step is rejected (and halved) when the corrector fails, moves the point by more than MAX_CORRECTION x the
+# step, or the tangent turns by more than MAX_TURN rad; a step that converged in <= 3 iterations grows 1.5x.
+FIRST_STEP = 0.02
+MAX_STEP = 0.25
+MIN_STEP = 1e-9
+MAX_CORRECTION = 0.3
+MAX_TURN = 0.4
+# Bifurcations. A branch crosses one between two points when the orientation sign (`_Follower.orientation`)
+# flips; it touches one near a point that is a local minimum of sigma_2 below DIP x the larger of its two
+# neighbours. The minimum of sigma_2 is then located on the path (golden-section rounds over spans shrinking
+# REFINE_SHRINK times, down to REFINE_FLOOR x scale); it is a bifurcation, and its mobility is counted, with
+# BIFURCATION_RTOL x sigma_max as zero. A double point is only located to about the square root of the
+# corrector tolerance: located sigma_2 measured 3.7e-13 .. 3.7e-9, input within 5.5e-7 rad, on 44 crossings of
+# the registered scenes' simple bifurcations (Bricard bundle, plane-symmetric Bricard, Miura, vertex4, thick
+# diamond), against sigma_2 >= 3.5e-5 anywhere on every scene's default paths (triangle-twist-6r).
+DIP = 0.5
+REFINE_SHRINK = 4.0
+REFINE_FLOOR = 1e-10
+BIFURCATION_RTOL = 1e-6
+
+
+@dataclass(frozen=True)
+class Bifurcation:
+    """
+    A point where the mobility jumps: its index in the path, the drive input there (rad), sigma_2 relative to
+    sigma_max, the mobility there, the number of real branch directions found at second order, the choice made.
+    """
+
+    index: int
+    input: float
+    sigma2: float
+    mobility: int
+    directions: int
+    choice: str
+
+
+@dataclass(frozen=True)
+class TrussPath:
+    """
+    A followed path: nodes (n, j, 3); revolute joint angles (n, k) unwrapped along the path (rad, in the order
+    of `joints`); drive input (n,) (rad); sigma2 (n,), the second-smallest singular value of the grounded
+    [C; K] relative to its largest; the bifurcations met; whether the input reached `stop` (the last point
+    then lies on it to 1e-14 rad).
+    """
+
+    nodes: NDArray[np.float64]
+    angles: NDArray[np.float64]
+    joints: tuple[str, ...]
+    input: NDArray[np.float64]
+    sigma2: NDArray[np.float64]
+    bifurcations: tuple[Bifurcation, ...]
+    reached: bool
+
+
+@dataclass(frozen=True)
+class _Point:
+    x: NDArray[np.float64]  # (j, 3) nodes
+    angles: NDArray[np.float64]  # unwrapped revolute joint angles
+    sigma2: float
+    tangent: NDArray[np.float64]  # unit mechanism mode over the free coordinates
+    arc: float  # step taken to reach this point
+
+
+class _Follower:
+    """The grounded truss equations: residual (bar length errors, scaled coupling errors) and Jacobian."""
+
+    def __init__(self, truss: Truss, rtol: float):
+        self.truss, self.rtol = truss, rtol
+        grounded = np.zeros(len(truss.nodes), dtype=bool)
+        grounded[truss.body_nodes[truss.ground]] = True
+        self.free = np.repeat(~grounded, 3)
+        self.rows = np.concatenate([~(grounded[truss.bars[:, 0]] & grounded[truss.bars[:, 1]]),
+                                    np.ones(len(truss.couplings), dtype=bool)])  # fmt: skip
+        self.revolute = [i for i, h in enumerate(truss.hinges) if h.revolute]
+        self.tol = CORRECTOR_TOL * truss.scale
+        n, rows = int(self.free.sum()), int(self.rows.sum())
+        self.projection = np.random.default_rng(0).standard_normal((n - 1, rows)) / np.sqrt(rows)
+
+    def angles(self, x: NDArray, ref: NDArray) -> NDArray:
+        """Revolute joint angles unwrapped next to `ref`."""
+        return ref + wrap(joint_angles(self.truss, x) - ref)
+
+    def residual(self, x: NDArray, ref: NDArray) -> NDArray:
+        """Bar length errors, then scale x (q_a - c q_b) per coupling, on the rows not fixed by the ground."""
+        t = self.truss
+        p, q = t.bars[:, 0], t.bars[:, 1]
+        out = [np.linalg.norm(x[p] - x[q], axis=1) - t.lengths]
+        if t.couplings:
+            a = dict(zip(self.revolute, self.angles(x, ref), strict=True))
+            out.append(np.array([t.scale * (a[i] - c * a[k]) for i, k, c in t.couplings]))
+        return np.concatenate(out)[self.rows]
+
+    def jacobian(self, x: NDArray) -> NDArray:
+        return constraints(self.truss, x)[self.rows][:, self.free]
+
+    def move(self, x: NDArray, d: NDArray) -> NDArray:
+        """Nodes x displaced by d over the free coordinates."""
+        y = x.copy().ravel()
+        y[self.free] += d
+        return y.reshape(x.shape)
+
+    def correct(self, x: NDArray, ref: NDArray) -> tuple[NDArray, int] | None:
+        """
+        Newton with the rank-truncated pseudo-inverse (seed Eq. 2-18), which never inverts the smallest singular
+        value of the full-column system (the path's own mechanism mode): (x, iterations), None if it fails.
+        """
+        n = int(self.free.sum())
+        for it in range(CORRECTOR_ITERATIONS):
+            F = self.residual(x, ref)
+            if np.max(np.abs(F)) < self.tol:
+                return x, it
+            U, s, Vt = np.linalg.svd(self.jacobian(x), full_matrices=False)
+            keep = (s > self.rtol * s.max()) & (np.arange(len(s)) < n - 1)
+            x = self.move(x, -Vt[keep].T @ ((U[:, keep].T @ F) / s[keep]))
+        return None
+
+    def spectrum(self, x: NDArray) -> tuple[NDArray, NDArray]:
+        """(singular values ascending, relative to the largest, padded with zeros; matching right vectors as rows)."""
+        _, s, Vt = _padded_svd(self.jacobian(x))
+        order = np.argsort(s)
+        return s[order] / s.max(), Vt[order]
+
+    def stresses(self, x: NDArray, mobility: int) -> NDArray:
+        """Orthonormal self-stresses (rows, columns) of the grounded system at a point of this mobility."""
+        U = np.linalg.svd(self.jacobian(x), full_matrices=True)[0]
+        return U[:, int(self.free.sum()) - mobility :]
+
+    def orientation(self, x: NDArray, t: NDArray) -> float:
+        """
+        Sign of det [P J(x); t^T], P a fixed generic projection onto n - 1 rows (J may have more, redundant
+        rows): constant along a smooth branch with a continuously oriented tangent t, it flips where the branch
+        crosses a simple bifurcation (Allgower and Georg, Numerical Continuation Methods, ch. 8).
+        """
+        return float(np.sign(np.linalg.det(np.vstack([self.projection @ self.jacobian(x), t]))))
+
+    def tangent(self, x: NDArray, near: NDArray) -> tuple[NDArray, float]:
+        """(unit mechanism mode at x oriented along `near`, relative sigma_2)."""
+        s, V = self.spectrum(x)
+        return V[0] * (np.sign(V[0] @ near) or 1.0), float(s[1])
+
+
+def _step(f: _Follower, p: _Point, eta: float) -> tuple[_Point, int] | None:
+    """Predictor eta along the tangent, corrector; None when step control rejects it."""
+    guess = f.move(p.x, eta * p.tangent)
+    got = f.correct(guess, p.angles)
+    if got is None or np.linalg.norm(got[0] - guess) > MAX_CORRECTION * eta:
+        return None
+    t, s2 = f.tangent(got[0], p.tangent)
+    if t @ p.tangent < np.cos(MAX_TURN):
+        return None
+    return _Point(got[0], f.angles(got[0], p.angles), s2, t, eta), got[1]
+
+
+def _land(f: _Follower, p: _Point, eta: float, k: int, target: float) -> _Point:
+    """The point at which drive angle k equals `target`, between p and p + eta (secant on the predictor step)."""
+    lo, g_lo = 0.0, p.angles[k] - target
+    hi, point = eta, None
+    for _ in range(60):
+        got = _step(f, p, hi)
+        if got is None:
+            raise ConvergenceError(f"corrector failed landing on the stop input {target:.6g} rad")
+        point = got[0]
+        g = point.angles[k] - target
+        if abs(g) < 1e-14 * max(1.0, abs(target)):
+            break
+        lo, g_lo, hi = hi, g, hi - g * (hi - lo) / (g - g_lo)
+    return point
+
+
+def _golden(f: _Follower, p: _Point, lo: float, hi: float) -> _Point:
+    """Golden-section search (to 5% of the bracket) for the minimum of sigma_2 over the predictor steps h in
+    [lo, hi] from p; a step the corrector cannot close counts as no minimum."""
+    g = (np.sqrt(5.0) - 1) / 2
+    span = hi - lo
+
+    def at(h: float) -> _Point:
+        got = f.correct(f.move(p.x, h * p.tangent), p.angles)
+        if got is None:
+            return _Point(p.x, p.angles, np.inf, p.tangent, h)
+        t, s2 = f.tangent(got[0], p.tangent)
+        return _Point(got[0], f.angles(got[0], p.angles), s2, t, h)
+
+    a, b = at(hi - g * span), at(lo + g * span)
+    while hi - lo > 0.05 * span:
+        if a.sigma2 < b.sigma2:
+            hi, b = b.arc, a
+            a = at(hi - g * (hi - lo))
+        else:
+            lo, a = a.arc, b
+            b = at(lo + g * (hi - lo))
+    return min(a, b, key=lambda q: q.sigma2)
+
+
+def _locate(f: _Follower, p: _Point, before: float, after: float) -> _Point:
+    """
+    The minimum of sigma_2 on the path from `before` (arc length) behind p to `after` ahead of it. Near a
+    crossing the corrector, started about curvature x h^2 off the branch, may land on the other branch, which
+    hides a gap of that size around the bifurcation; so the search is repeated around the best point so far,
+    with predictor steps from it, over a span REFINE_SHRINK times shorter each round, down to the rounding
+    floor (REFINE_FLOOR x scale).
+    """
+    best = _golden(f, p, -before, after)
+    span = before + after
+    while span > REFINE_FLOOR * f.truss.scale:
+        span /= REFINE_SHRINK
+        best = min(best, _golden(f, best, -span / 2, span / 2), key=lambda q: q.sigma2)
+    return best
+
+
+def _branch_directions(f: _Follower, p: _Point, null: NDArray) -> list[NDArray]:
+    """
+    Branch tangents at a simple bifurcation p (null space of dimension 2, rows of `null`): t = cos(a) n1 +
+    sin(a) n2 with w . d2F(t) = 0 for every state of self-stress w (no second-order strain that the
+    self-stress would resist), d2F the second derivative of the residual along t (central differences).
+    """
+    W = f.stresses(p.x, 2)
+    h = 1e-3 * f.truss.scale
+    F0 = f.residual(p.x, p.angles)
+
+    def form(t: NDArray) -> NDArray:
+        return W.T @ (f.residual(f.move(p.x, h * t), p.angles) - 2 * F0 + f.residual(f.move(p.x, -h * t), p.angles))
+
+    n1, n2 = null
+    A, C = form(n1), form(n2)
+    B = (form(n1 + n2) - A - C) / 2
+    a, b, c = np.linalg.svd(np.stack([A, B, C], axis=1))[2][0]  # the dominant quadratic a x^2 + 2 b x y + c y^2
+    R = np.hypot((a - c) / 2, b)
+    if R < 1e-12 or abs(a + c) / 2 > R:
+        return []
+    psi, spread = np.arctan2(b, (a - c) / 2), np.arccos(-(a + c) / (2 * R))
+    return [np.cos(u) * n1 + np.sin(u) * n2 for u in ((psi + spread) / 2, (psi - spread) / 2)]
+
+
+def _leave(f: _Follower, p: _Point, t_in: NDArray, rate: NDArray, choice: str, eta: float) -> tuple[_Point, int, int]:
+    """
+    Step off the bifurcation p along the chosen branch: 'keep' = the direction closest to the incoming
+    tangent t_in, 'switch' = the other, oriented so the drive keeps its sense (`rate`: the drive's rate).
+    Returns (p with that direction as its tangent, mobility at p, number of branch directions found).
+    """
+    s, V = f.spectrum(p.x)
+    m = int(np.sum(s < BIFURCATION_RTOL))
+    directions = _branch_directions(f, p, V[:2]) if m == 2 else []
+    if len(directions) == 2:
+        closest = int(np.argmax([abs(d @ t_in) for d in directions]))
+        if choice == "keep":
+            t = directions[closest] * np.sign(directions[closest] @ t_in)
+        else:
+            t = directions[1 - closest]
+            t = t * (np.sign(t @ rate) * np.sign(t_in @ rate) or np.sign(t @ t_in) or 1.0)
+    elif choice == "keep":
+        t = V[:m].T @ (V[:m] @ t_in)
+        t /= np.linalg.norm(t)
+    else:
+        raise AssemblyError(f"cannot switch branch where the mobility jumps to {m} "
+                            f"({len(directions)} real branch directions at second order)")  # fmt: skip
+    return replace(p, tangent=t), m, len(directions)
+
+
+def _is_dip(points: list[_Point], events: list[Bifurcation]) -> bool:
+    """Whether the second-last point is a deep local minimum of sigma_2 (not at an event)."""
+    if len(points) < 3 or (events and events[-1].index >= len(points) - 3):
+        return False
+    a, b, c = (p.sigma2 for p in points[-3:])
+    return b < a and b < c and b < DIP * max(a, c)
+
+
+def follow(
+    truss: Truss,
+    drive: str,
+    stop: float,
+    *,
+    drive_scale: float = 1.0,
+    step: float | None = None,
+    choice: str = "keep",
+    max_points: int = 20000,
+    rtol: float = RANK_RTOL,
+) -> TrussPath:
+    """
+    Follow the 1-DOF motion of `truss` from its configuration until the input q_drive / drive_scale reaches
+    `stop` (rad): predictor along the mechanism mode (the null vector of the grounded [C; K]), corrector by
+    the rank-truncated pseudo-inverse, step control on the arc length in node space (`step`: first step,
+    length units, default FIRST_STEP x scale). The root body stays fixed.
+
+    At a dip of sigma_2 its minimum is located on the path; where the mobility jumps there (a bifurcation)
+    the branch directions are found at second order and `choice` picks one: 'keep' (closest to the incoming
+    tangent: straight through a transversal crossing) or 'switch' (the other branch). The path ends early,
+    with reached = False, after `max_points` points.
+    """
+    if choice not in ("keep", "switch"):
+        raise ParameterError(f"branch choice {choice!r}; it must be 'keep' or 'switch'")
+    if not (np.isfinite(stop) and np.isfinite(drive_scale) and drive_scale != 0):
+        raise ParameterError(f"stop = {stop!r} rad, drive_scale = {drive_scale!r}: both must be finite, scale nonzero")
+    names = revolute_names(truss)
+    if drive not in names:
+        raise ParameterError(f"drive joint {drive!r} is not a revolute joint of the truss; they are {list(names)}")
+    eta = FIRST_STEP * truss.scale if step is None else float(step)
+    if not (np.isfinite(eta) and eta > 0):
+        raise ParameterError(f"step = {step!r}; it must be a positive length")
+    f, k = _Follower(truss, rtol), names.index(drive)
+    target = stop * drive_scale
+    angles = f.angles(truss.nodes, truss.angles0[f.revolute])
+    sense = np.sign(target - angles[k]) or 1.0
+    s, V = f.spectrum(truss.nodes)
+    if s[1] < rtol:
+        raise ParameterError(f"path following needs mobility 1 at the start; sigma_2 = {s[1]:.3g} (mobility >= 2)")
+    rate = joint_rates(truss)[:, f.free][k]
+    points = [_Point(truss.nodes.copy(), angles, float(s[1]), V[0] * (np.sign(V[0] @ rate) * sense or 1.0), 0.0)]
+    events: list[Bifurcation] = []
+    signs = [f.orientation(points[0].x, points[0].tangent)]
+    landed = False
+    while len(points) < max_points and not landed:
+        got = _step(f, points[-1], eta)
+        if got is None:
+            eta /= 2
+            if eta < MIN_STEP * truss.scale:
+                raise ConvergenceError(f"step fell below {MIN_STEP:g} x scale at input "
+                                       f"{points[-1].angles[k] / drive_scale:.6g} rad")  # fmt: skip
+            continue
+        new, iterations = got
+        landed = (new.angles[k] - target) * sense >= 0
+        if landed:
+            new = _land(f, points[-1], eta, k, target)
+        points.append(new)
+        signs.append(f.orientation(new.x, new.tangent))
+        eta = min(1.5 * eta, MAX_STEP * truss.scale) if iterations <= 3 else eta
+        if signs[-1] != signs[-2]:  # crossed between the last two points
+            found, replace_from = _locate(f, points[-2], 0.0, new.arc), -1
+        elif _is_dip(points, events):  # touched near the second-last point
+            found, replace_from = _locate(f, points[-2], points[-2].arc, new.arc), -2
+        else:
+            continue
+        if found.sigma2 < BIFURCATION_RTOL:
+            rate = joint_rates(truss, found.x)[:, f.free][k]
+            leaving, m, n_dir = _leave(f, found, points[replace_from - 1].tangent, rate, choice, eta)
+            got = _step(f, leaving, eta)
+            if got is None:
+                raise ConvergenceError(f"corrector failed stepping off the bifurcation at {found.angles[k]:.6g} rad")
+            after = got[0]
+            landed = (after.angles[k] - target) * sense >= 0
+            if landed:
+                after = _land(f, leaving, eta, k, target)
+            points[replace_from:] = [found, after]
+            signs[replace_from:] = [f.orientation(after.x, after.tangent)] * 2
+            events.append(Bifurcation(len(points) - 2, float(found.angles[k] / drive_scale), found.sigma2, m,
+                                      n_dir, choice))  # fmt: skip
+    angles = np.array([p.angles for p in points])
+    return TrussPath(np.array([p.x for p in points]), angles, names, angles[:, k] / drive_scale,
+                     np.array([p.sigma2 for p in points]), tuple(events), landed)  # fmt: skip
+
+
+# -- scenes ----------------------------------------------------------------------------------------------------
+
+
+def truss_mobility(scene: "Scene", q: ArrayLike, rtol: float = RANK_RTOL) -> Counts:
+    """Truss counts of `scene`'s mechanism (a `scenes.Scene`) at mechanism joint angles q (rad)."""
+    return analyse(truss_of(scene.mechanism, q), rtol=rtol)
+
+
+@dataclass(frozen=True)
+class ScenePath:
+    """A truss path of a scene: input (n,) (rad), mechanism joint angles q (n, n_joints) (rad), the truss path."""
+
+    input: NDArray[np.float64]
+    q: NDArray[np.float64]
+    path: TrussPath
+
+
+def follow_scene(scene: "Scene", branch: str, start: float, stop: float, *, choice: str = "keep",
+                 step: float | None = None) -> ScenePath:  # fmt: skip
+    """Follow `scene` with the truss method from its closed-form pose on `branch` at input `start` to `stop` (rad)."""
+    truss = truss_of(scene.mechanism, scene.pose(branch, start))
+    path = follow(truss, scene.drive_joint, stop, drive_scale=scene.drive_scale, step=step, choice=choice)
+    order = [path.joints.index(j.name) for j in scene.mechanism.joints]
+    return ScenePath(path.input, path.angles[:, order], path)
