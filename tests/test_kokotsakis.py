@@ -202,8 +202,14 @@ def test_validate_closed_form_numeric_and_mujoco(case):
         assert measured[f"{b}: MuJoCo fast path error (rad)"] <= TOLERANCES.fast_rad
         assert measured[f"{b}: MuJoCo projection path error (rad)"] <= TOLERANCES.projection_rad  # <= 2.1e-14
         assert (run.followed, run.flips) == (b, 0)
-        assert run.mobility["start"] == {"input_rad": scene.branch_path(b)[0], "numeric": 1, "mujoco": 1}
-        assert [(p["numeric"], p["mujoco"]) for p in run.mobility["bifurcations"]] == [(4, 4)]
+        start = run.mobility["start"]
+        assert (start["input_rad"], start["numeric"], start["mujoco"], start["truss"]) == (
+            scene.branch_path(b)[0],
+            1,
+            1,
+            1,
+        )
+        assert [(p["numeric"], p["mujoco"], p["truss"]) for p in run.mobility["bifurcations"]] == [(4, 4, 4)]
     # seeded 1e-4 (cases 1, 2) or 1e-3 rad (case 3) from flat, MuJoCo follows every branch
     assert all(d is not None for d in report.bifurcations[0]["seed_offset_followed_rad"].values())
     assert report.passed

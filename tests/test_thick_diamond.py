@@ -272,8 +272,11 @@ def test_validate_default_scene_passes_every_verdict(scene):
         assert measured["MuJoCo fast path error (rad)"] <= TOLERANCES.fast_rad
         assert measured["MuJoCo projection path error (rad)"] <= TOLERANCES.projection_rad
         # the bifurcation at flat: mobility 2 there in the numeric loop and in MuJoCo, 1 at the start
-        assert run.mobility["bifurcations"] == [{"input_rad": 0.0, "numeric": 2, "mujoco": 2}]
-        assert run.mobility["start"] == {"input_rad": -0.4, "numeric": 1, "mujoco": 1}
+        # truss method alike; one state of self-stress (a Bricard 6R) at the start, two at flat
+        flat = {"input_rad": 0.0, "numeric": 2, "mujoco": 2, "truss": 2, "truss_self_stress": 2}
+        assert run.mobility["bifurcations"] == [flat]
+        start = {"input_rad": -0.4, "numeric": 1, "mujoco": 1, "truss": 1, "truss_self_stress": 1}
+        assert run.mobility["start"] == start
     # blockage (branch 'diamond'): measured stop -1.429613 vs contact -1.429429 (1.8e-4 rad)
     assert report.blockage.stopped and report.blockage.error <= TOLERANCES.blockage_rad
     # bifurcation study: each branch followed once seeded (diamond from 1e-2 rad, counter23 from 1e-4)

@@ -260,4 +260,6 @@ def test_validate_default_scene_passes_every_verdict(scene):
     assert measured["MuJoCo projection path error (rad)"] <= TOLERANCES.projection_rad
     assert measured["servo stop vs kinematic contact (rad)"] <= TOLERANCES.blockage_rad
     assert report.blockage.stopped and report.blockage.contact_input == pytest.approx(-2.0978594, abs=1e-6)
-    assert run.mobility["start"] == {"input_rad": -0.4, "numeric": 1, "mujoco": 1}
+    # truss method alike, with the Myard linkage's two states of self-stress (seed 001)
+    start = {"input_rad": -0.4, "numeric": 1, "mujoco": 1, "truss": 1, "truss_self_stress": 2}
+    assert run.mobility["start"] == start
