@@ -102,10 +102,15 @@ def transform(R: ArrayLike | None = None, p: ArrayLike | None = None) -> NDArray
 
 
 def transform_z(angle: ArrayLike) -> NDArray[np.float64]:
-    """Homogeneous rotations about +z, (..., 4, 4)."""
+    """Homogeneous rotations about +z, (..., 4, 4) (written directly: the loop products' inner step)."""
     angle = np.asarray(angle, dtype=float)
+    c, s = np.cos(angle), np.sin(angle)
     T = np.zeros((*angle.shape, 4, 4))
-    T[..., :3, :3] = rot_z(angle)
+    T[..., 0, 0] = c
+    T[..., 0, 1] = -s
+    T[..., 1, 0] = s
+    T[..., 1, 1] = c
+    T[..., 2, 2] = 1.0
     T[..., 3, 3] = 1.0
     return T
 

@@ -11,8 +11,9 @@ import numpy as np
 from .files import atomic_path
 from .validation import Report
 
-# Simulated markers drawn per branch (the CSV keeps every sample).
+# Simulated markers drawn per branch (the CSV keeps every sample); joints named in a legend at most.
 MARKERS = 40
+LEGEND_MAX = 16
 
 
 def plot_report(report: Report, path: str | Path) -> Path:
@@ -38,7 +39,8 @@ def plot_report(report: Report, path: str | Path) -> Path:
         top.set_title(f"{report.scene.name}: branch {run.requested}\n(followed {run.followed or '-'})", fontsize=10)
         top.set_xlabel(f"{kin.input_name} (deg)")
         top.set_ylabel("joint angle (deg)")
-        top.legend(fontsize=8, ncol=2)
+        if len(kin.joint_names) <= LEGEND_MAX:
+            top.legend(fontsize=8, ncol=2)
         top.grid(alpha=0.3)
         bottom.set_xlabel(f"{kin.input_name} (deg)")
         bottom.set_ylabel(f"|MuJoCo {report.preset} - closed form| (rad)")

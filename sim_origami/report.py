@@ -98,12 +98,10 @@ def curves_csv(report: Report) -> str:
     writer.writerow(header)
     for run in report.runs:
         for mode, path in (("dynamic", run.dynamic_path), ("projection", run.projection_path)):
-            err = path.error
-            for i in range(len(path.input)):
-                row = [run.requested, mode, f"{path.input[i]:.17g}"]
-                for k in range(len(names)):
-                    row += [f"{path.simulated[i, k]:.17g}", f"{path.analytic[i, k]:.17g}", f"{err[i, k]:.3e}"]
-                writer.writerow(row)
+            values = np.stack([path.simulated, path.analytic, path.error], -1).reshape(len(path.input), -1)
+            # one format for the whole row: the branch and mode lead every line (names carry no '%')
+            fmt = ",".join([run.requested, mode, "%.17g"] + ["%.17g,%.17g,%.3e"] * len(names))
+            np.savetxt(buf, np.column_stack([path.input, values]), fmt=fmt)
     return buf.getvalue()
 
 

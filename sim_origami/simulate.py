@@ -26,6 +26,8 @@ from .scenes.base import Scene
 
 # Closure residual is measured on at most this many samples of a run (after mj_kinematics each).
 RESIDUAL_SAMPLES = 400
+# Below this residual (m) a projection step that no longer lowers it ends the iteration (rounding floor).
+STALL_TOL = 1e-13
 # Projection stops when MuJoCo's equality residual (m) falls below this (1e-14 left up to 1.8e-13 rad of angle
 # error on ill-conditioned loops; 1e-15 at most 2.3e-14, still within 20 Gauss-Newton steps).
 PROJECTION_TOL = 1e-15
@@ -277,12 +279,15 @@ def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: s
     with captured_warnings() as messages:
         for k, value in enumerate(inputs):
             data.qpos[binds.drive_qpos] = scene.drive_scale * value
+            previous = np.inf
             for _ in range(20):
                 mujoco.mj_fwdPosition(model, data)
                 rows = data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY
                 r = data.efc_pos[rows]
-                if np.max(np.abs(r), initial=0.0) < PROJECTION_TOL:
-                    break
+                size = np.max(np.abs(r), initial=0.0)
+                if size < PROJECTION_TOL or (size < STALL_TOL and size >= previous):
+                    break  # converged, or at the rounding floor of a large model
+                previous = size
                 J = constraint_jacobian(model, data)[rows][:, free]
                 data.qpos[free] -= np.linalg.lstsq(J, r, rcond=None)[0]  # hinges: qpos index = dof index
             qpos_log[k] = data.qpos

@@ -1,6 +1,7 @@
 """Path error: simulated outputs against the closed form at the simulated input."""
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
@@ -17,7 +18,7 @@ class PathComparison:
     simulated: NDArray[np.float64]
     analytic: NDArray[np.float64]
 
-    @property
+    @cached_property
     def error(self) -> NDArray[np.float64]:
         """|simulated - analytic| (n, k), modulo 2 pi; NaN where the input left the branch's domain."""
         return np.abs(wrap(self.simulated - self.analytic))
