@@ -18,6 +18,7 @@ from . import (  # noqa: F401  (registration side effect)
     twist_6r,
     vertex4,
     waterbomb,
+    waterbomb_tube,
 )
 from .base import REGISTRY, Param, Scene, SceneType, get, names, register
 

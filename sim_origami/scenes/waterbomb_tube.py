@@ -1,0 +1,92 @@
+"""Scene `waterbomb-tube`: the generalized waterbomb tube on its radial contraction (seed 004 §2, seed 000 ch. 6).
+
+Every triangular face is a body (6nm) and every crease a hinge (9nm - 2n). The flat strip
+(`kinematics.waterbomb_tube`) gives the bodies and the strip's creases (`origami.pattern_mechanism`); the 2m - 1
+seam creases are added as hinges whose two frames sit on their two copies, 2 n a apart in the flat sheet, so
+they are cut and closed by connects like any other loop: the connects across the seam roll the strip into a
+tube. The free tube has 4n - 6 DOF; the seeds' symmetry (units alike round a row, plane-symmetric units,
+equatorial mirror or half-turn) is imposed by joint couplings, every spanning-tree crease to the first of its
+symmetry class (`WaterbombTube.couplings`, 98 on the 6 x 3 tube, 164 on the 6 x 5: redundant, 4n - 7 would do),
+which leaves the 1-DOF contraction, driven at the equatorial row's top midline A<r0>_0_1 (theta = pi + rho).
+"""
+
+import numpy as np
+
+from ..creases import CreasePattern
+from ..geometry import frame_along
+from ..kinematics.waterbomb_tube import WaterbombTube
+from ..mechanism import Joint, Mechanism
+from ..origami import pattern_mechanism
+from .base import Param, Scene, register
+
+PARAMS = (
+    Param("n", "", 6, "units round the tube (>= 3)"),
+    Param("m", "", 5, "rows (>= 1); odd: equatorial row, even: equatorial row boundary"),
+    Param("alpha", "deg", 40.0, "design angle alpha (big triangles' apex 180 - 2 alpha)"),
+    Param("beta", "deg", 40.0, "design angle beta (small triangles' angle at the corner)"),
+    Param("a", "m", 0.5, "half-width of a unit"),
+)
+# Default sweep: the middle PATH_SHARE of the contraction's range of theta, clear of the fully folded equatorial
+# row at 2 pi / n (the free tube gains its twist mode there: the coupled closure's smallest singular value falls
+# from 2.3e-2 to 1.4e-4 at 60.01 deg) and of the top row's fold (eqn 14). 6 x 5, 40/40 deg: theta 69.8 -> 115.4
+# deg, through both uniform-radius states (98.72, 111.28 deg), which are regular points of the coupled closure.
+PATH_SHARE = 0.7
+# The symmetry couplings are soft (MuJoCo joint equalities) and set the path error, which falls as the square of
+# the sweep time. Fast preset, default sweep, every crease: 6 x 5 tube 2.8e-7 rad at 16x, 7.3e-8 at 32x (12800
+# steps, 70 s CPU, 183 steps/s); 6 x 3 tube 2.6e-6 at 4x, 2.3e-7 at 16x, 5.7e-8 at 32x (26 s CPU, 500 steps/s).
+# The stiff preset does better at equal CPU: 6 x 5 5.4e-7 at 4x, 1.3e-7 at 8x (16 s CPU, 786 steps/s); 6 x 3
+# 5.1e-7 at 4x, 1.3e-7 at 8x (5.7 s, 2250 steps/s); fast at 8x: 1.2e-6 and 9.3e-7.
+PRESET = "stiff"
+SWEEP_TIME_SCALE = 8.0
+ANCHORS = (0.5, 1.0)
+
+
+def seam_joints(pattern: CreasePattern, kinematics: WaterbombTube) -> tuple[Joint, ...]:
+    """The seam creases as hinges from their right face (parent) to their left face (child), each frame on that
+    face's copy of the crease in the flat sheet (`sim_origami.creases` for the sign)."""
+    out = []
+    for seam in kinematics.layout.seam:
+        frames = [_hinge_frame(pattern, start, end) for start, end in (seam.right_ends, seam.left_ends)]
+        span = float(np.linalg.norm(pattern.vertices[seam.left_ends[1]] - pattern.vertices[seam.left_ends[0]]))
+        out.append(Joint(seam.name, seam.right_face, seam.left_face, frames[0], frames[1],
+                         tuple(f * span for f in ANCHORS)))  # fmt: skip
+    return tuple(out)
+
+
+def _hinge_frame(pattern: CreasePattern, start: int, end: int) -> np.ndarray:
+    """Hinge frame (4, 4) on the flat edge from strip vertex `start` to `end`, z along it (as `hinge_frame`)."""
+    d = pattern.vertices[end] - pattern.vertices[start]
+    return frame_along([*d, 0.0], (*pattern.vertices[start], 0.0))
+
+
+def tube_mechanism(kinematics: WaterbombTube) -> Mechanism:
+    """Faces as bodies, every crease of the tube as a hinge, the symmetry couplings; root: the input crease's
+    right face."""
+    pattern = kinematics.pattern
+    drive = kinematics.input_crease
+    root = pattern.crease_faces(pattern.creases[kinematics.layout.index(drive)])[0]
+    couplings = tuple((a, b, 1.0) for a, b in kinematics.couplings)
+    strip = pattern_mechanism(pattern, root=root, keep=(drive,), couplings=couplings, anchors=ANCHORS)
+    return Mechanism(strip.bodies, strip.joints + seam_joints(pattern, kinematics), root, (drive,), couplings)
+
+
+def default_path(kinematics: WaterbombTube) -> tuple[float, float]:
+    """The middle PATH_SHARE of the contraction's domain of the input rho (rad), swept outward (theta rising)."""
+    lo, hi = kinematics.domain
+    margin = 0.5 * (1 - PATH_SHARE) * (hi - lo)
+    return lo + margin, hi - margin
+
+
+@register("waterbomb-tube", "generalized waterbomb tube, n units x m rows, radial contraction under the seeds' "
+          "symmetry (seed 004 §2, seed 000 M10-M11), input rho of the equatorial top midline", PARAMS)  # fmt: skip
+def build(n: float, m: float, alpha: float, beta: float, a: float) -> Scene:
+    kinematics = WaterbombTube(n, m, alpha, beta, a)
+    return Scene(
+        name="waterbomb-tube", params={"n": n, "m": m, "alpha": alpha, "beta": beta, "a": a},
+        kinematics=kinematics, mechanism=tube_mechanism(kinematics), loop_joints=kinematics.crease_names,
+        drive_joint=kinematics.input_crease, drive_scale=1.0, path=default_path(kinematics),
+        sweep_time_scale=SWEEP_TIME_SCALE, preset=PRESET,
+        pattern=kinematics.pattern,
+        notes=f"{int(n)} x {int(m)} tube; {len(kinematics.couplings)} symmetry couplings; "
+        f"{len(kinematics.layout.seam)} seam creases closed by connects",
+    )  # fmt: skip
