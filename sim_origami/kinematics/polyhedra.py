@@ -1,0 +1,352 @@
+"""Transformable polyhedra of seed 001: truncated octahedron <-> cube (ch. 5, digest §2.7).
+
+Frame and units: the seed's (5-1) frame, unit edges (m), origin at the body centre; angles in radians.
+Every position below is given with square A held at its truncated-octahedron pose (the deployed world
+frame), so the deployed coordinates are exactly (5-1) and the cube coordinates equal (5-2) up to one
+rigid motion.
+
+Assembly (1-DOF design, digest §2.7 and §5): 6 rigid squares A..F and 12 rigid bars. Bricard 1 is the
+hexagon A1 A2 C1 C2 B1 B2 (links: square A, bar A2C1, square C, bar C2B1, square B, bar B2A1) with R joints
+at its six vertices; Bricard 2 = D1 D2 E1 E2 F1 F2 is its image under the half-turn R2: (x, y, z) ->
+(-y, -x, -z), which maps the squares A, B, C onto E, D, F with the same vertex indices. R joints at A3,
+B3, C3 join squares A, B, C to the bars A3E3, B3F3, C3D3 (axis in the bisecting plane of angle A2 A3 E3,
+turned by zeta from the direction to the centre); S joints at E3, F3, D3 and at both ends of the bars
+A4F4, B4D4, C4E4. 15 R + 9 S joints, 18 bodies, 7 loops, 1 DOF.
+
+Bricard axes (digest orientation, corrected printed vectors (5-3), (5-16), (5-17)): odd joints A1, C1, B1
+along O -> vertex; even joints s_C2 = (p, q, r), s_A2 = (r, p, q), s_B2 = (q, r, p) with
+p = (1 - 2 sqrt 2)/2, q = -(sqrt 2 + 1)/2, r = -3/2. The seed's §2.0 procedure gives a threefold-symmetric
+Bricard (1-27) with a = 0.713234 m, alpha = 214.7865 deg, R = 0: `BricardThreefold` gives its closed form,
+theta at the odd joints (A1, C1, B1), phi at the even ones, on its 'even-axes-along' branch (phi_d = 147.4964
+deg at theta_d = 34.3147 deg). Angles are D-H joint angles in this axis orientation (seed §2.0).
+
+Analytic model (digest §2.7 "reduced C3-symmetric model"). The motion keeps the threefold symmetry about
+the common axis of both Bricards, so it is fixed by the input theta = theta_A (Bricard 1's odd joint angle)
+and three unknowns x = (theta_D, psi, h): Bricard 2's odd joint angle, and the turn psi (rad) and shift h (m)
+of Bricard 2 along Bricard 1's symmetry axis, relative to their deployed relative pose. Three equations
+close the remaining loops (the other six follow by symmetry): |A3E3| = 1, (E3 - A3) . s_A3 = its deployed
+value (the R joint at A3), |A4F4| = 1. Both Bricards follow the closed form exactly; only this 3 x 3 system
+is solved (Newton, from the deployed state, continued in theta). Its Jacobian is regular on the whole path
+(smallest singular value 0.10 on 101 samples, zeta = 0).
+
+The path ends at the cube (theta_f = 166.1251 deg: A1 = B1 = C1, Bricard 1 folded, delta2 = 0 in (5-40));
+beyond it the squares pass through each other (the seed's rho < 0).
+"""
+
+from functools import cached_property
+from itertools import pairwise
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..errors import ConvergenceError, DomainError, ParameterError
+from ..geometry import rotation, transform, transform_z, unit
+from .bricard_threefold import ALONG, BricardThreefold
+from .dh import DHRow, dh_from_axes
+
+SQ2, HALF = np.sqrt(2.0), np.sqrt(2.0) / 2
+# (5-1): the truncated octahedron, unit edges.
+VERTICES: dict[str, NDArray[np.float64]] = {
+    name: np.array(xyz, dtype=float)
+    for name, xyz in {
+        "A1": (SQ2, HALF, 0), "A2": (SQ2, 0, HALF), "A3": (SQ2, -HALF, 0), "A4": (SQ2, 0, -HALF),
+        "B1": (0, SQ2, HALF), "B2": (HALF, SQ2, 0), "B3": (0, SQ2, -HALF), "B4": (-HALF, SQ2, 0),
+        "C1": (HALF, 0, SQ2), "C2": (0, HALF, SQ2), "C3": (-HALF, 0, SQ2), "C4": (0, -HALF, SQ2),
+        "D1": (-SQ2, 0, -HALF), "D2": (-SQ2, -HALF, 0), "D3": (-SQ2, 0, HALF), "D4": (-SQ2, HALF, 0),
+        "E1": (-HALF, -SQ2, 0), "E2": (0, -SQ2, -HALF), "E3": (HALF, -SQ2, 0), "E4": (0, -SQ2, HALF),
+        "F1": (0, -HALF, -SQ2), "F2": (-HALF, 0, -SQ2), "F3": (0, HALF, -SQ2), "F4": (HALF, 0, -SQ2),
+    }.items()
+}  # fmt: skip
+NAMES: tuple[str, ...] = tuple(VERTICES)
+# (5-2): the cube (edge 1) each vertex reaches; merged vertices share a corner.
+CUBE: dict[str, NDArray[np.float64]] = {
+    name: 0.5 * np.array(signs, dtype=float)
+    for corner, signs in {
+        ("A1", "B1", "C1"): (1, 1, 1), ("B4", "C2", "D3"): (-1, 1, 1), ("C3", "D2", "E4"): (-1, -1, 1),
+        ("A2", "C4", "E3"): (1, -1, 1), ("A4", "B2", "F3"): (1, 1, -1), ("B3", "D4", "F2"): (-1, 1, -1),
+        ("D1", "E1", "F1"): (-1, -1, -1), ("A3", "E2", "F4"): (1, -1, -1),
+    }.items()
+    for name in corner
+}  # fmt: skip
+SQUARES = tuple(tuple(f"{s}{k}" for k in range(1, 5)) for s in "ABCDEF")
+BRICARD_BARS = (("A2", "C1"), ("C2", "B1"), ("B2", "A1"), ("D2", "E1"), ("E2", "F1"), ("F2", "D1"))
+RS_BARS = (("A3", "E3"), ("B3", "F3"), ("C3", "D3"))  # R joint at the first vertex, S at the second
+SS_BARS = (("A4", "F4"), ("B4", "D4"), ("C4", "E4"))
+BARS = BRICARD_BARS + RS_BARS + SS_BARS
+BRICARD_1 = ("A1", "A2", "C1", "C2", "B1", "B2")  # D-H loop order; link k joins joint k to joint k+1
+LINKS_1 = ("A", "A2C1", "C", "C2B1", "B", "B2A1")  # body of link k: its vertices move with it
+# The half-turn R2 maps Bricard 1 onto Bricard 2 (letters A, B, C -> E, D, F, same index).
+R2 = np.array([[0.0, -1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
+IMAGE = str.maketrans("ABC", "EDF")
+# Exact volumes for unit edges: truncated octahedron 8 sqrt 2, cube 1 (seed 001 ch. 5 abstract: 11.3).
+VOLUME_RATIO = 8.0 * SQ2
+
+
+def even_axes() -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """s_A2, s_C2, s_B2 (not unit): (r, p, q), (p, q, r), (q, r, p) of (5-13) and corrected (5-16, 5-17)."""
+    p, q, r = (1 - 2 * SQ2) / 2, -(SQ2 + 1) / 2, -1.5
+    return np.array([r, p, q]), np.array([p, q, r]), np.array([q, r, p])
+
+
+def bricard_axes() -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Points and unit directions (6, 3) of Bricard 1's axes in loop order A1, A2, C1, C2, B1, B2."""
+    s_a2, s_c2, s_b2 = even_axes()
+    dirs = np.array([VERTICES["A1"], s_a2, VERTICES["C1"], s_c2, VERTICES["B1"], s_b2])
+    return np.array([VERTICES[v] for v in BRICARD_1]), unit(dirs)
+
+
+def axis_a3(zeta: float) -> NDArray[np.float64]:
+    """
+    Unit axis of the R joint at A3 (deployed frame): Rot(unit(A2 - E3), zeta) unit(O - A3) (digest §2.7):
+    zeta = 0 points to the centre, positive zeta right-handed about A2 - E3.
+    """
+    return rotation(unit(VERTICES["A2"] - VERTICES["E3"]), zeta) @ unit(-VERTICES["A3"])
+
+
+def faces() -> tuple[tuple[str, ...], ...]:
+    """
+    The 14 faces as outward (counter-clockwise seen from outside) vertex cycles: the 6 squares and the
+    8 hexagons (hollow in the mechanism; used for the enclosed volume only).
+    """
+    out = []
+    for square in SQUARES:
+        P = np.array([VERTICES[v] for v in square])
+        normal = np.cross(P[1] - P[0], P[2] - P[0])
+        out.append(square if normal @ P.mean(0) > 0 else square[::-1])
+    for octant in np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).T.reshape(-1, 3):
+        ring = [v for v in NAMES if abs(VERTICES[v] @ octant - 1.5 * SQ2) < 1e-9]
+        centre = sum(VERTICES[v] for v in ring) / 6
+        e1 = unit(VERTICES[ring[0]] - centre)
+        e2 = np.cross(unit(octant.astype(float)), e1)
+        ring.sort(key=lambda v: np.arctan2((VERTICES[v] - centre) @ e2, (VERTICES[v] - centre) @ e1))
+        out.append(tuple(ring))
+    return tuple(out)
+
+
+def volume(points: ArrayLike) -> NDArray[np.float64]:
+    """
+    Volume (m^3) enclosed by `faces()` for vertex positions (..., 24, 3) in `NAMES` order: the divergence
+    theorem over a fan triangulation of each face (exact for planar faces and for merged vertices).
+    """
+    P = np.asarray(points, dtype=float)
+    index = {v: k for k, v in enumerate(NAMES)}
+    total = np.zeros(P.shape[:-2])
+    for face in faces():
+        k = [index[v] for v in face]
+        for a, b in pairwise(k[1:]):
+            total = total + np.einsum("...i,...i", P[..., k[0], :], np.cross(P[..., a, :], P[..., b, :]))
+    return total / 6.0
+
+
+def _foot(p0: NDArray, s0: NDArray, p1: NDArray, s1: NDArray) -> NDArray[np.float64]:
+    """Foot on line (p1, s1) of the common normal from line (p0, s0); unit directions, skew lines."""
+    w, b = p0 - p1, s0 @ s1
+    return p1 + ((s1 @ w) - b * (s0 @ w)) / (1.0 - b * b) * s1
+
+
+class TruncatedOctahedronCube:
+    """
+    Truncated octahedron -> cube, 1-DOF design with R joints at A3, B3, C3 (seed 001 ch. 5).
+
+    Parameters
+    ----------
+    zeta : float
+      Deviation (rad) of the A3 axis from the direction to the centre, in the bisecting plane of angle
+      A2 A3 E3 (digest §2.7); the seed's prototype and the default use 0. Must lie in (-pi/2, pi/2).
+
+    The input is theta = theta_A (rad), Bricard 1's odd-joint D-H angle, from theta_d (the truncated
+    octahedron) to theta_f (the cube); `domain` is that closed interval.
+    """
+
+    def __init__(self, zeta: float = 0.0):
+        if not (np.isfinite(zeta) and abs(zeta) < np.pi / 2):
+            raise ParameterError(
+                f"zeta = {np.rad2deg(zeta):.6g} deg; it must lie in (-90, 90) deg (at +/-90 deg the A3 axis lies "
+                "along the bar A3E3's plane normal, outside the seed's range of designs)"
+            )
+        self.zeta = float(zeta)
+        points, dirs = bricard_axes()
+        rows, angles = dh_from_axes(points, dirs)
+        self.rows: tuple[DHRow, ...] = rows
+        self.bricard = BricardThreefold(rows[0].a, rows[0].alpha % (2 * np.pi))
+        self.theta_d = float(angles[0])
+        # Joint 1's D-H frame (before Rz(theta_1)) in the deployed world frame: origin at the foot on axis
+        # A1 of the common normal from axis B2, x along that normal (seed §2.0 step 2).
+        foot_out = _foot(points[0], dirs[0], points[5], dirs[5])
+        foot_in = _foot(points[5], dirs[5], points[0], dirs[0])
+        x = unit(foot_in - foot_out)
+        frame = transform(np.stack([x, np.cross(dirs[0], x), dirs[0]], axis=1), foot_in)
+        # Square A's pose (link 1) at the deployed angles; every Bricard-1 body is placed relative to it.
+        self._square_a = frame @ transform_z(self.theta_d)
+        self._local = self._link_coordinates()
+        self.s_a3 = axis_a3(self.zeta)
+        self._sym0 = self._symmetry_frame(self.bricard_points(np.array([self.theta_d])))[0]
+        self._r2_sym = np.linalg.inv(self._sym0) @ transform(R2) @ self._sym0
+        self._bar_a3 = float((VERTICES["E3"] - VERTICES["A3"]) @ self.s_a3)
+
+    # --- Bricard 1 from the closed form --------------------------------------------------------
+
+    def phi(self, theta: ArrayLike) -> NDArray[np.float64]:
+        """Even-joint angle phi (rad) of a Bricard on the seed's branch ('even-axes-along' of (5-42))."""
+        values, _ = self.bricard.evaluate(ALONG, np.atleast_1d(np.asarray(theta, dtype=float)))
+        return values[:, 1]
+
+    def _link_poses(self, theta: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Poses (n, 6, 4, 4) of links 1..6 of Bricard 1 at odd/even angles (theta, phi(theta)), square A fixed."""
+        phi = self.phi(theta)
+        poses = [np.broadcast_to(self._square_a, (len(theta), 4, 4))]
+        for k in range(5):
+            q = phi if k % 2 == 0 else theta  # joint k + 2 is even when k is even
+            poses.append(poses[-1] @ self.rows[k].link() @ transform_z(q))
+        return np.stack(poses, axis=1)
+
+    def _link_coordinates(self) -> dict[str, tuple[int, NDArray[np.float64]]]:
+        """Each Bricard-1 vertex (A, B, C squares, bar ends) as (link index, coordinates in that link's frame)."""
+        deployed = self._link_poses(np.array([self.theta_d]))[0]
+        out = {}
+        for k, link in enumerate(LINKS_1):
+            members = [f"{link}{i}" for i in range(1, 5)] if len(link) == 1 else [link[:2], link[2:]]
+            for v in members:
+                out.setdefault(v, (k, np.linalg.solve(deployed[k], np.append(VERTICES[v], 1.0))[:3]))
+        return out
+
+    def bricard_points(self, theta: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:
+        """Bricard-1 vertex positions (n, 3) by name (the 12 vertices of squares A, B, C), square A fixed."""
+        poses = self._link_poses(theta)
+        out = {}
+        for v, (k, local) in self._local.items():
+            out[v] = poses[:, k, :3, :3] @ local + poses[:, k, :3, 3]
+        return out
+
+    @staticmethod
+    def _symmetry_frame(points: dict[str, NDArray[np.float64]]) -> NDArray[np.float64]:
+        """
+        Frames (n, 4, 4) on a Bricard's threefold axis: origin the centroid of A3, B3, C3 (threefold images,
+        never merged), z the normal of their triangle, x toward A3.
+        """
+        a, b, c = points["A3"], points["B3"], points["C3"]
+        origin = (a + b + c) / 3
+        z = unit(np.cross(b - a, c - a))
+        x = unit(a - origin)
+        frames = np.zeros((len(a), 4, 4))
+        frames[:, :3, :3] = np.stack([x, np.cross(z, x), z], axis=-1)
+        frames[:, :3, 3], frames[:, 3, 3] = origin, 1.0
+        return frames
+
+    # --- the assembly --------------------------------------------------------------------------
+
+    def _points(self, theta: NDArray, theta_d2: NDArray, psi: NDArray, h: NDArray) -> NDArray[np.float64]:
+        """All 24 vertices (n, 24, 3) in `NAMES` order for Bricard 1 at theta and Bricard 2 at (theta_d2, psi, h)."""
+        one = self.bricard_points(theta)
+        two = self.bricard_points(theta_d2)
+        sym1 = self._symmetry_frame(one)
+        sym2 = self._symmetry_frame(two)
+        screw = transform_z(psi)
+        screw[:, 2, 3] = h
+        place = sym1 @ screw @ self._r2_sym @ np.linalg.inv(sym2)
+        out = dict(one)
+        for v, p in two.items():
+            out[v.translate(IMAGE)] = np.einsum("nij,nj->ni", place[:, :3, :3], p) + place[:, :3, 3]
+        return np.stack([out[v] for v in NAMES], axis=1)
+
+    def equations(self, theta: ArrayLike, x: ArrayLike) -> NDArray[np.float64]:
+        """
+        The three closure equations (n, 3) in m^2, m, m^2: |A3E3|^2 - 1, (E3 - A3) . s_A3 - deployed value,
+        |A4F4|^2 - 1; x = (theta_D, psi, h) per row.
+        """
+        t = np.atleast_1d(np.asarray(theta, dtype=float))
+        x = np.atleast_2d(np.asarray(x, dtype=float))
+        P = self._points(t, x[:, 0], x[:, 1], x[:, 2])
+        k = {v: i for i, v in enumerate(NAMES)}
+        a3e3 = P[:, k["E3"]] - P[:, k["A3"]]
+        a4f4 = P[:, k["F4"]] - P[:, k["A4"]]
+        return np.stack(
+            [np.sum(a3e3**2, -1) - 1.0, a3e3 @ self.s_a3 - self._bar_a3, np.sum(a4f4**2, -1) - 1.0], axis=-1
+        )
+
+    def _newton(self, theta: float, x: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Close the three equations at one input by Newton's method with a central-difference Jacobian."""
+        for _ in range(30):
+            f = self.equations(theta, x)[0]
+            if np.max(np.abs(f)) < 1e-15:
+                return x
+            step = 1e-7
+            probes = x + step * np.vstack([np.eye(3), -np.eye(3)])
+            g = self.equations(np.full(6, theta), probes)
+            J = (g[:3] - g[3:]).T / (2 * step)
+            x = x - np.linalg.solve(J, f)
+        if np.max(np.abs(self.equations(theta, x))) < 1e-13:
+            return x
+        raise ConvergenceError(f"the reduced model did not close at theta = {np.rad2deg(theta):.6g} deg")
+
+    @cached_property
+    def theta_f(self) -> float:
+        """Input (rad) at the cube: Bricard 1 folds, A1 = B1 = C1 (|B1 - C1| = 0, bisected to 1e-15 rad)."""
+
+        def gap(t: float) -> float:
+            p = self.bricard_points(np.array([t]))
+            return float(np.sum((p["B1"] - p["C1"]) ** 2, -1)[0])
+
+        # |B1C1|^2 has a double zero at the fold, so bisect on the sign of its slope d/dt.
+        def slope(t: float) -> float:
+            return gap(t + 1e-7) - gap(t - 1e-7)
+
+        lo, hi = np.deg2rad(150.0), np.deg2rad(175.0)
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if slope(mid) < 0 else (lo, mid)
+        return 0.5 * (lo + hi)
+
+    @property
+    def domain(self) -> tuple[float, float]:
+        """Inputs (rad) from the truncated octahedron to the cube."""
+        return self.theta_d, self.theta_f
+
+    def state(self, theta: ArrayLike) -> NDArray[np.float64]:
+        """
+        x = (theta_D, psi, h) per input (n, 3), rad, rad, m; continued from the deployed state (theta_d, 0, 0)
+        through the sorted inputs.
+
+        Raises
+        ------
+        DomainError
+          When an input lies outside `domain`.
+        """
+        t = np.atleast_1d(np.asarray(theta, dtype=float))
+        lo, hi = self.domain
+        bad = t[~((t >= lo - 1e-12) & (t <= hi + 1e-12))]
+        if bad.size:
+            raise DomainError(
+                f"theta = {np.rad2deg(bad[0]):.6g} deg is outside the transformation, whose domain is "
+                f"[{np.rad2deg(lo):.6g}, {np.rad2deg(hi):.6g}] deg (truncated octahedron to cube)"
+            )
+        out = np.empty((len(t), 3))
+        x, at = np.array([self.theta_d, 0.0, 0.0]), self.theta_d
+        for k in np.argsort(t):
+            # march in steps of at most 2 deg so Newton starts close to the branch
+            for s in np.linspace(at, t[k], int(np.ceil(abs(t[k] - at) / np.deg2rad(2.0))) + 1)[1:]:
+                x = self._newton(s, x)
+            at, out[k] = t[k], x
+        return out
+
+    def vertices(self, theta: ArrayLike) -> NDArray[np.float64]:
+        """Vertex positions (n, 24, 3) in `NAMES` order (m, deployed frame, square A fixed)."""
+        t = np.atleast_1d(np.asarray(theta, dtype=float))
+        x = self.state(t)
+        return self._points(t, x[:, 0], x[:, 1], x[:, 2])
+
+    def fold_angles(self, theta: ArrayLike) -> NDArray[np.float64]:
+        """
+        (rho1, rho2, delta_A, delta_D) per input (n, 4), rad (digest §2.7 names): rho1 = angle B1 C2 C1,
+        rho2 = angle D1 F2 F1 (120 deg -> 0), delta_A = angle C2 C1 A2, delta_D = angle F2 F1 E2 (120 -> 90 deg).
+        """
+        P = self.vertices(theta)
+        k = {v: i for i, v in enumerate(NAMES)}
+
+        def angle(a: str, at: str, b: str) -> NDArray[np.float64]:
+            u, w = P[:, k[a]] - P[:, k[at]], P[:, k[b]] - P[:, k[at]]
+            return np.arctan2(np.linalg.norm(np.cross(u, w), axis=-1), np.einsum("ni,ni->n", u, w))
+
+        return np.stack(
+            [angle("B1", "C2", "C1"), angle("D1", "F2", "F1"), angle("C2", "C1", "A2"), angle("F2", "F1", "E2")], -1
+        )
