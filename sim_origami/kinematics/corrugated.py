@@ -55,7 +55,7 @@ from ..errors import ParameterError
 from .base import Branch, Event
 from .fixed_modes import FixedModeKinematics
 from .numeric_pattern import foldable_with_signs
-from .vertex4 import ANGLE_TOL, flat_foldable_multipliers
+from .vertex4 import ANGLE_TOL, developable_sectors, flat_foldable_multipliers
 
 UNITS = ("P", "Q")
 # Central face corners, counter-clockwise; the outer crease direction on each central edge (from corner i
@@ -102,18 +102,7 @@ def check_sectors(sectors: ArrayLike) -> NDArray[np.float64]:
     The design angles (alpha, beta, gamma, delta) in radians, checked: each in (0, pi), sum 2 pi
     (developable), alpha + gamma = pi (flat-foldable, Kawasaki) and gamma the strict minimum.
     """
-    s = np.asarray(sectors, dtype=float)
-    if s.shape != (4,):
-        raise ParameterError(f"the unit needs 4 design angles (alpha, beta, gamma, delta), got {s.size}")
-    for name, value in zip(("alpha", "beta", "gamma", "delta"), s, strict=True):
-        if not 0.0 < value < np.pi:
-            raise ParameterError(f"{name} = {np.rad2deg(value):.6g} deg; each design angle must lie in (0, 180) deg")
-    total = float(np.sum(s))
-    if abs(total - 2 * np.pi) > ANGLE_TOL:
-        raise ParameterError(
-            f"alpha + beta + gamma + delta = {np.rad2deg(total):.12g} deg ({np.rad2deg(total - 2 * np.pi):+.3g} deg); "
-            "a flat (developable) vertex needs 360"
-        )
+    s = developable_sectors(sectors, ("alpha", "beta", "gamma", "delta"))
     if abs(s[0] + s[2] - np.pi) > ANGLE_TOL:
         raise ParameterError(
             f"alpha + gamma = {np.rad2deg(s[0] + s[2]):.12g} deg; a flat-foldable vertex (Kawasaki) needs 180"

@@ -46,6 +46,26 @@ TANGENT_STEP = 1e-5
 NAMES = ("S", "C", "odd1", "odd2", "odd3", "odd4", "straight13", "straight24")
 
 
+def developable_sectors(sectors: ArrayLike, names: tuple[str, ...]) -> NDArray[np.float64]:
+    """
+    Four sector angles (rad) named `names`, checked: each in (0, pi) and summing to 2 pi (a flat, developable
+    vertex); ParameterError naming the value and the rule otherwise.
+    """
+    s = np.asarray(sectors, dtype=float)
+    if s.shape != (len(names),):
+        raise ParameterError(f"a degree-4 vertex needs {len(names)} sector angles, got {s.size} ({', '.join(names)})")
+    for name, value in zip(names, s, strict=True):
+        if not 0.0 < value < np.pi:
+            raise ParameterError(f"sector angle {name} = {np.rad2deg(value):.6g} deg; each must lie in (0, 180) deg")
+    total = float(np.sum(s))
+    if abs(total - 2 * np.pi) > ANGLE_TOL:
+        raise ParameterError(
+            f"sector angles sum to {np.rad2deg(total):.12g} deg ({np.rad2deg(total - 2 * np.pi):+.3g} deg); "
+            "a flat (developable) vertex needs 360"
+        )
+    return s
+
+
 def fold_roots(alpha: ArrayLike, rho1: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
     """
     Both assembly modes of a spherical 4R driven by joint 1 (seed 003 eqn 2-5).
@@ -165,18 +185,7 @@ class Vertex4(JointSpaceKinematics):
     """
 
     def __init__(self, alpha: ArrayLike, input_crease: int = 1):
-        alpha = np.asarray(alpha, dtype=float)
-        if alpha.shape != (4,):
-            raise ParameterError(f"a degree-4 vertex needs 4 sector angles, got {alpha.size}")
-        for i, a in enumerate(alpha, start=1):
-            if not 0.0 < a < np.pi:
-                raise ParameterError(f"sector angle alpha{i} = {np.rad2deg(a):.6g} deg; each must lie in (0, 180) deg")
-        total = float(np.sum(alpha))
-        if abs(total - 2 * np.pi) > ANGLE_TOL:
-            raise ParameterError(
-                f"sector angles sum to {np.rad2deg(total):.12g} deg ({np.rad2deg(total - 2 * np.pi):+.3g} deg); "
-                "a flat (developable) vertex needs 360"
-            )
+        alpha = developable_sectors(alpha, ("alpha1", "alpha2", "alpha3", "alpha4"))
         if input_crease not in (1, 2, 3, 4):
             raise ParameterError(f"input crease {input_crease} does not exist; use 1 to 4")
         self.alpha = alpha
