@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 from .closure import Coupling, Loop, LoopSystem
 from .errors import ParameterError
 from .geometry import frame_along, invert
+from .graph import spanning_edges
 
 ASSIGNMENTS = ("M", "V", "U")
 
@@ -110,6 +111,13 @@ class CreasePattern:
                 at.setdefault(v, set()).add(f)
         pairs = {(a, b) for group in at.values() for a in group for b in group if a < b}
         return tuple((self.face_names[a], self.face_names[b]) for a, b in sorted(pairs))
+
+    def spanning_creases(self, prefer: tuple[str, ...] = ()) -> tuple[int, ...]:
+        """Indices of creases joining the faces in a spanning tree, Kruskal in crease order with the creases
+        named in `prefer` first (as `mechanism.Mechanism.tree` picks a pattern mechanism's hinges)."""
+        edges = [self.crease_faces(c) for c in self.creases]
+        first = [k for k, c in enumerate(self.creases) if c.name in prefer]
+        return tuple(spanning_edges(self.face_names, edges, first))
 
     def interior_vertices(self) -> tuple[int, ...]:
         """Vertices that faces surround completely; each is a loop of the creases meeting there."""

@@ -27,6 +27,7 @@ from numpy.typing import ArrayLike, NDArray
 from .closure import Coupling, Loop, LoopSystem
 from .errors import ParameterError
 from .geometry import invert, transform_z
+from .graph import spanning_edges
 
 
 @dataclass(frozen=True)
@@ -104,21 +105,9 @@ class Mechanism:
         the chosen joints are then oriented breadth-first from the root.
         """
         names = [b.name for b in self.bodies]
-        group = {b: b for b in names}
-
-        def find(b: str) -> str:
-            while group[b] != b:
-                group[b] = group[group[b]]
-                b = group[b]
-            return b
-
-        chosen = set()
         wanted = set(self.keep) | {name for c in self.couplings for name in c[:2]}
-        for i in sorted(range(len(self.joints)), key=lambda i: (self.joints[i].name not in wanted, i)):
-            a, b = find(self.joints[i].parent), find(self.joints[i].child)
-            if a != b:
-                group[a] = b
-                chosen.add(i)
+        prefer = [i for i, j in enumerate(self.joints) if j.name in wanted]
+        chosen = set(spanning_edges(names, [(j.parent, j.child) for j in self.joints], prefer))
         seen, edges, queue = {self.root}, [], deque([self.root])
         while queue:
             body = queue.popleft()

@@ -35,6 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .errors import AssemblyError, ConvergenceError, ParameterError
 from .geometry import invert, wrap
+from .graph import DisjointSets
 from .mechanism import Mechanism
 
 if TYPE_CHECKING:
@@ -122,13 +123,6 @@ class Truss:
 # -- construction ----------------------------------------------------------------------------------------------
 
 
-def _find(group: list[int], i: int) -> int:
-    while group[i] != i:
-        group[i] = group[group[i]]
-        i = group[i]
-    return i
-
-
 def _joint_points(mechanism: Mechanism, spherical: set[str]) -> tuple[list[tuple[str, str, NDArray]], float]:
     """Candidate points (label, body, local xyz): P and P' per revolute joint, the centre per spherical one."""
     points, spans = [], []
@@ -148,16 +142,15 @@ def _merge(points: list[tuple[str, str, NDArray]], tol: float) -> tuple[list[str
     """Union of the labels whose points coincide in a common body; returns node names and (label, body) -> node."""
     labels = list(dict.fromkeys(p[0] for p in points))
     index = {lab: k for k, lab in enumerate(labels)}
-    group = list(range(len(labels)))
+    sets = DisjointSets(range(len(labels)))
     for a, (la, ba, xa) in enumerate(points):
         for lb, bb, xb in points[a + 1 :]:
             if ba == bb and np.linalg.norm(xa - xb) < tol:
-                ra, rb = _find(group, index[la]), _find(group, index[lb])
-                group[max(ra, rb)] = min(ra, rb)
-    roots = sorted({_find(group, k) for k in range(len(labels))})
+                sets.union(index[la], index[lb])
+    roots = sorted({sets.find(k) for k in range(len(labels))})
     node_of_root = {r: n for n, r in enumerate(roots)}
     names = [labels[r] for r in roots]
-    node = {(lab, body): node_of_root[_find(group, index[lab])] for lab, body, _ in points}
+    node = {(lab, body): node_of_root[sets.find(index[lab])] for lab, body, _ in points}
     return names, node
 
 

@@ -684,26 +684,6 @@ class WaterbombTube(JointSpaceKinematics):
         return self.layout.index(self.input_crease), 1.0
 
     # -- symmetry couplings ------------------------------------------------------------------------------------
-    def spanning_tree(self) -> tuple[int, ...]:
-        """Strip creases joining the faces in a tree: Kruskal in crease order, the input crease first (as
-        `mechanism.Mechanism.tree` picks them when no coupling is given)."""
-        group = {f: f for f in self.pattern.face_names}
-
-        def find(f: str) -> str:
-            while group[f] != f:
-                group[f] = group[group[f]]
-                f = group[f]
-            return f
-
-        drive = self.layout.index(self.input_crease)
-        chosen = []
-        for k in sorted(range(len(self.pattern.creases)), key=lambda k: (k != drive, k)):
-            a, b = (find(f) for f in self.pattern.crease_faces(self.pattern.creases[k]))
-            if a != b:
-                group[a] = b
-                chosen.append(k)
-        return tuple(chosen)
-
     @cached_property
     def couplings(self) -> tuple[tuple[str, str], ...]:
         """
@@ -723,7 +703,7 @@ class WaterbombTube(JointSpaceKinematics):
         key = np.round(q[1:] / CLASS_TOL).astype(np.int64)
         first: dict[tuple[int, int], int] = {}
         out = []
-        for k in self.spanning_tree():
+        for k in self.pattern.spanning_creases((self.input_crease,)):
             cls = (int(key[0, k]), int(key[1, k]))
             if cls in first:
                 out.append((self.crease_names[k], self.crease_names[first[cls]]))

@@ -15,7 +15,6 @@ crease folds as its type in the cell, checked by the sheet's own closure at A, B
 
 from ..kinematics.waterbomb import Waterbomb
 from ..kinematics.waterbomb_sheet import WaterbombSheet
-from ..origami import pattern_mechanism
 from .base import Param, Scene, register
 from .patterns import pattern_scene
 
@@ -95,10 +94,10 @@ def build_sheet(alpha: float, beta: float, t: float, rows: float, cols: float) -
     pattern, drive = kinematics.pattern, kinematics.input_crease
     # MuJoCo couples tree hinges only: each symmetry class is coupled to its first hinge in the spanning tree
     # (the cut creases follow from the closures).
-    tree = pattern_mechanism(pattern, root=pattern.crease_faces(pattern.crease(drive))[0], keep=(drive,))
+    tree = {pattern.creases[k].name for k in pattern.spanning_creases((drive,))}
     couplings = []
     for names in kinematics.classes().values():
-        kept = [n for n in names if n in tree.tree_joint_names()]
+        kept = [n for n in names if n in tree]
         couplings += [(n, kept[0], 1.0) for n in kept[1:]]
     params = {"alpha": alpha, "beta": beta, "t": t, "rows": rows, "cols": cols}
     return pattern_scene(

@@ -1,0 +1,17 @@
+"""Union-find and Kruskal spanning forests (`sim_origami.graph`), shared by the mechanism tree, crease patterns and
+the truss builder."""
+
+from sim_origami.graph import DisjointSets, spanning_edges
+
+
+def test_disjoint_sets_merge_once_and_keep_the_smallest_item_as_root():
+    sets = DisjointSets(range(5))
+    assert sets.union(3, 1) and sets.union(4, 3) and not sets.union(1, 4)
+    assert {sets.find(k) for k in (1, 3, 4)} == {1} and sets.find(2) == 2
+
+
+def test_spanning_edges_take_preferred_edges_first_and_skip_cycles():
+    square = [("a", "b"), ("b", "c"), ("c", "d"), ("d", "a")]
+    assert spanning_edges("abcd", square) == [0, 1, 2]
+    assert spanning_edges("abcd", square, prefer=[3]) == [0, 1, 3]  # the preferred edge stays, another is cut
+    assert spanning_edges("abcde", square) == [0, 1, 2]  # a forest: e stays alone
