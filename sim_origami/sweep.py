@@ -22,8 +22,13 @@ from pathlib import Path
 
 import numpy as np
 
+from . import scenes
+from .checks.branches import classify
+from .checks.paths import compare
 from .errors import ParameterError
 from .files import atomic_path, write_text
+from .simulate import simulate
+from .tolerances import TOLERANCES
 
 METRICS = ("passed", "angle_error_max_rad", "closure_residual_max_m", "closed_form_residual_max",
            "branches_followed", "cpu_s", "error")  # fmt: skip
@@ -61,12 +66,6 @@ def grid_points(axes: list[Axis]) -> list[dict[str, float]]:
 
 def run_point(scene_name: str, params: dict[str, float], preset: str | None = None) -> dict:
     """The light cross-check of one grid point (module docstring); never raises."""
-    from . import scenes
-    from .checks.branches import classify
-    from .checks.paths import compare
-    from .simulate import simulate
-    from .tolerances import TOLERANCES
-
     row: dict = dict(params)
     t0 = time.process_time()
     try:
@@ -132,8 +131,6 @@ def sweep(
     scheduler : a Dask distributed scheduler address (e.g. tcp://10.0.0.5:8786), or None for local processes.
     progress : wraps the stream of finished rows (e.g. a tqdm bar), given the number of points.
     """
-    from . import scenes
-
     kind = scenes.get(scene_name)
     known = {p.name for p in kind.params}
     for axis in axes:

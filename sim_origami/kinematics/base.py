@@ -81,6 +81,12 @@ class Kinematics(ABC):
     def loop_angles(self, values: ArrayLike) -> NDArray[np.float64]:
         """Loop joint angles (n, n_loop_joints) of closed-form outputs (n, k)."""
 
+    def in_domain(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        """Inputs x as a 1-D float array (rad) and whether each lies in the branch's closed domain."""
+        lo, hi = self.branch(branch).domain
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        return x, (x >= lo) & (x <= hi)
+
     def branch(self, name: str) -> Branch:
         """The branch called `name`; ParameterError listing the names otherwise."""
         for b in self.branches():

@@ -69,9 +69,7 @@ class Bennett(DHKinematics):
         return (Branch("bennett", "the single motion of the Bennett linkage (eqn 1-18)", (-np.pi, np.pi)),)
 
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-        lo, hi = self.branch(branch).domain
-        t1 = np.atleast_1d(np.asarray(x, dtype=float))
-        valid = (t1 >= lo) & (t1 <= hi)
+        t1, valid = self.in_domain(branch, x)
         t2 = 2 * np.arctan2(self.K * np.cos(t1 / 2), np.sin(t1 / 2))
         values = np.stack([t1, t2, -t1, -t2], -1)
         values[~valid] = np.nan

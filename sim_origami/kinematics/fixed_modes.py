@@ -17,9 +17,7 @@ class FixedModeKinematics(JointSpaceKinematics):
     ratios: dict[str, NDArray[np.float64]]
 
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-        lo, hi = self.branch(branch).domain
-        x = np.atleast_1d(np.asarray(x, dtype=float))
-        valid = (x >= lo) & (x <= hi)
+        x, valid = self.in_domain(branch, x)
         # tan(rho/2) = k tan(x/2) written as an angle: finite at x = +-pi, where every crease reaches +-pi
         values = 2.0 * np.arctan2(np.outer(np.sin(x / 2), self.ratios[branch]), np.cos(x / 2)[:, None])
         values[~valid] = np.nan

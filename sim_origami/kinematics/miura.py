@@ -130,9 +130,7 @@ class MiuraVertex(Kinematics):
         )
 
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-        lo, hi = self.branch(branch).domain
-        t = np.atleast_1d(np.asarray(x, dtype=float))
-        valid = (t >= lo) & (t <= hi)
+        t, valid = self.in_domain(branch, x)
         b, d = peripheral_creases(self.alpha1, self.alpha2, t)
         if branch == "miura":
             a = spinal_crease(self.alpha1, self.alpha2, t)

@@ -122,9 +122,7 @@ class MiuraSheet(JointSpaceKinematics):
         )
 
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-        lo, hi = self.branch(branch).domain
-        x = np.atleast_1d(np.asarray(x, dtype=float))
-        valid = (x >= lo) & (x <= hi)
+        x, valid = self.in_domain(branch, x)
         values = self.folds(x)
         values[~valid] = np.nan
         return values, valid

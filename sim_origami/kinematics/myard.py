@@ -77,9 +77,7 @@ class Myard(DHKinematics):
         )
 
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-        lo, hi = self.branch(branch).domain
-        t3 = np.atleast_1d(np.asarray(x, dtype=float))
-        valid = (t3 >= lo) & (t3 <= hi)
+        t3, valid = self.in_domain(branch, x)
         t2 = 2 * np.arctan2(self.K * np.sin(t3 / 2), np.cos(t3 / 2))
         values = np.stack([np.pi - 2 * t3, t2, t3, t3 + np.pi, -t2], -1)
         values[~valid] = np.nan

@@ -95,6 +95,7 @@ class PatternPath(JointSpaceKinematics):
                 f"the target state does not close with {input_crease} = {x_target:.6g} rad: the nearest closed state "
                 f"differs by {gap:.3g} rad (> {TARGET_TOL:g}); the pattern does not reach it rigidly"
             )
+        self._stalls: list[float] = []
         inward = self._trace(q_target, x_target, 0.0)
         outward = self._trace(q_target, x_target, np.copysign(np.pi, x_target))
         nodes = np.vstack([inward[::-1], q_target[None], outward])
@@ -104,8 +105,6 @@ class PatternPath(JointSpaceKinematics):
 
     def _trace(self, q0: NDArray, x0: float, toward: float) -> NDArray:
         """Closed configurations from x0 towards `toward`, stopping near flat, at a lock or at a stall."""
-        if not hasattr(self, "_stalls"):
-            self._stalls: list[float] = []
         fixed = np.zeros(len(q0), dtype=bool)
         fixed[self.input_index] = True
         span = abs(x0)
@@ -145,9 +144,7 @@ class PatternPath(JointSpaceKinematics):
         return (Branch(BRANCH, "the branch through the given folded state, traced by continuation", (lo, hi)),)
 
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-        lo, hi = self.branch(branch).domain
-        x = np.atleast_1d(np.asarray(x, dtype=float))
-        valid = (x >= lo) & (x <= hi)
+        x, valid = self.in_domain(branch, x)
         values = np.full((len(x), len(self.joint_names)), np.nan)
         fixed = np.zeros(len(self.joint_names), dtype=bool)
         fixed[self.input_index] = True

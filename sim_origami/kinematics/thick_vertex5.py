@@ -121,9 +121,7 @@ class ThickVertex5(JointSpaceKinematics):
         return (Branch(BRANCH, text, (-np.pi, np.pi)),)
 
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-        lo, hi = self.branch(branch).domain
-        x = np.atleast_1d(np.asarray(x, dtype=float))
-        valid = (x >= lo) & (x <= hi)
+        x, valid = self.in_domain(branch, x)
         values = plane_symmetric_folds(self.alpha, x)
         values[~valid] = np.nan
         return values, valid

@@ -126,9 +126,7 @@ class TwistSixR(DHKinematics):
         return (Branch(self.branch_name, text, (o - np.pi, o + np.pi)),)
 
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-        lo, hi = self.branch(branch).domain
-        t1 = np.atleast_1d(np.asarray(x, dtype=float))
-        valid = (t1 >= lo) & (t1 <= hi)
+        t1, valid = self.in_domain(branch, x)
         h = (t1 - self.offsets[0]) / 2  # psi1 / 2
         # tan(psi/2) = k tan(psi1/2) as an angle: continuous through psi1 = +-pi
         psi2 = 2.0 * np.arctan2(-self.ka * self.kb * np.sin(h), np.cos(h))
