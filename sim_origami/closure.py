@@ -37,6 +37,31 @@ class Loop:
         return T
 
 
+def _levenberg_marquardt(residual, jacobian, u: NDArray[np.float64], tol: float, max_iter: int):
+    """
+    Damped Gauss-Newton (Levenberg-Marquardt, tolerant of rank-deficient Jacobians) on residual(u), from u; stops
+    below `tol` (largest component), after `max_iter` steps, or when the damping needed exceeds 1e8.
+    Returns (u, residual).
+    """
+    damping = 1e-6
+    r = residual(u)
+    for _ in range(max_iter):
+        if np.max(np.abs(r)) < tol:
+            break
+        J = jacobian(u)
+        JtJ = J.T @ J
+        trial = u + np.linalg.solve(JtJ + damping * np.diag(np.diag(JtJ) + 1e-12), -J.T @ r)
+        r_trial = residual(trial)
+        if np.sum(r_trial**2) < np.sum(r**2):
+            u, r = trial, r_trial
+            damping = max(damping * 0.1, 1e-12)
+        else:
+            damping *= 10.0
+            if damping > 1e8:
+                break
+    return u, r
+
+
 @dataclass(frozen=True)
 class Coupling:
     """A linear joint coupling q[joint] = scale * q[other] (an imposed symmetry or a periodic copy)."""
@@ -123,25 +148,16 @@ class LoopSystem:
         """
         q = np.array(q0, dtype=float)
         free = ~np.asarray(fixed, dtype=bool)
-        damping = 1e-6
-        r = self.residual(q)
-        for _ in range(max_iter):
-            if np.max(np.abs(r)) < tol:
-                return q
-            J = self.jacobian(q)[:, free]
-            JtJ = J.T @ J
-            g = J.T @ r
-            step = np.linalg.solve(JtJ + damping * np.diag(np.diag(JtJ) + 1e-12), -g)
-            trial = q.copy()
-            trial[free] += step
-            r_trial = self.residual(trial)
-            if np.sum(r_trial**2) < np.sum(r**2):
-                q, r = trial, r_trial
-                damping = max(damping * 0.1, 1e-12)
-            else:
-                damping *= 10.0
-                if damping > 1e8:
-                    break
+
+        def q_of(u: NDArray[np.float64]) -> NDArray[np.float64]:
+            out = q.copy()
+            out[free] = u
+            return out
+
+        u, r = _levenberg_marquardt(
+            lambda u: self.residual(q_of(u)), lambda u: self.jacobian(q_of(u))[:, free], q[free], tol, max_iter
+        )
+        q = q_of(u)
         if np.max(np.abs(r)) < 100 * tol:
             return q
         raise ConvergenceError(f"loop closure did not converge: residual {np.max(np.abs(r)):.3g} > tolerance {tol:g}")
@@ -159,34 +175,20 @@ class LoopSystem:
         """
         s = np.asarray(signs, dtype=float)
         free = np.arange(self.n_joints) != input_joint
-        u = np.full(self.n_joints, np.log(abs(x) / (np.pi - abs(x))))
 
         def q_of(u: NDArray[np.float64]) -> NDArray[np.float64]:
-            q = s * np.pi / (1.0 + np.exp(-np.clip(u, -700.0, 700.0)))
-            q[input_joint] = x
+            q = np.full(self.n_joints, float(x))
+            q[free] = s[free] * np.pi / (1.0 + np.exp(-np.clip(u, -700.0, 700.0)))
             return q
 
-        q = q_of(u)
-        r = self.residual(q)
-        damping = 1e-6
-        for _ in range(max_iter):
-            if np.max(np.abs(r)) < tol:
-                break
+        def jacobian(u: NDArray[np.float64]) -> NDArray[np.float64]:
+            q = q_of(u)
             rate = q[free] * (1.0 - q[free] / (s[free] * np.pi))  # dq/du
-            J = self.jacobian(q)[:, free] * rate
-            JtJ = J.T @ J
-            step = np.linalg.solve(JtJ + damping * np.diag(np.diag(JtJ) + 1e-12), -J.T @ r)
-            trial = u.copy()
-            trial[free] += step
-            r_trial = self.residual(q_of(trial))
-            if np.sum(r_trial**2) < np.sum(r**2):
-                u, q, r = trial, q_of(trial), r_trial
-                damping = max(damping * 0.1, 1e-12)
-            else:
-                damping *= 10.0
-                if damping > 1e8:
-                    break
-        return q, float(np.max(np.abs(r)))
+            return self.jacobian(q)[:, free] * rate
+
+        u0 = np.full(int(np.sum(free)), np.log(abs(x) / (np.pi - abs(x))))
+        u, r = _levenberg_marquardt(lambda u: self.residual(q_of(u)), jacobian, u0, tol, max_iter)
+        return q_of(u), float(np.max(np.abs(r)))
 
     def follow(
         self, q_start: ArrayLike, input_joint: int, values: ArrayLike, *, tol: float = 1e-14

@@ -10,10 +10,8 @@ symmetry class (`WaterbombTube.couplings`, 98 on the 6 x 3 tube, 164 on the 6 x 
 which leaves the 1-DOF contraction, driven at the equatorial row's top midline A<r0>_0_1 (theta = pi + rho).
 """
 
-import numpy as np
 
-from ..creases import CreasePattern
-from ..geometry import frame_along
+from ..creases import Crease, CreasePattern
 from ..kinematics.waterbomb_tube import WaterbombTube
 from ..mechanism import Joint, Mechanism
 from ..origami import pattern_mechanism
@@ -46,17 +44,11 @@ def seam_joints(pattern: CreasePattern, kinematics: WaterbombTube) -> tuple[Join
     face's copy of the crease in the flat sheet (`sim_origami.creases` for the sign)."""
     out = []
     for seam in kinematics.layout.seam:
-        frames = [_hinge_frame(pattern, start, end) for start, end in (seam.right_ends, seam.left_ends)]
-        span = float(np.linalg.norm(pattern.vertices[seam.left_ends[1]] - pattern.vertices[seam.left_ends[0]]))
+        frames = [pattern.hinge_frame(Crease(seam.name, *ends)) for ends in (seam.right_ends, seam.left_ends)]
+        span = pattern.length(Crease(seam.name, *seam.left_ends))
         out.append(Joint(seam.name, seam.right_face, seam.left_face, frames[0], frames[1],
                          tuple(f * span for f in ANCHORS)))  # fmt: skip
     return tuple(out)
-
-
-def _hinge_frame(pattern: CreasePattern, start: int, end: int) -> np.ndarray:
-    """Hinge frame (4, 4) on the flat edge from strip vertex `start` to `end`, z along it (as `hinge_frame`)."""
-    d = pattern.vertices[end] - pattern.vertices[start]
-    return frame_along([*d, 0.0], (*pattern.vertices[start], 0.0))
 
 
 def tube_mechanism(kinematics: WaterbombTube) -> Mechanism:
