@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..closure import Loop, LoopSystem
-from ..geometry import rot_x, transform
+from ..geometry import rot_x, signed_angle, transform
 from .base import JointSpaceKinematics
 
 
@@ -51,13 +51,6 @@ class DHKinematics(JointSpaceKinematics):
         return len(self.rows) - 6
 
 
-def _signed_angle(u: np.ndarray, v: np.ndarray, k: np.ndarray) -> float:
-    """Angle from u to v about unit k, after projecting both onto the plane normal to k."""
-    u = u - k * (u @ k)
-    v = v - k * (v @ k)
-    return float(np.arctan2(np.cross(u, v) @ k, u @ v))
-
-
 def dh_from_axes(points: np.ndarray, dirs: np.ndarray) -> tuple[tuple[DHRow, ...], np.ndarray]:
     """
     D-H rows and joint angles of a closed loop of revolute axes (seed 001 §2.0 procedure).
@@ -86,7 +79,7 @@ def dh_from_axes(points: np.ndarray, dirs: np.ndarray) -> tuple[tuple[DHRow, ...
         gap = foot_in[j] - foot_out[i]
         a[i] = np.linalg.norm(gap)
         x_axis[j] = gap / a[i] if a[i] > 1e-12 else np.cross(s[i], s[j]) / np.linalg.norm(np.cross(s[i], s[j]))
-        alpha[i] = _signed_angle(s[i], s[j], x_axis[j])
-    theta = np.array([_signed_angle(x_axis[i], x_axis[(i + 1) % n], s[i]) for i in range(n)])
+        alpha[i] = float(signed_angle(s[i], s[j], x_axis[j]))  # both axes are normal to x
+    theta = np.array([float(signed_angle(x_axis[i], x_axis[(i + 1) % n], s[i])) for i in range(n)])
     R = np.array([(foot_out[i] - foot_in[i]) @ s[i] for i in range(n)])
     return tuple(DHRow(float(R[i]), float(a[i]), float(alpha[i])) for i in range(n)), theta

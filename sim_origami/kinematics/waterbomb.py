@@ -62,6 +62,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..closure import Coupling, LoopSystem
 from ..creases import Crease, CreasePattern
 from ..errors import ParameterError
+from ..geometry import wrap
 from .base import Branch, Event, JointSpaceKinematics
 
 LINE = "line-symmetric"
@@ -117,7 +118,7 @@ def path_folds(alpha: float, beta: float, branch: str, x: ArrayLike) -> NDArray[
     if branch == DEGREE4:
         b2 = 2.0 * np.arctan2(np.sin(x / 2), np.cos(alpha + beta) * np.cos(x / 2))
         out = np.stack([x, zero, zero, x, zero, zero, x, b2, -x, zero, b2], -1)
-        return np.angle(np.exp(1j * out))
+        return wrap(out)
     if branch == STRAIGHT:
         return np.stack([x, zero, zero, x, zero, zero, x, zero, x, zero, zero], -1)
     if branch == LINE:
@@ -132,7 +133,7 @@ def path_folds(alpha: float, beta: float, branch: str, x: ArrayLike) -> NDArray[
         den = c * (2 * sab**2 * c**4 - 4 * q * s**2 * c**2 - 2 * sba * (2 * sab + sba) * s**4)
         b4 = -2.0 * np.arctan2(num, den)
     out = np.stack([x, r3, r3, x, r3, r3, x, b2, b4, r3, b2], -1)
-    return np.angle(np.exp(1j * out))
+    return wrap(out)
 
 
 def plane_blockage(alpha: float, beta: float) -> float | None:
