@@ -53,6 +53,50 @@ def rot_z(angle: ArrayLike) -> NDArray[np.float64]:
     return rotation(np.array([0.0, 0.0, 1.0]), angle)
 
 
+def xyz_rotation(a: ArrayLike, b: ArrayLike, c: ArrayLike) -> NDArray[np.float64]:
+    """Rx(a) @ Ry(b) @ Rz(c), (..., 3, 3): intrinsic x-y-z angles (rad), the order of `mechanism.ball_joint`."""
+    return rot_x(a) @ rotation([0.0, 1.0, 0.0], b) @ rot_z(c)
+
+
+def xyz_angles(R: ArrayLike) -> NDArray[np.float64]:
+    """The intrinsic x-y-z angles (..., 3) (rad) of rotations (..., 3, 3); y in [-pi/2, pi/2], singular at its ends."""
+    R = np.asarray(R, dtype=float)
+    b = np.arcsin(np.clip(R[..., 0, 2], -1.0, 1.0))
+    return np.stack([np.arctan2(-R[..., 1, 2], R[..., 2, 2]), b, np.arctan2(-R[..., 0, 1], R[..., 0, 0])], -1)
+
+
+def quaternion(R: ArrayLike) -> NDArray[np.float64]:
+    """Unit quaternion (w, x, y, z) with w >= 0 of one rotation matrix (3, 3) (Shepperd's method)."""
+    R = np.asarray(R, dtype=float)
+    w = np.sqrt(max(0.0, 1.0 + np.trace(R))) / 2
+    if w > 0.5:
+        return np.array(
+            [w, (R[2, 1] - R[1, 2]) / (4 * w), (R[0, 2] - R[2, 0]) / (4 * w), (R[1, 0] - R[0, 1]) / (4 * w)]
+        )
+    i = int(np.argmax(np.diag(R)))
+    j, k = (i + 1) % 3, (i + 2) % 3
+    q = np.zeros(4)
+    q[i + 1] = np.sqrt(max(0.0, 1.0 + R[i, i] - R[j, j] - R[k, k])) / 2
+    q[0] = (R[k, j] - R[j, k]) / (4 * q[i + 1])
+    q[j + 1] = (R[j, i] + R[i, j]) / (4 * q[i + 1])
+    q[k + 1] = (R[k, i] + R[i, k]) / (4 * q[i + 1])
+    return q if q[0] >= 0 else -q
+
+
+def quaternion_matrix(q: ArrayLike) -> NDArray[np.float64]:
+    """Rotation matrices (..., 3, 3) of quaternions (..., 4) (w, x, y, z), normalised first."""
+    q = np.asarray(q, dtype=float)
+    w, x, y, z = np.moveaxis(q / np.linalg.norm(q, axis=-1, keepdims=True), -1, 0)
+    return np.stack(
+        [
+            np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], -1),
+            np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1),
+            np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1),
+        ],
+        -2,
+    )
+
+
 def rotation_vector(R: ArrayLike) -> NDArray[np.float64]:
     """
     Axis times angle of rotation matrices (the vee of the matrix logarithm).
@@ -159,3 +203,33 @@ def wrap(angle: ArrayLike) -> NDArray[np.float64]:
     out = -np.remainder(-np.asarray(angle, dtype=float) + np.pi, 2.0 * np.pi) + np.pi
     # pi + 1 ulp rounds to exactly -pi above; the range is half-open at -pi
     return np.where(out <= -np.pi, out + 2.0 * np.pi, out)
+
+
+def rigid_fit(reference: ArrayLike, points: ArrayLike) -> NDArray[np.float64]:
+    """
+    The rigid motions (..., 4, 4) that best carry `reference` (k, 3) onto `points` (..., k, 3) in least
+    squares (Kabsch); exact for a rigid body's points, which must not all lie on one line.
+    """
+    P0 = np.asarray(reference, dtype=float)
+    P = np.asarray(points, dtype=float)
+    c0, c = P0.mean(axis=0), P.mean(axis=-2)
+    H = np.swapaxes(P - c[..., None, :], -1, -2) @ (P0 - c0)
+    U, _, Vt = np.linalg.svd(H)
+    d = np.sign(np.linalg.det(U @ Vt))
+    D = np.zeros((*d.shape, 3, 3))
+    D[..., 0, 0], D[..., 1, 1], D[..., 2, 2] = 1.0, 1.0, d
+    R = U @ D @ Vt
+    T = np.zeros((*R.shape[:-2], 4, 4))
+    T[..., :3, :3], T[..., :3, 3], T[..., 3, 3] = R, c - np.einsum("...ij,j->...i", R, c0), 1.0
+    return T
+
+
+def minimal_rotation(u: ArrayLike, v: ArrayLike) -> NDArray[np.float64]:
+    """The rotations (..., 3, 3) by the smallest angle carrying unit u (3,) onto unit v (..., 3) (not antiparallel)."""
+    u, v = np.asarray(u, dtype=float), np.asarray(v, dtype=float)
+    w = np.cross(u, v)
+    c = np.einsum("...i,...i", np.broadcast_to(u, v.shape), v)
+    zero = np.zeros_like(c)
+    K = np.stack([np.stack([zero, -w[..., 2], w[..., 1]], -1), np.stack([w[..., 2], zero, -w[..., 0]], -1),
+                  np.stack([-w[..., 1], w[..., 0], zero], -1)], -2)  # fmt: skip
+    return np.eye(3) + K + K @ K / (1.0 + c)[..., None, None]

@@ -26,23 +26,32 @@ from numpy.typing import ArrayLike, NDArray
 
 from .closure import Coupling, Loop, LoopSystem
 from .errors import ParameterError
-from .geometry import invert, transform_z
+from .geometry import invert, transform_z, xyz_angles
 from .graph import spanning_edges
 
 
 @dataclass(frozen=True)
 class Body:
-    """A rigid panel or link; `solid` and `collision` are meshes in the body frame."""
+    """
+    A rigid panel or link; `solid` and `collision` are meshes in the body frame.
+
+    A `spacer` has no geometry and no mass: it only carries one axis of a spherical joint (see `ball_joint`).
+    """
 
     name: str
     solid: trimesh.Trimesh
     collision: trimesh.Trimesh | None = None
     rgba: tuple[float, float, float, float] = (0.8, 0.8, 0.8, 1.0)
+    spacer: bool = False
 
 
 @dataclass(frozen=True)
 class Joint:
-    """A revolute joint; `anchors` are points along its z axis where a cut joint is closed."""
+    """
+    A revolute joint; `anchors` are points along its z axis where a cut joint is closed.
+
+    `ball` names the spherical joint this hinge is one axis of ("" for a plain hinge; see `ball_joint`).
+    """
 
     name: str
     parent: str
@@ -50,6 +59,42 @@ class Joint:
     frame_parent: NDArray[np.float64]
     frame_child: NDArray[np.float64]
     anchors: tuple[float, ...] = (0.5, 1.0)
+    ball: str = ""
+
+
+# The hinge axes of a spherical joint in its triad frame: x, then y, then z (intrinsic X-Y-Z angles).
+_TRIAD_AXES = (
+    np.array([[0.0, 0, 1, 0], [0, 1, 0, 0], [-1, 0, 0, 0], [0, 0, 0, 1]]),  # z -> x
+    np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0], [0, 0, 0, 1]]),  # z -> y
+    np.eye(4),
+)
+
+
+def ball_joint(
+    name: str, parent: str, child: str, frame_parent: ArrayLike, frame_child: ArrayLike
+) -> tuple[tuple[Body, Body], tuple[Joint, Joint, Joint]]:
+    """
+    A spherical joint as three concurrent hinges through its centre, for the loop algebra.
+
+    `frame_parent` / `frame_child` (4, 4) are the joint's triad frame (origin at the centre) in each body's
+    frame; they coincide in the reference pose. The hinges `<name>_x`, `<name>_y`, `<name>_z` turn about the
+    triad's x, then the (turned) y, then z, through two spacer bodies `<name>_g1`, `<name>_g2`, so
+
+        T_child = T_parent @ frame_parent @ Rx(a) @ Ry(b) @ Rz(c) @ inv(frame_child)
+
+    with (a, b, c) the three hinge angles (rad). The angles are singular at b = +-pi/2 (choose the triad so
+    the motion stays clear of it). MJCF writes the group as one MuJoCo ball joint when it is in the spanning
+    tree, or as one `connect` at the centre when its last hinge is cut.
+    """
+    Fp, Fc = np.asarray(frame_parent, dtype=float), np.asarray(frame_child, dtype=float)
+    chain = [parent, f"{name}_g1", f"{name}_g2", child]
+    spacers = tuple(Body(b, trimesh.Trimesh(), None, spacer=True) for b in chain[1:3])
+    outer = (Fp, np.eye(4), np.eye(4)), (np.eye(4), np.eye(4), Fc)
+    joints = tuple(
+        Joint(f"{name}_{'xyz'[k]}", chain[k], chain[k + 1], outer[0][k] @ A, outer[1][k] @ A, (0.0,), name)
+        for k, A in enumerate(_TRIAD_AXES)
+    )
+    return spacers, joints
 
 
 @dataclass(frozen=True)
@@ -106,6 +151,7 @@ class Mechanism:
         """
         names = [b.name for b in self.bodies]
         wanted = set(self.keep) | {name for c in self.couplings for name in c[:2]}
+        wanted |= {j.name for j in self.joints if j.ball and not j.name.endswith("_z")}  # a ball cuts at its last
         prefer = [i for i, j in enumerate(self.joints) if j.name in wanted]
         chosen = set(spanning_edges(names, [(j.parent, j.child) for j in self.joints], prefer))
         seen, edges, queue = {self.root}, [], deque([self.root])
@@ -160,14 +206,84 @@ class Mechanism:
         Fill in cut-joint angles measured from the tree pose, (..., n_joints).
 
         A cut joint's angle is the z rotation of inv(F_p) inv(T_parent) T_child F_c, which is
-        exactly Rz(q) when the loop is closed.
+        exactly Rz(q) when the loop is closed. A spherical joint whose last hinge is cut is measured
+        whole (its three angles) from the poses of its two end bodies.
         """
         q = np.array(q, dtype=float)
         poses = self.body_poses(q)
-        for i in self.cut_joints:
+        cut = set(self.cut_joints)
+        for name, (ix, iy, iz) in self.balls.items():
+            if iz in cut:
+                ends = poses[self.joints[ix].parent], poses[self.joints[iz].child]
+                q[..., [ix, iy, iz]] = self.ball_angles(name, *ends)
+        for i in cut:
             j = self.joints[i]
-            M = invert(j.frame_parent) @ invert(poses[j.parent]) @ poses[j.child] @ j.frame_child
-            q[..., i] = np.arctan2(M[..., 1, 0], M[..., 0, 0])
+            if not j.ball:
+                M = invert(j.frame_parent) @ invert(poses[j.parent]) @ poses[j.child] @ j.frame_child
+                q[..., i] = np.arctan2(M[..., 1, 0], M[..., 0, 0])
+        return q
+
+    @cached_property
+    def balls(self) -> dict[str, tuple[int, int, int]]:
+        """Each spherical joint's name and the indices of its x, y, z hinges (see `ball_joint`)."""
+        return {j.name[:-2]: tuple(self.joint_index(j.name[:-1] + a) for a in "xyz") for j in self.joints
+                if j.ball and j.name.endswith("_x")}  # fmt: skip
+
+    @cached_property
+    def idle_spins(self) -> int:
+        """
+        Bodies held only by two spherical joints (S-S bars): each spins freely about the line through the two
+        centres, a trivial mode that loop ranks and MuJoCo count and the truss method does not (seed 001 §1.1).
+        """
+        ends: dict[str, list[str]] = {}
+        for j in self.joints:
+            if not (j.ball and j.name.endswith(("_x", "_z"))):
+                for body in (j.parent, j.child):
+                    ends.setdefault(body, []).append("hinge")
+            else:
+                ends.setdefault(j.parent if j.name.endswith("_x") else j.child, []).append("ball")
+        spacers = {b.name for b in self.bodies if b.spacer}
+        return sum(kinds == ["ball", "ball"] for body, kinds in ends.items() if body not in spacers)
+
+    def ball_frames(self, name: str) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Triad frames (4, 4) of spherical joint `name` in its parent's and its child's body frames."""
+        ix, _, iz = self.balls[name]
+        return self.joints[ix].frame_parent @ _TRIAD_AXES[0].T, self.joints[iz].frame_child
+
+    def ball_angles(self, name: str, T_parent: ArrayLike, T_child: ArrayLike) -> NDArray[np.float64]:
+        """
+        Angles (..., 3) (rad) of spherical joint `name` between world poses (..., 4, 4) of its end bodies:
+        the intrinsic x-y-z angles of the child's turn relative to the parent in the joint's triad.
+        """
+        Fp, Fc = self.ball_frames(name)
+        return xyz_angles((invert(Fp) @ invert(np.asarray(T_parent)) @ np.asarray(T_child) @ Fc)[..., :3, :3])
+
+    def reduced(self) -> "Mechanism":
+        """
+        This mechanism with each spherical joint as one Joint named after it between its end bodies (frames =
+        its triad frames, anchor at the centre) and no spacers: the graph the truss method reads. Its angles
+        for those joints are meaningless (`body_poses` of the reduced graph treats them as hinges).
+        """
+        joints = [j for j in self.joints if not j.ball]
+        for name, (ix, _, iz) in self.balls.items():
+            joints.append(Joint(name, self.joints[ix].parent, self.joints[iz].child, *self.ball_frames(name), (0.0,)))
+        bodies = tuple(b for b in self.bodies if not b.spacer)
+        return Mechanism(bodies, tuple(joints), self.root, self.keep, self.couplings)
+
+    def angles_from_poses(self, poses: dict[str, ArrayLike]) -> NDArray[np.float64]:
+        """
+        Every joint angle (n, n_joints) (rad) from world poses (n, 4, 4) of every non-spacer body,
+        e.g. a closed form's: hinges as in `complete`, spherical joints by `ball_angles`.
+        """
+        poses = {k: np.asarray(v, dtype=float).reshape(-1, 4, 4) for k, v in poses.items()}
+        n = len(next(iter(poses.values())))
+        q = np.zeros((n, len(self.joints)))
+        for name, (ix, iy, iz) in self.balls.items():
+            q[:, [ix, iy, iz]] = self.ball_angles(name, poses[self.joints[ix].parent], poses[self.joints[iz].child])
+        for i, j in enumerate(self.joints):
+            if not j.ball:
+                M = invert(j.frame_parent) @ invert(poses[j.parent]) @ poses[j.child] @ j.frame_child
+                q[:, i] = np.arctan2(M[:, 1, 0], M[:, 0, 0])
         return q
 
     def loop_system(self) -> LoopSystem:

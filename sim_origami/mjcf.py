@@ -17,10 +17,11 @@ from dataclasses import dataclass
 from importlib import resources
 
 import numpy as np
+from numpy.typing import NDArray
 
 from . import __version__
 from .errors import ParameterError
-from .geometry import invert
+from .geometry import invert, quaternion, quaternion_matrix, xyz_angles, xyz_rotation
 from .mechanism import Mechanism
 from .scenes.base import Scene
 
@@ -61,23 +62,6 @@ def _fmt(values) -> str:
     return " ".join(repr(float(v)) for v in np.ravel(values))  # shortest exact round-trip
 
 
-def _quat(R: np.ndarray) -> np.ndarray:
-    """Unit quaternion (w, x, y, z) of a rotation matrix."""
-    w = np.sqrt(max(0.0, 1.0 + np.trace(R))) / 2
-    if w > 1e-6:
-        return np.array(
-            [w, (R[2, 1] - R[1, 2]) / (4 * w), (R[0, 2] - R[2, 0]) / (4 * w), (R[1, 0] - R[0, 1]) / (4 * w)]
-        )
-    i = int(np.argmax(np.diag(R)))
-    j, k = (i + 1) % 3, (i + 2) % 3
-    q = np.zeros(4)
-    q[i + 1] = np.sqrt(max(0.0, 1.0 + R[i, i] - R[j, j] - R[k, k])) / 2
-    q[0] = (R[k, j] - R[j, k]) / (4 * q[i + 1])
-    q[j + 1] = (R[j, i] + R[i, j]) / (4 * q[i + 1])
-    q[k + 1] = (R[k, i] + R[i, k]) / (4 * q[i + 1])
-    return q
-
-
 def _section(root: ET.Element, tag: str) -> ET.Element:
     found = root.find(tag)
     return found if found is not None else ET.SubElement(root, tag)
@@ -98,7 +82,7 @@ def _merge(root: ET.Element, fragment: ET.Element) -> None:
 def _add_meshes(asset: ET.Element, mechanism: Mechanism) -> None:
     for body in mechanism.bodies:
         for suffix, mesh in (("solid", body.solid), ("collision", body.collision)):
-            if mesh is None:
+            if mesh is None or body.spacer:
                 continue
             ET.SubElement(
                 asset, "mesh", name=f"{body.name}_{suffix}",
@@ -107,6 +91,7 @@ def _add_meshes(asset: ET.Element, mechanism: Mechanism) -> None:
 
 
 def _add_bodies(world: ET.Element, mechanism: Mechanism, contact: bool) -> dict[str, ET.Element]:
+    """Nested bodies along the spanning tree; a spherical joint's spacers are skipped (its hinges become one ball)."""
     ref = mechanism.reference_poses()
     elements = {mechanism.root: world}
     by_name = {b.name: b for b in mechanism.bodies}
@@ -121,17 +106,28 @@ def _add_bodies(world: ET.Element, mechanism: Mechanism, contact: bool) -> dict[
 
     world.append(ET.Comment(f" {mechanism.root}: fixed to the world "))
     add_geoms(world, mechanism.root)
+    real = {mechanism.root: mechanism.root}  # the MuJoCo body each mechanism body hangs from
     for edge in mechanism.tree:
         joint = mechanism.joints[edge.joint]
-        rel = invert(ref[edge.parent]) @ ref[edge.child]
+        parent = real[edge.parent]
+        if by_name[edge.child].spacer:
+            real[edge.child] = parent
+            continue
+        real[edge.child] = edge.child
+        rel = invert(ref[parent]) @ ref[edge.child]
         attrs = {"name": edge.child}
         if not np.allclose(rel, np.eye(4), atol=1e-14):
-            attrs |= {"pos": _fmt(rel[:3, 3]), "quat": _fmt(_quat(rel[:3, :3]))}
-        body = ET.SubElement(elements[edge.parent], "body", attrs)
-        frame = joint.frame_child if edge.sign > 0 else joint.frame_parent
-        axis = frame[:3, 2] * edge.sign
-        hinge = ET.SubElement(body, "joint", name=joint.name, pos=_fmt(frame[:3, 3]), axis=_fmt(axis))
-        hinge.set("class", "crease")
+            attrs |= {"pos": _fmt(rel[:3, 3]), "quat": _fmt(quaternion(rel[:3, :3]))}
+        body = ET.SubElement(elements[parent], "body", attrs)
+        if joint.ball:
+            frames = mechanism.ball_frames(joint.ball)
+            centre = frames[1 if edge.sign > 0 else 0][:3, 3]
+            ET.SubElement(body, "joint", name=joint.ball, pos=_fmt(centre)).set("class", "ball")
+        else:
+            frame = joint.frame_child if edge.sign > 0 else joint.frame_parent
+            axis = frame[:3, 2] * edge.sign
+            hinge = ET.SubElement(body, "joint", name=joint.name, pos=_fmt(frame[:3, 3]), axis=_fmt(axis))
+            hinge.set("class", "crease")
         add_geoms(body, edge.child)
         elements[edge.child] = body
     return elements
@@ -150,20 +146,107 @@ def _add_self_contact(root: ET.Element, scene: Scene) -> None:
         ET.SubElement(section, "exclude", body1=body[a], body2=body[b])
 
 
-def qpos_order(mechanism: Mechanism) -> list[str]:
-    """Hinge names in MuJoCo's qpos order: depth-first over the nested bodies."""
+@dataclass(frozen=True)
+class MjJoint:
+    """
+    One joint of the compiled model and the mechanism joints it stands for.
+
+    A hinge stands for one mechanism joint (qpos = its angle). A ball stands for the three hinges of a
+    spherical joint in the spanning tree (`mechanism.ball_joint`): qpos is the quaternion Q of the MuJoCo child
+    relative to its reference, in its body frame. With R the triad's rotation in that body's frame and
+    E = xyz_rotation(angles): Q = R E R^T, or R E^T R^T when the MuJoCo child is the mechanism's parent.
+    """
+
+    name: str
+    joints: tuple[int, ...]
+    triad: NDArray[np.float64] | None = None
+    reverse: bool = False
+
+    @property
+    def width(self) -> int:
+        """Entries in qpos."""
+        return 1 if self.triad is None else 4
+
+    def qpos(self, q: NDArray[np.float64]) -> NDArray[np.float64]:
+        """qpos entries (width,) from mechanism angles (n_joints,)."""
+        if self.triad is None:
+            return q[list(self.joints)]
+        E = xyz_rotation(*q[list(self.joints)])
+        return quaternion(self.triad @ (E.T if self.reverse else E) @ self.triad.T)
+
+    def angles(self, qpos: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Mechanism angles (n, len(joints)) from this joint's qpos entries (n, width)."""
+        if self.triad is None:
+            return qpos
+        E = self.triad.T @ quaternion_matrix(qpos) @ self.triad
+        return xyz_angles(np.swapaxes(E, -1, -2) if self.reverse else E)
+
+
+def mujoco_joints(mechanism: Mechanism) -> list[MjJoint]:
+    """The model's joints in MuJoCo's qpos order: depth-first over the nested bodies, spacers collapsed."""
     children: dict[str, list] = {}
     for edge in mechanism.tree:
         children.setdefault(edge.parent, []).append(edge)
-    order: list[str] = []
+    spacer = {b.name for b in mechanism.bodies if b.spacer}
+    order: list[MjJoint] = []
 
     def visit(body: str) -> None:
         for edge in children.get(body, []):
-            order.append(mechanism.joints[edge.joint].name)
+            joint = mechanism.joints[edge.joint]
+            if not joint.ball:
+                order.append(MjJoint(joint.name, (edge.joint,)))
+            elif edge.child not in spacer:
+                reverse = edge.sign < 0
+                triad = mechanism.ball_frames(joint.ball)[0 if reverse else 1][:3, :3]
+                order.append(MjJoint(joint.ball, mechanism.balls[joint.ball], triad, reverse))
             visit(edge.child)
 
     visit(mechanism.root)
     return order
+
+
+@dataclass(frozen=True)
+class Closure:
+    """
+    One connect `close_<joint>_<k>` between sites `<joint>_parent_<k>` and `<joint>_child_<k>`, at `on_parent`
+    and `on_child` (m) in the frames of the bodies `parent` and `child`.
+    """
+
+    joint: str
+    k: int
+    parent: str
+    child: str
+    on_parent: NDArray[np.float64]
+    on_child: NDArray[np.float64]
+
+
+def closures(mechanism: Mechanism) -> list[Closure]:
+    """
+    The connects that close the loops: one per anchor of each cut hinge (points on its axis), one at the centre
+    of each spherical joint whose last hinge is cut (between its two end bodies).
+    """
+    out = []
+    for i in mechanism.cut_joints:
+        joint = mechanism.joints[i]
+        if joint.ball:
+            ix, _, iz = mechanism.balls[joint.ball]
+            Fp, Fc = mechanism.ball_frames(joint.ball)
+            ends = mechanism.joints[ix].parent, mechanism.joints[iz].child
+            out.append(Closure(joint.ball, 0, *ends, Fp[:3, 3], Fc[:3, 3]))
+        else:
+            for k, (p, c) in enumerate(zip(*mechanism.anchor_points(i), strict=True)):
+                out.append(Closure(joint.name, k, joint.parent, joint.child, p, c))
+    return out
+
+
+def qpos_order(mechanism: Mechanism) -> list[str]:
+    """MuJoCo joint names in qpos order (hinges as the mechanism's joints, balls as spherical joints)."""
+    return [j.name for j in mujoco_joints(mechanism)]
+
+
+def keyframe_qpos(mechanism: Mechanism, q: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The model's qpos (nq,) for mechanism angles q (n_joints,)."""
+    return np.concatenate([j.qpos(np.asarray(q, dtype=float)) for j in mujoco_joints(mechanism)])
 
 
 def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarray] | None = None) -> str:
@@ -199,19 +282,18 @@ def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarr
     elements = _add_bodies(_section(root, "worldbody"), mechanism, contact)
 
     equality = _section(root, "equality")
-    for i in mechanism.cut_joints:
-        joint = mechanism.joints[i]
-        equality.append(ET.Comment(f" loop cut at {joint.name}: anchors on its axis, away from shared vertices "))
-        on_parent, on_child = mechanism.anchor_points(i)
-        for k, (p, c) in enumerate(zip(on_parent, on_child, strict=True)):
-            ET.SubElement(elements[joint.parent], "site", name=f"{joint.name}_parent_{k}", pos=_fmt(p))
-            ET.SubElement(elements[joint.child], "site", name=f"{joint.name}_child_{k}", pos=_fmt(c))
-            for side in ("parent", "child"):
-                elements[getattr(joint, side)].findall("site")[-1].set("class", "closure_site")
-            ET.SubElement(
-                equality, "connect", name=f"close_{joint.name}_{k}",
-                site1=f"{joint.name}_child_{k}", site2=f"{joint.name}_parent_{k}",
-            ).set("class", "closure")  # fmt: skip
+    if mechanism.cut_joints:
+        equality.append(ET.Comment(" loops cut at hinges (anchors on the axis, away from shared vertices) or at "
+                                   "spherical joints (one connect at the centre) "))  # fmt: skip
+    for c in closures(mechanism):
+        for side, body, pos in (("parent", c.parent, c.on_parent), ("child", c.child, c.on_child)):
+            ET.SubElement(elements[body], "site", name=f"{c.joint}_{side}_{c.k}", pos=_fmt(pos)).set(
+                "class", "closure_site"
+            )
+        ET.SubElement(
+            equality, "connect", name=f"close_{c.joint}_{c.k}", site1=f"{c.joint}_child_{c.k}",
+            site2=f"{c.joint}_parent_{c.k}",
+        ).set("class", "closure")  # fmt: skip
 
     if mechanism.couplings:
         equality.append(ET.Comment(" couplings q1 = c q2: symmetry the model assumes, or periodic copies of creases "))
@@ -242,10 +324,8 @@ def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarr
 
     if keyframes:
         frames = _section(root, "keyframe")
-        order = qpos_order(mechanism)
         for name, q in keyframes.items():
-            qpos = [q[mechanism.joint_index(j)] for j in order]
-            ET.SubElement(frames, "key", name=f"start_{name}", qpos=_fmt(qpos))
+            ET.SubElement(frames, "key", name=f"start_{name}", qpos=_fmt(keyframe_qpos(mechanism, q)))
 
     root[:] = sorted(root, key=lambda e: ORDER.index(e.tag) if e.tag in ORDER else -1)
     ET.indent(root, space="  ")

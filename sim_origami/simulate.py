@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .errors import DomainError, SimulationError
-from .mjcf import ModelOptions, build_xml, preset_duration
+from .mjcf import ModelOptions, build_xml, closures, mujoco_joints, preset_duration
 from .scenes.base import Scene
 
 # Closure residual is measured on at most this many samples of a run (after mj_kinematics each).
@@ -80,25 +80,22 @@ class Bindings:
 
     def __init__(self, scene: Scene, model: mujoco.MjModel):
         mech = scene.mechanism
-        tree = {e.joint for e in mech.tree}
-        self.tree_joints = np.array(sorted(tree))
-        self.qpos_of = np.array([model.jnt_qposadr[model.joint(mech.joints[i].name).id] for i in self.tree_joints])
+        self.joints = [(j, model.jnt_qposadr[model.joint(j.name).id]) for j in mujoco_joints(mech)]
         self.drive_qpos = model.jnt_qposadr[model.joint(scene.drive_joint).id]
-        self.site_pairs = []
-        for i in mech.cut_joints:
-            name = mech.joints[i].name
-            for k in range(len(mech.joints[i].anchors)):
-                self.site_pairs.append((model.site(f"{name}_parent_{k}").id, model.site(f"{name}_child_{k}").id))
-        self.site_pairs = np.array(self.site_pairs, dtype=int).reshape(-1, 2)
+        pairs = [(model.site(f"{c.joint}_parent_{c.k}").id, model.site(f"{c.joint}_child_{c.k}").id)
+                 for c in closures(mech)]  # fmt: skip
+        self.site_pairs = np.array(pairs, dtype=int).reshape(-1, 2)
 
     def set_pose(self, data: mujoco.MjData, q: NDArray[np.float64]) -> None:
-        """Write mechanism angles (n_joints,) into qpos (tree joints only)."""
-        data.qpos[self.qpos_of] = q[self.tree_joints]
+        """Write mechanism angles (n_joints,) into qpos (the spanning tree's joints)."""
+        for joint, adr in self.joints:
+            data.qpos[adr : adr + joint.width] = joint.qpos(q)
 
     def angles(self, scene: Scene, qpos: NDArray[np.float64]) -> NDArray[np.float64]:
         """Mechanism angles (n, n_joints) from qpos rows (n, nq); cut joints measured."""
         q = np.zeros((len(qpos), len(scene.mechanism.joints)))
-        q[:, self.tree_joints] = qpos[:, self.qpos_of]
+        for joint, adr in self.joints:
+            q[:, list(joint.joints)] = joint.angles(qpos[:, adr : adr + joint.width])
         return scene.mechanism.complete(q)
 
 
@@ -274,7 +271,7 @@ def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: s
     free = np.array([a for a in range(model.nv) if a != model.jnt_dofadr[model.joint(scene.drive_joint).id]])
     inputs = np.asarray(inputs, dtype=float)
     binds.set_pose(data, scene.pose(branch, float(inputs[0])))
-    qpos_log = np.empty((len(inputs), model.nq))
+    qpos_log, step = np.empty((len(inputs), model.nq)), np.zeros(model.nv)
     cpu = time.thread_time()
     with captured_warnings() as messages:
         for k, value in enumerate(inputs):
@@ -289,7 +286,8 @@ def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: s
                     break  # converged, or at the rounding floor of a large model
                 previous = size
                 J = constraint_jacobian(model, data)[rows][:, free]
-                data.qpos[free] -= np.linalg.lstsq(J, r, rcond=None)[0]  # hinges: qpos index = dof index
+                step[free] = -np.linalg.lstsq(J, r, rcond=None)[0]
+                mujoco.mj_integratePos(model, data.qpos, step, 1.0)  # hinges add, balls turn their quaternion
             qpos_log[k] = data.qpos
         _check(data, messages, _context(scene, branch, preset, "projection"))
     cpu = time.thread_time() - cpu

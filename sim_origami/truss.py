@@ -255,15 +255,13 @@ def _bars(
 
 
 def _positions(
-    mechanism: Mechanism,
-    q: NDArray,
+    poses: dict[str, NDArray],
     body_nodes: dict[str, NDArray],
     body_local: dict[str, NDArray],
     n_nodes: int,
     tol: float,
 ) -> NDArray:
-    """World node positions at joint angles q: mean over the node's bodies; AssemblyError if they disagree."""
-    poses = mechanism.body_poses(q)
+    """World node positions from body poses: mean over the node's bodies; AssemblyError if they disagree."""
     seen: list[list[NDArray]] = [[] for _ in range(n_nodes)]
     for body, idx in body_nodes.items():
         world = body_local[body] @ poses[body][:3, :3].T + poses[body][:3, 3]
@@ -291,6 +289,11 @@ def truss_of(mechanism: Mechanism, q: ArrayLike, spherical: Sequence[str] = ()) 
     balls = set(spherical)
     for name in balls:
         mechanism.joint_index(name)
+    poses = mechanism.body_poses(q)
+    if mechanism.balls:  # its spherical joints' hinge triples become single S joints between their end bodies
+        balls |= set(mechanism.balls)
+        full, mechanism = mechanism, mechanism.reduced()
+        q = np.array([0.0 if j.name in balls else q[full.joint_index(j.name)] for j in mechanism.joints])
     points, scale = _joint_points(mechanism, balls)
     names, node = _merge(points, MERGE_RTOL * scale)
     body_nodes, body_local = _body_nodes(mechanism, points, node, names, MERGE_RTOL * scale)
@@ -303,7 +306,7 @@ def truss_of(mechanism: Mechanism, q: ArrayLike, spherical: Sequence[str] = ()) 
         if len(ids) == 2:
             pairs.append(ids)
     bars, lengths, joint_bar, owner = _bars(body_nodes, body_local, pairs, MERGE_RTOL * scale)
-    nodes = _positions(mechanism, q, body_nodes, body_local, len(names), CLOSURE_RTOL * scale)
+    nodes = _positions(poses, body_nodes, body_local, len(names), CLOSURE_RTOL * scale)
     index = {h.name: i for i, h in enumerate(hinges)}
     couplings = []
     for a, b, c in mechanism.couplings:

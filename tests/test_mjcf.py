@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from sim_origami import scenes
-from sim_origami.mjcf import ModelOptions, build_xml, preset_duration, qpos_order
+from sim_origami.mjcf import ModelOptions, build_xml, closures, mujoco_joints, preset_duration, qpos_order
 
 # Menagerie's top-level order; `visual` appears only in rendered models.
 MENAGERIE_ORDER = (
@@ -45,7 +45,7 @@ def all_scenes():
 @pytest.mark.parametrize("render", [False, True])
 def test_generated_xml_compiles(name, preset, drive, render):
     model, _ = compiled(scenes.get(name).build(), preset=preset, drive=drive, render=render)
-    assert model.njnt == len(scenes.get(name).build().mechanism.tree)
+    assert model.njnt == len(mujoco_joints(scenes.get(name).build().mechanism))
 
 
 def test_top_level_elements_follow_menagerie_order():
@@ -69,14 +69,17 @@ def test_top_level_elements_of_a_plain_model_are_unique_and_ordered(scene):
 def test_names_follow_the_scheme(scene):
     model, _ = compiled(scene)
     mech = scene.mechanism
-    panels = {b.name for b in mech.bodies}
+    panels = {b.name for b in mech.bodies if not b.spacer}  # spacers carry a ball's axes, not MuJoCo bodies
     assert names_of(model, mujoco.mjtObj.mjOBJ_BODY, model.nbody) == {"world"} | (panels - {mech.root})
-    assert len(panels) == len(mech.bodies)  # vertex panels, linkage links or crease-pattern faces, unique
+    assert len({b.name for b in mech.bodies}) == len(mech.bodies)  # panels, links or faces, unique
     assert names_of(model, mujoco.mjtObj.mjOBJ_GEOM, model.ngeom) == {f"{p}_solid" for p in panels}
-    assert names_of(model, mujoco.mjtObj.mjOBJ_JOINT, model.njnt) == {mech.joints[e.joint].name for e in mech.tree}
-    closures = {f"close_{mech.joints[i].name}_{k}" for i in mech.cut_joints for k in range(len(mech.joints[i].anchors))}
+    # hinges by their joint's name, balls by their spherical joint's name
+    hinges = {mech.joints[e.joint].name for e in mech.tree if not mech.joints[e.joint].ball}
+    balls = {name for name, (_, _, iz) in mech.balls.items() if iz not in mech.cut_joints}
+    assert names_of(model, mujoco.mjtObj.mjOBJ_JOINT, model.njnt) == hinges | balls
+    closed = {f"close_{c.joint}_{c.k}" for c in closures(mech)}
     couplings = {f"couple_{a}_{b}" for a, b, _ in mech.couplings}
-    assert names_of(model, mujoco.mjtObj.mjOBJ_EQUALITY, model.neq) == closures | couplings | {
+    assert names_of(model, mujoco.mjtObj.mjOBJ_EQUALITY, model.neq) == closed | couplings | {
         f"drive_{scene.drive_joint}"
     }
 
@@ -89,17 +92,18 @@ def test_closure_connects_join_parent_and_child_sites_on_the_cut_joint_bodies(sc
     def body_of(panel: str) -> int:
         return 0 if panel == mech.root else model.body(panel).id
 
-    for i in mech.cut_joints:
-        joint = mech.joints[i]
-        for k, (on_parent, on_child) in enumerate(zip(*mech.anchor_points(i), strict=True)):
-            eq = model.equality(f"close_{joint.name}_{k}")
-            assert eq.type == mujoco.mjtEq.mjEQ_CONNECT and model.eq_objtype[eq.id] == mujoco.mjtObj.mjOBJ_SITE
-            child, parent = model.site(f"{joint.name}_child_{k}"), model.site(f"{joint.name}_parent_{k}")
-            assert (eq.obj1id, eq.obj2id) == (child.id, parent.id)
-            assert (parent.bodyid, child.bodyid) == (body_of(joint.parent), body_of(joint.child))
-            # Body frames are the flat sheet's frame, so sites sit at the anchors as given.
-            np.testing.assert_allclose(parent.pos, on_parent, atol=MJCF_DIGITS_ATOL, rtol=0)
-            np.testing.assert_allclose(child.pos, on_child, atol=MJCF_DIGITS_ATOL, rtol=0)
+    for c in closures(mech):
+        eq = model.equality(f"close_{c.joint}_{c.k}")
+        assert eq.type == mujoco.mjtEq.mjEQ_CONNECT and model.eq_objtype[eq.id] == mujoco.mjtObj.mjOBJ_SITE
+        child, parent = model.site(f"{c.joint}_child_{c.k}"), model.site(f"{c.joint}_parent_{c.k}")
+        assert (eq.obj1id, eq.obj2id) == (child.id, parent.id)
+        assert (parent.bodyid, child.bodyid) == (body_of(c.parent), body_of(c.child))
+        # Body frames are the flat sheet's (or deployed) frame, so sites sit at the anchors as given.
+        np.testing.assert_allclose(parent.pos, c.on_parent, atol=MJCF_DIGITS_ATOL, rtol=0)
+        np.testing.assert_allclose(child.pos, c.on_child, atol=MJCF_DIGITS_ATOL, rtol=0)
+    # a hinge cut closes at each of its anchors, a spherical joint cut at its centre only
+    cut = [mech.joints[i] for i in mech.cut_joints]
+    assert len(closures(mech)) == sum(len(j.anchors) for j in cut if not j.ball) + sum(1 for j in cut if j.ball)
 
 
 @pytest.mark.parametrize("scene", all_scenes(), ids=scenes.names())
@@ -192,24 +196,26 @@ def test_keyframes_hold_the_closed_form_pose_of_each_branch(scene):
     mech = scene.mechanism
     for branch, pose in poses.items():
         mujoco.mj_resetDataKeyframe(model, data, model.key(f"start_{branch}").id)
-        for e in mech.tree:
-            joint = mech.joints[e.joint].name
-            qpos = data.qpos[model.jnt_qposadr[model.joint(joint).id]]
-            np.testing.assert_allclose(qpos, pose[e.joint], atol=MJCF_DIGITS_ATOL, rtol=0, err_msg=joint)
-        # The hinges at the fold angles close the loop in MuJoCo too.
+        for joint in mujoco_joints(mech):
+            adr = model.jnt_qposadr[model.joint(joint.name).id]
+            qpos = data.qpos[adr : adr + joint.width]
+            np.testing.assert_allclose(qpos, joint.qpos(pose), atol=MJCF_DIGITS_ATOL, rtol=0, err_msg=joint.name)
+            # and back: the mechanism angles it stands for (a ball's three from its quaternion)
+            np.testing.assert_allclose(joint.angles(qpos[None])[0], pose[list(joint.joints)], atol=1e-12, rtol=0)
+        # The joints at the closed form's angles close the loops in MuJoCo too.
         mujoco.mj_kinematics(model, data)
-        for i in mech.cut_joints:
-            for k in range(len(mech.joints[i].anchors)):
-                name = mech.joints[i].name
-                gap = data.site(f"{name}_child_{k}").xpos - data.site(f"{name}_parent_{k}").xpos
-                np.testing.assert_allclose(gap, 0.0, atol=MJCF_DIGITS_ATOL, rtol=0)
+        for c in closures(mech):
+            gap = data.site(f"{c.joint}_child_{c.k}").xpos - data.site(f"{c.joint}_parent_{c.k}").xpos
+            np.testing.assert_allclose(gap, 0.0, atol=MJCF_DIGITS_ATOL, rtol=0)
 
 
 @pytest.mark.parametrize("scene", all_scenes(), ids=scenes.names())
 def test_qpos_order_matches_the_compiled_hinge_addresses(scene):
     model, _ = compiled(scene)
     order = qpos_order(scene.mechanism)
-    assert [model.jnt_qposadr[model.joint(j).id] for j in order] == list(range(model.nq))
+    widths = [j.width for j in mujoco_joints(scene.mechanism)]  # 1 per hinge, 4 per ball (a quaternion)
+    assert [model.jnt_qposadr[model.joint(j).id] for j in order] == list(np.cumsum([0, *widths[:-1]]))
+    assert sum(widths) == model.nq
 
 
 @pytest.mark.parametrize("preset", ["fast", "stiff", "accurate"])

@@ -10,7 +10,6 @@ symmetry class (`WaterbombTube.couplings`, 98 on the 6 x 3 tube, 164 on the 6 x 
 which leaves the 1-DOF contraction, driven at the equatorial row's top midline A<r0>_0_1 (theta = pi + rho).
 """
 
-
 from ..creases import Crease, CreasePattern
 from ..kinematics.waterbomb_tube import WaterbombTube
 from ..mechanism import Joint, Mechanism
