@@ -5,6 +5,7 @@ simulation, checks, reports, the CLI) reads only the `Scene`, so a new mechanism
 module plus one scene module that calls `register`.
 """
 
+import functools
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -133,7 +134,12 @@ class SceneType:
                     f"unknown parameter {key!r} for scene {self.name!r}; parameters are {', '.join(known)}"
                 )
         full = {p.name: p.to_api(p.default) for p in self.params} | values
-        return self.build_fn(**full)
+        return self._build(tuple(sorted(full.items())))
+
+    @functools.lru_cache(maxsize=64)  # noqa: B019  (scenes are immutable; the registry lives as long as the process)
+    def _build(self, values: tuple[tuple[str, float], ...]) -> Scene:
+        """One built scene per set of parameter values (building traces some closed forms' paths)."""
+        return self.build_fn(**dict(values))
 
     def build_from_user(self, values: dict[str, float]) -> Scene:
         """Build from command-line values (degrees, metres)."""
