@@ -116,16 +116,19 @@ def mobility_report(scene: Scene, branch: str, start: float) -> dict:
     """
     Grubler-Kutzbach count next to the numerical rank of the closure Jacobian, from the numeric
     loop and from MuJoCo's efc_J, and the truss method's mobility and states of self-stress (seed 001),
-    at the path start and at each bifurcation point of the branch.
+    at the path start and at each bifurcation point of the branch. The idle spins of bars held by two
+    spherical joints are left out of every count (the truss method has none).
     """
     kin = scene.kinematics
     loops = kin.loop_system()
+
+    idle = scene.mechanism.idle_spins  # S-S bars' spins: counted by loop ranks and MuJoCo, not by the truss
 
     def at(x: float) -> dict:
         q_loop = kin.loop_angles(kin.joint_angles(branch, x))
         q = scene.loop_to_mechanism(q_loop)[0]
         truss = truss_mobility(scene, q)
-        return {"input_rad": x, "numeric": loops.mobility(q_loop[0]), "mujoco": mujoco_mobility(scene, q),
+        return {"input_rad": x, "numeric": loops.mobility(q_loop[0]) - idle, "mujoco": mujoco_mobility(scene, q) - idle,
                 "truss": truss.mobility, "truss_self_stress": truss.self_stress}  # fmt: skip
 
     points = [e.input for e in kin.events() if e.kind == "bifurcation" and branch in e.branches]
@@ -173,6 +176,17 @@ def bifurcation_study(scene: Scene, preset: str) -> list[dict]:
     return out
 
 
+def _point_verdicts(scene: Scene, branch: str, preset: str, q: np.ndarray, x: np.ndarray) -> tuple[Verdict, ...]:
+    """For shape models (polyhedra): the largest distance between simulated and closed-form vertices."""
+    kin = scene.kinematics
+    analytic = kin.points(branch, x)
+    if analytic is None:
+        return ()
+    error = float(np.max(np.linalg.norm(kin.observe_points(scene.mechanism_to_loop(q)) - analytic, axis=-1)))
+    return (Verdict(f"{branch}: MuJoCo {preset} vertex position error (edge lengths)", error,
+                    TOLERANCES.angle(preset), "max over samples and vertices, unit edges"),)  # fmt: skip
+
+
 def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
     """MuJoCo dynamic run and projection on one branch, compared and classified."""
     dynamic = simulate(scene, branch, preset=preset, seed=seed)
@@ -186,6 +200,7 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
         len({p["numeric"], p["mujoco"], p["truss"]}) > 1 for p in [mobility["start"], *mobility["bifurcations"]]
     )
     verdicts = (
+        *_point_verdicts(scene, branch, preset, dynamic.q, dyn.input),
         Verdict(f"{branch}: MuJoCo {preset} path error (rad)", dyn.max_error(),
                 TOLERANCES.angle(preset),
                 "max over samples and joints of |sim - closed form at the simulated input|"),

@@ -81,6 +81,17 @@ class Kinematics(ABC):
     def loop_angles(self, values: ArrayLike) -> NDArray[np.float64]:
         """Loop joint angles (n, n_loop_joints) of closed-form outputs (n, k)."""
 
+    def points(self, branch: str, x: ArrayLike) -> NDArray[np.float64] | None:
+        """
+        Named points (n, V, 3) of the closed form in units of the model's length scale, for models whose
+        truth is a shape (the vertices of a polyhedron); None for the others.
+        """
+        return None
+
+    def observe_points(self, q_loop: ArrayLike) -> NDArray[np.float64] | None:
+        """The same points measured from loop joint angles (n, n_loop_joints); None where `points` is None."""
+        return None
+
     def in_domain(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
         """Inputs x as a 1-D float array (rad) and whether each lies in the branch's closed domain."""
         lo, hi = self.branch(branch).domain

@@ -40,7 +40,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ConvergenceError, DomainError, ParameterError
-from ..geometry import rotation, transform, transform_z, unit
+from ..geometry import minimal_rotation, rigid_fit, rotation, transform, transform_z, unit
+from .base import Event
 from .bricard_threefold import ALONG, BricardThreefold
 from .dh import DHRow, dh_from_axes
 
@@ -78,6 +79,8 @@ LINKS_1 = ("A", "A2C1", "C", "C2B1", "B", "B2A1")  # body of link k: its vertice
 # The half-turn R2 maps Bricard 1 onto Bricard 2 (letters A, B, C -> E, D, F, same index).
 R2 = np.array([[0.0, -1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
 IMAGE = str.maketrans("ABC", "EDF")
+# The threefold turn (x, y, z) -> (z, x, y) about (1, 1, 1): square A -> B -> C, A3 -> B3 -> C3.
+THREEFOLD = np.array([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
 # Exact volumes for unit edges: truncated octahedron 8 sqrt 2, cube 1 (seed 001 ch. 5 abstract: 11.3).
 VOLUME_RATIO = 8.0 * SQ2
 
@@ -101,6 +104,22 @@ def axis_a3(zeta: float) -> NDArray[np.float64]:
     zeta = 0 points to the centre, positive zeta right-handed about A2 - E3.
     """
     return rotation(unit(VERTICES["A2"] - VERTICES["E3"]), zeta) @ unit(-VERTICES["A3"])
+
+
+def revolute_axes(zeta: float = 0.0) -> dict[str, NDArray[np.float64]]:
+    """
+    Unit axis (deployed frame) of each of the 15 R joints, by the vertex it sits on: Bricard 1's six, their
+    images under R2 (Bricard 2), and A3, B3, C3 (threefold images of `axis_a3`). Each joins the square named by
+    the vertex's letter to the bar at that vertex.
+    """
+    _, dirs = bricard_axes()
+    out = {}
+    for vertex, d in zip(BRICARD_1, dirs, strict=True):
+        out[vertex], out[vertex.translate(IMAGE)] = d, R2 @ d
+    axis = axis_a3(zeta)
+    for vertex, _ in RS_BARS:
+        out[vertex], axis = axis, THREEFOLD @ axis
+    return out
 
 
 def faces() -> tuple[tuple[str, ...], ...]:
@@ -264,20 +283,49 @@ class TruncatedOctahedronCube:
             [np.sum(a3e3**2, -1) - 1.0, a3e3 @ self.s_a3 - self._bar_a3, np.sum(a4f4**2, -1) - 1.0], axis=-1
         )
 
-    def _newton(self, theta: float, x: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Close the three equations at one input by Newton's method with a central-difference Jacobian."""
+    def _jacobian(self, theta: NDArray[np.float64], x: NDArray[np.float64]) -> NDArray[np.float64]:
+        """d equations / d x (n, 3, 3) by central differences (step 1e-7)."""
+        step, probes = 1e-7, np.vstack([np.eye(3), -np.eye(3)])
+        g = self.equations(np.repeat(theta, 6), (x[:, None, :] + step * probes).reshape(-1, 3)).reshape(-1, 6, 3)
+        return np.swapaxes(g[:, :3] - g[:, 3:], 1, 2) / (2 * step)
+
+    def _newton(
+        self, theta: NDArray[np.float64], x: NDArray[np.float64], J: NDArray[np.float64] | None = None
+    ) -> NDArray[np.float64]:
+        """
+        Close the three equations at inputs theta (n,) from states x (n, 3), all inputs at once: chord steps with
+        the Jacobians J (n, 3, 3) when given (from nearby states), else Newton's method; ConvergenceError names
+        the first input that does not close.
+        """
+        x, active, previous = x.copy(), np.arange(len(theta)), np.full(len(theta), np.inf)
         for _ in range(30):
-            f = self.equations(theta, x)[0]
-            if np.max(np.abs(f)) < 1e-15:
+            f = self.equations(theta[active], x[active])
+            size = np.max(np.abs(f), axis=-1)
+            # done: closed, or stalled at the rounding floor (no longer halving below 1e-13)
+            going = (size >= 1e-15) & ~((size < 1e-13) & (size > 0.5 * previous[active]))
+            previous[active] = size
+            active, f = active[going], f[going]
+            if not len(active):
                 return x
-            step = 1e-7
-            probes = x + step * np.vstack([np.eye(3), -np.eye(3)])
-            g = self.equations(np.full(6, theta), probes)
-            J = (g[:3] - g[3:]).T / (2 * step)
-            x = x - np.linalg.solve(J, f)
-        if np.max(np.abs(self.equations(theta, x))) < 1e-13:
-            return x
-        raise ConvergenceError(f"the reduced model did not close at theta = {np.rad2deg(theta):.6g} deg")
+            step_J = self._jacobian(theta[active], x[active]) if J is None else J[active]
+            x[active] -= np.linalg.solve(step_J, f[..., None])[..., 0]
+        bad = np.max(np.abs(self.equations(theta, x)), axis=-1) >= 1e-13
+        if np.any(bad):
+            raise ConvergenceError(f"the reduced model did not close at theta = {np.rad2deg(theta[bad][0]):.6g} deg")
+        return x
+
+    @cached_property
+    def _track(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """
+        The state marched from the deployed one through the domain in steps of at most 0.5 deg: inputs (k,),
+        states (k, 3) and their Jacobians (k, 3, 3).
+        """
+        lo, hi = self.domain
+        grid = np.linspace(lo, hi, int(np.ceil((hi - lo) / np.deg2rad(0.5))) + 1)
+        states, x = np.empty((len(grid), 3)), np.array([[self.theta_d, 0.0, 0.0]])
+        for k, t in enumerate(grid):
+            x = states[k] = self._newton(np.array([t]), x)[0][None]
+        return grid, states, self._jacobian(grid, states)
 
     @cached_property
     def theta_f(self) -> float:
@@ -302,10 +350,15 @@ class TruncatedOctahedronCube:
         """Inputs (rad) from the truncated octahedron to the cube."""
         return self.theta_d, self.theta_f
 
+    def events(self) -> tuple[Event, ...]:
+        """The cube (theta_f, rad): Bricard 1 folds, A1 = B1 = C1 and the squares meet (a lock)."""
+        return (Event("lock", self.theta_f, ("transformation",), "the cube: A1 = B1 = C1, the squares meet; beyond "
+                      "it they pass through each other (seed 001 §2.7)"),)  # fmt: skip
+
     def state(self, theta: ArrayLike) -> NDArray[np.float64]:
         """
-        x = (theta_D, psi, h) per input (n, 3), rad, rad, m; continued from the deployed state (theta_d, 0, 0)
-        through the sorted inputs.
+        x = (theta_D, psi, h) per input (n, 3), rad, rad, m: chord steps from the state interpolated on `_track`
+        (the branch continued from the deployed state (theta_d, 0, 0)).
 
         Raises
         ------
@@ -320,20 +373,39 @@ class TruncatedOctahedronCube:
                 f"theta = {np.rad2deg(bad[0]):.6g} deg is outside the transformation, whose domain is "
                 f"[{np.rad2deg(lo):.6g}, {np.rad2deg(hi):.6g}] deg (truncated octahedron to cube)"
             )
-        out = np.empty((len(t), 3))
-        x, at = np.array([self.theta_d, 0.0, 0.0]), self.theta_d
-        for k in np.argsort(t):
-            # march in steps of at most 2 deg so Newton starts close to the branch
-            for s in np.linspace(at, t[k], int(np.ceil(abs(t[k] - at) / np.deg2rad(2.0))) + 1)[1:]:
-                x = self._newton(s, x)
-            at, out[k] = t[k], x
-        return out
+        grid, track, jacobians = self._track
+        start = np.stack([np.interp(t, grid, track[:, i]) for i in range(3)], axis=-1)
+        nearest = np.clip(np.searchsorted(grid, t), 0, len(grid) - 1)
+        return self._newton(t, start, jacobians[nearest])
 
     def vertices(self, theta: ArrayLike) -> NDArray[np.float64]:
         """Vertex positions (n, 24, 3) in `NAMES` order (m, deployed frame, square A fixed)."""
         t = np.atleast_1d(np.asarray(theta, dtype=float))
         x = self.state(t)
         return self._points(t, x[:, 0], x[:, 1], x[:, 2])
+
+    def body_poses(self, theta: ArrayLike) -> dict[str, NDArray[np.float64]]:
+        """
+        World poses (n, 4, 4) of the 6 squares ('A'..'F') and 12 bars (e.g. 'A2C1') relative to the deployed
+        state (identity there; square A fixed), fitted to the vertices. A bar with an R joint is fixed by its
+        two ends and its R axis, which turns with the square; an S-S bar's idle spin about its own axis is
+        taken as the smallest rotation of its direction (any spin closes every loop).
+        """
+        P = self.vertices(theta)
+        at = {v: P[:, k] for k, v in enumerate(NAMES)}
+        poses = {sq[0][0]: rigid_fit([VERTICES[v] for v in sq], np.stack([at[v] for v in sq], 1)) for sq in SQUARES}
+        for vertex, axis in revolute_axes(self.zeta).items():
+            bar = next(a + b for a, b in BARS if vertex in (a, b))
+            tip = poses[vertex[0]][:, :3, :3] @ axis + at[vertex]
+            ends = [bar[:2], bar[2:]]
+            poses.setdefault(bar, rigid_fit([VERTICES[v] for v in ends] + [VERTICES[vertex] + axis],
+                                            np.stack([at[v] for v in ends] + [tip], 1)))  # fmt: skip
+        for a, b in SS_BARS:
+            T = np.zeros((len(P), 4, 4))
+            T[:, :3, :3] = minimal_rotation(unit(VERTICES[b] - VERTICES[a]), unit(at[b] - at[a]))
+            T[:, :3, 3], T[:, 3, 3] = at[a] - T[:, :3, :3] @ VERTICES[a], 1.0
+            poses[a + b] = T
+        return poses
 
     def fold_angles(self, theta: ArrayLike) -> NDArray[np.float64]:
         """

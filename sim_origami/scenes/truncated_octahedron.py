@@ -1,0 +1,118 @@
+"""Scene `truncated-octahedron`: the truncated octahedron <-> cube transformation of seed 001 ch. 5.
+
+The seed's 1-DOF design: 6 squares and 12 bars, two threefold-symmetric Bricard linkages, R joints at A3,
+B3, C3 joining squares A, B, C to the bars A3E3, B3F3, C3D3, and 9 spherical joints (E3, F3, D3 and both
+ends of the bars A4F4, B4D4, C4E4), which MuJoCo models as ball joints (`mechanism.ball_joint`). The S-S bars'
+idle spins are free coordinates of the loop system and of MuJoCo, not counted as mobility.
+
+Frames: every body frame is the deployed world frame of `kinematics.truncated_octahedron` (square A is the
+root), every joint angle is 0 at the truncated octahedron, and the input joint 'A1' (Bricard 1's odd joint on
+square A, parent bar B2A1, axis O -> A1) equals theta - theta_d. Outputs: the 15 R-joint angles.
+"""
+
+import numpy as np
+import trimesh
+
+from ..geometry import frame_along, transform, unit
+from ..kinematics.truncated_octahedron import (
+    BARS,
+    NAMES,
+    RS_BARS,
+    SQUARES,
+    SS_BARS,
+    VERTICES,
+    TruncatedOctahedronCube,
+    revolute_axes,
+)
+from ..linkage import bar
+from ..mechanism import Body, Joint, Mechanism, ball_joint
+from ..origami import PALETTE
+from .base import Param, Scene, register
+from .polyhedra import AssemblyKinematics, kutzbach
+
+WIDTH = 0.04  # bar and plate thickness (m); geometry only, the kinematics has zero thickness
+INPUT_JOINT = "A1"
+
+
+def _plate(corners: list[np.ndarray]) -> trimesh.Trimesh:
+    """A thin box of thickness WIDTH spanning a unit square given by its 4 corners in cyclic order."""
+    x, y = unit(corners[1] - corners[0]), unit(corners[3] - corners[0])
+    frame = transform(np.stack([x, y, np.cross(x, y)], axis=1), np.mean(corners, axis=0))
+    return trimesh.creation.box(extents=(1.0, 1.0, WIDTH), transform=frame)
+
+
+def _bodies() -> list[Body]:
+    """The 6 squares (thin plates) and the 12 bars, named 'A'..'F' and e.g. 'A2C1'."""
+    out = []
+    for k, square in enumerate(SQUARES):
+        out.append(Body(square[0][0], _plate([VERTICES[v] for v in square]), None, PALETTE[k % len(PALETTE)]))
+    for a, b in BARS:
+        out.append(Body(a + b, bar(VERTICES[a], VERTICES[b], WIDTH), None, (0.3, 0.3, 0.3, 1.0)))
+    return out
+
+
+def _hinge(name: str, parent: str, child: str, vertex: str, axis: np.ndarray) -> Joint:
+    frame = frame_along(axis, VERTICES[vertex])
+    return Joint(name, parent, child, frame, frame, anchors=(0.25, 0.5))
+
+
+def _revolute(zeta: float) -> list[Joint]:
+    """The 15 R joints, each from the bar at its vertex (parent) to the square of its letter (child)."""
+    return [_hinge(vertex, next(a + b for a, b in BARS if vertex in (a, b)), vertex[0], vertex, axis)
+            for vertex, axis in revolute_axes(zeta).items()]  # fmt: skip
+
+
+def _spherical() -> tuple[list[Body], list[Joint]]:
+    """
+    The 9 S joints as ball joints from bar (parent) to square (child). Each triad has z along the vertex's
+    radius: on the path the middle angle stays within 0.83 rad of 0 (measured; singular at pi/2).
+    """
+    bodies, joints = [], []
+    for start, end in RS_BARS + SS_BARS + tuple((e, s) for s, e in SS_BARS):
+        triad = frame_along(VERTICES[end], VERTICES[end])
+        spacers, hinges = ball_joint(end, start + end if (start, end) in BARS else end + start, end[0], triad, triad)
+        bodies += spacers
+        joints += hinges
+    return bodies, joints
+
+
+def assembly(zeta: float = 0.0) -> Mechanism:
+    """
+    The 1-DOF truncated-octahedron assembly (seed 001 §2.7); root square A, joint 'A1' kept in the spanning
+    tree as the input.
+    """
+    spacers, balls = _spherical()
+    return Mechanism(tuple(_bodies() + spacers), tuple(_revolute(zeta) + balls), root="A", keep=(INPUT_JOINT,))
+
+
+@register(
+    "truncated-octahedron",
+    "truncated octahedron <-> cube (seed 001 ch. 5): two threefold Bricards, 15 R + 9 S joints, input A1",
+    (Param("zeta", "deg", 0.0, "deviation of the A3, B3, C3 axes from the direction to the centre"),),
+)
+def build(zeta: float) -> Scene:
+    model = TruncatedOctahedronCube(zeta)
+    mechanism = assembly(zeta)
+    revolute = tuple(revolute_axes(zeta))
+    cube = model.theta_f - model.theta_d
+    kinematics = AssemblyKinematics(
+        model, mechanism, reference=model.theta_d, revolute=revolute, input_joint=INPUT_JOINT,
+        branch=("octahedron-to-cube", "truncated octahedron (A1 = 0) to cube (A1 = theta_f - theta_d)"),
+        vertex_bodies={v: v[0] for v in NAMES}, reference_points=[VERTICES[v] for v in NAMES],
+        gruebler=kutzbach(mechanism),
+    )  # fmt: skip
+    return Scene(
+        name="truncated-octahedron",
+        params={"zeta": zeta},
+        kinematics=kinematics,
+        mechanism=mechanism,
+        loop_joints=tuple(j.name for j in mechanism.joints),
+        drive_joint=INPUT_JOINT,
+        drive_scale=1.0,
+        path=(0.0, cube),
+        # Seven coupled loops swept through 2.3 rad: stiff measured 1.8e-5 rad at the preset's 2 s sweep and
+        # 6.9e-8 rad (vertices 6.8e-8) 16x slower, in 0.45 s of CPU; fast 16x gave 4.4e-7.
+        preset="stiff",
+        sweep_time_scale=16.0,
+        notes="input A1 = theta - theta_d (rad); S joints as MuJoCo ball joints; outputs the 15 R joints",
+    )
