@@ -1,0 +1,131 @@
+"""Scene `cuboctahedron`: the cuboctahedron <-> octahedron transformation of seed 001 ch. 4.
+
+Bodies: the 8 rigid triangles of `kinematics.cuboctahedron` (thin plates); every body frame is the deployed
+world frame (4-1), root ABE. R joints at A, B, C, D, I, J, K, L are hinges through the vertex along the printed
+axes (4-8, 4-9), parent the link before the joint in Bennett loop order (`HINGES`), so hinge 'A' equals
+theta_A - theta_d and the hinge angles are `CuboctahedronOctahedron.revolute_angles`. S joints at E, F, G, H
+are `ball_joint`s from the bottom triangle (parent) to the top one (child). No S-S bar: the assembly has no
+idle spin, and its loop system has exactly the mechanism's 1 DOF.
+
+Ball triads: x along the ball's turn axis at the octahedron (the child's rotation relative to the parent from
+the cuboctahedron to the octahedron, a turn by theta_d - theta_f = 96.38 deg about (-2, 1, 0)/sqrt 5 at E,
+measured to 1e-16), y = +z of (4-1), z = x cross y. The relative turn axis stays in the deployed xy plane, so
+the middle angle stays within 11.6 deg of 0 on the whole path (measured on 401 samples), clear of +-90 deg.
+
+`assembly(revolute=...)` also builds the seed's variants for its mobility counts (digest §2.6): vertices not
+listed get ball joints (triad: z along the R axis it replaces), and E, F, G, H listed get hinges along the
+direction to the centre.
+"""
+
+import numpy as np
+import trimesh
+
+from ..errors import ParameterError
+from ..geometry import frame_along, rotation_vector, transform, unit
+from ..kinematics.cuboctahedron import (
+    AXES,
+    BOTTOM,
+    HINGES,
+    REVOLUTE,
+    SPHERICAL,
+    THETA_F,
+    TRIANGLES,
+    VERTICES,
+    CuboctahedronOctahedron,
+    faces,
+)
+from ..mechanism import Body, Joint, Mechanism, ball_joint
+from ..origami import PALETTE
+from ..solids import prism
+from .base import Scene, register
+from .polyhedra import AssemblyKinematics, kutzbach
+
+WIDTH = 0.02  # plate thickness (m); geometry only, the kinematics has zero thickness
+INPUT_JOINT = "A"
+ANCHORS = (0.25, 0.5)  # closure points (m) along a cut hinge's axis from its vertex, inside the polyhedron
+
+
+def _plate(face: str) -> trimesh.Trimesh:
+    """A thin triangular prism (thickness WIDTH) on a face given outward (counter-clockwise seen from outside)."""
+    P = np.array([VERTICES[v] for v in face])
+    x = unit(P[1] - P[0])
+    z = unit(np.cross(P[1] - P[0], P[2] - P[0]))
+    R = np.stack([x, np.cross(z, x), z], axis=1)
+    centre = P.mean(0)
+    return prism((P - centre) @ R[:, :2], WIDTH).apply_transform(transform(R, centre))
+
+
+def _bodies() -> list[Body]:
+    """The 8 triangles, named by their vertices ('ABE', ...); bottom ring and top ring in two colours."""
+    outward = {"".join(sorted(f)): f for f in faces()}
+    return [Body(t, _plate(outward["".join(sorted(t))]), None, PALETTE[1 if t in BOTTOM else 2]) for t in TRIANGLES]
+
+
+def ball_triad(vertex: str) -> np.ndarray:
+    """Rotation (3, 3) whose columns are the triad of the ball at E, F, G or H (see the module docstring)."""
+    model = CuboctahedronOctahedron()
+    parent, child = next((p, c) for v, p, c in SPHERICAL if v == vertex)
+    poses = model.body_poses(THETA_F)
+    x = unit(rotation_vector(poses[parent][0, :3, :3].T @ poses[child][0, :3, :3]))
+    y = np.array([0.0, 0.0, 1.0])
+    return np.stack([x, y, np.cross(x, y)], axis=1)
+
+
+def _ends(vertex: str) -> tuple[str, str]:
+    """(parent, child) triangles of the joint at a vertex."""
+    return HINGES[vertex] if vertex in HINGES else next((p, c) for v, p, c in SPHERICAL if v == vertex)
+
+
+def assembly(revolute: tuple[str, ...] = REVOLUTE) -> Mechanism:
+    """
+    The cuboctahedral linkage (seed 001 §2.6): hinges at the vertices in `revolute` (default the two Bennett
+    linkages), balls at the other vertices; root ABE, hinge 'A' kept in the spanning tree as the input when
+    it is a hinge.
+    """
+    unknown = sorted(set(revolute) - set(VERTICES))
+    if unknown:
+        raise ParameterError(f"revolute vertices {unknown} are not vertices of the cuboctahedron {sorted(VERTICES)}")
+    spacers, joints = [], []
+    for v, p in VERTICES.items():
+        parent, child = _ends(v)
+        axis = AXES[v] if v in AXES else -p  # E..H as hinges: toward the centre (digest §2.6)
+        if v in revolute:
+            frame = frame_along(axis, p)
+            joints.append(Joint(v, parent, child, frame, frame, anchors=ANCHORS))
+            continue
+        frame = frame_along(axis, p) if v in AXES else transform(ball_triad(v), p)
+        bodies, hinges = ball_joint(v, parent, child, frame, frame)
+        spacers += bodies
+        joints += hinges
+    keep = (INPUT_JOINT,) if INPUT_JOINT in revolute else ()
+    return Mechanism(tuple(_bodies() + spacers), tuple(joints), root="ABE", keep=keep)
+
+
+@register(
+    "cuboctahedron",
+    "cuboctahedron <-> octahedron (seed 001 ch. 4): 2 Bennett linkages and 4 RSRS loops, 8 R + 4 S joints, input A",
+    (),
+)
+def build() -> Scene:
+    model = CuboctahedronOctahedron()
+    mechanism = assembly()
+    kinematics = AssemblyKinematics(
+        model, mechanism, reference=model.theta_d, revolute=REVOLUTE, input_joint=INPUT_JOINT,
+        branch=("cuboctahedron-to-octahedron", "cuboctahedron (A = 0) to octahedron (A = theta_f - theta_d < 0)"),
+        vertex_bodies={v: next(t for t in TRIANGLES if v in t) for v in VERTICES},
+        reference_points=list(VERTICES.values()), gruebler=kutzbach(mechanism),
+    )  # fmt: skip
+    lo, _ = kinematics.branch("cuboctahedron-to-octahedron").domain
+    return Scene(
+        name="cuboctahedron",
+        params={},
+        kinematics=kinematics,
+        mechanism=mechanism,
+        loop_joints=tuple(j.name for j in mechanism.joints),
+        drive_joint=INPUT_JOINT,
+        drive_scale=1.0,
+        path=(0.0, lo),
+        # fast measured 2.1e-6 rad (vertices 6.9e-6) at the preset's 2 s sweep, 1.3e-7 (4.1e-7) 4x slower
+        sweep_time_scale=8.0,
+        notes="input A = theta_A - theta_d (rad, falls to the octahedron); S joints as MuJoCo ball joints",
+    )

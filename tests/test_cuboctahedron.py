@@ -1,0 +1,360 @@
+"""Cuboctahedron -> octahedron (`kinematics.cuboctahedron`, assembly in `scenes.cuboctahedron`) against seed 001
+ch. 4 (digest §2.6, validation cases 10, 11, 20) and the numeric loop closure of the whole assembly (8 hinges,
+4 spherical joints) and MuJoCo (ball joints)."""
+
+import numpy as np
+import pytest
+
+from sim_origami import scenes
+from sim_origami.errors import DomainError, ParameterError
+from sim_origami.geometry import rotation_vector, unit
+from sim_origami.kinematics.cuboctahedron import (
+    AXES,
+    NAMES,
+    OCTAHEDRON,
+    REVOLUTE,
+    SPHERICAL,
+    THETA_D,
+    THETA_F,
+    TOP,
+    TRIANGLES,
+    VERTICES,
+    VOLUME_RATIO,
+    CuboctahedronOctahedron,
+    volume,
+)
+from sim_origami.scenes.cuboctahedron import INPUT_JOINT, assembly
+from sim_origami.validation import validate
+
+DEG = np.pi / 180
+INDEX = {v: k for k, v in enumerate(NAMES)}
+EDGES = sorted({tuple(sorted((t[i], t[(i + 1) % 3]))) for t in TRIANGLES for i in range(3)})
+OWNER = {v: t for t in TRIANGLES for v in t}
+
+
+@pytest.fixture(scope="module")
+def model() -> CuboctahedronOctahedron:
+    return CuboctahedronOctahedron()
+
+
+@pytest.fixture(scope="module")
+def mechanism():
+    return assembly()
+
+
+def points_of(poses: dict[str, np.ndarray]) -> np.ndarray:
+    """Vertex positions (n, 12, 3) from body poses (n, 4, 4) (each vertex carried by one triangle)."""
+    return np.stack([poses[OWNER[v]][:, :3, :3] @ VERTICES[v] + poses[OWNER[v]][:, :3, 3] for v in NAMES], axis=1)
+
+
+def foot(p0: np.ndarray, s0: np.ndarray, p1: np.ndarray, s1: np.ndarray) -> np.ndarray:
+    """Foot on line (p1, s1) of the common normal with line (p0, s0) (unit directions)."""
+    w, b = p0 - p1, s0 @ s1
+    return p1 + ((s1 @ w) - b * (s0 @ w)) / (1 - b * b) * s1
+
+
+def theta_at_bd(model: CuboctahedronOctahedron, bd: float) -> float:
+    """Input at which the diagonal BD (m) is reached (BD grows monotonically with theta, digest §2.6)."""
+    lo, hi = model.domain
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if model.diagonals(mid)["BD"][0] < bd else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+def overlap(T1: np.ndarray, T2: np.ndarray) -> float:
+    """Length (m) of the intersection of two non-coplanar triangles (3, 3): 0 when they only touch at a point."""
+
+    def cut(T: np.ndarray, P: np.ndarray) -> list[np.ndarray]:
+        """Points where triangle T meets the plane of triangle P (its vertices on it, its edges crossing it)."""
+        d = (T - P[0]) @ np.cross(P[1] - P[0], P[2] - P[0])
+        ends = [T[i] for i in range(3) if abs(d[i]) <= 1e-12]
+        return ends + [
+            T[i] + d[i] / (d[i] - d[j]) * (T[j] - T[i]) for i, j in ((0, 1), (1, 2), (2, 0)) if d[i] * d[j] < 0
+        ]
+
+    a, b = cut(T1, T2), cut(T2, T1)
+    if not a or not b:
+        return 0.0
+    line = unit(np.cross(np.cross(T1[1] - T1[0], T1[2] - T1[0]), np.cross(T2[1] - T2[0], T2[2] - T2[0])))
+    s1, s2 = [p @ line for p in a], [p @ line for p in b]
+    return max(0.0, min(max(s1), max(s2)) - max(min(s1), min(s2)))
+
+
+# --- seed 001 numbers -------------------------------------------------------------------------------------------
+
+
+def test_bennett_parameters_match_case_10(model):
+    """Case 10 and (4-7): the seed's §2.0 procedure on the printed axes (4-8); exact values of digest §2.6."""
+    alpha = np.arccos(0.4)  # (4-25)
+    for k, row in enumerate(model.rows):
+        assert row.a == pytest.approx(np.sqrt(3 / 14), abs=1e-15)  # thesis 0.46; measured exact to 5.6e-17 m
+        assert row.alpha == pytest.approx(alpha if k % 2 == 0 else -alpha, abs=1e-14)  # twists (alpha, 2 pi - alpha)
+        assert abs(row.R) < 1e-15  # offsets 0 (measured exactly 0)
+    # Extensions c at A and C, d at B and D (thesis 0.68, 0.90): foot of the common normal to the next axis.
+    ext = {}
+    for v, w in zip("ABCD", "BCDA", strict=True):
+        s_v, s_w = unit(AXES[v]), unit(AXES[w])
+        ext[v] = abs((foot(VERTICES[w], s_w, VERTICES[v], s_v) - VERTICES[v]) @ s_v)
+    assert (ext["A"], ext["C"]) == pytest.approx((3 * np.sqrt(10) / 14,) * 2, abs=1e-14)  # measured 2.2e-16 m
+    assert (ext["B"], ext["D"]) == pytest.approx((2 * np.sqrt(10) / 7,) * 2, abs=1e-14)
+    # (4-10): a^2 + c^2 + d^2 - 2 c d cos(alpha) = 1 exactly
+    assert model.rows[0].a ** 2 + ext["A"] ** 2 + ext["B"] ** 2 - 2 * ext["A"] * ext["B"] * 0.4 == pytest.approx(1.0)
+    # (4-7): gamma1 = angle(s_C, CB) = 71.57 deg (cos = 1/sqrt 10), gamma2 = angle(s_C, CF) = 50.77 deg
+    s_c = unit(AXES["C"])
+    g1, g2 = (np.arccos(s_c @ unit(VERTICES[v] - VERTICES["C"])) for v in "BF")
+    assert (g1 / DEG, g2 / DEG) == pytest.approx((71.57, 50.77), abs=5e-3)  # printed to 0.01 deg
+    assert (np.cos(g1), np.cos(g2)) == pytest.approx((1 / np.sqrt(10), np.sqrt(0.4)), abs=1e-15)
+    # (4-29): theta_d, phi_d = -154.79, -58.41 deg in the thesis, +154.7912, +58.4119 with the printed axes
+    assert (model.theta_d / DEG, model.phi_d / DEG) == pytest.approx((154.791, 58.412), abs=1e-3)
+    assert model.theta_d == pytest.approx(THETA_D, abs=1e-14)  # tan(theta_d/2) = 2 sqrt 5 (4-28, digest sign)
+    assert model.phi(THETA_D) == pytest.approx(model.phi_d, abs=1e-14)  # the closed form starts on the axes
+
+
+def test_deployed_design_equations(model):
+    """(4-23)...(4-33) with the digest's corrections of (4-14), (4-30): they rebuild a, c, d from theta_d, phi_d."""
+    ct, cp = np.cos(model.theta_d), np.cos(model.phi_d)
+    cos_2g1, cos_2g2 = (cp + 1) / (ct - 1), (ct + 1) / (cp - 1)
+    assert (cos_2g1, cos_2g2) == pytest.approx((-0.8, -0.2), abs=1e-14)  # (4-23), (4-24)
+    assert np.sqrt(cos_2g1 * cos_2g2) == pytest.approx(0.4, abs=1e-14)  # (4-25): alpha = arccos 0.4
+    cg1, cg2, ca = np.sqrt((1 + cos_2g1) / 2), np.sqrt((1 + cos_2g2) / 2), 0.4
+    t3 = np.sqrt((1 + cp) * (1 - ct) / (-2 * (ct + cp)))  # (4-30) corrected
+    t4 = np.sqrt((1 + ct) * (1 - cp) / (-2 * (ct + cp)))
+    assert (t3, t4) == pytest.approx((1.951800, 0.243975), abs=1e-6)  # printed to 1e-6
+    term_a = 1 + t3**2 + t4**2 + 2 * t3 * t4 * ca
+    term_b = -t3 / cg1 + t4 / cg2 + (t3 / cg2) * ca - (t4 / cg1) * ca
+    term_c = 1 / (4 * cg1**2) + 1 / (4 * cg2**2) - ca / (2 * cg1 * cg2) - 1
+    assert (term_a, term_b, term_c) == pytest.approx((5.25, -4.860556, 1.125), abs=1e-6)  # (4-33)
+    assert term_b**2 - 4 * term_a * term_c == pytest.approx(0.0, abs=1e-12)  # [NEW] discriminant 0 (measured 1.1e-14)
+    a = -term_b / (2 * term_a)  # (4-32)
+    assert a == pytest.approx(model.rows[0].a, abs=1e-13)
+    c, d = 1 / (2 * cg1) - t3 * a, 1 / (2 * cg2) + t4 * a  # (4-31)
+    assert (c, d) == pytest.approx((3 * np.sqrt(10) / 14, 2 * np.sqrt(10) / 7), abs=1e-13)
+
+
+@pytest.mark.parametrize("theta, phi, ac, bd", [(120, 110.570, 1.54826, 0.97136), (90, 136.397, 1.49712, 0.51643)])
+def test_bennett_samples_case_10(model, theta, phi, ac, bd):
+    """Case 10: lengths to its 1e-5 (measured <= 4.4e-6 m); phi is printed to 1e-3 deg, so half of that (measured
+    1.8e-4 deg at 90 deg, the rounding of the printed value)."""
+    d = model.diagonals(theta * DEG)
+    assert model.phi(theta * DEG) / DEG == pytest.approx(phi, abs=5e-4)
+    assert (d["AC"][0], d["BD"][0]) == pytest.approx((ac, bd), abs=1e-5)
+
+
+def test_fold_case_10(model):
+    """B = D at theta_f = 58.4119 deg, phi_f = 154.7912 deg (4-42: theta_f = phi_d, phi_f = theta_d), AC = sqrt 2,
+    angle ABC = 90 deg; (4-41) corrected: tan(theta_f/2) = -sqrt(5)/4 in the thesis's sign."""
+    lo, hi = model.domain
+    assert (lo, hi) == (THETA_F, THETA_D)
+    assert (lo / DEG, model.phi(lo) / DEG) == pytest.approx((58.4119, 154.7912), abs=1e-4)
+    assert (lo, model.phi(lo)) == pytest.approx((model.phi_d, model.theta_d), abs=1e-14)
+    assert -np.tan(lo / 2) == pytest.approx(-np.sqrt(5) / 4, abs=1e-15)
+    P = model.vertices(lo)[0]
+    assert np.linalg.norm(P[INDEX["B"]] - P[INDEX["D"]]) < 1e-14  # measured 1.2e-15 m
+    assert np.linalg.norm(P[INDEX["A"]] - P[INDEX["C"]]) == pytest.approx(np.sqrt(2), abs=1e-14)
+    u, w = P[INDEX["A"]] - P[INDEX["B"]], P[INDEX["C"]] - P[INDEX["B"]]
+    assert u @ w == pytest.approx(0.0, abs=1e-14)
+
+
+def test_deployed_state_is_the_cuboctahedron(model):
+    P = model.vertices(THETA_D)[0]
+    assert np.max(np.abs(P - np.array([VERTICES[v] for v in NAMES]))) < 1e-13  # measured 1.4e-15 m
+    for pose in model.body_poses(THETA_D).values():
+        assert np.max(np.abs(pose[0] - np.eye(4))) < 1e-13
+    assert np.max(np.abs(model.revolute_angles(THETA_D))) < 1e-14  # measured 1.1e-15 rad
+
+
+def test_end_state_is_the_octahedron(model):
+    """(4-2) up to a rigid motion; the six merging pairs; (4-4) corrected: G^f = C + T (F - C)."""
+    P = model.vertices(THETA_F)[0]
+    Q = np.array([OCTAHEDRON[v] for v in NAMES])
+    U, _, Vt = np.linalg.svd((P - P.mean(0)).T @ (Q - Q.mean(0)))
+    R = (U @ Vt).T
+    assert np.linalg.det(R) > 0  # a rotation, not a mirror image
+    assert np.max(np.linalg.norm((P - P.mean(0)) @ R.T + Q.mean(0) - Q, axis=1)) < 1e-13  # measured 1.2e-15 m
+    for a, b in ("AI", "BD", "CK", "EF", "GH", "JL"):
+        assert np.linalg.norm(P[INDEX[a]] - P[INDEX[b]]) < 1e-13  # measured <= 2.2e-15 m
+    poses = model.body_poses(THETA_F)
+    relative = np.linalg.inv(poses["BCF"][0]) @ poses["CDG"][0]  # BCF held at its cuboctahedron pose
+    g_f = relative[:3, :3] @ VERTICES["G"] + relative[:3, 3]
+    assert g_f == pytest.approx(np.sqrt(2) * np.array([1 / 6, 1 / 6, -1 / 3]), abs=1e-14)
+
+
+def test_volume_ratio(model):
+    """Ch. 4 abstract: 5 = (5 sqrt 2 / 3) / (sqrt 2 / 3); the enclosed volume falls monotonically on the path."""
+    theta = np.linspace(*model.domain, 41)
+    v = volume(model.vertices(theta))
+    assert (v[-1], v[0]) == pytest.approx((5 * np.sqrt(2) / 3, np.sqrt(2) / 3), abs=1e-14)  # measured 1e-15
+    assert v[-1] / v[0] == pytest.approx(VOLUME_RATIO, rel=1e-13)
+    assert np.all(np.diff(v) > 0)
+
+
+# Digest §2.6 path table (truss continuation, ground ABE; case 11 tolerance 2e-3): BD -> AI, EF, AC, EH, BJ (m).
+# Measured agreement 1.5e-4 or better (the table is printed to 1e-4).
+PATH = [
+    (1.2000, 1.2280, 1.0261, 1.5316, 1.4955, 1.6911),
+    (1.0002, 1.0011, 0.7484, 1.5490, 1.5352, 1.7759),
+    (0.7994, 0.7733, 0.5338, 1.5350, 1.5490, 1.7757),
+    (0.5996, 0.5591, 0.3644, 1.5094, 1.5416, 1.7262),
+    (0.4993, 0.4569, 0.2912, 1.4945, 1.5308, 1.6885),
+    (0.3006, 0.2650, 0.1634, 1.4634, 1.4966, 1.5947),
+    (0.0995, 0.0845, 0.0510, 1.4307, 1.4454, 1.4785),
+    (0.0100, 0.0084, 0.0050, 1.4159, 1.4175, 1.4209),
+    (0.0010, 0.0008, 0.0005, 1.4144, 1.4145, 1.4149),
+]
+
+
+@pytest.mark.parametrize("row", PATH)
+def test_path_matches_seed_table(model, row):
+    theta = theta_at_bd(model, row[0])
+    d = model.diagonals(theta)
+    got = [d[k][0] for k in ("BD", "AI", "EF", "AC", "EH", "BJ")]
+    assert got == pytest.approx(row, abs=2e-3)
+    assert np.max(np.abs(np.array(got) - row)) < 3e-4  # measured 1.5e-4 (printed to 1e-4, truss tolerance)
+    P = model.vertices(theta)[0]
+    ik, jl = (np.linalg.norm(P[INDEX[a]] - P[INDEX[b]]) for a, b in ("IK", "JL"))
+    assert (ik, jl) == pytest.approx((d["AC"][0], d["BD"][0]), abs=1e-14)  # IJKL mirrors ABCD
+
+
+def test_path_maxima(model):
+    """Digest §2.6: AC = 1.5492 at BD ~ 1.02; EH = 1.5492 at BD ~ 0.78; BJ = 1.7836 at BD ~ 0.90 (printed to 1e-4
+    and 0.01; measured 1.549193 at 1.0215, 1.549193 at 0.7746, 1.783612 at 0.9048 on 20001 samples)."""
+    d = model.diagonals(np.linspace(*model.domain, 20001))
+    for key, peak, at in (("AC", 1.5492, 1.02), ("EH", 1.5492, 0.78), ("BJ", 1.7836, 0.90)):
+        k = int(np.argmax(d[key]))
+        assert d[key][k] == pytest.approx(peak, abs=1e-4)
+        assert d["BD"][k] == pytest.approx(at, abs=0.01)
+
+
+# --- closure: closed form and the numeric loop system ------------------------------------------------------------
+
+
+def test_closed_form_closes_every_loop(model, mechanism):
+    theta = np.linspace(*model.domain, 61)
+    P = model.vertices(theta)
+    lengths = np.stack([np.linalg.norm(P[:, INDEX[a]] - P[:, INDEX[b]], axis=-1) for a, b in EDGES], -1)
+    assert len(EDGES) == 24 and np.max(np.abs(lengths - 1.0)) < 1e-12  # 24 face edges (measured 2.0e-15 m)
+    q = mechanism.angles_from_poses(model.body_poses(theta))
+    loops = mechanism.loop_system()
+    assert len(loops.loops) == 5  # 12 joints - 8 bodies + 1: 2 Bennett + 4 RSRS (seed §2.6)
+    assert np.max(loops.residual_norm(q)) < 1e-12  # every loop, both ends included (measured 4.2e-15)
+    hinges = [mechanism.joint_index(v) for v in REVOLUTE]
+    assert np.max(np.abs(q[:, hinges] - model.revolute_angles(theta))) < 1e-13  # measured 1.1e-15 rad
+    # the printed axes move with their triangles: each hinge's relative turn is about its axis (4-8, 4-9)
+    poses = model.body_poses(theta)
+    for v in REVOLUTE:
+        parent, child = (
+            mechanism.joints[mechanism.joint_index(v)].parent,
+            mechanism.joints[mechanism.joint_index(v)].child,
+        )
+        w = rotation_vector(np.swapaxes(poses[parent][:, :3, :3], 1, 2) @ poses[child][:, :3, :3])
+        assert np.max(np.linalg.norm(np.cross(w, unit(AXES[v])), axis=-1)) < 1e-13
+
+
+def test_ball_middle_angles_stay_clear_of_gimbal_lock(model, mechanism):
+    """The triads of `scenes.cuboctahedron` keep |b| <= 11.607 deg on the path (measured on 401 samples)."""
+    q = mechanism.angles_from_poses(model.body_poses(np.linspace(*model.domain, 401)))
+    b = np.abs(q[:, [mechanism.joint_index(f"{v}_y") for v, _, _ in SPHERICAL]]) / DEG
+    assert np.max(b) < 11.7 and np.max(b) > 11.5
+    # each ball turns by theta_d - theta_f = 96.38 deg in all (the octahedron), measured to 2.8e-15 rad
+    poses = model.body_poses(THETA_F)
+    for _, parent, child in SPHERICAL:
+        turn = np.linalg.norm(rotation_vector(poses[parent][0, :3, :3].T @ poses[child][0, :3, :3]))
+        assert turn == pytest.approx(THETA_D - THETA_F, abs=1e-12)
+
+
+def test_closed_form_matches_numeric_assembly(model, mechanism):
+    """The whole assembly followed from the cuboctahedron, driven at hinge A, to 0.5 deg short of the singular
+    octahedron (where the second branch meets the path and the follow loses its unique solution)."""
+    loops = mechanism.loop_system()
+    q0 = np.zeros(len(mechanism.joints))
+    assert loops.residual_norm(q0) < 1e-14  # measured 1.4e-15
+    theta = np.linspace(THETA_D, THETA_F + 0.5 * DEG, 41)
+    q = loops.follow(q0, mechanism.joint_index(INPUT_JOINT), theta - THETA_D, tol=1e-13)
+    hinges = [mechanism.joint_index(v) for v in REVOLUTE]
+    assert np.max(np.abs(q[:, hinges] - model.revolute_angles(theta))) < 1e-9  # measured 3.1e-15 rad
+    numeric = points_of(mechanism.body_poses(q))
+    assert np.max(np.linalg.norm(numeric - model.vertices(theta), axis=-1)) < 1e-9  # measured 5.8e-13 m
+    assert np.max(np.abs(q - mechanism.angles_from_poses(model.body_poses(theta)))) < 1e-9  # measured 7.3e-13 rad
+
+
+def test_mobility(model, mechanism):
+    """One DOF on the path (seed §2.6: truss m = 1), two at the octahedron ([NEW] digest §7 #2)."""
+    loops = mechanism.loop_system()
+    theta = np.array([THETA_F, THETA_F + 2 * DEG, 100 * DEG, THETA_D])
+    q = mechanism.angles_from_poses(model.body_poses(theta))
+    assert [loops.mobility(x) for x in q] == [2, 1, 1, 1]
+    sigma = [np.linalg.svd(loops.jacobian(x), compute_uv=False)[-2] for x in q]
+    assert sigma[0] < 1e-14  # measured 1.1e-15
+    assert sigma[1] > 5e-3  # measured 1.1e-2 two degrees from the end: sigma_2 grows linearly from 0
+
+
+@pytest.mark.parametrize(
+    "revolute, dof",
+    [(REVOLUTE, 1), (tuple("ABCD"), 2), ((), 6), ((*REVOLUTE, "E"), 0)],
+    ids=["seed design", "R at ABCD only", "all S", "plus R at E"],
+)
+def test_mobility_of_the_seed_variants(mechanism, revolute, dof):
+    """Digest §2.6 truss counts at the cuboctahedron: 1; only Bennett 1 as R joints: 2; all S: 6 (not the 18 of
+    Sec. 4.2); an R joint at E with its axis toward the centre: 0. A ball adds 3 joint coordinates, so the joint-space
+    mobility equals the truss m (no idle spins: no S-S bar)."""
+    mech = assembly(revolute)
+    loops = mech.loop_system()
+    assert loops.mobility(np.zeros(len(mech.joints))) == dof  # smallest kept singular value >= 0.19 (measured)
+
+
+def test_octahedron_second_branch(model, mechanism):
+    """[NEW] At the octahedron the top pyramid turns about the line E (= F) G (= H), hinges frozen: every loop stays
+    closed, but its faces cut through the bottom ones for either sign of the turn; on the path no faces cut."""
+    loops = mechanism.loop_system()
+    psi = np.array([-0.2, -0.01, 0.01, 0.2])
+    poses = model.swing_poses(psi)
+    q = mechanism.angles_from_poses(poses)
+    assert np.max(loops.residual_norm(q)) < 1e-12  # measured 4.5e-15
+    hinges = [mechanism.joint_index(v) for v in REVOLUTE]
+    assert np.max(np.abs(q[:, hinges] - model.revolute_angles(THETA_F))) < 1e-13
+    P = points_of(poses)
+    bottom = [t for t in TRIANGLES if t not in TOP]
+
+    def deepest(P: np.ndarray) -> float:
+        faces = {t: np.array([P[INDEX[v]] for v in t]) for t in TRIANGLES}
+        return max(overlap(faces[a], faces[b]) for a in TOP for b in bottom)
+
+    for k in range(len(psi)):
+        assert deepest(P[k]) > 0.5  # measured 0.958 m: a cevian of a bottom face, from E or G
+    for x in model.vertices(np.linspace(THETA_F + 0.5 * DEG, THETA_D, 9)):
+        assert deepest(x) < 1e-12  # faces meet at most at a shared vertex
+
+
+def test_events(model):
+    kinds = sorted((e.kind, e.input) for e in model.events())
+    assert kinds == [("bifurcation", THETA_F), ("lock", THETA_F)]
+
+
+# --- bad input ---------------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("theta_deg", [58.0, 155.0, np.nan, np.inf])
+def test_input_outside_the_transformation(model, theta_deg):
+    with pytest.raises(DomainError, match="outside the transformation"):
+        model.vertices(theta_deg * DEG)
+
+
+def test_unknown_revolute_vertex():
+    with pytest.raises(ParameterError, match="'X'"):
+        assembly(("A", "X"))
+
+
+# --- MuJoCo (scene `cuboctahedron`: S joints as ball joints) --------------------------------------------------
+
+
+def test_mujoco_follows_the_transformation_and_sees_the_octahedron_bifurcation():
+    report = validate(scenes.get("cuboctahedron").build())
+    assert report.passed
+    run = report.runs[0]
+    vertex = next(v for v in run.verdicts if "vertex position" in v.name)
+    assert vertex.measured < 1e-6  # issue 6 target, unit edges (measured 1.0e-7, fast 8x)
+    mobility = run.mobility
+    assert (mobility["start"]["numeric"], mobility["start"]["mujoco"], mobility["start"]["truss"]) == (1, 1, 1)
+    end = mobility["bifurcations"][0]  # the octahedron: the pyramid swing joins (mobility 2 three ways)
+    assert (end["numeric"], end["mujoco"], end["truss"]) == (2, 2, 2)
