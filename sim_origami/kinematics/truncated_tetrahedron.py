@@ -1,0 +1,595 @@
+"""Transformable polyhedron of seed 001 ch. 6: truncated tetrahedron <-> tetrahedron, schemes I and II (digest §2.8).
+
+Frame and units: the seed's (6-1) frame, unit edges (m): origin at the centre of hexagon ABCDEF, z its normal,
+x toward F; angles in radians. Every position returned is given with triangle ABG (the root body) held at its
+deployed pose, so the deployed coordinates are exactly (6-1).
+
+Assembly (digest §2.8, §5): 4 rigid triangles ABG, CDH, EFJ, KLM and 6 rigid bars BC, DE, FA, GK, HL, JM.
+The threefold Bricard is the hexagon A B C D E F (links ABG, BC, CDH, DE, EFJ, FA) with R joints at A..F along
+the printed (6-4, 6-13, 6-14) axes. Scheme I adds R joints at G, H, J (triangle -> bar, axis s_G) and S joints
+at K, L, M (bar -> triangle KLM); scheme II adds S joints at G, H, J (triangle -> bar) and R joints at K, L, M
+(bar -> triangle KLM, axis s_K). 9 R + 3 S, 10 bodies, 3 loops, 1 DOF (truss j = 21, b = 57, r = 56, s = 1).
+
+Axes (corrected, digest §2.8 / §4 misprints 28, 29, 31): s_G(delta1) = Rot(unit(B - K), delta1) unit(G - Q) and
+s_K(delta2) = Rot(unit(G - M), delta2) unit(K - Q), Q = (0, 0, sqrt 6 / 4) the body centre; H, J and L, M get
+the +-120 deg images about z. The seed's printed s_G (6-17) is the direction of OG and s_M (6-18) is wrong.
+
+Reduced model (digest §2.8, "scheme I analytic model", extended to scheme II). The motion keeps the threefold
+symmetry about the Bricard's axis (the normal of triangle BDF through its centroid; the "symmetric frame",
+which is the (6-1) frame at deployment). The Bricard follows its closed form (`BricardThreefold`, branch
+'even-axes-along': theta at A, C, E, phi at B, D, F, seed's '-' root of (6-52)); triangle KLM stays centred on
+the axis, turned by psi (rad) and shifted by h (m) along it. The state u = (theta, q, psi, h), with q the
+scheme's R-joint angle (q_G or q_K, 0 deployed), obeys three equations, the closure of the loop through G and K:
+
+* scheme I: K carried by the bar GK (turned by q_G about s_G through G, relative to ABG) = K of KLM;
+* scheme II: G carried by the bar GK (held by KLM through the R joint at K at angle q_K) = G of ABG.
+
+The 1-D solution set is traced from the deployed state (pseudo-arclength, step 0.02) in the direction in
+which KLM turns positively about z (d psi > 0: the seed's KLM rotation 0 -> 30 deg), up to the Bricard fold
+theta_f (A = C = E, digest case 16), where the path ends: beyond it the Bricard's links pass through each
+other. A path that reaches the tetrahedron ends exactly on its state (`tetrahedron_state`), where theta turns
+back; one that misses it (scheme I, delta1 >= -3 deg) ends at theta_f with K short of B (`end_gap`).
+Queries are solved by Newton from a cubic Hermite guess on the trace.
+
+Inputs (the seed's driving angles): scheme I is driven by theta_G = theta_G0 + q_G (the seed's quartic unknown,
+the signed angle from B - G to K - G about s_G, 146.4427 deg deployed for delta1 = 0), which falls
+monotonically; the Bricard's theta cannot drive it, since theta has a turning point at deployment (delta1 = 0)
+or dips below theta_d first (delta1 < 0, digest §2.8). Scheme II is driven by the Bricard angle theta at A,
+which rises monotonically to theta_f for delta2 >= 0. [NEW] With delta2 = 0 the deployed state is a turning
+point of theta too (dtheta/ds = 0; the two directions are distinct motions, of which d psi > 0 reaches the
+tetrahedron): near theta_d the state is fixed by theta only to sqrt(theta - theta_d).
+"""
+
+from functools import cached_property
+from itertools import pairwise
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..errors import ConvergenceError, DomainError, ParameterError
+from ..geometry import invert, rotation, signed_angle, transform, transform_z, unit, wrap
+from .base import Event
+from .bricard_threefold import ALONG, BricardThreefold
+from .dh import DHRow, dh_from_axes
+
+R2, R3, R6 = np.sqrt(2.0), np.sqrt(3.0), np.sqrt(6.0)
+# (6-1): the truncated tetrahedron, unit edges.
+VERTICES: dict[str, NDArray[np.float64]] = {
+    name: np.array(xyz, dtype=float)
+    for name, xyz in {
+        "A": (0.5, R3 / 2, 0), "B": (-0.5, R3 / 2, 0), "C": (-1, 0, 0), "D": (-0.5, -R3 / 2, 0),
+        "E": (0.5, -R3 / 2, 0), "F": (1, 0, 0), "G": (0, 2 * R3 / 3, R6 / 3), "H": (-1, -R3 / 3, R6 / 3),
+        "J": (1, -R3 / 3, R6 / 3), "K": (0, R3 / 3, 2 * R6 / 3), "L": (-0.5, -R3 / 6, 2 * R6 / 3),
+        "M": (0.5, -R3 / 6, 2 * R6 / 3),
+    }.items()
+}  # fmt: skip
+NAMES: tuple[str, ...] = tuple(VERTICES)
+# (6-3): the tetrahedron (edge 1) each vertex reaches; merged vertices share a corner.
+TETRAHEDRON: dict[str, NDArray[np.float64]] = {
+    name: np.array(xyz, dtype=float)
+    for corner, xyz in {
+        "ACE": (0, 0, 0), "BHK": (-R3 / 6, 0.5, R6 / 3), "DJL": (-R3 / 6, -0.5, R6 / 3), "FGM": (R3 / 3, 0, R6 / 3)
+    }.items()
+    for name in corner
+}  # fmt: skip
+Q = np.array([0.0, 0.0, R6 / 4])  # body centre (6-2)
+TRIANGLES = ("ABG", "CDH", "EFJ", "KLM")
+BARS = ("BC", "DE", "FA", "GK", "HL", "JM")
+BODIES = TRIANGLES + BARS
+LINKS = ("ABG", "BC", "CDH", "DE", "EFJ", "FA")  # Bricard link k joins joint k (A..F) to joint k + 1
+ROOT = "ABG"
+# R joints in `revolute_angles` order; parent -> child (the angle turns the child about +axis).
+REVOLUTE_I = ("A", "B", "C", "D", "E", "F", "G", "H", "J")
+REVOLUTE_II = ("A", "B", "C", "D", "E", "F", "K", "L", "M")
+PARENTS = {"A": ("FA", "ABG"), "B": ("ABG", "BC"), "C": ("BC", "CDH"), "D": ("CDH", "DE"), "E": ("DE", "EFJ"),
+           "F": ("EFJ", "FA"), "G": ("ABG", "GK"), "H": ("CDH", "HL"), "J": ("EFJ", "JM"),
+           "K": ("GK", "KLM"), "L": ("HL", "KLM"), "M": ("JM", "KLM")}  # fmt: skip
+# Exact volumes for unit edges: truncated tetrahedron 23 sqrt 2 / 12, tetrahedron sqrt 2 / 12 (seed ch. 6: 23).
+VOLUME_RATIO = 23.0
+
+
+def _turn(k: int) -> NDArray[np.float64]:
+    """Rz(k 120 deg) (3, 3): k = 1 maps A -> C, F -> B, G -> H, K -> L (digest §2.8)."""
+    return rotation(np.array([0.0, 0.0, 1.0]), 2 * np.pi * k / 3)
+
+
+def bricard_axes() -> NDArray[np.float64]:
+    """Unit axes (6, 3) of the R joints A..F (6-4, 6-13, 6-14), the digest's orientation."""
+    s_a = np.array([np.sqrt(22) / 11, np.sqrt(66) / 11, -np.sqrt(33) / 11])
+    s_f = np.array([-2 * np.sqrt(166) / 83, 0.0, 5 * np.sqrt(249) / 83])
+    return np.array([s_a, _turn(1) @ s_f, _turn(1) @ s_a, _turn(-1) @ s_f, _turn(-1) @ s_a, s_f])
+
+
+def axis_g(delta: float) -> NDArray[np.float64]:
+    """Unit s_G (scheme I) = Rot(unit(B - K), delta) unit(G - Q) (digest sign); delta = 0: (0, 4√66/33, √33/33)."""
+    return rotation(unit(VERTICES["B"] - VERTICES["K"]), delta) @ unit(VERTICES["G"] - Q)
+
+
+def axis_k(delta: float) -> NDArray[np.float64]:
+    """Unit s_K (scheme II) = Rot(unit(G - M), delta) unit(K - Q); delta = 0 is (0, 2√66/33, 5√33/33)."""
+    return rotation(unit(VERTICES["G"] - VERTICES["M"]), delta) @ unit(VERTICES["K"] - Q)
+
+
+def faces() -> tuple[tuple[str, ...], ...]:
+    """The 4 triangles and 4 hexagons (hollow in the mechanism) as outward (counter-clockwise) vertex cycles."""
+    out = []
+    for face in (*TRIANGLES, "ABCDEF", "BCHLKG", "DEJMLH", "FAGKMJ"):
+        P = np.array([VERTICES[v] for v in face])
+        normal = np.cross(P[1] - P[0], P[2] - P[0])
+        out.append(tuple(face) if normal @ (P.mean(0) - Q) > 0 else tuple(face[::-1]))
+    return tuple(out)
+
+
+def volume(points: ArrayLike) -> NDArray[np.float64]:
+    """
+    Volume (m^3) enclosed by `faces()` for vertex positions (..., 12, 3) in `NAMES` order: the divergence
+    theorem over a fan triangulation of each face (exact for planar faces and for merged vertices).
+    """
+    P = np.asarray(points, dtype=float)
+    index = {v: k for k, v in enumerate(NAMES)}
+    total = np.zeros(P.shape[:-2])
+    for face in faces():
+        k = [index[v] for v in face]
+        for a, b in pairwise(k[1:]):
+            total = total + np.einsum("...i,...i", P[..., k[0], :], np.cross(P[..., a, :], P[..., b, :]))
+    return total / 6.0
+
+
+def _about_line(point: NDArray, axis: NDArray, angle: ArrayLike) -> NDArray[np.float64]:
+    """Rigid transforms (..., 4, 4): rotation by `angle` (rad) about the line through `point` along unit `axis`."""
+    R = rotation(axis, angle)
+    T = np.zeros((*R.shape[:-2], 4, 4))
+    T[..., :3, :3], T[..., 3, 3] = R, 1.0
+    T[..., :3, 3] = point - R @ point
+    return T
+
+
+def _screw(psi: ArrayLike, h: ArrayLike) -> NDArray[np.float64]:
+    """Tz(h) Rz(psi), (..., 4, 4): the pose of KLM in the symmetric frame (identity deployed)."""
+    T = transform_z(psi)
+    T[..., 2, 3] = h
+    return T
+
+
+def _apply(T: NDArray, p: NDArray) -> NDArray[np.float64]:
+    """Transforms (..., 4, 4) applied to one point (3,) -> (..., 3)."""
+    return T[..., :3, :3] @ p + T[..., :3, 3]
+
+
+def _angle_about(u: ArrayLike, v: ArrayLike, axis: ArrayLike) -> NDArray[np.float64]:
+    """Right-handed angle (...) (rad) from u to v about unit `axis`, both projected onto the plane normal to it."""
+    u, v, axis = (np.asarray(w, dtype=float) for w in (u, v, axis))
+    u = u - np.einsum("...i,...i", u, axis)[..., None] * axis
+    v = v - np.einsum("...i,...i", v, axis)[..., None] * axis
+    return signed_angle(u, v, axis)
+
+
+def _hermite(v0: ArrayLike, v1: ArrayLike, d0: ArrayLike, d1: ArrayLike, w: float) -> NDArray[np.float64]:
+    """Cubic Hermite interpolation at w in [0, 1] between values v0, v1 with end slopes d0, d1 (per unit w)."""
+    v0, v1, d0, d1 = (np.asarray(a, dtype=float) for a in (v0, v1, d0, d1))
+    return (2 * w**3 - 3 * w**2 + 1) * v0 + (w**3 - 2 * w**2 + w) * d0 + (3 * w**2 - 2 * w**3) * v1 + (w**3 - w**2) * d1
+
+
+def _foot(p0: NDArray, s0: NDArray, p1: NDArray, s1: NDArray) -> NDArray[np.float64]:
+    """Foot on line (p1, s1) of the common normal from line (p0, s0); unit directions, skew lines."""
+    w, b = p0 - p1, s0 @ s1
+    return p1 + ((s1 @ w) - b * (s0 @ w)) / (1.0 - b * b) * s1
+
+
+class Transformation:
+    """
+    Shared closed form of both schemes (see the module docstring); subclasses set the top joints.
+
+    `delta` (rad) turns the scheme's R axis (delta1 or delta2 of digest §2.8); it must lie in (-90, 90) deg.
+    """
+
+    input_name: str
+    REVOLUTE: tuple[str, ...]
+    _input: int  # index of the input in the state u = (theta, q, psi, h)
+    _symbol: str  # "delta1" or "delta2", for messages
+
+    def __init__(self, delta: float = 0.0):
+        if not (np.isfinite(delta) and abs(delta) < np.pi / 2):
+            raise ParameterError(
+                f"{self._symbol} = {np.rad2deg(delta):.6g} deg; it must lie in (-90, 90) deg (the R axis must "
+                "stay on the outer side of the bisecting plane it is turned in)"
+            )
+        self.delta = float(delta)
+        dirs = bricard_axes()
+        points = np.array([VERTICES[v] for v in "ABCDEF"])
+        rows, angles = dh_from_axes(points, dirs)
+        self.rows: tuple[DHRow, ...] = rows
+        self.bricard = BricardThreefold(rows[0].a, rows[0].alpha % (2 * np.pi))
+        self.theta_d, self.phi_d = float(angles[0]), float(angles[1])
+        # Joint A's D-H frame (before Rz(theta)), fixed to bar FA: origin at the foot on axis A of the common
+        # normal from axis F, x along that normal (seed §2.0); the chain below is placed from it.
+        foot_out = _foot(points[0], dirs[0], points[5], dirs[5])
+        foot_in = _foot(points[5], dirs[5], points[0], dirs[0])
+        x = unit(foot_in - foot_out)
+        self._frame = transform(np.stack([x, np.cross(dirs[0], x), dirs[0]], axis=1), foot_in)
+        self._deployed_inv = invert(self._chain(np.array([self.theta_d]))[0])
+        self._setup_axes()
+
+    # --- the Bricard ---------------------------------------------------------------------------------
+
+    def phi(self, theta: ArrayLike) -> NDArray[np.float64]:
+        """Even-joint angle phi (rad, at B, D, F) of the Bricard on the seed's branch; theta may pass pi."""
+        t = np.atleast_1d(np.asarray(theta, dtype=float))
+        return self.bricard.evaluate(ALONG, wrap(t))[0][:, 1]
+
+    def _chain(self, theta: NDArray[np.float64]) -> NDArray[np.float64]:
+        """D-H link frames (n, 6, 4, 4) of links ABG..FA at (theta, phi(theta)), bar FA fixed."""
+        phi = self.phi(theta)
+        poses = [self._frame @ transform_z(theta)]
+        for k in range(5):
+            poses.append(poses[-1] @ self.rows[k].link() @ transform_z(phi if k % 2 == 0 else theta))
+        return np.stack(poses, axis=1)
+
+    def bricard_motion(self, theta: ArrayLike) -> NDArray[np.float64]:
+        """
+        Motions (n, 6, 4, 4) of the links ABG..FA in the symmetric frame: each maps deployed (6-1) coordinates
+        to current ones in the frame with origin at the centroid of BDF, z its normal (B, D, F counter-
+        clockwise) and x toward F; identity at theta_d.
+        """
+        t = np.atleast_1d(np.asarray(theta, dtype=float))
+        M = self._chain(t) @ self._deployed_inv
+        b, d, f = (_apply(M[:, k], VERTICES[v]) for k, v in ((0, "B"), (2, "D"), (4, "F")))
+        origin = (b + d + f) / 3
+        z = unit(np.cross(d - b, f - b))
+        x = unit(f - origin)
+        S = np.zeros((len(t), 4, 4))
+        S[:, :3, :3] = np.stack([x, np.cross(z, x), z], axis=-1)
+        S[:, :3, 3], S[:, 3, 3] = origin, 1.0
+        return invert(S)[:, None] @ M
+
+    @cached_property
+    def theta_f(self) -> float:
+        """Bricard angle (rad) at its fold A = C = E (digest case 16: 186.9018 deg): A crosses the symmetric axis."""
+
+        def y_a(t: float) -> float:  # A's y in the symmetric frame: > 0 before the fold, < 0 after
+            return float(_apply(self.bricard_motion(t)[0, 0], VERTICES["A"])[1])
+
+        lo, hi = np.deg2rad(170.0), np.deg2rad(200.0)
+        if not y_a(lo) > 0 > y_a(hi):
+            raise ConvergenceError("the Bricard fold A = C = E is not bracketed by theta in [170, 200] deg")
+        for _ in range(80):  # bisection to the last bit
+            mid = 0.5 * (lo + hi)
+            if mid in (lo, hi):
+                break
+            lo, hi = (mid, hi) if y_a(mid) > 0 else (lo, mid)
+        return 0.5 * (lo + hi)
+
+    # --- the top: scheme equations -------------------------------------------------------------------
+
+    def _setup_axes(self) -> None:
+        raise NotImplementedError
+
+    def _bar(self, u: NDArray[np.float64], abg: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Motion (n, 4, 4) of bar GK in the symmetric frame for states u (n, 4) and ABG's motion (n, 4, 4)."""
+        raise NotImplementedError
+
+    def equations(self, u: ArrayLike) -> NDArray[np.float64]:
+        """The closure (n, 3) (m) of the loop through G and K for states u = (theta, q, psi, h) (n, 4)."""
+        raise NotImplementedError
+
+    def _jacobian(self, u: NDArray[np.float64]) -> NDArray[np.float64]:
+        """d equations / du (3, 4) at one state, central differences (step 1e-7)."""
+        probes = u + 1e-7 * np.vstack([np.eye(4), -np.eye(4)])
+        g = self.equations(probes)
+        return (g[:4] - g[4:]).T / 2e-7
+
+    def _correct(self, u: NDArray[np.float64], row: NDArray[np.float64], value: float) -> NDArray[np.float64]:
+        """
+        Newton on [equations(u); row . u - value] = 0 from u (a regular square system off turning points);
+        stops when the step falls below 1e-15 or the residual below 4e-16 (m, rad).
+        """
+        for _ in range(30):
+            r = np.append(self.equations(u)[0], row @ u - value)
+            if np.max(np.abs(r)) < 4e-16:
+                return u
+            step = np.linalg.solve(np.vstack([self._jacobian(u), row]), r)
+            u = u - step
+            if np.max(np.abs(step)) < 1e-15:
+                break
+        residual = float(np.max(np.abs(self.equations(u))))
+        if residual < 1e-14:
+            return u
+        raise ConvergenceError(f"the closure did not converge at state {u} (residual {residual:.3g} m)")
+
+    @staticmethod
+    def _tangent(J: NDArray[np.float64], previous: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Unit null vector of J (3, 4) oriented along `previous`."""
+        t = np.linalg.svd(J)[2][-1]
+        return t if t @ previous > 0 else -t
+
+    @cached_property
+    def trace(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """
+        The path (s (k,), u (k, 4)) from the deployed state to the Bricard fold: pseudo-arclength s (mixed rad/m
+        norm), step 0.02, leaving in the direction d psi > 0; the last row is the tetrahedron state or lies exactly at
+        theta = theta_f.
+        """
+        u = np.zeros(4)
+        u[0] = self.theta_d
+        t = self._tangent(self._jacobian(u), np.array([0.0, 0.0, 1.0, 0.0]))
+        ds, s, us, ts = 0.02, [0.0], [u], [t]
+        target = self.tetrahedron_state()
+        while us[-1][0] < self.theta_f:
+            if len(us) > 5000:
+                raise ConvergenceError("the path did not reach the Bricard fold within 5000 steps of 0.02")
+            guess = us[-1] + ds * ts[-1]
+            u = self._correct(guess, ts[-1], ts[-1] @ guess)
+            ts.append(self._tangent(self._jacobian(u), ts[-1]))
+            us.append(u)
+            s.append(s[-1] + float(np.linalg.norm(u - us[-2])))
+            # The tetrahedron solves the equations for every delta (the axes stay in their bisecting planes) and
+            # theta turns back there, so a step can jump it: a path that reaches it passes within the chord error
+            # of a step (<= 6e-5 measured), one that misses passes >= 0.012 away (delta1 = -3 deg).
+            a, b = us[-2], us[-1]
+            w = np.clip((target - a) @ (b - a) / ((b - a) @ (b - a)), 0.0, 1.0)
+            if np.linalg.norm(a + w * (b - a) - target) < 1e-3:
+                us[-1], s[-1] = target, s[-2] + float(np.linalg.norm(target - a))
+                ts[-1] = self._tangent(self._jacobian(target), ts[-2])
+                self._tangents = np.array(ts)
+                return np.array(s), np.array(us)
+        # end exactly at theta_f: Newton with theta fixed from the secant between the last two states
+        a, b = us[-2], us[-1]
+        guess = a + (self.theta_f - a[0]) / (b[0] - a[0]) * (b - a)
+        us[-1] = self._correct(guess, np.eye(4)[0], self.theta_f)
+        s[-1] = s[-2] + float(np.linalg.norm(us[-1] - us[-2]))
+        ts[-1] = self._tangent(self._jacobian(us[-1]), ts[-2])
+        self._tangents = np.array(ts)
+        return np.array(s), np.array(us)
+
+    def tetrahedron_state(self) -> NDArray[np.float64]:
+        """The state u (4,) of the tetrahedron (6-3): theta = theta_f, K on B (so L on D, M on F), the bar GK on BF."""
+        abg = self.bricard_motion(self.theta_f)[0, 0]
+        b, k0 = _apply(abg, VERTICES["B"]), VERTICES["K"]
+        psi, h = np.arctan2(b[1], b[0]) - np.arctan2(k0[1], k0[0]), b[2] - k0[2]
+        return np.array([self.theta_f, self._top_angle(abg, _screw(psi, h)), psi, h])
+
+    def _top_angle(self, abg: NDArray[np.float64], klm: NDArray[np.float64]) -> float:
+        """The R-joint angle q (rad) at the tetrahedron, from the motions of ABG and KLM there."""
+        raise NotImplementedError
+
+    def _input_of(self, u: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Input values (...) of states u (..., 4)."""
+        return u[..., self._input] + self._offset
+
+    _offset = 0.0
+
+    @cached_property
+    def _monotone(self) -> float:
+        """+1 / -1: the sign with which the input moves along the trace; ParameterError where it turns back."""
+        x = self._input_of(self.trace[1])
+        step = np.sign(np.diff(x))
+        if not (np.all(step == step[-1]) and step[-1] != 0):
+            k = int(np.argmax(step != step[-1]))
+            raise ParameterError(
+                f"{self._symbol} = {np.rad2deg(self.delta):.6g} deg: the input {self.input_name} turns back at "
+                f"{np.rad2deg(x[k + 1]):.6g} deg on the way to the Bricard fold, so it cannot drive this design "
+                "(the input must be monotone along the path)"
+            )
+        return float(step[-1])
+
+    @property
+    def reference(self) -> float:
+        """The input (rad) at the deployed truncated tetrahedron, where every body is at its reference pose."""
+        return float(self._input_of(self.trace[1][0]))
+
+    @property
+    def domain(self) -> tuple[float, float]:
+        """Closed input interval (rad) from the truncated tetrahedron to the end of the path (Bricard fold)."""
+        ends = self._input_of(self.trace[1][[0, -1]])
+        return (float(ends[0]), float(ends[1])) if self._monotone > 0 else (float(ends[1]), float(ends[0]))
+
+    def state(self, x: ArrayLike) -> NDArray[np.float64]:
+        """
+        States u = (theta, q, psi, h) (n, 4) (rad, rad, rad, m) at inputs x (rad), on the traced path.
+
+        Raises
+        ------
+        DomainError
+          When an input is not finite or lies outside `domain`.
+        """
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        lo, hi = self.domain
+        bad = x[~((x >= lo - 1e-12) & (x <= hi + 1e-12))]
+        if bad.size:
+            raise DomainError(
+                f"{self.input_name} = {np.rad2deg(bad[0]):.6g} deg is outside the transformation, whose domain is "
+                f"[{np.rad2deg(lo):.6g}, {np.rad2deg(hi):.6g}] deg (truncated tetrahedron to the Bricard fold)"
+            )
+        s, us = self.trace
+        xs = self._monotone * self._input_of(us)
+        rate = self._monotone * self._tangents[:, self._input]  # d(input)/ds >= 0 along the trace
+        target = self._monotone * x
+        k = np.clip(np.searchsorted(xs, target) - 1, 0, len(s) - 2)
+        # cubic Hermite in s on [s_k, s_k+1]: invert the input by bisection (all inputs at once), then take u there
+        h = s[k + 1] - s[k]
+        a, b = np.zeros(len(x)), np.ones(len(x))
+        for _ in range(60):
+            mid = 0.5 * (a + b)
+            below = _hermite(xs[k], xs[k + 1], h * rate[k], h * rate[k + 1], mid) < target
+            a, b = np.where(below, mid, a), np.where(below, b, mid)
+        w = 0.5 * (a + b)[:, None]
+        guess = _hermite(us[k], us[k + 1], h[:, None] * self._tangents[k], h[:, None] * self._tangents[k + 1], w)
+        out = self._correct_inputs(guess, x - self._offset)
+        out[target <= xs[0]], out[target >= xs[-1]] = us[0], us[-1]
+        return out
+
+    def _correct_inputs(self, u: NDArray[np.float64], value: NDArray[np.float64]) -> NDArray[np.float64]:
+        """
+        Newton on [equations(u); u_input - value] = 0 for states u (n, 4) at once (a regular square system off
+        turning points), each row until its residual is below 4e-16 or its step below 1e-15 (m, rad).
+        """
+        u, active = u.copy(), np.arange(len(u))
+        row = np.eye(4)[self._input]
+        for _ in range(30):
+            r = np.concatenate([self.equations(u[active]), (u[active, self._input] - value[active])[:, None]], 1)
+            active, r = active[np.max(np.abs(r), 1) >= 4e-16], r[np.max(np.abs(r), 1) >= 4e-16]
+            if not len(active):
+                return u
+            probes = (u[active, None, :] + 1e-7 * np.vstack([np.eye(4), -np.eye(4)])).reshape(-1, 4)
+            g = self.equations(probes).reshape(-1, 8, 3)
+            J = np.concatenate(
+                [np.swapaxes(g[:, :4] - g[:, 4:], 1, 2) / 2e-7, np.broadcast_to(row, (len(active), 1, 4))], 1
+            )
+            step = np.linalg.solve(J, r[..., None])[..., 0]
+            u[active] -= step
+            active = active[np.max(np.abs(step), 1) >= 1e-15]
+        residual = np.max(np.abs(self.equations(u)), axis=1)
+        if np.any(residual >= 1e-14):
+            bad = int(np.argmax(residual))
+            raise ConvergenceError(f"the closure did not converge at state {u[bad]} (residual {residual[bad]:.3g} m)")
+        return u
+
+    # --- poses and outputs ---------------------------------------------------------------------------
+
+    def _motions(self, u: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:
+        """Motions (n, 4, 4) of every body in the symmetric frame (deployed coordinates -> current)."""
+        links = self.bricard_motion(u[:, 0])
+        out = {name: links[:, k] for k, name in enumerate(LINKS)}
+        out["KLM"] = _screw(u[:, 2], u[:, 3])
+        gk = self._bar(u, out["ABG"])
+        for k, name in enumerate(("GK", "HL", "JM")):
+            turn = transform(_turn(k))
+            out[name] = turn @ gk @ turn.T
+        return out
+
+    def body_poses(self, x: ArrayLike) -> dict[str, NDArray[np.float64]]:
+        """
+        World poses (n, 4, 4) of the 10 bodies relative to their deployed poses (identity at the deployed
+        input), root ABG fixed: body frame = deployed world frame, as in `scenes.truncated_tetrahedron`.
+        """
+        motions = self._motions(self.state(x))
+        to_root = invert(motions[ROOT])
+        return {name: to_root @ M for name, M in motions.items()}
+
+    def vertices(self, x: ArrayLike) -> NDArray[np.float64]:
+        """Vertex positions (n, 12, 3) in `NAMES` order (m, deployed frame, triangle ABG fixed)."""
+        poses = self.body_poses(x)
+        owner = {v: body for body in TRIANGLES for v in body}
+        return np.stack([_apply(poses[owner[v]], VERTICES[v]) for v in NAMES], axis=1)
+
+    def revolute_angles(self, x: ArrayLike) -> NDArray[np.float64]:
+        """
+        R-joint angles (n, 9) (rad) in `REVOLUTE` order, 0 deployed: the child's turn relative to the parent
+        about +axis (`PARENTS`); Bricard joints are D-H angle minus deployed value (theta at A, C, E, phi at
+        B, D, F), the top joints all equal q; wrapped to (-pi, pi] (every one stays inside (-pi, pi) on the
+        path, so they are continuous).
+        """
+        u = self.state(x)
+        dt, dp = u[:, 0] - self.theta_d, self.phi(u[:, 0]) - self.phi_d
+        return wrap(np.stack([dt, dp, dt, dp, dt, dp, u[:, 1], u[:, 1], u[:, 1]], axis=-1))
+
+    def monitors(self, x: ArrayLike) -> dict[str, NDArray[np.float64]]:
+        """
+        The seed's monitors (n,) (digest §2.8): rho = angle AFE, delta = angle BAF, lambda1 = angle BGK,
+        lambda2 = angle GKM (rad); height of KLM's centroid above plane BDF (m); rotation of KLM about the BDF
+        normal, signed from F - c_BDF to K - c_KLM (rad, 90 deg deployed); |AE|, |BK| (m); theta_G = signed
+        angle from B - G to K - G about s_G (rad; scheme I's input, the seed's quartic unknown).
+        """
+        P = self.vertices(x)
+        p = {v: P[:, k] for k, v in enumerate(NAMES)}
+
+        def angle(a: str, at: str, b: str) -> NDArray[np.float64]:
+            return np.arccos(np.clip(np.einsum("ni,ni->n", unit(p[a] - p[at]), unit(p[b] - p[at])), -1.0, 1.0))
+
+        base = (p["B"] + p["D"] + p["F"]) / 3
+        normal = unit(np.cross(p["D"] - p["B"], p["F"] - p["B"]))
+        top = (p["K"] + p["L"] + p["M"]) / 3
+        return {
+            "rho": angle("A", "F", "E"),
+            "delta": angle("B", "A", "F"),
+            "lambda1": angle("B", "G", "K"),
+            "lambda2": angle("G", "K", "M"),
+            "height": np.einsum("ni,ni->n", top - base, normal),
+            "rotation": _angle_about(p["F"] - base, p["K"] - top, normal),
+            "AE": np.linalg.norm(p["A"] - p["E"], axis=-1),
+            "BK": np.linalg.norm(p["B"] - p["K"], axis=-1),
+            "theta_G": _angle_about(p["B"] - p["G"], p["K"] - p["G"], self._theta_g_axis),
+        }
+
+    @property
+    def end_gap(self) -> float:
+        """|BK| (m) at the end of the path (no monotone input needed): 0 when the tetrahedron is reached."""
+        M = self._motions(self.trace[1][-1:])
+        return float(np.linalg.norm(_apply(M["KLM"], VERTICES["K"]) - _apply(M["ABG"], VERTICES["B"])))
+
+    def events(self) -> tuple[Event, ...]:
+        """The two ends of the path (the deployed truncated tetrahedron and the Bricard fold)."""
+        lo, hi = self.domain
+        start, end = (lo, hi) if self._monotone > 0 else (hi, lo)
+        reach = self.end_gap
+        fold = (
+            "the tetrahedron: A = C = E and B, H, K; D, J, L; F, G, M merge"
+            if reach < 1e-9
+            else f"the Bricard fold A = C = E short of the tetrahedron (|BK| = {reach:.4g} m): going on would "
+            "pass the Bricard's links through each other"
+        )
+        return (
+            Event("end", start, ("deployed",), "the truncated tetrahedron (6-1)"),
+            Event("lock", end, ("deployed",), fold),
+        )
+
+
+class SchemeI(Transformation):
+    """
+    Scheme I (seed 001 §6.3): R joints at G, H, J (triangle -> bar), S joints at K, L, M (bar -> KLM).
+
+    Input theta_G (rad): the seed's angle of K about s_G, theta_G0 + q_G, falling from its deployed value
+    (146.4427 deg for delta1 = 0) to the end of the path. `delta` = delta1 (rad), digest sign (thumb along B - K).
+    """
+
+    input_name = "theta_G"
+    REVOLUTE = REVOLUTE_I
+    _input = 1
+    _symbol = "delta1"
+
+    def _setup_axes(self) -> None:
+        self.s_g = axis_g(self.delta)
+        self._theta_g_axis = self.s_g
+        G, B, K = VERTICES["G"], VERTICES["B"], VERTICES["K"]
+        self._offset = float(_angle_about(B - G, K - G, self.s_g))  # theta_G0
+
+    def _bar(self, u: NDArray[np.float64], abg: NDArray[np.float64]) -> NDArray[np.float64]:
+        return abg @ _about_line(VERTICES["G"], self.s_g, u[:, 1])
+
+    def _top_angle(self, abg: NDArray[np.float64], klm: NDArray[np.float64]) -> float:
+        return -self._offset  # theta_G = 0: the bar GK lies on GB
+
+    def equations(self, u: ArrayLike) -> NDArray[np.float64]:
+        u = np.atleast_2d(np.asarray(u, dtype=float))
+        abg = self.bricard_motion(u[:, 0])[:, 0]
+        return _apply(self._bar(u, abg), VERTICES["K"]) - _apply(_screw(u[:, 2], u[:, 3]), VERTICES["K"])
+
+
+class SchemeII(Transformation):
+    """
+    Scheme II (seed 001 §6.3): S joints at G, H, J (triangle -> bar), R joints at K, L, M (bar -> KLM).
+
+    Input theta (rad): the Bricard's D-H angle at A, rising from theta_d = 40.4591 deg to theta_f = 186.9018 deg.
+    `delta` = delta2 (rad), digest sign (thumb along G - M); delta2 < 0 makes theta turn back (ParameterError).
+    """
+
+    input_name = "theta"
+    REVOLUTE = REVOLUTE_II
+    _input = 0
+    _symbol = "delta2"
+
+    def _setup_axes(self) -> None:
+        self.s_k = axis_k(self.delta)
+        self._theta_g_axis = axis_g(0.0)  # fixed in ABG, the root: the seed's theta_G as a monitor
+
+    def _bar(self, u: NDArray[np.float64], abg: NDArray[np.float64]) -> NDArray[np.float64]:
+        return _screw(u[:, 2], u[:, 3]) @ _about_line(VERTICES["K"], self.s_k, -u[:, 1])
+
+    def _top_angle(self, abg: NDArray[np.float64], klm: NDArray[np.float64]) -> float:
+        g = _apply(invert(klm), _apply(abg, VERTICES["G"]))  # G (on F) seen from KLM's deployed pose
+        return -float(_angle_about(VERTICES["G"] - VERTICES["K"], g - VERTICES["K"], self.s_k))
+
+    def equations(self, u: ArrayLike) -> NDArray[np.float64]:
+        u = np.atleast_2d(np.asarray(u, dtype=float))
+        abg = self.bricard_motion(u[:, 0])[:, 0]
+        return _apply(self._bar(u, abg), VERTICES["G"]) - _apply(abg, VERTICES["G"])
