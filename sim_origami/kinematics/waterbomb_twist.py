@@ -1,0 +1,481 @@
+"""Generalized waterbomb tube, twist of the fully folded middle row (seed 004 §3 eqns 24-41, seed 000 §6.4 M13).
+
+The tube, its names, flat strip, seam, vertex loops, ring loop and fold-angle measurement are those of
+`waterbomb_tube` (imported, not copied); m must be odd. Fold angles rho: `sim_origami.creases` (0 flat, > 0 valley
+seen from the flat sheet's +z, which ends up outside the tube); the seeds' dihedrals are phi = pi - s rho (s = +1
+valley, -1 mountain). Every fold angle is reported in (s pi/2 - pi, s pi/2 + pi] (`unwrapped`): the middle row's
+vertical edges sit at rho = -pi all along the twist, and a fully folded crease must not flip between -pi and +pi.
+
+Input. x = rho of A<r0>_0_2, the upper-right diagonal of unit 0 of the middle row (seed row 0): the seeds' input
+eta02 = pi - x (seed 004 §3, Table 1). The tube axis is +z, slot p at azimuth p pi / n as in `waterbomb_tube`.
+
+Model (explicit construction of seed 000 M13, checked against seed 004 validation cases 17, 18). At the end of the
+contraction (eta01 = 2 pi / n) every A_0 is on the axis and the middle row's vertical edges are folded flat
+(kappa_B0,4 = 0); they stay so during the twist. Put every A_0 at the origin; the vertical edge of slot p (odd) has
+its midpoint E at radius a, azimuth p pi / n, height 0, and turns about the radius through E: its direction is
+u = cos(zeta) e_psi + sin(zeta) e_z (zeta = pi/2 untwisted), so B_0 = E + a cot(alpha) u and C_-1 = E - a cot(alpha)
+u. B_0 then sits at radius a sqrt(1 + cot^2(alpha) cos^2(zeta)), height a cot(alpha) sin(zeta), azimuth p pi / n +
+delta with delta = atan(cot(alpha) cos(zeta)). The upper half (the B_0 and C_0 rings and every row above) is
+plane-symmetric about the meridians at p pi / n + delta, like the contraction: C_0 meets A_0 (the origin) and the
+B_0's (`waterbomb_tube.meet`), then A_i, B_i, C_i row by row with the contraction's chain. The lower half is the
+image of the upper under the half-turn about the horizontal radius at azimuth 0 (through unit 0's A_0 midline):
+A_i <-> A_-i, B_i <-> C_(-i-1), slot p <-> -p, so its vertices sit at azimuth p pi / n - delta, height -z. The
+relative end-ring twist (top end ring against the bottom one, about +z, from the untwisted state) is 2 delta;
+positive is counter-clockwise seen from +z. zeta < pi/2 turns the upper half counter-clockwise and folds eta02 to 0
+(the seeds' counter-clockwise twist, seed 004 Fig 13a); zeta > pi/2 clockwise, to eta03 = eta06 = 0 (Fig 13b).
+The seeds' quartic (34) is not needed: zeta(x) is found by bisection on the monotone map x(zeta) (checked at build).
+
+Symmetry of the twist (which creases are equal along it). The tube keeps the dihedral group D_n: the n-fold turn
+about the axis (units of a row alike) and the half-turns about the horizontal radii through each A_0 midline and
+each row-0 vertical edge (seed row i <-> -i; A creases 1 <-> 4, 2 <-> 5, 3 <-> 6; vertical edges of rows i <-> -i;
+the row boundaries above row i <-> those below row -i). On top, each half is plane-symmetric about its meridians:
+in every row but the middle one, creases 2 = 6 and 3 = 5 of A and the two row boundaries of a unit are equal, as
+are the two row boundaries on each side of the middle row (kappa_B0,2 = kappa_B0,6). The middle row's A is line-
+but not plane-symmetric: eta01 = eta04, eta02 = eta05, eta03 = eta06 (seed 004 eqn 24). `couplings` couples every
+spanning-tree crease to the first tree crease of its class (classes found from the closed form, as the contraction
+model does). The radial contraction has all of these symmetries too, so it satisfies the couplings: the coupled
+closure carries both paths, crossing at the bifurcation (mobility 2 there, 1 elsewhere on either).
+
+Branches (input x): "twist-ccw" (x from the start to the counter-clockwise end), "twist-cw" (from the clockwise end
+to the start) and the contraction seen from this input ("radial-contraction", `WaterbombTube` at eta01 = 2
+atan(tan(eta02 / 2) / cos(alpha)), seed 004 eqn 9, from its upper end to the start), which crosses the twist at
+the start x_b = pi - 2 atan(cos(alpha) tan(pi/n)) (eqn 39a).
+
+Domain of the twist: the interval of zeta around pi/2 on which every vertex is placed, the middle row's diagonals
+are not folded through (eta02 >= 0 and eta03 >= 0: limits (a), (b), the big and small triangles of the middle units
+coincide) and no crease is reversed through flat (`waterbomb_tube.reversed_creases`, the strict criterion;
+`tilt_range(strict=False)` is the seeds' "chain real"); the top row deploying (eqn 14, limit (c)) shows as a vertex
+losing its place. Rows whose A's cross the axis (r_A = 0, kappa_Bi,4 = 0: limit (d), eqn 15) are lock events inside
+the domain, as in `waterbomb_tube` (interference; the digest's twist ranges keep it too, B.6 Fig 14c): with beta >
+beta_max (eqn 40) rows +-1 already start through the axis.
+"""
+
+from functools import cached_property
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..closure import Coupling, LoopSystem
+from ..errors import AssemblyError, ParameterError
+from ..geometry import wrap
+from .base import Branch, Event, JointSpaceKinematics, domain_of
+from .waterbomb_tube import BRANCH as CONTRACTION
+from .waterbomb_tube import (
+    CLASS_TOL,
+    GRID,
+    TubeLayout,
+    WaterbombTube,
+    alpha_limit,
+    assignment_signs,
+    beta_max,
+    fold_angles,
+    lengths,
+    meet,
+    reversed_creases,
+    ring_loop,
+    row_range,
+    sign_changes,
+    vertex_loops,
+)
+
+CCW = "twist-ccw"
+CW = "twist-cw"
+# Bisection steps of zeta(x) on a bracket below pi: 2^-64 pi is below one ulp of zeta.
+BISECTION_STEPS = 64
+# The domain's ends are told apart by evaluating this far (rad of zeta) beyond them.
+BEYOND = 1e-7
+
+
+def start_input(n: int, alpha: float) -> float:
+    """The twist's start x_b (rad): eta02 = 2 atan(cos(alpha) tan(pi/n)) on the fully folded middle row (eqn 39a)."""
+    return float(np.pi - 2 * np.arctan(np.cos(alpha) * np.tan(np.pi / n)))
+
+
+def ring_twist(alpha: float, zeta: ArrayLike) -> NDArray[np.float64]:
+    """Relative end-ring twist 2 delta (rad, counter-clockwise about +z positive) at side-edge tilts zeta (rad)."""
+    return 2 * np.arctan(np.cos(np.asarray(zeta, dtype=float)) / np.tan(alpha))
+
+
+def middle_row(
+    n: int, alpha: float, beta: float, a: float, zeta: ArrayLike
+) -> tuple[dict[tuple[str, int], tuple[NDArray, NDArray]], NDArray[np.float64]]:
+    """(r, z) in m of A_0, B_0 and C_0, {(kind, 0): (r (N,), z (N,))}, and the upper half's azimuth offset delta (N,)
+    (rad) at side-edge tilts zeta (N,) (rad) (module docstring)."""
+    zeta = np.atleast_1d(np.asarray(zeta, dtype=float))
+    L = lengths(alpha, beta, a)
+    rows: dict[tuple[str, int], tuple[NDArray, NDArray]] = {}
+    rows["A", 0] = (np.zeros_like(zeta), np.zeros_like(zeta))
+    rows["B", 0] = (np.hypot(a, L.corner * np.cos(zeta)), L.corner * np.sin(zeta))
+    rows["C", 0] = meet(rows["A", 0], L.midline, rows["B", 0], L.boundary, n)
+    return rows, np.arctan2(L.corner * np.cos(zeta), a)
+
+
+def twist_rows(
+    n: int, m: int, alpha: float, beta: float, a: float, zeta: ArrayLike
+) -> tuple[dict[tuple[str, int], tuple[NDArray, NDArray]], NDArray[np.float64]]:
+    """
+    (r, z) in m of every vertex kind and seed row, {(kind, row): (r (N,), z (N,))}, and the upper half's azimuth
+    offset delta (N,) (rad), at side-edge tilts zeta (N,) (rad); NaN where a vertex cannot be placed.
+    """
+    L = lengths(alpha, beta, a)
+    bottom, top = row_range(m)
+    rows, delta = middle_row(n, alpha, beta, a, zeta)
+    for i in range(1, top + 1):  # the contraction's chain (waterbomb_tube.row_coordinates)
+        rows["A", i] = meet(rows["B", i - 1], L.midline, rows["C", i - 1], L.diagonal, n)
+        rows["B", i] = meet(rows["C", i - 1], L.vertical, rows["A", i], L.diagonal, n)
+        rows["C", i] = meet(rows["A", i], L.midline, rows["B", i], L.boundary, n)
+    for i in range(bottom, 0):  # half-turn: A_i <-> A_-i, B_j <-> C_(-j-1), z -> -z
+        r, z = rows["A", -i]
+        rows["A", i] = (r, -z)
+    for j in range(bottom - 1, 0):
+        (rb, zb), (rc, zc) = rows["C", -j - 1], rows["B", -j - 1]
+        rows["B", j], rows["C", j] = (rb, -zb), (rc, -zc)
+    return rows, delta
+
+
+def middle_input(n: int, alpha: float, beta: float, a: float, zeta: ArrayLike) -> NDArray[np.float64]:
+    """
+    The input x (N,) = rho of A<r0>_0_2 (rad, in (-pi/2, 3 pi/2]) at side-edge tilts zeta (N,) (rad), from A_0 (the
+    origin), B_0 (slot 1), C_0 (slot 0) and C_-1 (slot 1) alone: the rotation about A_0 -> B_0 of the small face
+    (A_0, B_0, C_0) (left) relative to the big face (A_0, C_-1, B_0) (right), as `waterbomb_tube.fold_angles`.
+    """
+    rows, delta = middle_row(n, alpha, beta, a, zeta)
+    (rb, zb), (rc, zc) = rows["B", 0], rows["C", 0]
+
+    def point(r: NDArray, psi: NDArray, z: NDArray) -> NDArray:
+        return np.stack([r * np.cos(psi), r * np.sin(psi), z], -1)
+
+    B = point(rb, np.pi / n + delta, zb)
+    left = np.cross(B, point(rc, delta, zc))
+    right = -np.cross(B, point(rb, np.pi / n - delta, -zb))
+    sine = np.sum(np.cross(right, left) * B, axis=-1) / np.linalg.norm(B, axis=-1)
+    return np.pi / 2 + wrap(np.arctan2(sine, np.sum(right * left, axis=-1)) - np.pi / 2)
+
+
+def upper_half(layout: TubeLayout) -> NDArray[np.bool_]:
+    """Per vertex key: in the upper half (B_i, C_i with i >= 0, A_i with i >= 1; A_0 is on the axis)."""
+    return np.array([i >= (1 if kind == "A" else 0) for kind, i, _ in layout.keys])
+
+
+def twist_vertices(layout: TubeLayout, zeta: ArrayLike) -> NDArray[np.float64]:
+    """3-D vertices (N, len(layout.keys), 3) in m at side-edge tilts zeta (N,) (rad), axis +z (module docstring)."""
+    rows, delta = twist_rows(layout.n, layout.m, layout.alpha, layout.beta, layout.a, zeta)
+    names = list(rows)
+    pick = np.array([names.index((kind, i)) for kind, i, _ in layout.keys])
+    r = np.stack([rows[key][0] for key in names], -1)[:, pick]
+    z = np.stack([rows[key][1] for key in names], -1)[:, pick]
+    side = np.where(upper_half(layout), 1.0, -1.0)
+    psi = np.array([p for _, _, p in layout.keys]) * np.pi / layout.n + side * delta[:, None]
+    return np.stack([r * np.cos(psi), r * np.sin(psi), z], -1)
+
+
+def unwrapped(layout: TubeLayout, q: ArrayLike, creases: ArrayLike | None = None) -> NDArray[np.float64]:
+    """Fold angles (..., n) of all creases (or the indices `creases`) moved to (s pi/2 - pi, s pi/2 + pi] (rad), s =
+    +1 valley, -1 mountain: a fully folded crease reads s pi, never -s pi."""
+    s = assignment_signs(layout)
+    s = s if creases is None else s[np.asarray(creases)]
+    return s * np.pi / 2 + wrap(np.asarray(q, dtype=float) - s * np.pi / 2)
+
+
+def twist_folds(layout: TubeLayout, zeta: ArrayLike, creases: ArrayLike | None = None) -> NDArray[np.float64]:
+    """Fold angles (N, n) of all creases (or the indices `creases`) at side-edge tilts zeta (N,) (rad), `unwrapped`;
+    NaN where the tube does not assemble."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        q = fold_angles(layout, twist_vertices(layout, zeta), creases)
+    return unwrapped(layout, q, creases)
+
+
+def middle_diagonals(layout: TubeLayout) -> tuple[int, int]:
+    """Indices of A<r0>_0_2 (the input, eta02) and A<r0>_0_3 (eta03 = eta06) in layout.creases."""
+    r0 = -row_range(layout.m)[0]
+    return layout.index(f"A{r0}_0_2"), layout.index(f"A{r0}_0_3")
+
+
+def twist_checks(layout: TubeLayout, zeta: ArrayLike) -> dict[str, NDArray[np.bool_]]:
+    """
+    The domain's conditions (N,) at side-edge tilts zeta (N,) (module docstring): 'placed' (every vertex), 'diagonals'
+    (eta02, eta03 >= 0), 'unreversed' (no crease reversed through flat). Unit 0 of each row stands for its row.
+    """
+    zeta = np.atleast_1d(np.asarray(zeta, dtype=float))
+    picks = np.concatenate([layout.unit0, middle_diagonals(layout)])
+    q = twist_folds(layout, zeta, picks)
+    with np.errstate(invalid="ignore"):
+        return {
+            "placed": np.all(np.isfinite(q), axis=-1),
+            "diagonals": np.all(q[:, -2:] <= np.pi, axis=-1),
+            "unreversed": ~np.any(reversed_creases(layout, q, picks), axis=-1),
+        }
+
+
+def valid_tilts(layout: TubeLayout, zeta: ArrayLike, strict: bool = True) -> NDArray[np.bool_]:
+    """Where the twist is a rigid motion (N,) at side-edge tilts zeta (N,) (rad): every `twist_checks` holds;
+    `strict=False` drops 'unreversed', the seeds' criterion (the chain real, digest B.3.4 "paper")."""
+    checks = twist_checks(layout, zeta)
+    if not strict:
+        del checks["unreversed"]
+    return np.logical_and.reduce(list(checks.values()))
+
+
+def tilt_range(layout: TubeLayout, strict: bool = True) -> tuple[float, float] | None:
+    """The twist's range of side-edge tilts zeta (rad): the interval around pi/2 where `valid_tilts` holds, its ends
+    bisected to about 1e-13 (`base.domain_of`); None where the start itself is not valid."""
+    try:
+        return domain_of(lambda z: valid_tilts(layout, z, strict), 1e-9, np.pi - 1e-9, np.pi / 2, GRID)
+    except ParameterError:
+        return None
+
+
+class WaterbombTwist(JointSpaceKinematics):
+    """
+    The n x m waterbomb tube (m odd) twisting from its fully folded middle row, and its radial contraction, driven
+    by x = rho of crease A<r0>_0_2 (eta02 = pi - x); module docstring for frames, signs and the model.
+
+    Parameters
+    ----------
+    n : int
+      Units round the tube, >= 3.
+    m : int
+      Rows, odd (the twist needs a middle row, seed 004 §3).
+    alpha, beta : float
+      Design angles (rad): alpha in (0, `alpha_limit`(n)) (eqn 38), beta in (0, pi/2); above `beta_max`(alpha, n)
+      (eqn 40) rows +-1 start through the axis (lock events where they leave it).
+    a : float
+      Half-width of a unit (m).
+
+    Raises
+    ------
+    ParameterError
+      For a geometry out of range, or one whose middle row cannot fully fold or twist rigidly.
+    """
+
+    def __init__(self, n: int, m: int, alpha: float, beta: float, a: float = 1.0):
+        if int(m) == m and m % 2 == 0:
+            raise ParameterError(f"m = {m:g} rows; the rigid twist needs an odd m, a middle row to fold (seed 004 §3)")
+        if int(n) == n and n >= 3 and alpha >= alpha_limit(int(n)):
+            raise ParameterError(
+                f"alpha = {np.rad2deg(alpha):.6g} deg is not below the twist's limit "
+                f"{np.rad2deg(alpha_limit(int(n))):.6g} deg for n = {n:g} (tan(alpha) = 1/cos(pi/n), seed 004 eqn 38)"
+            )
+        self.tube = WaterbombTube(n, m, alpha, beta, a)  # checks n, m, alpha, beta, a and the contraction
+        tube = self.tube
+        self.n, self.m, self.alpha, self.beta, self.a = tube.n, tube.m, tube.alpha, tube.beta, tube.a
+        self.layout = self.tube.layout
+        self.pattern = self.layout.pattern
+        self.crease_names = self.layout.names
+        self.joint_names = tuple(f"rho_{c}" for c in self.crease_names)
+        self.input_crease = self.crease_names[middle_diagonals(self.layout)[0]]
+        self.input_name = f"rho_{self.input_crease}"
+        self.start = start_input(self.n, self.alpha)
+        if abs(self.tube.domain[0] - (2 * np.pi / self.n - np.pi)) > 1e-9:  # bisected ends sit 1e-13 inside
+            raise ParameterError(
+                f"the {self.n} x {self.m} tube (alpha = {np.rad2deg(alpha):.6g}, beta = {np.rad2deg(beta):.6g} deg) "
+                f"cannot contract to its fully folded middle row: its contraction starts at eta01 = "
+                f"{np.rad2deg(np.pi + self.tube.domain[0]):.6g} deg, not 360/n (seed 004 eqn 13)"
+            )
+        self.tilts = self._tilts()
+        self.domain = (float(self.input_of(self.tilts[1])[0]), float(self.input_of(self.tilts[0])[0]))
+
+    # -- closed form -------------------------------------------------------------------------------------------
+    def _tilts(self) -> tuple[float, float]:
+        """The twist's range of zeta (rad) (`tilt_range`); x(zeta) checked strictly decreasing on it."""
+        tilts = tilt_range(self.layout)
+        if tilts is None:
+            raise ParameterError(
+                f"the {self.n} x {self.m} tube (alpha = {np.rad2deg(self.alpha):.6g}, beta = "
+                f"{np.rad2deg(self.beta):.6g} deg) has no rigid state at the twist's start (seed 004 §3)"
+            )
+        x = self.input_of(np.linspace(*tilts, GRID))
+        if not np.all(np.diff(x) < 0):
+            raise AssemblyError(f"eta02 is not monotone in the side-edge tilt on [{tilts[0]:.6g}, {tilts[1]:.6g}] rad")
+        return tilts
+
+    def input_of(self, zeta: ArrayLike) -> NDArray[np.float64]:
+        """The input x (N,) = rho of A<r0>_0_2 (rad) at side-edge tilts zeta (N,) (rad)."""
+        return middle_input(self.n, self.alpha, self.beta, self.a, zeta)
+
+    def tilt(self, x: ArrayLike) -> NDArray[np.float64]:
+        """Side-edge tilt zeta (N,) (rad) at inputs x (N,) inside the twist's domain (bisection, x falls with zeta)."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        lo, hi = np.full_like(x, self.tilts[0]), np.full_like(x, self.tilts[1])
+        for _ in range(BISECTION_STEPS):
+            mid = 0.5 * (lo + hi)
+            above = self.input_of(mid) > x
+            lo, hi = np.where(above, mid, lo), np.where(above, hi, mid)
+        return 0.5 * (lo + hi)
+
+    def contraction_theta(self, x: ArrayLike) -> NDArray[np.float64]:
+        """The contraction's eta01 (rad) at inputs x: tan(eta02 / 2) = cos(alpha) tan(eta01 / 2) (seed 004 eqn 9)."""
+        eta02 = np.pi - np.asarray(x, dtype=float)
+        return 2 * np.arctan(np.tan(eta02 / 2) / np.cos(self.alpha))
+
+    def contraction_input(self, theta: ArrayLike) -> NDArray[np.float64]:
+        """The input x (rad) at the contraction's eta01 = theta (rad), eqn 9."""
+        return np.pi - 2 * np.arctan(np.cos(self.alpha) * np.tan(np.asarray(theta, dtype=float) / 2))
+
+    def _twist(self, branch: str) -> bool:
+        """Whether `branch` is a twist (not the contraction); ParameterError for an unknown name."""
+        return self.branch(branch).name != CONTRACTION
+
+    def vertices(self, branch: str, x: ArrayLike) -> NDArray[np.float64]:
+        """3-D vertices (N, len(layout.keys), 3) in m at inputs x (N,) on `branch` (no domain check)."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        if not self._twist(branch):
+            return self.tube.vertices(self.contraction_theta(x) - np.pi)
+        return twist_vertices(self.layout, self.tilt(x))
+
+    def folds(self, branch: str, x: ArrayLike) -> NDArray[np.float64]:
+        """Fold angles (N, n_creases) (rad, `unwrapped`) at inputs x (N,) on `branch` (no domain check)."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        if not self._twist(branch):
+            return unwrapped(self.layout, self.tube.folds(self.contraction_theta(x) - np.pi))
+        return twist_folds(self.layout, self.tilt(x))
+
+    def end_twist(self, branch: str, x: ArrayLike) -> NDArray[np.float64]:
+        """Relative end-ring twist (N,) (rad, counter-clockwise about +z positive) at inputs x (N,); 0 on the
+        contraction."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        return ring_twist(self.alpha, self.tilt(x)) if self._twist(branch) else np.zeros_like(x)
+
+    def radii(self, branch: str, x: ArrayLike) -> NDArray[np.float64]:
+        """Signed radius r_A (N, m) in m of each row's A vertices, rows bottom to top, at inputs x (N,)."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        if not self._twist(branch):
+            return self.tube.radii(self.contraction_theta(x) - np.pi)
+        return self._tilt_radii(self.tilt(x))
+
+    # -- contract ----------------------------------------------------------------------------------------------
+    def branches(self) -> tuple[Branch, ...]:
+        lo, hi = self.domain
+        c_lo = float(self.contraction_input(np.pi + self.tube.domain[1]))
+        return (
+            Branch(CCW, "middle row twists, upper half turns counter-clockwise about +z against the lower half "
+                   "(seed 004 Fig 13a): x rises, eta02 falls to 0 or the domain's end", (self.start, hi)),
+            Branch(CW, "middle row twists, upper half turns clockwise (Fig 13b): x falls, eta02 rises and eta03 "
+                   "= eta06 falls to 0 or the domain's end", (lo, self.start)),
+            Branch(CONTRACTION, "the radial contraction (waterbomb_tube) seen from eta02, from its upper end down to "
+                   "the fully folded middle row, where it meets the twist", (c_lo, self.start)),
+        )  # fmt: skip
+
+    def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        x, valid = self.in_domain(branch, x)
+        lo, hi = self.branch(branch).domain
+        values = self.folds(branch, np.where(valid, x, 0.5 * (lo + hi)))
+        values[~valid] = np.nan
+        return values, valid
+
+    def _twist_end(self, branch: str, tilt: float, beyond: float) -> Event:
+        """What ends the twist between the tilt `tilt` at a domain end and `beyond` just past it."""
+        checks = {k: bool(v[0]) for k, v in twist_checks(self.layout, np.array([beyond])).items()}
+        x = float(self.input_of(np.array([tilt]))[0])
+        twist = np.rad2deg(ring_twist(self.alpha, tilt))
+        where = f"zeta = {np.rad2deg(tilt):.6g} deg, end-ring twist {twist:.6g} deg"
+        if not checks["placed"]:
+            detail = (f"no assembly beyond ({where}): a vertex loses its place, the top row's up midlines flat "
+                      "(seed 004 eqn 14, limit (c))")  # fmt: skip
+            return Event("turning_point", x, (branch,), detail)
+        if not checks["diagonals"]:
+            crease = "eta02" if branch == CCW else "eta03 = eta06"
+            detail = (f"{crease} = 0 ({where}): the big and small triangles of the middle units coincide (seed 004 "
+                      "Fig 13, limits (a)/(b); the double root of eqn 41 with W5 corrected, digest B.3.6)")  # fmt: skip
+        else:
+            detail = f"a crease folds flat and would reverse ({where}; strict criterion)"
+        return Event("lock", x, (branch,), detail)
+
+    def _tilt_radii(self, zeta: ArrayLike) -> NDArray[np.float64]:
+        """Signed radius r_A (N, m) in m of each row's A vertices, rows bottom to top, at side-edge tilts zeta (N,)."""
+        rows, _ = twist_rows(self.n, self.m, self.alpha, self.beta, self.a, zeta)
+        bottom, top = row_range(self.m)
+        return np.stack([rows["A", i][0] for i in range(bottom, top + 1)], -1)
+
+    def _crossings(self) -> list[Event]:
+        """Lock events where rows' A's cross the axis during the twist (r_A = 0, their vertical edges folded flat
+        onto each other: seed 004 limit (d), eqn 15); where r_A < 0 the rigid tube penetrates itself (interference,
+        which the seeds' ranges keep: digest B.6, Fig 14c). Rows i and -i cross together (the half-turn)."""
+        lo, hi = self.tilts
+        bottom, top = row_range(self.m)
+        crossings: dict[float, list[int]] = {}
+        for i in range(bottom, top + 1):
+            if i != 0:
+                for zeta in sign_changes(lambda z, i=i: self._tilt_radii(z)[:, i - bottom], lo, hi):
+                    crossings.setdefault(round(zeta, 9), []).append(i)
+        out = []
+        for zeta, rows in crossings.items():
+            names = ", ".join(f"{i - bottom} (seed row {i})" for i in rows)
+            detail = (f"rows {names}: r_A = 0, the vertical edges fold flat onto each other (kappa_Bi,4 = 0, seed 004 "
+                      "limit (d), eqn 15); where r_A < 0 the rigid tube penetrates itself")  # fmt: skip
+            x = float(self.input_of(np.array([zeta]))[0])
+            out.append(Event("lock", x, (CCW if zeta < np.pi / 2 else CW,), detail))
+        return out
+
+    def events(self) -> tuple[Event, ...]:
+        lo, hi = self.tilts
+        meet_detail = ("the fully folded middle row (eta01 = 2 pi/n, kappa_B0,4 = 0, every A_0 on the axis, seed 004 "
+                       "eqn 13): the radial contraction ends and the twist branches off (eqn 39a); the coupled "
+                       "closure's mobility is 2 here")  # fmt: skip
+        through = np.flatnonzero(self._tilt_radii(np.array([np.pi / 2]))[0] < 0)
+        if len(through):
+            meet_detail += (f"; rows {', '.join(str(r) for r in through)} are through the axis here (beta > beta_max "
+                            f"= {np.rad2deg(beta_max(self.alpha, self.n)):.6g} deg, eqn 40: interference)")  # fmt: skip
+        out = [
+            Event("bifurcation", self.start, (CW, CONTRACTION), meet_detail + "; the clockwise twist and the "
+                  "contraction leave it on the same side of the input"),
+            Event("bifurcation", self.start, (CCW,), meet_detail + "; the counter-clockwise twist leaves it on the "
+                  "other side, where the contraction would fold the middle row through itself"),
+            self._twist_end(CCW, lo, lo - BEYOND),
+            self._twist_end(CW, hi, hi + BEYOND),
+            *self._crossings(),
+        ]  # fmt: skip
+        for e in self.tube.events():
+            if e.input > self.tube.domain[0] + 1e-9:  # the contraction's lower end is the bifurcation above
+                out.append(Event(e.kind, float(self.contraction_input(np.pi + e.input)), (CONTRACTION,), e.detail))
+        return tuple(sorted(out, key=lambda e: e.input))
+
+    def gruebler(self) -> int:
+        """Kutzbach: creases - 3 per vertex loop - 6 for the ring - 1 per coupling (negative: the couplings are
+        redundant on purpose, as in `WaterbombTube.couplings`)."""
+        return len(self.crease_names) - 3 * len(vertex_loops(self.layout)) - 6 - len(self.couplings)
+
+    def free_loop_system(self) -> LoopSystem:
+        """The tube's closure without couplings: every vertex and one ring round the middle row."""
+        return LoopSystem(len(self.crease_names), (*vertex_loops(self.layout), ring_loop(self.layout)))
+
+    def loop_system(self) -> LoopSystem:
+        """The tube's closure with the twist's symmetry couplings (`couplings`)."""
+        free = self.free_loop_system()
+        index = {name: k for k, name in enumerate(self.crease_names)}
+        return LoopSystem(free.n_joints, free.loops, tuple(Coupling(index[a], index[b]) for a, b in self.couplings))
+
+    def loop_input(self) -> tuple[int, float]:
+        return self.layout.index(self.input_crease), 1.0
+
+    @cached_property
+    def couplings(self) -> tuple[tuple[str, str], ...]:
+        """
+        Couplings rho_a = rho_b imposing the twist's symmetry (module docstring): every spanning-tree crease coupled
+        to the first tree crease of its class, the creases whose closed-form angles agree at two generic tilts (one
+        each way) to CLASS_TOL.
+
+        Raises
+        ------
+        AssemblyError
+          If the coupled closure's mobility at a third tilt is not 1.
+        """
+        lo, hi = self.tilts
+        q = twist_folds(self.layout, lo + (hi - lo) * np.array([0.3, 0.2, 0.7]))
+        key = np.round(q[1:] / CLASS_TOL).astype(np.int64)
+        first: dict[tuple[int, int], int] = {}
+        out = []
+        for k in self.pattern.spanning_creases((self.input_crease,)):
+            cls = (int(key[0, k]), int(key[1, k]))
+            if cls in first:
+                out.append((self.crease_names[k], self.crease_names[first[cls]]))
+            else:
+                first[cls] = k
+        free = self.free_loop_system()
+        index = {name: k for k, name in enumerate(self.crease_names)}
+        coupled = LoopSystem(free.n_joints, free.loops, tuple(Coupling(index[a], index[b]) for a, b in out))
+        dof = coupled.mobility(q[0])
+        if dof != 1:
+            raise AssemblyError(f"the twist's couplings leave {dof} degrees of freedom at zeta = "
+                                f"{np.rad2deg(lo + 0.3 * (hi - lo)):.6g} deg; the twist needs 1")  # fmt: skip
+        return tuple(out)
