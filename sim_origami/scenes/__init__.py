@@ -11,6 +11,7 @@ from . import (  # noqa: F401  (registration side effect)
     miura,
     miura_sheet,
     myard,
+    rssr,
     square_twist,
     thick_diamond,
     thick_vertex4,
@@ -22,6 +23,7 @@ from . import (  # noqa: F401  (registration side effect)
     vertex4,
     waterbomb,
     waterbomb_tube,
+    waterbomb_twist,
 )
 from .base import REGISTRY, Param, Scene, SceneType, get, names, register
 

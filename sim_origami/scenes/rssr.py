@@ -1,0 +1,41 @@
+"""Scene `rssr`: the RSSR linkage, the non-overconstrained form of the Bennett linkage (seed 001 ch. 3, §2.2).
+
+Ground DA, input theta1 at A (hinge `joint_1`), R at B (`joint_2`), balls at C (a MuJoCo ball joint) and D (one
+connect). Any a1 = AB = CD, a2 = BC = DA and twist alpha of AB (a2 sin alpha < a1) moves like the Bennett linkage
+of implied beta = asin(a2 sin alpha / a1): so a built RSSR with fabrication errors stays mobile where the Bennett
+locks (`sim_origami.fabrication`; `scripts/fabrication_errors.py`). The seed's 1.5 mm length error (k = +1, lengths
+scaled 100 mm -> 1 m) is `-p a1=1.015 -p a2=0.6922`. Outputs: theta1 and theta2 (rad); points: the joint origins.
+"""
+
+import numpy as np
+
+from ..fabrication import RSSR
+from ..linkage_forms import rssr_mechanism, rssr_motion
+from .base import Param, Scene, register
+from .polyhedra import AssemblyKinematics, kutzbach
+
+PARAMS = (
+    Param("a1", "m", 1.0, "AB = CD, the link with twist alpha (seed 001 Sec. 3.5: 100 mm)"),
+    Param("a2", "m", 0.7072, "BC = DA (70.72 mm)"),
+    Param("alpha", "deg", 45.0, "twist of AB"),
+)
+
+
+@register("rssr", "RSSR linkage, the Bennett linkage's non-overconstrained form (seed 001 §2.2), input theta1", PARAMS)
+def build(a1: float, a2: float, alpha: float) -> Scene:
+    rssr = RSSR(a1, a2, alpha)
+    mechanism = rssr_mechanism(rssr)
+    kinematics = AssemblyKinematics(
+        rssr_motion(rssr), mechanism, reference=0.0, revolute=("joint_1", "joint_2"), input_joint="joint_1",
+        branch=("bennett", "the RSSR's Bennett branch (3-5): tan(theta1/2) tan(theta2/2) = K"),
+        vertex_bodies={v: f"link_{k + 1}" for k, v in enumerate("ABCD")}, reference_points=np.zeros((4, 3)),
+        gruebler=kutzbach(mechanism),
+    )  # fmt: skip
+    return Scene(
+        name="rssr", params={"a1": a1, "a2": a2, "alpha": alpha}, kinematics=kinematics, mechanism=mechanism,
+        loop_joints=tuple(j.name for j in mechanism.joints), drive_joint="joint_1", drive_scale=1.0,
+        # theta2 turns fast near theta1 = pi: fast measured 3.0e-6 rad at 1x, 7.4e-7 at 2x, 3.3e-7 at 3x
+        # (a1 = 1.015, a2 = 0.6922); 6x brings it below 1e-7
+        path=(0.5, 2.9), sweep_time_scale=6.0,
+        notes="hinge qpos = D-H joint angle; balls at C (in the tree) and D (one connect); idle spin of CD",
+    )  # fmt: skip
