@@ -9,6 +9,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from .files import atomic_path
+from .pareto import Point, front
 from .validation import Report
 
 # Simulated markers drawn per branch (the CSV keeps every sample); joints named in a legend at most.
@@ -82,6 +83,32 @@ def plot_sweep(rows: list[dict], names: list[str], path: str | Path) -> Path:
     if failed.any():
         ax.legend(fontsize=8)
     ax.set_title(f"{len(rows)} points, {int(failed.sum())} failed", fontsize=10)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=110, format="png")
+    plt.close(fig)
+    return Path(path)
+
+
+def plot_pareto(points: dict[str, list[Point]], path: str | Path) -> Path:
+    """
+    CPU time (s) against max error (rad), log-log, per scene: every setting (dots), its Pareto front (line), MuJoCo's
+    defaults (open square) and the presets (filled triangles). `points`: scene name -> `pareto.Point`s, defaults
+    first.
+    """
+    fig, ax = plt.subplots(figsize=(7, 5), constrained_layout=True)
+    for name, pts in points.items():
+        finite = [p for p in pts if np.isfinite(p.error)]
+        line = ax.loglog([p.cpu for p in finite], [p.error for p in finite], "o", ms=3, alpha=0.5, label=name)[0]
+        best = front(finite)
+        ax.loglog([p.cpu for p in best], [p.error for p in best], "-", color=line.get_color())
+        ax.loglog([pts[0].cpu], [pts[0].error], "s", color=line.get_color(), ms=8, mfc="none")
+        presets = [p for p in pts if p.setting.label.startswith("preset ")]
+        ax.loglog([p.cpu for p in presets], [p.error for p in presets], "^", color=line.get_color(), ms=6)
+    ax.set_xlabel("CPU time of stepping (s)")
+    ax.set_ylabel("max angle error (rad)")
+    ax.set_title("settings (dots), Pareto fronts (lines), MuJoCo defaults (squares), presets (triangles)", fontsize=9)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3, which="both")
     with atomic_path(path) as tmp:
         fig.savefig(tmp, dpi=110, format="png")
     plt.close(fig)

@@ -159,18 +159,18 @@ def test_unknown_drive_raises_a_sim_origami_error_naming_it():
 def test_diverging_run_raises_simulation_error_and_leaves_no_mujoco_log(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     handler = mujoco.get_mju_user_warning()
-    # 100 rad of input in 10 ms (2 steps of 5 ms): MuJoCo reports a bad QACC (deterministic).
+    # 100 rad of input in 16 ms (2 steps of 8 ms): MuJoCo reports a bad QACC (deterministic).
     # The message names the configuration that diverged.
-    match = r"scene vertex4 \(alpha1=.*\), branch odd2, preset fast, equality drive .* -> 100 rad in 0.01 s.*mjWARN_BAD"
+    match = r"scene vertex4 \(alpha1=.*\), branch odd2, preset fast, equality drive .* -> 100 rad in 0.016 s.*BAD"
     with pytest.raises(SimulationError, match=match):
-        simulate(scene_of("vertex4"), "odd2", duration=0.01, stop=100.0)
+        simulate(scene_of("vertex4"), "odd2", duration=0.016, stop=100.0)
     assert not (tmp_path / "MUJOCO_LOG.TXT").exists()
     assert list(tmp_path.iterdir()) == []
     assert mujoco.get_mju_user_warning() is handler  # warning capture undone
 
 
 def test_sweep_shorter_than_half_a_step_raises_a_sim_origami_error():
-    # 1 ms with the fast preset's 5 ms step rounds to zero steps.
+    # 1 ms with the fast preset's 8 ms step rounds to zero steps.
     with pytest.raises(SimOrigamiError):
         simulate(scene_of("vertex4"), "odd2", duration=1e-3, stop=100.0)
 

@@ -1,6 +1,10 @@
-"""`sim-origami bench`: run time against error, measured in one run (CPU time, best of repeats).
+"""`sim-origami bench [SCENE]`: run time against error, measured in one run (CPU time, best of repeats).
 
-Cases of issue 2: the general vertex (60, 100, 90, 110) deg on one branch, rho1 0.4 -> 1.6 rad,
+With a SCENE: the Pareto sweep of `sim_origami.pareto` (integrator, step, closure time constant, solimp, closure
+type, drive) on its first branch, printed as the front with every ratio to MuJoCo's defaults and the presets,
+the harness's loop against a bare `mj_step` loop, and pareto.csv / pareto.png in --out.
+
+Without: the cases of issue 2, the general vertex (60, 100, 90, 110) deg on one branch, rho1 0.4 -> 1.6 rad,
 and the Miura vertex (30, 60) deg up to 0.95 theta_limit. For each: max angle error with the
 fast and accurate presets and with projection, the CPU time of the stepping loop, the ratio of
 the harness's loop to a bare `mj_step` loop on the same model, and the closed form's throughput.
@@ -10,14 +14,16 @@ Times are reported, never asserted.
 import argparse
 import json
 import time
+from pathlib import Path
 
-import mujoco
 import numpy as np
 
-from .. import scenes
+from .. import pareto, scenes
 from ..checks.paths import compare
-from ..mjcf import ModelOptions
-from ..simulate import Bindings, compile_model, project, simulate, start_pose
+from ..files import write_text
+from ..plots import plot_pareto
+from ..simulate import project, simulate
+from .options import add_params, parse_params
 
 NAME = "bench"
 HELP = "benchmark run time against error (fast, accurate, projection) and analytic throughput"
@@ -30,6 +36,10 @@ CASES = (
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("scene", nargs="?", help="a scene: its Pareto sweep (default: the issue-2 cases)")
+    add_params(parser)
+    parser.add_argument("--quick", action="store_true", help="RK4 and Euler at 1.25, 2.5, 5 ms only")
+    parser.add_argument("--out", help="output folder for pareto.csv / pareto.png (default runs/bench-<scene>)")
     parser.add_argument("--repeats", type=int, default=3, help="best of this many runs per timing")
     parser.add_argument("--json", action="store_true")
 
@@ -41,30 +51,6 @@ def _best(fn, repeats: int):
         out = fn()
         best = min(best, time.thread_time() - t)
     return out, best
-
-
-def bare_loop_cpu(scene, branch: str, run, repeats: int) -> float:
-    """
-    CPU time of the minimal loop driving the same path: one eq_data write and one mj_step per
-    step from the same start pose, with no logging, checks or feed-forward bookkeeping.
-    """
-    model, data = compile_model(scene, ModelOptions(preset="fast"))
-    binds = Bindings(scene, model)
-    setpoint = model.eq_data[model.equality(f"drive_{scene.drive_joint}").id]
-    targets = (scene.drive_scale * run.target).tolist()
-    pose = start_pose(scene, branch, float(run.target[0]))
-
-    def loop():
-        mujoco.mj_resetData(model, data)
-        binds.set_pose(data, pose)
-        mujoco.mj_forward(model, data)
-        t = time.thread_time()
-        for value in targets:
-            setpoint[0] = value
-            mujoco.mj_step(model, data)
-        return time.thread_time() - t
-
-    return min(loop() for _ in range(repeats))
 
 
 def bench_case(name, params, branch, start, stop, repeats) -> dict:
@@ -84,7 +70,7 @@ def bench_case(name, params, branch, start, stop, repeats) -> dict:
         row[f"{preset}_steps"] = runs[0].steps
         if preset == "fast":
             row["fast_call_cpu_s"] = _best(lambda: simulate(scene, branch, start=start, stop=stop), repeats)[1]
-    row["bare_loop_cpu_s"] = bare_loop_cpu(scene, branch, runs_fast[0], repeats)
+    row["bare_loop_cpu_s"] = pareto.bare_loop_cpu(scene, branch, runs_fast[0].target, repeats)
     row["harness_loop_over_bare"] = row["fast_step_cpu_s"] / row["bare_loop_cpu_s"]
     proj, cpu = _best(lambda: project(scene, branch, np.linspace(start, stop, 200)), 1)
     row["projection_error_rad"] = compare(scene, branch, proj.q).max_error()
@@ -95,7 +81,50 @@ def bench_case(name, params, branch, start, stop, repeats) -> dict:
     return row
 
 
+def pareto_table(name: str, points: list[pareto.Point], harness: float) -> str:
+    """The front, MuJoCo's defaults and the presets with their ratios to the defaults, as a markdown table."""
+    default = points[0]
+    shown = [default, *[p for p in points if p.setting.label.startswith("preset ")], *pareto.front(points)]
+    lines = [f"{name}: MuJoCo defaults {default.error:.2e} rad in {default.cpu * 1e3:.1f} ms of CPU; the harness's "
+             f"loop costs {harness:.2f}x a bare mj_step loop", "",
+             "| setting | max error (rad) | CPU (ms) | more accurate than the defaults | CPU vs the defaults |",
+             "|---|---|---|---|---|"]  # fmt: skip
+    seen = set()
+    for p in shown:
+        if p.setting.label in seen:
+            continue
+        seen.add(p.setting.label)
+        front = " (front)" if p in pareto.front(points) else ""
+        lines.append(f"| {p.setting.label}{front} | {p.error:.2e} | {p.cpu * 1e3:.1f} | {default.error / p.error:.3g}x "
+                     f"| {p.cpu / default.cpu:.2f}x |")  # fmt: skip
+    return "\n".join(lines)
+
+
+def run_scene(args: argparse.Namespace) -> int:
+    """The Pareto sweep of one scene: table on stdout, pareto.csv and pareto.png in --out."""
+    scene = scenes.get(args.scene).build_from_user(parse_params(args.param))
+    branch, points, harness = pareto.sweep(scene, quick=args.quick, repeats=args.repeats)
+    out = Path(args.out or f"runs/bench-{scene.name}")
+    out.mkdir(parents=True, exist_ok=True)
+    rows = [
+        f"{scene.name},{p.setting.label},{p.setting.integrator},{p.setting.h:g},{p.setting.tau:g},"
+        f"{p.setting.solimp[0]:g},{p.setting.closure},{p.setting.drive},{p.error:.6g},{p.cpu:.6g}"
+        for p in points
+    ]
+    write_text(out / "pareto.csv", "scene,setting,integrator,h_s,tau_s,solimp,closure,drive,error_rad,cpu_s\n"
+               + "\n".join(rows) + "\n")  # fmt: skip
+    plot_pareto({scene.name: points}, out / "pareto.png")
+    if args.json:
+        print(json.dumps([{"setting": p.setting.label, "error_rad": p.error, "cpu_s": p.cpu} for p in points]))
+    else:
+        print(pareto_table(f"{scene.name} ({branch}, {pareto.SWEEP_S:g} s sweep)", points, harness))
+        print(f"\noutputs in {out}/")
+    return 0
+
+
 def run(args: argparse.Namespace) -> int:
+    if args.scene:
+        return run_scene(args)
     rows = [bench_case(*case, args.repeats) for case in CASES]
     if args.json:
         print(json.dumps(rows, indent=2))

@@ -1,0 +1,179 @@
+"""Run time against error over MuJoCo settings, measured in one run, and the Pareto front.
+
+A `Setting` is one point of the sweep: integrator, step h (s), closure time constant tau (s), solimp, closure
+type and drive. Every setting drives the scene's first branch over its default sweep with the same 2 s
+minimum-jerk ramp (the harness's own loop, `simulate`), and is scored by the largest |MuJoCo - closed form|
+(rad, at the simulated input) and the CPU time of the stepping thread (s, best of `repeats`). MuJoCo's defaults
+(Euler, 2 ms, solref 0.02 1, solimp 0.9 0.95 0.001, two connects per cut hinge, equality drive) come first so
+every ratio is taken in the same run.
+
+Closure types: `connect2`, the harness's two connects on each cut hinge's axis (6 rows, one redundant), and
+`connect1`, one connect at the far anchor (3 rows: enough where the rest of the loop holds the axis, e.g. a
+spherical loop; a scene it under-constrains shows up as a large error). Drives: `equality`, the joint equality
+the harness tracks with feed-forward, and `servo`, the force-limited position actuator of blockage runs.
+"""
+
+import dataclasses
+import itertools
+import time
+from collections.abc import Iterator
+
+import mujoco
+import numpy as np
+from numpy.typing import NDArray
+
+from .checks.paths import compare
+from .mjcf import ModelOptions, build_xml, template
+from .scenes.base import Scene
+from .simulate import Bindings, ramp, simulate, start_pose, track
+
+INTEGRATORS = {"RK4": mujoco.mjtIntegrator.mjINT_RK4, "Euler": mujoco.mjtIntegrator.mjINT_EULER,
+               "implicitfast": mujoco.mjtIntegrator.mjINT_IMPLICITFAST}  # fmt: skip
+STEPS_MS = (0.625, 1.25, 2.5, 5.0, 6.5, 8.0)
+TAU_OVER_H = (2, 4, 8)
+HIGH_IMPEDANCE = (0.9999, 0.9999, 0.001, 0.5, 2.0)
+MUJOCO_DEFAULT_IMPEDANCE = (0.9, 0.95, 0.001, 0.5, 2.0)
+SWEEP_S = 2.0  # every setting on the same sweep time
+
+
+@dataclasses.dataclass(frozen=True)
+class Setting:
+    """One MuJoCo configuration: integrator name, step h (s), closure time constant tau (s), solimp, closure, drive."""
+
+    label: str
+    integrator: str
+    h: float
+    tau: float
+    solimp: tuple[float, ...]
+    closure: str = "connect2"
+    drive: str = "equality"
+
+
+@dataclasses.dataclass(frozen=True)
+class Point:
+    """A measured setting: max path error (rad; inf if it diverged) and stepping CPU time (s)."""
+
+    setting: Setting
+    error: float
+    cpu: float
+
+
+DEFAULTS = Setting("MuJoCo defaults", "Euler", 0.002, 0.02, MUJOCO_DEFAULT_IMPEDANCE)
+
+
+def preset_setting(name: str) -> Setting:
+    """A preset's integrator, step and closure solref/solimp, read from its template (mjcf_templates/options/)."""
+    root = template(f"options/{name}.xml")
+    option, closure = root.find("option"), root.find(".//default[@class='closure']/equality")
+    tau, solimp = float(closure.get("solref").split()[0]), tuple(float(v) for v in closure.get("solimp").split())
+    return Setting(f"preset {name}", option.get("integrator"), float(option.get("timestep")), tau, solimp)
+
+
+PRESETS = {name: preset_setting(name) for name in ("fast", "stiff")}
+
+
+def settings(closures: tuple[str, ...] = ("connect2", "connect1"), drives: tuple[str, ...] = ("equality", "servo"),
+             quick: bool = False) -> Iterator[Setting]:  # fmt: skip
+    """
+    MuJoCo's defaults, the presets, then every integrator x step x tau (solimp 0.9999) with the default closure and
+    drive, then each other closure type and drive at the presets' settings. `quick`: RK4 and Euler only, three steps.
+    """
+    yield DEFAULTS
+    yield from PRESETS.values()
+    integrators = ("RK4", "Euler") if quick else tuple(INTEGRATORS)
+    steps = (1.25, 2.5, 5.0) if quick else STEPS_MS
+    for name, h_ms, k in itertools.product(integrators, steps, TAU_OVER_H):
+        yield Setting(f"{name} h={h_ms:g}ms tau={k}h", name, h_ms / 1000, k * h_ms / 1000, HIGH_IMPEDANCE)
+    for preset, base in PRESETS.items():
+        for closure in closures[1:]:
+            yield dataclasses.replace(base, label=f"{preset}, {closure}", closure=closure)
+        for drive in drives[1:]:
+            yield dataclasses.replace(base, label=f"{preset}, {drive} drive", drive=drive)
+
+
+def _scene_for(scene: Scene, closure: str) -> Scene:
+    """The scene with each cut hinge closed by `closure` (connect1: its far anchor only)."""
+    if closure == "connect2":
+        return scene
+    mech = scene.mechanism
+    cut = set(mech.cut_joints)
+    joints = tuple(dataclasses.replace(j, anchors=j.anchors[-1:]) if i in cut and not j.ball else j
+                   for i, j in enumerate(mech.joints))  # fmt: skip
+    return dataclasses.replace(scene, mechanism=dataclasses.replace(mech, joints=joints))
+
+
+def model_for(scene: Scene, setting: Setting) -> mujoco.MjModel:
+    """The compiled model of `scene` with `setting` applied on top of the fast preset's MJCF."""
+    model = mujoco.MjModel.from_xml_string(build_xml(scene, ModelOptions(preset="fast", drive=setting.drive)))
+    model.opt.integrator, model.opt.timestep = INTEGRATORS[setting.integrator], setting.h
+    model.eq_solref[:, 0], model.eq_solimp[:] = setting.tau, setting.solimp
+    return model
+
+
+def measure(scene: Scene, branch: str, setting: Setting, repeats: int = 3) -> Point:
+    """Max error and best-of-`repeats` CPU time of the harness's drive with `setting` over the default sweep."""
+    scene = _scene_for(scene, setting.closure)
+    model = model_for(scene, setting)
+    start, stop = scene.branch_path(branch)
+    h = model.opt.timestep
+    n = round(SWEEP_S / h)
+    shape, rate = ramp(np.clip(h * np.arange(1, n + 1) / SWEEP_S, 0, 1))
+    x = start + (stop - start) * shape
+    binds, data = Bindings(scene, model), mujoco.MjData(model)
+    if setting.drive == "equality":
+        eq = model.equality(f"drive_{scene.drive_joint}").id
+        tau = max(model.eq_solref[eq, 0], 2 * h)
+        target, setpoint = scene.drive_scale * (x + 2 * tau * (stop - start) * rate / SWEEP_S), model.eq_data[eq]
+        index = 0
+    else:
+        target, setpoint = scene.drive_scale * x, data.ctrl
+        index = model.actuator(f"drive_{scene.drive_joint}").id
+    qpos, best, pose = np.empty((n, model.nq)), np.inf, start_pose(scene, branch, start)
+    for _ in range(repeats):
+        mujoco.mj_resetData(model, data)
+        binds.set_pose(data, pose)
+        mujoco.mj_forward(model, data)
+        best = min(best, track(model, data, setpoint, index, target, qpos))
+    if not np.all(np.isfinite(qpos)):
+        return Point(setting, float("inf"), best)
+    return Point(setting, compare(scene, branch, binds.angles(scene, qpos)).max_error(), best)
+
+
+def front(points: list[Point]) -> list[Point]:
+    """The points no other point beats in both error and CPU time, by CPU time."""
+    return sorted((p for p in points if not any(q.error <= p.error and q.cpu <= p.cpu and q is not p
+                                                 and (q.error, q.cpu) != (p.error, p.cpu) for q in points)),
+                  key=lambda p: p.cpu)  # fmt: skip
+
+
+def bare_loop_cpu(scene: Scene, branch: str, target: NDArray, repeats: int = 3) -> float:
+    """
+    CPU time (s) of the minimal loop driving the same path with the fast preset: one eq_data write and one mj_step
+    per step from the same start pose, with no logging, checks or feed-forward bookkeeping.
+    """
+    model = model_for(scene, PRESETS["fast"])
+    data = mujoco.MjData(model)
+    setpoint = model.eq_data[model.equality(f"drive_{scene.drive_joint}").id]
+    targets, pose = (scene.drive_scale * target).tolist(), start_pose(scene, branch, float(target[0]))
+    best = np.inf
+    for _ in range(repeats):
+        mujoco.mj_resetData(model, data)
+        Bindings(scene, model).set_pose(data, pose)
+        mujoco.mj_forward(model, data)
+        step, cpu = mujoco.mj_step, time.thread_time()
+        for value in targets:
+            setpoint[0] = value
+            step(model, data)
+        best = min(best, time.thread_time() - cpu)
+    return best
+
+
+def sweep(scene: Scene, *, quick: bool = False, repeats: int = 3) -> tuple[str, list[Point], float]:
+    """
+    The whole sweep on the scene's first branch: (branch, points with MuJoCo's defaults first, the harness's
+    stepping CPU over a bare mj_step loop's on the fast preset's sweep).
+    """
+    branch = scene.kinematics.branches()[0].name
+    points = [measure(scene, branch, s, repeats) for s in settings(quick=quick)]
+    run = simulate(scene, branch, preset="fast", duration=SWEEP_S)
+    return branch, points, run.cpu_time_s / bare_loop_cpu(scene, branch, run.target, repeats)
