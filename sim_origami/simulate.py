@@ -14,6 +14,7 @@ aborts the run with `SimulationError`; warnings are captured so no MUJOCO_LOG.TX
 
 import contextlib
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import mujoco
@@ -155,6 +156,23 @@ def _residuals(scene, model, data, binds, qpos_log):
     return index, np.max(np.linalg.norm(gap, axis=-1), axis=-1)
 
 
+def track(
+    model: mujoco.MjModel, data: mujoco.MjData, setpoint: NDArray, index: int, target: NDArray, qpos_log: NDArray
+) -> float:
+    """
+    The stepping loop: write target[k] into setpoint[index] (an eq_data row or ctrl), mj_step, log qpos into
+    qpos_log[k]. Returns the CPU time (s) of the loop. Hoisted views and Python floats: the loop costs what a
+    bare mj_step loop does (numpy scalar indexing per step added about 25 %, measured by `sim-origami bench`).
+    """
+    qpos, step = data.qpos, mujoco.mj_step
+    cpu = time.thread_time()
+    for value, row in zip(target.tolist(), qpos_log, strict=True):
+        setpoint[index] = value
+        step(model, data)
+        row[:] = qpos
+    return time.thread_time() - cpu
+
+
 def simulate(
     scene: Scene,
     branch: str,
@@ -227,15 +245,7 @@ def simulate(
             eq = model.equality(f"drive_{scene.drive_joint}").id
             tau = max(model.eq_solref[eq, 0], 2 * h)  # refsafe clamp
             target = scale * (x + 2 * tau * model.eq_solref[eq, 1] * xdot)  # feed-forward lag
-            # Hoisted views and Python floats: the loop then costs what a bare mj_step loop does
-            # (numpy scalar indexing per step added about 25 %, measured by `sim-origami bench`).
-            setpoint, qpos, step = model.eq_data[eq], data.qpos, mujoco.mj_step
-            cpu = time.thread_time()
-            for value, row in zip(target.tolist(), qpos_log, strict=True):
-                setpoint[0] = value
-                step(model, data)
-                row[:] = qpos
-            cpu = time.thread_time() - cpu
+            cpu = track(model, data, model.eq_data[eq], 0, target, qpos_log)
         else:
             act = model.actuator(f"drive_{scene.drive_joint}").id
             target = scale * x
@@ -305,16 +315,25 @@ def contact_distance(scene: Scene, branch: str, inputs: NDArray[np.float64]) -> 
 
     A kinematic sweep (no dynamics): negative means the solids overlap at that input.
     """
+    return _contact_probe(scene, branch)(np.asarray(inputs, dtype=float))
+
+
+def _contact_probe(scene: Scene, branch: str) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
+    """contact_distance on one compiled model: a function of the inputs (rad) for repeated calls."""
     model, data = compile_model(scene, ModelOptions(contact=True))
     binds = Bindings(scene, model)
     pairs = [(model.geom(f"{a}_collision").id, model.geom(f"{b}_collision").id) for a, b in scene.contact_pairs]
-    out = np.empty(len(inputs))
     fromto = np.zeros(6)
-    for k, value in enumerate(np.asarray(inputs, dtype=float)):
-        binds.set_pose(data, scene.pose(branch, float(value)))
-        mujoco.mj_kinematics(model, data)
-        out[k] = min(mujoco.mj_geomDistance(model, data, g1, g2, 1.0, fromto) for g1, g2 in pairs)
-    return out
+
+    def distance(inputs: NDArray[np.float64]) -> NDArray[np.float64]:
+        out = np.empty(len(inputs))
+        for k, value in enumerate(inputs):
+            binds.set_pose(data, scene.pose(branch, float(value)))
+            mujoco.mj_kinematics(model, data)
+            out[k] = min(mujoco.mj_geomDistance(model, data, g1, g2, 1.0, fromto) for g1, g2 in pairs)
+        return out
+
+    return distance
 
 
 def contact_input(scene: Scene, branch: str, start: float, stop: float, samples: int = 400) -> float:
@@ -324,8 +343,9 @@ def contact_input(scene: Scene, branch: str, start: float, stop: float, samples:
     A sweep first (the distance is not monotonic: solids can pass through and separate again),
     then bisection inside the first bracket, to about 1e-12 rad.
     """
+    distance = _contact_probe(scene, branch)
     grid = np.linspace(start, stop, samples)
-    dist = contact_distance(scene, branch, grid)
+    dist = distance(grid)
     hits = np.flatnonzero(dist <= 0.0)
     if not len(hits):
         return float("nan")
@@ -334,7 +354,7 @@ def contact_input(scene: Scene, branch: str, start: float, stop: float, samples:
     lo, hi = grid[hits[0] - 1], grid[hits[0]]
     for _ in range(45):
         mid = 0.5 * (lo + hi)
-        if contact_distance(scene, branch, np.array([mid]))[0] <= 0.0:
+        if distance(np.array([mid]))[0] <= 0.0:
             hi = mid
         else:
             lo = mid

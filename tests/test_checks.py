@@ -135,3 +135,14 @@ def test_blockage_assess_sees_a_run_that_fell_short_as_stopped_with_its_error():
 @pytest.mark.parametrize(("peak", "saturated"), [(0.998 * FORCE_LIMIT, False), (0.9995 * FORCE_LIMIT, True)])
 def test_blockage_assess_flags_saturation_at_the_force_limit(peak, saturated):
     assert assessed(stop=0.9, peak_force=-peak).drive_saturated is saturated
+
+
+def test_blockage_without_contact_is_measured_against_the_end_of_the_path():
+    # No contact on the path (contact input nan): a drive that got there has error 0, one that stopped short
+    # is as far off as it fell short of the lock (never nan).
+    x = np.linspace(0.0, 1.2, 50)
+    clear = assess(x, x, np.zeros(50), FORCE_LIMIT, float("nan"), 1.2)
+    assert not clear.stopped and clear.error == 0.0
+    stuck = assess(np.minimum(x, 0.9), x, np.zeros(50), FORCE_LIMIT, float("nan"), 1.2)
+    assert stuck.stopped
+    np.testing.assert_allclose(stuck.error, 0.3, atol=1e-15, rtol=0)

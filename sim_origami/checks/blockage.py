@@ -18,7 +18,12 @@ class Blockage:
 
     @property
     def error(self) -> float:
-        """|stop - kinematic contact| (rad)."""
+        """
+        |stop - kinematic contact| (rad); where the solids never touch on the way (contact nan), how far the
+        drive fell short of the end, 0 when it got there.
+        """
+        if np.isnan(self.contact_input):
+            return abs(self.stop_input - self.analytic_limit) if self.stopped else 0.0
         return abs(self.stop_input - self.contact_input)
 
 
