@@ -33,6 +33,7 @@ The path ends at the cube (theta_f = 166.1251 deg: A1 = B1 = C1, Bricard 1 folde
 beyond it the squares pass through each other (the seed's rho < 0).
 """
 
+from dataclasses import dataclass
 from functools import cached_property
 from itertools import pairwise
 
@@ -155,6 +156,43 @@ def volume(points: ArrayLike) -> NDArray[np.float64]:
         for a, b in pairwise(k[1:]):
             total = total + np.einsum("...i,...i", P[..., k[0], :], np.cross(P[..., a, :], P[..., b, :]))
     return total / 6.0
+
+
+@dataclass(frozen=True)
+class PathOutcome:
+    """
+    How the reduced model's path leaves the truncated octahedron for one design (digest §2.7 zeta study).
+
+    `kind` names the first of these events along the path (pseudo-arclength from the deployed state with
+    d theta > 0): 'cube' (rho1 and rho2 reach 0 together), 'rho1-negative' (Bricard 1 folds first, theta =
+    theta_f with rho2 > 0: going on passes squares A, B, C through each other), 'rho2-negative' (Bricard 2 folds
+    first: D, E, F), 'loop' (the path closes back on the truncated octahedron without a fold) or 'no-end' (none
+    within `max_length`, or a Bricard angle reaches +-pi, the end of its closed form). Angles in radians, signed
+    rho as in digest §7 item 7 (negative beyond the Bricard's fold). `theta`, `rho1`, `rho2`: at that event;
+    `turns`: the inputs theta at which theta turned back before it (the input A1 = theta - theta_d cannot drive
+    the path past the first); `rho1_min`, `rho1_max`: extremes of rho1 before the event (> 120 deg:
+    over-opening); `gap_max`: largest |rho1 - rho2|.
+    """
+
+    zeta: float
+    kind: str
+    theta: float
+    rho1: float
+    rho2: float
+    turns: tuple[float, ...]
+    rho1_min: float
+    rho1_max: float
+    gap_max: float
+
+    @property
+    def feasible(self) -> bool:
+        """The cube is reached before any signed fold angle turns negative (turning points allowed)."""
+        return self.kind == "cube"
+
+    @property
+    def drivable(self) -> bool:
+        """Feasible, and the input theta rises monotonically to the cube (a drive on A1 follows it)."""
+        return self.feasible and not self.turns
 
 
 def _foot(p0: NDArray, s0: NDArray, p1: NDArray, s1: NDArray) -> NDArray[np.float64]:
@@ -406,6 +444,82 @@ class TruncatedOctahedronCube:
             T[:, :3, 3], T[:, 3, 3] = at[a] - T[:, :3, :3] @ VERTICES[a], 1.0
             poses[a + b] = T
         return poses
+
+    # --- the zeta study: pseudo-arclength through turning points and folds ------------------------------------
+
+    def _equations_u(self, u: NDArray[np.float64]) -> NDArray[np.float64]:
+        """`equations` (n, 3) for states u = (theta, theta_D, psi, h) (n, 4)."""
+        return self.equations(u[:, 0], u[:, 1:])
+
+    def _jacobian_u(self, u: NDArray[np.float64]) -> NDArray[np.float64]:
+        """d equations / du (3, 4) at one state u (4,), central differences (step 1e-7)."""
+        g = self._equations_u(u + 1e-7 * np.vstack([np.eye(4), -np.eye(4)]))
+        return (g[:4] - g[4:]).T / 2e-7
+
+    def _correct_u(self, u: NDArray[np.float64], row: NDArray[np.float64], value: float) -> NDArray[np.float64]:
+        """Newton on [equations(u); row . u - value] = 0 from u; ConvergenceError naming zeta if it does not close."""
+        for _ in range(30):
+            r = np.append(self._equations_u(u[None])[0], row @ u - value)
+            if np.max(np.abs(r)) < 1e-14:
+                return u
+            u = u - np.linalg.solve(np.vstack([self._jacobian_u(u), row]), r)
+        if np.all(np.isfinite(u)) and np.max(np.abs(self._equations_u(u[None]))) < 1e-12:
+            return u
+        raise ConvergenceError(
+            f"zeta = {np.rad2deg(self.zeta):.6g} deg: the reduced model did not close near state {np.round(u, 6)}"
+        )
+
+    def _signed_rho(self, u: NDArray[np.float64]) -> tuple[float, float]:
+        """Signed (rho1, rho2) (rad) at a state u (4,): negative beyond its Bricard's fold (theta > theta_f)."""
+        P = self._points(u[None, 0], u[None, 1], u[None, 2], u[None, 3])[0]
+        k = {v: i for i, v in enumerate(NAMES)}
+
+        def angle(a: str, at: str, b: str) -> float:
+            p, q = P[k[a]] - P[k[at]], P[k[b]] - P[k[at]]
+            return float(np.arctan2(np.linalg.norm(np.cross(p, q)), p @ q))
+
+        rho1, rho2 = angle("B1", "C2", "C1"), angle("D1", "F2", "F1")
+        return float(np.copysign(rho1, self.theta_f - u[0])), float(np.copysign(rho2, self.theta_f - u[1]))
+
+    def outcome(self, step: float = 0.02, max_length: float = 20.0) -> PathOutcome:
+        """
+        The path from the deployed state by pseudo-arclength (step in the mixed rad / m norm of u), up to its
+        first fold event (see `PathOutcome`); each fold is solved exactly (theta or theta_D = theta_f).
+        ConvergenceError names zeta when the corrector fails.
+        """
+        u = np.array([self.theta_d, self.theta_d, 0.0, 0.0])
+        t = np.linalg.svd(self._jacobian_u(u))[2][-1]
+        t = t if t[0] > 0 else -t
+        start, turns, length = u.copy(), [], 0.0
+        rho1_min, rho1_max, gap_max = 2 * np.pi / 3, 2 * np.pi / 3, 0.0
+
+        def end(kind: str, at: NDArray[np.float64]) -> PathOutcome:
+            rho1, rho2 = self._signed_rho(at)
+            return PathOutcome(self.zeta, kind, float(at[0]), rho1, rho2, tuple(turns), rho1_min, rho1_max, gap_max)
+
+        while length < max_length:
+            guess = u + step * t
+            if np.max(np.abs(guess[:2])) >= np.pi:  # a Bricard angle leaves its closed form's domain
+                return end("no-end", u)
+            new = self._correct_u(guess, t, t @ guess)
+            t_new = np.linalg.svd(self._jacobian_u(new))[2][-1]
+            t_new = t_new if t_new @ t > 0 else -t_new
+            if t_new[0] * t[0] < 0:  # theta turned back within this step (to the step's O(step^2))
+                turns.append(float(max(u[0], new[0]) if t[0] > 0 else min(u[0], new[0])))
+            for i in (0, 1):  # a Bricard reaches its fold within this step
+                if (u[i] - self.theta_f) * (new[i] - self.theta_f) <= 0 and new[i] != u[i]:
+                    w = (self.theta_f - u[i]) / (new[i] - u[i])
+                    fold = self._correct_u(u + w * (new - u), np.eye(4)[i], self.theta_f)
+                    cube = abs(fold[1 - i] - self.theta_f) < 1e-9
+                    return end("cube" if cube else ("rho1-negative", "rho2-negative")[i], fold)
+            rho1, rho2 = self._signed_rho(new)
+            rho1_min, rho1_max = min(rho1_min, rho1), max(rho1_max, rho1)
+            gap_max = max(gap_max, abs(rho1 - rho2))
+            length += float(np.linalg.norm(new - u))
+            u, t = new, t_new
+            if length > 2 * step and np.linalg.norm(u - start) < step:
+                return end("loop", start)
+        return end("no-end", u)
 
     def fold_angles(self, theta: ArrayLike) -> NDArray[np.float64]:
         """

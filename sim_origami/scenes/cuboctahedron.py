@@ -17,8 +17,9 @@ listed get ball joints (triad: z along the R axis it replaces), and E, F, G, H l
 direction to the centre.
 """
 
+import itertools
+
 import numpy as np
-import trimesh
 
 from ..errors import ParameterError
 from ..geometry import frame_along, rotation_vector, transform, unit
@@ -36,29 +37,25 @@ from ..kinematics.cuboctahedron import (
 )
 from ..mechanism import Body, Joint, Mechanism, ball_joint
 from ..origami import PALETTE
-from ..solids import prism
 from .base import Scene, register
-from .polyhedra import AssemblyKinematics, kutzbach
+from .polyhedra import AssemblyKinematics, collision_plate, kutzbach, plate
 
 WIDTH = 0.02  # plate thickness (m); geometry only, the kinematics has zero thickness
 INPUT_JOINT = "A"
+# Pairs of triangles that share no vertex (no joint): 16 of the 28.
+CONTACT_PAIRS = tuple((a, b) for a, b in itertools.combinations(TRIANGLES, 2) if not set(a) & set(b))
 ANCHORS = (0.25, 0.5)  # closure points (m) along a cut hinge's axis from its vertex, inside the polyhedron
-
-
-def _plate(face: str) -> trimesh.Trimesh:
-    """A thin triangular prism (thickness WIDTH) on a face given outward (counter-clockwise seen from outside)."""
-    P = np.array([VERTICES[v] for v in face])
-    x = unit(P[1] - P[0])
-    z = unit(np.cross(P[1] - P[0], P[2] - P[0]))
-    R = np.stack([x, np.cross(z, x), z], axis=1)
-    centre = P.mean(0)
-    return prism((P - centre) @ R[:, :2], WIDTH).apply_transform(transform(R, centre))
 
 
 def _bodies() -> list[Body]:
     """The 8 triangles, named by their vertices ('ABE', ...); bottom ring and top ring in two colours."""
     outward = {"".join(sorted(f)): f for f in faces()}
-    return [Body(t, _plate(outward["".join(sorted(t))]), None, PALETTE[1 if t in BOTTOM else 2]) for t in TRIANGLES]
+    out = []
+    for t in TRIANGLES:
+        face = outward["".join(sorted(t))]
+        collision = collision_plate([VERTICES[v] for v in face])
+        out.append(Body(t, plate([VERTICES[v] for v in face], WIDTH), collision, PALETTE[1 if t in BOTTOM else 2]))
+    return out
 
 
 def ball_triad(vertex: str) -> np.ndarray:
@@ -127,5 +124,6 @@ def build() -> Scene:
         path=(0.0, lo),
         # fast measured 2.1e-6 rad (vertices 6.9e-6) at the preset's 2 s sweep, 1.3e-7 (4.1e-7) 4x slower
         sweep_time_scale=8.0,
+        contact_pairs=CONTACT_PAIRS,
         notes="input A = theta_A - theta_d (rad, falls to the octahedron); S joints as MuJoCo ball joints",
     )

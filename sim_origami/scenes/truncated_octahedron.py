@@ -10,10 +10,12 @@ root), every joint angle is 0 at the truncated octahedron, and the input joint '
 square A, parent bar B2A1, axis O -> A1) equals theta - theta_d. Outputs: the 15 R-joint angles.
 """
 
-import numpy as np
-import trimesh
+import itertools
 
-from ..geometry import frame_along, transform, unit
+import numpy as np
+
+from ..errors import ParameterError
+from ..geometry import frame_along
 from ..kinematics.truncated_octahedron import (
     BARS,
     NAMES,
@@ -21,6 +23,7 @@ from ..kinematics.truncated_octahedron import (
     SQUARES,
     SS_BARS,
     VERTICES,
+    PathOutcome,
     TruncatedOctahedronCube,
     revolute_axes,
 )
@@ -28,24 +31,19 @@ from ..linkage import bar
 from ..mechanism import Body, Joint, Mechanism, ball_joint
 from ..origami import PALETTE
 from .base import Param, Scene, register
-from .polyhedra import AssemblyKinematics, kutzbach
+from .polyhedra import AssemblyKinematics, collision_plate, kutzbach, plate
 
 WIDTH = 0.04  # bar and plate thickness (m); geometry only, the kinematics has zero thickness
 INPUT_JOINT = "A1"
-
-
-def _plate(corners: list[np.ndarray]) -> trimesh.Trimesh:
-    """A thin box of thickness WIDTH spanning a unit square given by its 4 corners in cyclic order."""
-    x, y = unit(corners[1] - corners[0]), unit(corners[3] - corners[0])
-    frame = transform(np.stack([x, y, np.cross(x, y)], axis=1), np.mean(corners, axis=0))
-    return trimesh.creation.box(extents=(1.0, 1.0, WIDTH), transform=frame)
+SQUARE_PAIRS = tuple(itertools.combinations([square[0][0] for square in SQUARES], 2))  # no square shares a joint
 
 
 def _bodies() -> list[Body]:
-    """The 6 squares (thin plates) and the 12 bars, named 'A'..'F' and e.g. 'A2C1'."""
+    """The 6 squares (thin plates with collision plates) and the 12 bars, named 'A'..'F' and e.g. 'A2C1'."""
     out = []
     for k, square in enumerate(SQUARES):
-        out.append(Body(square[0][0], _plate([VERTICES[v] for v in square]), None, PALETTE[k % len(PALETTE)]))
+        corners = [VERTICES[v] for v in square]
+        out.append(Body(square[0][0], plate(corners, WIDTH), collision_plate(corners), PALETTE[k % len(PALETTE)]))
     for a, b in BARS:
         out.append(Body(a + b, bar(VERTICES[a], VERTICES[b], WIDTH), None, (0.3, 0.3, 0.3, 1.0)))
     return out
@@ -91,7 +89,45 @@ def assembly(zeta: float = 0.0) -> Mechanism:
     (Param("zeta", "deg", 0.0, "deviation of the A3, B3, C3 axes from the direction to the centre"),),
 )
 def build(zeta: float) -> Scene:
+    """
+    The scene of a design whose path reaches the cube with A1 rising monotonically (digest §2.7, zeta in about
+    [-60.7, 18.9] deg); ParameterError naming zeta and how its path ends otherwise (`interference_scene` builds
+    such a design for simulation from the deployed pose).
+    """
     model = TruncatedOctahedronCube(zeta)
+    outcome = model.outcome()
+    if not outcome.drivable:
+        raise ParameterError(
+            f"zeta = {np.rad2deg(zeta):.6g} deg: {describe(outcome)}; the closed form follows only designs whose "
+            "path reaches the cube (rho1 = rho2 = 0 together) with theta rising monotonically (seed 001 §2.7: "
+            "feasible -60.9 <= zeta <= 19.5 deg); simulate it with interference_scene(zeta)"
+        )
+    return interference_scene(zeta, model)
+
+
+def describe(outcome: PathOutcome) -> str:
+    """One line (degrees) on how a design's path ends (`TruncatedOctahedronCube.outcome`)."""
+    deg = np.rad2deg
+    turns = f", theta turns back at {', '.join(f'{deg(t):.4g}' for t in outcome.turns)} deg" if outcome.turns else ""
+    ends = {
+        "cube": "reaches the cube",
+        "rho1-negative": f"Bricard 1 folds (rho1 = 0) while rho2 = {deg(outcome.rho2):.4g} deg, so squares A, B, C "
+        "would pass through each other",
+        "rho2-negative": f"Bricard 2 folds (rho2 = 0) while rho1 = {deg(outcome.rho1):.4g} deg, so squares D, E, F "
+        "would pass through each other",
+        "loop": "the path closes back on the truncated octahedron without reaching a fold",
+        "no-end": "the path reaches no fold",
+    }
+    return f"the path {ends[outcome.kind]}{turns}"
+
+
+def interference_scene(zeta: float, model: TruncatedOctahedronCube | None = None) -> Scene:
+    """
+    The scene of any design (zeta in rad), without `build`'s check: for designs outside the feasible range only
+    the mechanism, its drive and its contact pairs are meaningful (simulate from the deployed pose, `initial` =
+    zeros, to A1 = theta_f - theta_d); the closed form's poses exist only where its path is a function of theta.
+    """
+    model = model or TruncatedOctahedronCube(zeta)
     mechanism = assembly(zeta)
     revolute = tuple(revolute_axes(zeta))
     cube = model.theta_f - model.theta_d
@@ -114,5 +150,8 @@ def build(zeta: float) -> Scene:
         # 6.9e-8 rad (vertices 6.8e-8) 16x slower, in 0.45 s of CPU; fast 16x gave 4.4e-7.
         preset="stiff",
         sweep_time_scale=16.0,
+        # Squares share no joint: every pair may collide (faces passing through each other, digest §5); the
+        # collision plates touch 9.8 mrad of A1 before the cube, where the servo stops (blockage study).
+        contact_pairs=SQUARE_PAIRS,
         notes="input A1 = theta - theta_d (rad); S joints as MuJoCo ball joints; outputs the 15 R joints",
     )

@@ -13,8 +13,9 @@ about z to the one of 12 angles in [0, 180) deg that keeps the middle angle b sm
 (max |b| about 12 deg scheme I, 3.5 deg scheme II at delta = 0; `max_middle_angle`).
 """
 
+import itertools
+
 import numpy as np
-import trimesh
 
 from ..errors import ParameterError
 from ..geometry import frame_along, rotation_vector, transform, transform_z
@@ -34,11 +35,12 @@ from ..linkage import bar
 from ..mechanism import Body, Joint, Mechanism, ball_joint
 from ..origami import PALETTE
 from .base import Param, Scene, register
-from .polyhedra import AssemblyKinematics, kutzbach
+from .polyhedra import AssemblyKinematics, collision_plate, kutzbach, plate
 
 WIDTH = 0.04  # bar and plate thickness (m); geometry only, the kinematics has zero thickness
 INPUT_JOINT = {"I": "G", "II": "A"}  # the model's input: theta_G (scheme I), the Bricard theta at A (II)
 BALLS = {"I": ("K", "L", "M"), "II": ("G", "H", "J")}
+TRIANGLE_PAIRS = tuple(itertools.combinations(TRIANGLES, 2))  # no two triangles share a joint
 
 
 def model(scheme: str, delta: float = 0.0) -> Transformation:
@@ -48,21 +50,15 @@ def model(scheme: str, delta: float = 0.0) -> Transformation:
     return SchemeI(delta) if scheme == "I" else SchemeII(delta)
 
 
-def _plate(corners: list[np.ndarray]) -> trimesh.Trimesh:
-    """A thin triangular prism of thickness WIDTH on the triangle with the given corners."""
-    P = np.array(corners)
-    n = np.cross(P[1] - P[0], P[2] - P[0])
-    n = 0.5 * WIDTH * n / np.linalg.norm(n)
-    faces = [(0, 1, 2), (5, 4, 3)]  # caps, counter-clockwise about +n and -n
-    for i in range(3):
-        j = (i + 1) % 3
-        faces += [(i, i + 3, j), (j, i + 3, j + 3)]
-    return trimesh.Trimesh(np.vstack([P + n, P - n]), faces, process=False)
-
-
 def _bodies() -> list[Body]:
-    """The 4 triangles 'ABG', 'CDH', 'EFJ', 'KLM' and the 6 bars 'BC', ..., 'JM'."""
-    out = [Body(t, _plate([VERTICES[v] for v in t]), None, PALETTE[k % len(PALETTE)]) for k, t in enumerate(TRIANGLES)]
+    """
+    The 4 triangles 'ABG', 'CDH', 'EFJ', 'KLM' (thin plates with the collision plates of
+    `polyhedra.collision_plate`) and the 6 bars 'BC', ..., 'JM'.
+    """
+    out = []
+    for k, t in enumerate(TRIANGLES):
+        corners = [VERTICES[v] for v in t]
+        out.append(Body(t, plate(corners, WIDTH), collision_plate(corners), PALETTE[k % len(PALETTE)]))
     for b in BARS:
         out.append(Body(b, bar(VERTICES[b[0]], VERTICES[b[1]], WIDTH), None, (0.3, 0.3, 0.3, 1.0)))
     return out
@@ -164,6 +160,7 @@ def _scene(scheme: str, delta: float) -> Scene:
         # the error falls as the square of the sweep time (4x slower: stiff 7.4e-7 and 7.1e-7)
         preset="stiff",
         sweep_time_scale=16.0,
+        contact_pairs=TRIANGLE_PAIRS,
         notes=f"input {INPUT_JOINT[scheme]} = {closed_form.input_name} - its deployed value (rad); "
         "S joints as MuJoCo ball joints",
     )
