@@ -5,6 +5,7 @@ from . import (  # noqa: F401  (registration side effect)
     bricard_plane,
     bricard_threefold,
     corrugated,
+    corrugated_sheet,
     cuboctahedron,
     iftomm_a04,
     kokotsakis,
