@@ -233,3 +233,18 @@ def minimal_rotation(u: ArrayLike, v: ArrayLike) -> NDArray[np.float64]:
     K = np.stack([np.stack([zero, -w[..., 2], w[..., 1]], -1), np.stack([w[..., 2], zero, -w[..., 0]], -1),
                   np.stack([-w[..., 1], w[..., 0], zero], -1)], -2)  # fmt: skip
     return np.eye(3) + K + K @ K / (1.0 + c)[..., None, None]
+
+
+def enclosed_volume(points: ArrayLike, faces: list[list[int]]) -> NDArray[np.float64]:
+    """
+    Volume (..., ) enclosed by faces (vertex index cycles, counter-clockwise seen from outside) of vertex
+    positions (..., V, 3), by the divergence theorem over the triangles from each face's centroid: exact for
+    planar faces and for merged vertices, the symmetric choice for a skew face.
+    """
+    P = np.asarray(points, dtype=float)
+    total = np.zeros(P.shape[:-2])
+    for k in faces:
+        centre = P[..., k, :].mean(-2)
+        for a, b in zip(k, k[1:] + k[:1], strict=True):
+            total = total + np.einsum("...i,...i", centre, np.cross(P[..., a, :], P[..., b, :]))
+    return total / 6.0

@@ -39,7 +39,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import DomainError
-from ..geometry import invert, rotation, transform, transform_z, unit
+from ..geometry import enclosed_volume, invert, rotation, transform, transform_z, unit
 from .base import Event
 from .dh import DHRow, dh_from_axes
 
@@ -104,19 +104,12 @@ def faces() -> tuple[str, ...]:
 
 def volume(points: ArrayLike) -> NDArray[np.float64]:
     """
-    Volume (m^3) enclosed by `faces()` for vertex positions (..., 12, 3) in `NAMES` order, by the divergence
-    theorem. The squares are skew during the motion (hollow in the mechanism): each is closed by the four
-    triangles to its centroid, a symmetric choice; exact at both ends, where the squares are planar or collapsed.
+    Volume (m^3) enclosed by `faces()` for vertex positions (..., 12, 3) in `NAMES` order. The squares are skew
+    during the motion (hollow in the mechanism): `enclosed_volume` closes each by the four triangles to its
+    centroid, a symmetric choice; exact at both ends, where the squares are planar or collapsed.
     """
-    P = np.asarray(points, dtype=float)
     index = {v: k for k, v in enumerate(NAMES)}
-    total = np.zeros(P.shape[:-2])
-    for face in faces():
-        k = [index[v] for v in face]
-        centre = P[..., k, :].mean(-2)
-        for a, b in zip(k, k[1:] + k[:1], strict=True):
-            total = total + np.einsum("...i,...i", centre, np.cross(P[..., a, :], P[..., b, :]))
-    return total / 6.0
+    return enclosed_volume(points, [[index[v] for v in face] for face in faces()])
 
 
 def _foot(p0: NDArray, s0: NDArray, p1: NDArray, s1: NDArray) -> NDArray[np.float64]:

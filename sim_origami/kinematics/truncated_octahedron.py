@@ -35,13 +35,12 @@ beyond it the squares pass through each other (the seed's rho < 0).
 
 from dataclasses import dataclass
 from functools import cached_property
-from itertools import pairwise
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ConvergenceError, DomainError, ParameterError
-from ..geometry import minimal_rotation, rigid_fit, rotation, transform, transform_z, unit
+from ..geometry import enclosed_volume, minimal_rotation, rigid_fit, rotation, transform, transform_z, unit
 from .base import Event
 from .bricard_threefold import ALONG, BricardThreefold
 from .dh import DHRow, dh_from_axes
@@ -144,18 +143,9 @@ def faces() -> tuple[tuple[str, ...], ...]:
 
 
 def volume(points: ArrayLike) -> NDArray[np.float64]:
-    """
-    Volume (m^3) enclosed by `faces()` for vertex positions (..., 24, 3) in `NAMES` order: the divergence
-    theorem over a fan triangulation of each face (exact for planar faces and for merged vertices).
-    """
-    P = np.asarray(points, dtype=float)
+    """Volume (m^3) enclosed by `faces()` for vertex positions (..., 24, 3) in `NAMES` order (`enclosed_volume`)."""
     index = {v: k for k, v in enumerate(NAMES)}
-    total = np.zeros(P.shape[:-2])
-    for face in faces():
-        k = [index[v] for v in face]
-        for a, b in pairwise(k[1:]):
-            total = total + np.einsum("...i,...i", P[..., k[0], :], np.cross(P[..., a, :], P[..., b, :]))
-    return total / 6.0
+    return enclosed_volume(points, [[index[v] for v in face] for face in faces()])
 
 
 @dataclass(frozen=True)

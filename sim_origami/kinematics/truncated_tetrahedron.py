@@ -41,13 +41,12 @@ tetrahedron): near theta_d the state is fixed by theta only to sqrt(theta - thet
 """
 
 from functools import cached_property
-from itertools import pairwise
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ConvergenceError, DomainError, ParameterError
-from ..geometry import invert, rotation, signed_angle, transform, transform_z, unit, wrap
+from ..geometry import enclosed_volume, invert, rotation, signed_angle, transform, transform_z, unit, wrap
 from .base import Event
 from .bricard_threefold import ALONG, BricardThreefold
 from .dh import DHRow, dh_from_axes
@@ -121,18 +120,9 @@ def faces() -> tuple[tuple[str, ...], ...]:
 
 
 def volume(points: ArrayLike) -> NDArray[np.float64]:
-    """
-    Volume (m^3) enclosed by `faces()` for vertex positions (..., 12, 3) in `NAMES` order: the divergence
-    theorem over a fan triangulation of each face (exact for planar faces and for merged vertices).
-    """
-    P = np.asarray(points, dtype=float)
+    """Volume (m^3) enclosed by `faces()` for vertex positions (..., 12, 3) in `NAMES` order (`enclosed_volume`)."""
     index = {v: k for k, v in enumerate(NAMES)}
-    total = np.zeros(P.shape[:-2])
-    for face in faces():
-        k = [index[v] for v in face]
-        for a, b in pairwise(k[1:]):
-            total = total + np.einsum("...i,...i", P[..., k[0], :], np.cross(P[..., a, :], P[..., b, :]))
-    return total / 6.0
+    return enclosed_volume(points, [[index[v] for v in face] for face in faces()])
 
 
 def _about_line(point: NDArray, axis: NDArray, angle: ArrayLike) -> NDArray[np.float64]:

@@ -513,7 +513,37 @@ def beta_max(alpha: float, n: int) -> float:
     return roots[0]
 
 
-class WaterbombTube(JointSpaceKinematics):
+class TubeLoops:
+    """
+    The tube's closure for a model with `layout`, `crease_names`, `input_crease` and symmetry `couplings`
+    (pairs of crease names kept equal): every vertex loop, one ring round the middle row, and the couplings.
+    """
+
+    layout: TubeLayout
+    crease_names: tuple[str, ...]
+    input_crease: str
+    couplings: tuple[tuple[str, str], ...]
+
+    def gruebler(self) -> int:
+        """Kutzbach: creases - 3 per vertex loop - 6 for the ring - 1 per coupling. Without couplings 4n - 6 (the
+        free tube, digest B.2); with them negative, as the couplings are redundant on purpose."""
+        return len(self.crease_names) - 3 * len(vertex_loops(self.layout)) - 6 - len(self.couplings)
+
+    def free_loop_system(self) -> LoopSystem:
+        """The tube's closure without the symmetry couplings: every vertex and one ring round the middle row."""
+        return LoopSystem(len(self.crease_names), (*vertex_loops(self.layout), ring_loop(self.layout)))
+
+    def loop_system(self) -> LoopSystem:
+        """The tube's closure with the symmetry couplings (`couplings`)."""
+        free = self.free_loop_system()
+        index = {name: k for k, name in enumerate(self.crease_names)}
+        return LoopSystem(free.n_joints, free.loops, tuple(Coupling(index[a], index[b]) for a, b in self.couplings))
+
+    def loop_input(self) -> tuple[int, float]:
+        return self.layout.index(self.input_crease), 1.0
+
+
+class WaterbombTube(TubeLoops, JointSpaceKinematics):
     """
     The n x m waterbomb tube on its radial contraction, driven by x = rho of crease A<r0>_0_1 (module docstring
     for frames, signs and the model).
@@ -664,24 +694,6 @@ class WaterbombTube(JointSpaceKinematics):
                               "profile changes sign here, and a truncated tube may switch motion (§6.3)")  # fmt: skip
                     out.append(Event("uniform_radius", x, (BRANCH,), detail))
         return tuple(sorted(out, key=lambda e: e.input))
-
-    def gruebler(self) -> int:
-        """Kutzbach: creases - 3 per vertex loop - 6 for the ring - 1 per coupling. Without couplings 4n - 6 (the
-        free tube, digest B.2); with them negative, as the couplings are redundant on purpose (`couplings`)."""
-        return len(self.crease_names) - 3 * len(vertex_loops(self.layout)) - 6 - len(self.couplings)
-
-    def free_loop_system(self) -> LoopSystem:
-        """The tube's closure without the symmetry couplings: every vertex and one ring round row 0."""
-        return LoopSystem(len(self.crease_names), (*vertex_loops(self.layout), ring_loop(self.layout)))
-
-    def loop_system(self) -> LoopSystem:
-        """The tube's closure with the symmetry couplings (`couplings`) that leave the contraction path alone."""
-        free = self.free_loop_system()
-        index = {name: k for k, name in enumerate(self.crease_names)}
-        return LoopSystem(free.n_joints, free.loops, tuple(Coupling(index[a], index[b]) for a, b in self.couplings))
-
-    def loop_input(self) -> tuple[int, float]:
-        return self.layout.index(self.input_crease), 1.0
 
     # -- symmetry couplings ------------------------------------------------------------------------------------
     @cached_property

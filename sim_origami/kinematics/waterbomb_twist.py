@@ -64,6 +64,7 @@ from .waterbomb_tube import (
     CLASS_TOL,
     GRID,
     TubeLayout,
+    TubeLoops,
     WaterbombTube,
     alpha_limit,
     assignment_signs,
@@ -72,10 +73,8 @@ from .waterbomb_tube import (
     lengths,
     meet,
     reversed_creases,
-    ring_loop,
     row_range,
     sign_changes,
-    vertex_loops,
 )
 
 CCW = "twist-ccw"
@@ -225,7 +224,7 @@ def tilt_range(layout: TubeLayout, strict: bool = True) -> tuple[float, float] |
         return None
 
 
-class WaterbombTwist(JointSpaceKinematics):
+class WaterbombTwist(TubeLoops, JointSpaceKinematics):
     """
     The n x m waterbomb tube (m odd) twisting from its fully folded middle row, and its radial contraction, driven
     by x = rho of crease A<r0>_0_2 (eta02 = pi - x); module docstring for frames, signs and the model.
@@ -429,24 +428,6 @@ class WaterbombTwist(JointSpaceKinematics):
             if e.input > self.tube.domain[0] + 1e-9:  # the contraction's lower end is the bifurcation above
                 out.append(Event(e.kind, float(self.contraction_input(np.pi + e.input)), (CONTRACTION,), e.detail))
         return tuple(sorted(out, key=lambda e: e.input))
-
-    def gruebler(self) -> int:
-        """Kutzbach: creases - 3 per vertex loop - 6 for the ring - 1 per coupling (negative: the couplings are
-        redundant on purpose, as in `WaterbombTube.couplings`)."""
-        return len(self.crease_names) - 3 * len(vertex_loops(self.layout)) - 6 - len(self.couplings)
-
-    def free_loop_system(self) -> LoopSystem:
-        """The tube's closure without couplings: every vertex and one ring round the middle row."""
-        return LoopSystem(len(self.crease_names), (*vertex_loops(self.layout), ring_loop(self.layout)))
-
-    def loop_system(self) -> LoopSystem:
-        """The tube's closure with the twist's symmetry couplings (`couplings`)."""
-        free = self.free_loop_system()
-        index = {name: k for k, name in enumerate(self.crease_names)}
-        return LoopSystem(free.n_joints, free.loops, tuple(Coupling(index[a], index[b]) for a, b in self.couplings))
-
-    def loop_input(self) -> tuple[int, float]:
-        return self.layout.index(self.input_crease), 1.0
 
     @cached_property
     def couplings(self) -> tuple[tuple[str, str], ...]:

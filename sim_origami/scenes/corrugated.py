@@ -33,12 +33,17 @@ PATH = (0.3, 2.0)
 SWEEP_TIME_SCALE = 16.0
 
 
+def unit_name(unit: float) -> str:
+    """'P' for unit = 0, 'Q' for 1; ParameterError otherwise."""
+    if unit not in (0.0, 1.0):
+        raise ParameterError(f"unit = {unit:g}; use 0 for P or 1 for Q")
+    return "PQ"[int(unit)]
+
+
 @register("corrugated-unit", "double-corrugated unit P or Q (seed 003 M7), 3 x 3 mesh of 4 flat-foldable "
           "vertices; branches = the six rigid vertex-mode combinations", PARAMS)  # fmt: skip
 def build(unit: float, alpha: float, beta: float, gamma: float, delta: float, L1: float, L2: float, L3: float) -> Scene:
-    if unit not in (0.0, 1.0):
-        raise ParameterError(f"unit = {unit:g}; use 0 for P or 1 for Q")
-    name = "PQ"[int(unit)]
+    name = unit_name(unit)
     kinematics = CorrugatedUnit(name, (alpha, beta, gamma, delta), (L1, L2, L3))
     drive = kinematics.input_name.removeprefix("rho")
     params = {"unit": unit, "alpha": alpha, "beta": beta, "gamma": gamma, "delta": delta, "L1": L1, "L2": L2, "L3": L3}

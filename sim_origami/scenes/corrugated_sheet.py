@@ -8,26 +8,19 @@ away from it. Panels carry collision solids inset from their edges, and every pa
 vertex may collide (Scene.self_contact, as the Miura sheet).
 """
 
-from ..errors import ParameterError
 from ..kinematics.corrugated_sheet import INPUT, ROOT, CorrugatedSheet
 from .base import Param, Scene, register
+from .corrugated import PARAMS as UNIT_PARAMS
+from .corrugated import PATH as UNIT_PATH
+from .corrugated import unit_name
 from .patterns import pattern_scene
 
 PARAMS = (
     Param("unit", "", 0.0, "which unit repeats: 0 = P (parallelogram ABCD), 1 = Q (parallelogram ABEF)"),
     Param("rows", "", 2, "units along v (the AB direction), >= 1"),
     Param("cols", "", 2, "units along u (the AD direction), >= 1"),
-    Param("alpha", "deg", 135.0, "design angle alpha (largest sector, P's angle at A); seed Fig 3-2"),
-    Param("beta", "deg", 60.0, "design angle beta (Q's angle at A)"),
-    Param("gamma", "deg", 45.0, "design angle gamma = 180 - alpha, the smallest sector"),
-    Param("delta", "deg", 120.0, "design angle delta = 180 - beta"),
-    Param("L1", "m", 1.0, "|AB|"),
-    Param("L2", "m", 1.0, "|AD| (P), and Q's outer creases"),
-    Param("L3", "m", 1.0, "|AF| (Q), and P's outer creases"),
+    *UNIT_PARAMS[1:],  # the unit's design angles and lengths, as scene `corrugated-unit`
 )
-# Default sweep of the input (rad), as scene `corrugated-unit`: from 0.3 (the closure's smallest singular value
-# grows with the fold from 0 at flat) to 2.0, short of the fully folded lock at pi.
-PATH = (0.3, 2.0)
 # Fast preset: the error comes from the start of the sweep and falls about as the square of the sweep time. Worst
 # branch of the default 2 x 2 P sheet (CSCS, the smallest gains) measured 2.6e-6 rad at 4x, 1.8e-7 at 16x and
 # 5.4e-8 at 32x (others <= 3.3e-8); Q sheet worst SCSC 1.2e-7 at 16x, 3.5e-8 at 32x. About 1.0 s of CPU per
@@ -51,9 +44,7 @@ def build(
     L2: float,
     L3: float,
 ) -> Scene:
-    if unit not in (0.0, 1.0):
-        raise ParameterError(f"unit = {unit:g}; use 0 for P or 1 for Q")
-    name = "PQ"[int(unit)]
+    name = unit_name(unit)
     kinematics = CorrugatedSheet(name, (alpha, beta, gamma, delta), (L1, L2, L3), rows, cols)
     params = {"unit": unit, "rows": rows, "cols": cols, "alpha": alpha, "beta": beta, "gamma": gamma,
               "delta": delta, "L1": L1, "L2": L2, "L3": L3}  # fmt: skip
@@ -63,7 +54,7 @@ def build(
         kinematics,
         kinematics.pattern,
         drive=INPUT,
-        path=PATH,
+        path=UNIT_PATH,
         root=ROOT,
         sweep_time_scale=SWEEP_TIME_SCALE,
         collision_inset=INSET * min(L1, L2, L3),
