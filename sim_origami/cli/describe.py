@@ -29,9 +29,12 @@ def run(args: argparse.Namespace) -> int:
         f"input: {kin.input_name} (degrees here, radians in JSON); drives {scene.drive_joint} x {scene.drive_scale:g}"
     )
     print(f"joints: {', '.join(kin.joint_names)}")
-    print(f"mechanism: {len(scene.mechanism.bodies)} bodies, {len(scene.mechanism.joints)} hinges, "
-          f"root {scene.mechanism.root}, loops cut at "
-          f"{', '.join(scene.mechanism.joints[i].name for i in scene.mechanism.cut_joints) or 'none'}")  # fmt: skip
+    mech = scene.mechanism
+    reduced = mech.reduced()  # spherical joints as one joint each, without their spacer bodies
+    cut = {mech.joints[i].ball or mech.joints[i].name for i in mech.cut_joints}
+    spherical = f", {len(mech.balls)} spherical" if mech.balls else ""
+    print(f"mechanism: {len(reduced.bodies)} bodies, {len(reduced.joints) - len(mech.balls)} hinges{spherical}, "
+          f"root {mech.root}, loops cut at {', '.join(sorted(cut)) or 'none'}")  # fmt: skip
     print(f"preset: {scene.preset}, sweep {scene.sweep_time_scale:g}x the preset's duration")
     print("branches:")
     for b in kin.branches():
