@@ -8,7 +8,11 @@ tube. The free tube has 4n - 6 DOF; the seeds' symmetry (units alike round a row
 equatorial mirror or half-turn) is imposed by joint couplings, every spanning-tree crease to the first of its
 symmetry class (`WaterbombTube.couplings`, 98 on the 6 x 3 tube, 164 on the 6 x 5: redundant, 4n - 7 would do),
 which leaves the 1-DOF contraction, driven at the equatorial row's top midline A<r0>_0_1 (theta = pi + rho).
+Every face carries a collision solid and the scene has self contact (panels sharing a vertex of the tube excluded):
+with contact on, panels that pass through each other collide (INSET).
 """
+
+from dataclasses import dataclass
 
 from ..creases import Crease, CreasePattern
 from ..kinematics.waterbomb_tube import WaterbombTube
@@ -33,9 +37,45 @@ PATH_SHARE = 0.7
 # steps, 70 s CPU, 183 steps/s); 6 x 3 tube 2.6e-6 at 4x, 2.3e-7 at 16x, 5.7e-8 at 32x (26 s CPU, 500 steps/s).
 # The stiff preset does better at equal CPU: 6 x 5 5.4e-7 at 4x, 1.3e-7 at 8x (16 s CPU, 786 steps/s); 6 x 3
 # 5.1e-7 at 4x, 1.3e-7 at 8x (5.7 s, 2250 steps/s); fast at 8x: 1.2e-6 and 9.3e-7.
+# Rates (scripts/waterbomb_tube_rate.py, this preset and sweep, CPU of the stepping loop, contact off): 648 steps/s on
+# the 6 x 5 tube (180 panels), 422 on 8 x 5, 297 on 10 x 5 (300 panels, 2.1e-7 rad); contact on costs 17-25 %. No
+# MuJoCo option reaches 1000 steps/s at 300 panels within 1e-6 rad (CG cut to 5 iterations: 755, 5.9e-4 rad).
 PRESET = "stiff"
 SWEEP_TIME_SCALE = 8.0
 ANCHORS = (0.5, 1.0)
+# Collision solids: each face's plate (NOMINAL_THICKNESS x the longest crease thick) inset from every edge by INSET * a.
+# Panels that share a vertex of the tube (across the seam too: `TubePattern`) never collide, so only the seeds'
+# "physical interference" does (seed 004 Fig. 8c, n6 m7 beta 40: middle-row collisions from alpha = 54.6 deg, digest
+# B.6). Measured with INSET = 0.003: onset at alpha = 54.593 deg (bare triangles 54.578, seed 54.6); at alpha = 56
+# deg contact from the bottom of the range (88.786 deg, seed 88.79) to theta = 95.130 deg (bare triangles 95.168,
+# seed 95.04), where a force-limited servo driven inward stops (95.107 deg). The end moves with the inset: 95.777,
+# 95.377, 94.881, 93.329 deg for 0, 0.002, 0.004, 0.01 a. The default tube's solids touch only below theta = 60.83
+# deg (middle row folded flat, its A's on the axis), clear of its sweep. tests/test_waterbomb_tube_contact.py.
+INSET = 0.003
+
+
+@dataclass(frozen=True)
+class TubePattern(CreasePattern):
+    """The flat strip of a tube, whose seam vertices are one vertex each (`strip_keys`: strip vertex -> tube vertex),
+    so that faces on the two sides of the seam that meet there count as touching."""
+
+    strip_keys: tuple[int, ...] = ()
+
+    def touching_faces(self) -> tuple[tuple[str, str], ...]:
+        """Pairs of faces that share a vertex of the tube, sorted by face order."""
+        at: dict[int, set[int]] = {}
+        for f, face in enumerate(self.faces):
+            for v in face:
+                at.setdefault(self.strip_keys[v], set()).add(f)
+        pairs = {(a, b) for group in at.values() for a in group for b in group if a < b}
+        return tuple((self.face_names[a], self.face_names[b]) for a, b in sorted(pairs))
+
+
+def tube_pattern(kinematics: WaterbombTube) -> TubePattern:
+    """The tube's strip (`kinematics.pattern`) with its seam vertices identified (`TubePattern`)."""
+    strip = kinematics.pattern
+    keys = tuple(int(k) for k in kinematics.layout.strip_keys)
+    return TubePattern(strip.vertices, strip.faces, strip.creases, strip.face_names, keys)
 
 
 def seam_joints(pattern: CreasePattern, kinematics: WaterbombTube) -> tuple[Joint, ...]:
@@ -50,14 +90,16 @@ def seam_joints(pattern: CreasePattern, kinematics: WaterbombTube) -> tuple[Join
     return tuple(out)
 
 
-def tube_mechanism(kinematics: WaterbombTube) -> Mechanism:
+def tube_mechanism(kinematics: WaterbombTube, collision_inset: float | None = None) -> Mechanism:
     """Faces as bodies, every crease of the tube as a hinge, the symmetry couplings; root: the input crease's
-    right face."""
+    right face. With `collision_inset` (m) the faces carry collision solids inset by that much from every edge."""
     pattern = kinematics.pattern
     drive = kinematics.input_crease
     root = pattern.crease_faces(pattern.creases[kinematics.layout.index(drive)])[0]
     couplings = tuple((a, b, 1.0) for a, b in kinematics.couplings)
-    strip = pattern_mechanism(pattern, root=root, keep=(drive,), couplings=couplings, anchors=ANCHORS)
+    strip = pattern_mechanism(
+        pattern, root=root, keep=(drive,), couplings=couplings, anchors=ANCHORS, collision_inset=collision_inset
+    )
     return Mechanism(strip.bodies, strip.joints + seam_joints(pattern, kinematics), root, (drive,), couplings)
 
 
@@ -74,10 +116,10 @@ def build(n: float, m: float, alpha: float, beta: float, a: float) -> Scene:
     kinematics = WaterbombTube(n, m, alpha, beta, a)
     return Scene(
         name="waterbomb-tube", params={"n": n, "m": m, "alpha": alpha, "beta": beta, "a": a},
-        kinematics=kinematics, mechanism=tube_mechanism(kinematics), loop_joints=kinematics.crease_names,
+        kinematics=kinematics, mechanism=tube_mechanism(kinematics, INSET * a), loop_joints=kinematics.crease_names,
         drive_joint=kinematics.input_crease, drive_scale=1.0, path=default_path(kinematics),
         sweep_time_scale=SWEEP_TIME_SCALE, preset=PRESET,
-        pattern=kinematics.pattern,
+        pattern=tube_pattern(kinematics), self_contact=True,
         notes=f"{int(n)} x {int(m)} tube; {len(kinematics.couplings)} symmetry couplings; "
         f"{len(kinematics.layout.seam)} seam creases closed by connects",
     )  # fmt: skip

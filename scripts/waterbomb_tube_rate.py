@@ -1,0 +1,199 @@
+"""Steps per second of waterbomb tubes from 180 to 300 panels under MuJoCo's options, contact off and on, and the
+path error each option gives on the scene's sweep (issue 5).
+
+Every run is the `waterbomb-tube` scene's default sweep (preset stiff, SWEEP_TIME_SCALE) of an n x m tube with
+alpha = beta = 40 deg, driven by the joint-equality drive as `simulate` drives it, with one option changed on the
+compiled model. Rates are steps / CPU time (`time.thread_time`, this thread only) of the stepping loop:
+
+* "off": the whole sweep (a fixed number of mj_step calls: sweep time / step), contact off; its path error is the
+  largest |simulated - closed form| over every crease (rad), which must stay <= ACCURACY for the option to count;
+* "window off" / "window on": the first WINDOW steps of the same sweep, contact off and on (collision solids of
+  every panel, vertex-sharing pairs excluded; the default tube never touches on its sweep, so both runs move alike
+  and the ratio is the cost of collision detection).
+
+    python scripts/waterbomb_tube_rate.py              # every option but pgs on the 300-panel tube, baseline on all
+    python scripts/waterbomb_tube_rate.py --sizes 10x5 --options pgs
+
+Measured (MuJoCo 4.0.1, the 2-core machine under load; 12800-step sweeps):
+
+    tube  panels  rows  option               off /s  error rad  window off  window on
+    6x5      180   639  newton-sparse           648    1.3e-07         596        492
+    8x5      240   855  newton-sparse           422    2.1e-07         445        367
+    10x5     300  1071  newton-sparse           297    2.1e-07         315        236
+    10x5     300  1071  newton-dense            286    2.1e-07         235        205
+    10x5     300  1071  newton-1-iteration      286    2.1e-07         301        191
+    10x5     300  1071  newton-tol-1e-12        291    2.1e-07         244        196
+    10x5     300  1071  newton-no-island        276    2.1e-07         277        215
+    10x5     300  1071  newton-no-warmstart     303    2.1e-07         309        239
+    10x5     300  1071  cg                      147    3.0e-06         144        122
+    10x5     300  1071  cg-dense                 41    3.4e-06          41         44
+    10x5     300  1071  cg-5                    755    5.9e-04         850        422
+    10x5     300  1071  pgs            11 (first 400 steps; on: 10), full sweep not run (about 20 min of CPU)
+    10x5     300  1071  implicitfast            280    2.1e-07         291        198
+    10x5     300   787  no-couplings            332    3.1e+00         351        250
+
+No option reaches TARGET at 300 panels within ACCURACY: Newton needs one iteration per step (warm start) and its
+Hessian and factorisation over nv = 299 with 1071 rows are about 80 % of a step (timers: constraint 3.2 of 4.0 ms;
+the bare tree, equalities off, steps at 8300/s); CG is only faster when cut to a few iterations, which loses the
+path; the couplings cannot go (the free tube leaves the symmetric path), nor can one of the two connects of a cut
+crease (6 x 3: 2.4 rad). Contact on, with no contact on the sweep, costs 17-50 % (broad phase and the exclusions).
+"""
+
+import argparse
+import dataclasses
+import time
+from collections.abc import Callable
+
+import mujoco
+import numpy as np
+
+import sim_origami.scenes.waterbomb_tube  # noqa: F401  (registers the scene)
+from sim_origami import scenes
+from sim_origami.checks.paths import compare
+from sim_origami.kinematics.waterbomb_tube import BRANCH
+from sim_origami.mjcf import ModelOptions, preset_duration
+from sim_origami.scenes.base import Scene
+from sim_origami.simulate import Bindings, compile_model, ramp
+
+ACCURACY = 1e-6  # rad, the path-error tolerance of the stiff and fast presets (tolerances.py)
+TARGET = 1000.0  # steps/s
+WINDOW = 1600  # steps of the windowed runs (2 s of the sweep at 1.25 ms)
+SIZES = ((6, 5), (8, 5), (10, 5))
+Solver, Jacobian, Integrator, Disable = mujoco.mjtSolver, mujoco.mjtJacobian, mujoco.mjtIntegrator, mujoco.mjtDisableBit
+
+
+@dataclasses.dataclass(frozen=True)
+class Option:
+    """One change to the scene's stiff model: `apply` edits the compiled model; `couplings` False drops the
+    symmetry couplings (joint equalities) from the mechanism."""
+
+    name: str
+    apply: Callable[[mujoco.MjModel], None]
+    couplings: bool = True
+
+
+def _set(**fields) -> Callable[[mujoco.MjModel], None]:
+    def apply(model: mujoco.MjModel) -> None:
+        for key, value in fields.items():
+            setattr(model.opt, key, value)
+
+    return apply
+
+
+def _disable(bit: int) -> Callable[[mujoco.MjModel], None]:
+    def apply(model: mujoco.MjModel) -> None:
+        model.opt.disableflags |= int(bit)
+
+    return apply
+
+
+OPTIONS = {
+    o.name: o
+    for o in (
+        Option("newton-sparse", _set()),  # the stiff preset as it is (jacobian auto: sparse above nv = 60)
+        Option("newton-dense", _set(jacobian=Jacobian.mjJAC_DENSE)),
+        Option("newton-1-iteration", _set(iterations=1, tolerance=1e-6)),
+        Option("newton-tol-1e-12", _set(tolerance=1e-12)),
+        Option("newton-no-island", _disable(Disable.mjDSBL_ISLAND)),
+        Option("newton-no-warmstart", _disable(Disable.mjDSBL_WARMSTART)),
+        Option("cg", _set(solver=Solver.mjSOL_CG)),
+        Option("cg-dense", _set(solver=Solver.mjSOL_CG, jacobian=Jacobian.mjJAC_DENSE)),
+        Option("cg-5", _set(solver=Solver.mjSOL_CG, iterations=5)),
+        Option("pgs", _set(solver=Solver.mjSOL_PGS)),
+        Option("implicitfast", _set(integrator=Integrator.mjINT_IMPLICITFAST)),
+        Option("no-couplings", _set(), couplings=False),
+    )
+}
+BASELINE = "newton-sparse"
+SLOW = ("pgs",)  # 11 steps/s on the 300-panel tube: only when named
+
+
+@dataclasses.dataclass(frozen=True)
+class Run:
+    """A sweep's stepping CPU time (s), steps, largest contact count and the mechanism angles (n, n_joints)."""
+
+    cpu: float
+    steps: int
+    contacts: int
+    q: np.ndarray
+
+
+def tube(n: int, m: int, option: Option) -> Scene:
+    """The default tube of n x m units, with or without its symmetry couplings."""
+    scene = scenes.get("waterbomb-tube").build(n=n, m=m)
+    if option.couplings:
+        return scene
+    return dataclasses.replace(scene, mechanism=dataclasses.replace(scene.mechanism, couplings=()))
+
+
+def sweep(scene: Scene, option: Option, contact: bool, steps: int | None = None) -> Run:
+    """The scene's default sweep as `simulate` runs it (equality drive, feed-forward), the option applied; only its
+    first `steps` steps if given."""
+    model, data = compile_model(scene, ModelOptions(preset=scene.preset, contact=contact))
+    option.apply(model)
+    binds = Bindings(scene, model)
+    start, stop = scene.branch_path(BRANCH)
+    binds.set_pose(data, scene.pose(BRANCH, start))
+    mujoco.mj_forward(model, data)
+    T = preset_duration(scene.preset) * scene.sweep_time_scale
+    h = model.opt.timestep
+    t = h * np.arange(1, round(T / h) + 1)[:steps]
+    shape, rate = ramp(np.clip(t / T, 0.0, 1.0))
+    eq = model.equality(f"drive_{scene.drive_joint}").id
+    tau = max(model.eq_solref[eq, 0], 2 * h)  # refsafe clamp, as in `simulate`
+    target = start + (stop - start) * (shape + 2 * tau * model.eq_solref[eq, 1] * rate / T)
+    log = np.empty((len(t), model.nq))
+    setpoint, qpos, step = model.eq_data[eq], data.qpos, mujoco.mj_step
+    contacts = 0
+    cpu = time.thread_time()
+    for value, row in zip(target.tolist(), log, strict=True):
+        setpoint[0] = value
+        step(model, data)
+        row[:] = qpos
+        contacts = max(contacts, data.ncon)
+    cpu = time.thread_time() - cpu
+    if any(w.number for w in data.warning) or not np.all(np.isfinite(data.qpos)):
+        return Run(cpu, len(t), contacts, np.full((len(t), len(scene.mechanism.joints)), np.nan))
+    return Run(cpu, len(t), contacts, binds.angles(scene, log))
+
+
+def measure(n: int, m: int, option: Option) -> dict:
+    """Rates (steps/s) and path error (rad) of one option on one tube."""
+    scene = tube(n, m, option)
+    full = sweep(scene, option, contact=False)
+    error = compare(scene, BRANCH, full.q).max_error()
+    off = sweep(scene, option, contact=False, steps=WINDOW)
+    on = sweep(scene, option, contact=True, steps=WINDOW)
+    model, data = compile_model(scene, ModelOptions(preset=scene.preset))
+    mujoco.mj_forward(model, data)
+    return {
+        "panels": len(scene.mechanism.bodies), "nv": model.nv, "rows": data.nefc, "steps": full.steps,
+        "off": full.steps / full.cpu, "error": error, "window_off": off.steps / off.cpu,
+        "window_on": on.steps / on.cpu, "contacts": on.contacts,
+        "counts": bool(error <= ACCURACY and full.steps / full.cpu >= TARGET),
+    }  # fmt: skip
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--sizes", default=",".join(f"{n}x{m}" for n, m in SIZES), help="tubes n x m, comma-separated")
+    parser.add_argument("--options", default="", help=f"option names (default: all but {', '.join(SLOW)} on the "
+                        f"largest tube, {BASELINE} on every tube); any of {', '.join(OPTIONS)}")  # fmt: skip
+    args = parser.parse_args()
+    sizes = [tuple(int(v) for v in s.split("x")) for s in args.sizes.split(",")]
+    largest = max(sizes, key=lambda s: s[0] * s[1])
+    header = (f"{'tube':>6s} {'panels':>6s} {'nv':>4s} {'rows':>5s} {'option':20s} {'steps':>6s} {'off /s':>7s} "
+              f"{'error rad':>9s} {'win off':>7s} {'win on':>7s} {'ncon':>4s}  counts")  # fmt: skip
+    print(header, flush=True)
+    for n, m in sizes:
+        every = [name for name in OPTIONS if name not in SLOW]
+        names = args.options.split(",") if args.options else (every if (n, m) == largest else [BASELINE])
+        for name in names:
+            r = measure(n, m, OPTIONS[name])
+            print(f"{n:>3d}x{m:<2d} {r['panels']:6d} {r['nv']:4d} {r['rows']:5d} {name:20s} {r['steps']:6d} "
+                  f"{r['off']:7.0f} {r['error']:9.1e} {r['window_off']:7.0f} {r['window_on']:7.0f} "
+                  f"{r['contacts']:4d}  {'yes' if r['counts'] else 'no'}", flush=True)  # fmt: skip
+
+
+if __name__ == "__main__":
+    main()
