@@ -53,7 +53,7 @@ from sim_origami.checks.paths import compare
 from sim_origami.kinematics.waterbomb_tube import BRANCH
 from sim_origami.mjcf import ModelOptions, preset_duration
 from sim_origami.scenes.base import Scene
-from sim_origami.simulate import Bindings, compile_model, ramp
+from sim_origami.simulate import Bindings, compile_model, drive_targets
 
 ACCURACY = 1e-6  # rad, the path-error tolerance of the stiff and fast presets (tolerances.py)
 TARGET = 1000.0  # steps/s
@@ -137,11 +137,9 @@ def sweep(scene: Scene, option: Option, contact: bool, steps: int | None = None)
     mujoco.mj_forward(model, data)
     T = preset_duration(scene.preset) * scene.sweep_time_scale
     h = model.opt.timestep
-    t = h * np.arange(1, round(T / h) + 1)[:steps]
-    shape, rate = ramp(np.clip(t / T, 0.0, 1.0))
+    _, target = drive_targets(scene, model, "equality", start, stop, T, round(T / h))
+    target, t = target[:steps], h * np.arange(1, len(target) + 1)[:steps]
     eq = model.equality(f"drive_{scene.drive_joint}").id
-    tau = max(model.eq_solref[eq, 0], 2 * h)  # refsafe clamp, as in `simulate`
-    target = start + (stop - start) * (shape + 2 * tau * model.eq_solref[eq, 1] * rate / T)
     log = np.empty((len(t), model.nq))
     setpoint, qpos, step = model.eq_data[eq], data.qpos, mujoco.mj_step
     contacts = 0

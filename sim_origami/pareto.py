@@ -25,7 +25,7 @@ from numpy.typing import NDArray
 from .checks.paths import compare
 from .mjcf import ModelOptions, build_xml, template
 from .scenes.base import Scene
-from .simulate import Bindings, ramp, simulate, start_pose, track
+from .simulate import Bindings, drive_targets, simulate, start_pose, track
 
 INTEGRATORS = {"RK4": mujoco.mjtIntegrator.mjINT_RK4, "Euler": mujoco.mjtIntegrator.mjINT_EULER,
                "implicitfast": mujoco.mjtIntegrator.mjINT_IMPLICITFAST}  # fmt: skip
@@ -116,19 +116,13 @@ def measure(scene: Scene, branch: str, setting: Setting, repeats: int = 3) -> Po
     model = model_for(scene, setting)
     start, stop = scene.branch_path(branch)
     h = model.opt.timestep
-    n = round(SWEEP_S / h)
-    shape, rate = ramp(np.clip(h * np.arange(1, n + 1) / SWEEP_S, 0, 1))
-    x = start + (stop - start) * shape
     binds, data = Bindings(scene, model), mujoco.MjData(model)
+    _, target = drive_targets(scene, model, setting.drive, start, stop, SWEEP_S, round(SWEEP_S / h))
     if setting.drive == "equality":
-        eq = model.equality(f"drive_{scene.drive_joint}").id
-        tau = max(model.eq_solref[eq, 0], 2 * h)
-        target, setpoint = scene.drive_scale * (x + 2 * tau * (stop - start) * rate / SWEEP_S), model.eq_data[eq]
-        index = 0
+        setpoint, index = model.eq_data[model.equality(f"drive_{scene.drive_joint}").id], 0
     else:
-        target, setpoint = scene.drive_scale * x, data.ctrl
-        index = model.actuator(f"drive_{scene.drive_joint}").id
-    qpos, best, pose = np.empty((n, model.nq)), np.inf, start_pose(scene, branch, start)
+        setpoint, index = data.ctrl, model.actuator(f"drive_{scene.drive_joint}").id
+    qpos, best, pose = np.empty((len(target), model.nq)), np.inf, start_pose(scene, branch, start)
     for _ in range(repeats):
         mujoco.mj_resetData(model, data)
         binds.set_pose(data, pose)

@@ -81,7 +81,11 @@ class Bindings:
 
     def __init__(self, scene: Scene, model: mujoco.MjModel):
         mech = scene.mechanism
-        self.joints = [(j, model.jnt_qposadr[model.joint(j.name).id]) for j in mujoco_joints(mech)]
+        joints = [(j, model.jnt_qposadr[model.joint(j.name).id]) for j in mujoco_joints(mech)]
+        # hinges map one qpos entry to one mechanism angle: moved in one indexed copy (per step of a log)
+        self.hinge_joints = np.array([j.joints[0] for j, _ in joints if j.triad is None], dtype=int)
+        self.hinge_qpos = np.array([adr for j, adr in joints if j.triad is None], dtype=int)
+        self.balls = [(j, adr) for j, adr in joints if j.triad is not None]
         self.drive_qpos = model.jnt_qposadr[model.joint(scene.drive_joint).id]
         pairs = [(model.site(f"{c.joint}_parent_{c.k}").id, model.site(f"{c.joint}_child_{c.k}").id)
                  for c in closures(mech)]  # fmt: skip
@@ -89,13 +93,15 @@ class Bindings:
 
     def set_pose(self, data: mujoco.MjData, q: NDArray[np.float64]) -> None:
         """Write mechanism angles (n_joints,) into qpos (the spanning tree's joints)."""
-        for joint, adr in self.joints:
+        data.qpos[self.hinge_qpos] = q[self.hinge_joints]
+        for joint, adr in self.balls:
             data.qpos[adr : adr + joint.width] = joint.qpos(q)
 
     def angles(self, scene: Scene, qpos: NDArray[np.float64]) -> NDArray[np.float64]:
         """Mechanism angles (n, n_joints) from qpos rows (n, nq); cut joints measured."""
         q = np.zeros((len(qpos), len(scene.mechanism.joints)))
-        for joint, adr in self.joints:
+        q[:, self.hinge_joints] = qpos[:, self.hinge_qpos]
+        for joint, adr in self.balls:
             q[:, list(joint.joints)] = joint.angles(qpos[:, adr : adr + joint.width])
         return scene.mechanism.complete(q)
 
@@ -173,6 +179,24 @@ def track(
     return time.thread_time() - cpu
 
 
+def drive_targets(
+    scene: Scene, model: mujoco.MjModel, drive: str, start: float, stop: float, duration: float, n: int
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """
+    The input x (n,) (rad) of a minimum-jerk sweep start -> stop over `duration` (s) in n steps of the model's
+    timestep, and the setpoints (n,) the drive is given: drive_scale * x for the servo; for the joint-equality
+    drive, x led by its lag 2 tau zeta xdot (tau clamped to refsafe's 2 h), so the joint tracks x.
+    """
+    h = model.opt.timestep
+    shape, rate = ramp(np.clip(h * np.arange(1, n + 1) / duration, 0.0, 1.0))
+    x = start + (stop - start) * shape
+    if drive != "equality":
+        return x, scene.drive_scale * x
+    eq = model.equality(f"drive_{scene.drive_joint}").id
+    tau = max(model.eq_solref[eq, 0], 2 * h)
+    return x, scene.drive_scale * (x + 2 * tau * model.eq_solref[eq, 1] * (stop - start) * rate / duration)
+
+
 def simulate(
     scene: Scene,
     branch: str,
@@ -233,25 +257,19 @@ def simulate(
     if n < 2:
         raise DomainError(f"a sweep of {T + hold:g} s is shorter than two time steps of {h:g} s")
     t = h * np.arange(1, n + 1)
-    shape, rate = ramp(np.clip(t / T, 0.0, 1.0))
-    x = start + (stop - start) * shape
-    xdot = (stop - start) * rate / T
-    scale = scene.drive_scale
+    x, setpoints = drive_targets(scene, model, drive, start, stop, T, n)
     qpos_log = np.empty((n, model.nq))
     contacts = np.zeros(n if drive == "servo" else 0, dtype=np.int64)
     force = np.zeros(n if drive == "servo" else 0)
     with captured_warnings() as messages:
         if drive == "equality":
             eq = model.equality(f"drive_{scene.drive_joint}").id
-            tau = max(model.eq_solref[eq, 0], 2 * h)  # refsafe clamp
-            target = scale * (x + 2 * tau * model.eq_solref[eq, 1] * xdot)  # feed-forward lag
-            cpu = track(model, data, model.eq_data[eq], 0, target, qpos_log)
+            cpu = track(model, data, model.eq_data[eq], 0, setpoints, qpos_log)
         else:
             act = model.actuator(f"drive_{scene.drive_joint}").id
-            target = scale * x
             cpu = time.thread_time()
             for k in range(n):
-                data.ctrl[act] = target[k]
+                data.ctrl[act] = setpoints[k]
                 mujoco.mj_step(model, data)
                 qpos_log[k] = data.qpos
                 contacts[k] = data.ncon

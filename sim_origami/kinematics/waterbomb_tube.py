@@ -520,6 +520,7 @@ class TubeLoops:
     """
 
     layout: TubeLayout
+    pattern: CreasePattern
     crease_names: tuple[str, ...]
     input_crease: str
     couplings: tuple[tuple[str, str], ...]
@@ -535,9 +536,30 @@ class TubeLoops:
 
     def loop_system(self) -> LoopSystem:
         """The tube's closure with the symmetry couplings (`couplings`)."""
+        return self._coupled(self.couplings)
+
+    def _coupled(self, pairs: tuple[tuple[str, str], ...]) -> LoopSystem:
+        """The free closure with couplings rho_a = rho_b for the crease-name pairs."""
         free = self.free_loop_system()
         index = {name: k for k, name in enumerate(self.crease_names)}
-        return LoopSystem(free.n_joints, free.loops, tuple(Coupling(index[a], index[b]) for a, b in self.couplings))
+        return LoopSystem(free.n_joints, free.loops, tuple(Coupling(index[a], index[b]) for a, b in pairs))
+
+    def symmetry_classes(self, q: NDArray[np.float64]) -> tuple[tuple[tuple[str, str], ...], int]:
+        """
+        Couplings from fold samples q (3, n_creases) (rad) of one motion: every spanning-tree crease whose folds at
+        q[1] and q[2] match (to CLASS_TOL) an earlier one's is coupled to the first of its class. Returns the pairs
+        and the coupled closure's mobility at q[0] (1 when the couplings leave exactly that motion).
+        """
+        key = np.round(q[1:] / CLASS_TOL).astype(np.int64)
+        first: dict[tuple[int, int], int] = {}
+        out = []
+        for k in self.pattern.spanning_creases((self.input_crease,)):
+            cls = (int(key[0, k]), int(key[1, k]))
+            if cls in first:
+                out.append((self.crease_names[k], self.crease_names[first[cls]]))
+            else:
+                first[cls] = k
+        return tuple(out), self._coupled(tuple(out)).mobility(q[0])
 
     def loop_input(self) -> tuple[int, float]:
         return self.layout.index(self.input_crease), 1.0
@@ -712,19 +734,7 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
         """
         lo, hi = self.domain
         q = self.folds(lo + (hi - lo) * np.array([0.5, 0.3819660113, 0.6180339887]))
-        key = np.round(q[1:] / CLASS_TOL).astype(np.int64)
-        first: dict[tuple[int, int], int] = {}
-        out = []
-        for k in self.pattern.spanning_creases((self.input_crease,)):
-            cls = (int(key[0, k]), int(key[1, k]))
-            if cls in first:
-                out.append((self.crease_names[k], self.crease_names[first[cls]]))
-            else:
-                first[cls] = k
-        free = self.free_loop_system()
-        index = {name: k for k, name in enumerate(self.crease_names)}
-        coupled = LoopSystem(free.n_joints, free.loops, tuple(Coupling(index[a], index[b]) for a, b in out))
-        dof = coupled.mobility(q[0])
+        out, dof = self.symmetry_classes(q)
         if dof != 1:
             theta = np.rad2deg(np.pi + lo + 0.5 * (hi - lo))
             raise AssemblyError(f"the symmetry couplings leave {dof} degrees of freedom at theta = {theta:.6g} deg; "

@@ -55,13 +55,11 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..closure import Coupling, LoopSystem
 from ..errors import AssemblyError, ParameterError
 from ..geometry import wrap
 from .base import Branch, Event, JointSpaceKinematics, domain_of
 from .waterbomb_tube import BRANCH as CONTRACTION
 from .waterbomb_tube import (
-    CLASS_TOL,
     GRID,
     TubeLayout,
     TubeLoops,
@@ -443,19 +441,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         """
         lo, hi = self.tilts
         q = twist_folds(self.layout, lo + (hi - lo) * np.array([0.3, 0.2, 0.7]))
-        key = np.round(q[1:] / CLASS_TOL).astype(np.int64)
-        first: dict[tuple[int, int], int] = {}
-        out = []
-        for k in self.pattern.spanning_creases((self.input_crease,)):
-            cls = (int(key[0, k]), int(key[1, k]))
-            if cls in first:
-                out.append((self.crease_names[k], self.crease_names[first[cls]]))
-            else:
-                first[cls] = k
-        free = self.free_loop_system()
-        index = {name: k for k, name in enumerate(self.crease_names)}
-        coupled = LoopSystem(free.n_joints, free.loops, tuple(Coupling(index[a], index[b]) for a, b in out))
-        dof = coupled.mobility(q[0])
+        out, dof = self.symmetry_classes(q)
         if dof != 1:
             raise AssemblyError(f"the twist's couplings leave {dof} degrees of freedom at zeta = "
                                 f"{np.rad2deg(lo + 0.3 * (hi - lo)):.6g} deg; the twist needs 1")  # fmt: skip
