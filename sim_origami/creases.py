@@ -44,12 +44,17 @@ class Crease:
 
 @dataclass(frozen=True)
 class CreasePattern:
-    """Vertices (n, 2) m, counter-clockwise faces (vertex indices), creases and face names."""
+    """
+    Vertices (n, 2) m, counter-clockwise faces (vertex indices), creases and face names; `border_heights`
+    (start, end, height m) are hinge heights on border edges that are creases of a neighbouring cell (a
+    periodic cell's thick panels take their shape from them; they are not joints here).
+    """
 
     vertices: NDArray[np.float64]
     faces: tuple[tuple[int, ...], ...]
     creases: tuple[Crease, ...]
     face_names: tuple[str, ...]
+    border_heights: tuple[tuple[int, int, float], ...] = ()
 
     def __post_init__(self):
         if len(self.face_names) != len(self.faces):
@@ -102,6 +107,13 @@ class CreasePattern:
         """Frame (4, 4) on the hinge line: origin above `start` at `height`, z along start -> end."""
         x, y = self.vertices[crease.start]
         return frame_along(self.direction(crease), (x, y, crease.height))
+
+    def edge_heights(self, face: int) -> NDArray[np.float64]:
+        """Hinge height (m) on each edge of face `face` (edge i from its vertex i to i+1); NaN on a free border."""
+        known = {frozenset((c.start, c.end)): c.height for c in self.creases}
+        known |= {frozenset((a, b)): h for a, b, h in self.border_heights}
+        loop = self.faces[face]
+        return np.array([known.get(frozenset(e), np.nan) for e in zip(loop, loop[1:] + loop[:1], strict=True)])
 
     def touching_faces(self) -> tuple[tuple[str, str], ...]:
         """Pairs of faces that share a vertex (so touch in every pose), sorted by face order."""

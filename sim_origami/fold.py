@@ -24,7 +24,9 @@ angles from its own or inherited (`frame_inherit`, `frame_parent`) `edges_foldAn
 key frame's `edges_vertices`; other frame fields are not read.
 
 Thick panels. The custom per-edge field `edges_sim_origami:hingeHeight` (FOLD's `edges_<namespace>:...`
-form for custom edge data, lengths in `frame_unit`) gives Crease.height along +z; absent means 0.
+form for custom edge data, lengths in `frame_unit`) gives Crease.height along +z; absent means 0. On border
+("B") edges it is the height of a neighbouring cell's hinge there (`CreasePattern.border_heights`, which shape
+thick panels), or null where there is none.
 """
 
 import json
@@ -85,11 +87,13 @@ def read_fold(source: str | os.PathLike | Mapping[str, Any]) -> FoldPattern:
     letters = _assignments(doc["edges_assignment"], len(edges))
     faces, seen_from_below = _faces(doc["faces_vertices"], xy)
     _check_incidence(edges, letters, faces)
-    heights = scale * _per_edge(doc[HEIGHT_KEY], len(edges), HEIGHT_KEY) if HEIGHT_KEY in doc else np.zeros(len(edges))
+    heights = scale * _heights(doc[HEIGHT_KEY], letters) if HEIGHT_KEY in doc else np.zeros(len(edges))
     table = DOWN if seen_from_below else UP
     crease_edges = tuple(k for k, letter in enumerate(letters) if letter in table)
     creases = tuple(Crease(f"e{k}", *edges[k], table[letters[k]], float(heights[k])) for k in crease_edges)
-    pattern = CreasePattern(xy, tuple(faces), creases, tuple(f"f{k}" for k in range(len(faces))))
+    border = tuple((*edges[k], float(heights[k])) for k, letter in enumerate(letters)
+                   if letter == "B" and np.isfinite(heights[k]))  # fmt: skip
+    pattern = CreasePattern(xy, tuple(faces), creases, tuple(f"f{k}" for k in range(len(faces))), border)
     _check_developable(pattern)
     sign = -1.0 if seen_from_below else 1.0
     angles = _degrees(doc["edges_foldAngle"], len(edges), "edges_foldAngle") if "edges_foldAngle" in doc else None
@@ -133,8 +137,9 @@ def fold_dict(
         "edges_foldAngle": _fold_degrees(key, n, "fold_angles") + pad,
         "faces_vertices": [[int(v) for v in face] for face in pattern.faces],
     }
-    if any(c.height != 0.0 for c in pattern.creases):
-        doc[HEIGHT_KEY] = [float(c.height) for c in pattern.creases] + pad
+    if any(c.height != 0.0 for c in pattern.creases) or any(h != 0.0 for *_, h in pattern.border_heights):
+        known = {frozenset((a, b)): float(h) for a, b, h in pattern.border_heights}
+        doc[HEIGHT_KEY] = [float(c.height) for c in pattern.creases] + [known.get(frozenset(e)) for e in boundary]
     if len(rows):
         doc["file_frames"] = [
             {
@@ -184,13 +189,13 @@ def _unit_scale(unit: Any) -> float:
     return UNITS[unit]
 
 
-def _numbers(value: Any, field: str) -> NDArray[np.float64]:
-    """A FOLD number array as floats; every entry must be a finite number."""
+def _numbers(value: Any, field: str, allow_nan: bool = False) -> NDArray[np.float64]:
+    """A FOLD number array as floats; every entry must be a finite number (or NaN, if allowed)."""
     try:
         out = np.asarray(value, dtype=float)
     except (TypeError, ValueError) as err:
         raise ParameterError(f"{field} must hold numbers only ({err})") from err
-    bad = np.argwhere(~np.isfinite(out))
+    bad = np.argwhere(~np.isfinite(out) & ~(allow_nan & np.isnan(out)))
     if len(bad):
         at = tuple(int(i) for i in bad[0])
         raise ParameterError(f"{field}{list(at)} = {out[at]}; numbers must be finite")
@@ -203,6 +208,16 @@ def _per_edge(value: Any, n_edges: int, field: str) -> NDArray[np.float64]:
     if out.shape != (n_edges,):
         raise ParameterError(f"{field} has shape {out.shape}; it needs one number per edge ({n_edges})")
     return out
+
+
+def _heights(value: Any, letters: list[str]) -> NDArray[np.float64]:
+    """The hinge-height field (n_edges,): numbers, null (NaN) allowed on border edges only."""
+    if not isinstance(value, list) or len(value) != len(letters):
+        raise ParameterError(f"{HEIGHT_KEY} needs one entry per edge ({len(letters)})")
+    for k, (entry, letter) in enumerate(zip(value, letters, strict=True)):
+        if entry is None and letter != "B":
+            raise ParameterError(f"{HEIGHT_KEY}[{k}] is null on a {letter!r} edge; only border edges may have no hinge")
+    return _numbers([np.nan if entry is None else entry for entry in value], HEIGHT_KEY, allow_nan=True)
 
 
 def _degrees(value: Any, n_edges: int, field: str) -> NDArray[np.float64]:

@@ -8,12 +8,13 @@ Every body frame is the world frame of the flat sheet.
 """
 
 import numpy as np
+import trimesh
 from numpy.typing import ArrayLike
 
 from .creases import CreasePattern
 from .geometry import frame_along
 from .mechanism import Body, Joint, Mechanism
-from .solids import inset_outline, prism, sector_outline
+from .solids import hinge_hull, inset_outline, prism, sector_outline
 
 # Panel colours by index (Menagerie-like muted palette), RGBA.
 PALETTE = (
@@ -111,6 +112,13 @@ def vertex_mechanism(
     return Mechanism(tuple(bodies), tuple(joints), f"panel_{root}", tuple(names[k - 1] for k in keep))
 
 
+def _face_solid(outline: np.ndarray, heights: np.ndarray, nominal: float) -> trimesh.Trimesh:
+    """A face's solid: its hinge hull if its hinges sit at several heights, else a plate `nominal` m thick."""
+    if np.nanmax(heights) > np.nanmin(heights):
+        return hinge_hull(outline, heights)
+    return prism(outline, nominal)
+
+
 def pattern_mechanism(
     pattern: CreasePattern,
     *,
@@ -124,27 +132,24 @@ def pattern_mechanism(
     A crease pattern as a mechanism: faces as bodies (frames = the flat sheet's world frame), creases as
     hinges on their hinge lines (`creases` module for signs), a spanning tree from `root`.
 
-    Faces are slabs between the lowest and the highest hinge on their edges (thick panels), or nominal
-    plates of NOMINAL_THICKNESS x the longest crease when all their hinges lie in the sheet. With
-    `collision_inset` (m) they also carry a collision solid: the same slab inset by that much from every
-    edge, so that neighbours touch only when folded onto each other. `anchors` are where a cut crease is
-    closed, as fractions of its length from its start; the default keeps clear of the start vertex, which
-    may be a point that no fold moves (a connect there has a zero Jacobian, and MuJoCo drops its rows).
+    Faces whose hinges sit at several heights (thick panels) are the convex hulls of their edges lifted to
+    their hinge heights (`solids.hinge_hull`, border edges at `pattern.border_heights`), so every hinge line
+    lies on its panel's surface; faces flat in the sheet are nominal plates of NOMINAL_THICKNESS x the
+    longest crease. With `collision_inset` (m) they also carry a collision solid: the same solid built on
+    the outline inset by that much from every edge, so that neighbours touch only when folded onto each
+    other. `anchors` are where a cut crease is closed, as fractions of its length from its start; the
+    default keeps clear of the start vertex, which may be a point that no fold moves (a connect there has
+    a zero Jacobian, and MuJoCo drops its rows).
     """
     nominal = NOMINAL_THICKNESS * max(pattern.length(c) for c in pattern.creases)
-    heights: dict[str, list[float]] = {name: [] for name in pattern.face_names}
-    for crease in pattern.creases:
-        for face in pattern.crease_faces(crease):
-            heights[face].append(crease.height)
     bodies = []
     for k, (name, face) in enumerate(zip(pattern.face_names, pattern.faces, strict=True)):
-        low, high = min(heights[name], default=0.0), max(heights[name], default=0.0)
         outline = pattern.vertices[list(face)]
-        slab = (high - low, low) if high > low else (nominal, None)
+        heights = pattern.edge_heights(k)
         collision = None
         if collision_inset is not None:
-            collision = prism(inset_outline(outline, np.full(len(outline), collision_inset)), *slab)
-        bodies.append(Body(name, prism(outline, *slab), collision, PALETTE[k % len(PALETTE)]))
+            collision = _face_solid(inset_outline(outline, np.full(len(face), collision_inset)), heights, nominal)
+        bodies.append(Body(name, _face_solid(outline, heights, nominal), collision, PALETTE[k % len(PALETTE)]))
     joints = []
     for crease in pattern.creases:
         parent, child = pattern.crease_faces(crease)

@@ -1,8 +1,9 @@
-"""Panel solids: convex prisms built with trimesh.
+"""Panel solids: convex prisms and hinge hulls built with trimesh.
 
 Outlines are (k, 2) convex polygons, counter-clockwise, in the plane z = 0 of the body frame; a
-prism spans z in [-thickness/2, +thickness/2] (mid-surface on the crease plane). MuJoCo computes
-mass and inertia of such a convex mesh exactly as trimesh does (checked in tests).
+prism spans z in [-thickness/2, +thickness/2] (mid-surface on the crease plane), a hinge hull is the
+convex hull of the outline's edges lifted to their hinge heights. MuJoCo computes mass and inertia
+of such a convex mesh exactly as trimesh does (checked in tests).
 """
 
 import numpy as np
@@ -62,3 +63,17 @@ def prism(outline: ArrayLike, thickness: float, bottom: float | None = None) -> 
         j = (i + 1) % k
         sides += [[i, j, k + j], [i, k + j, k + i]]
     return trimesh.Trimesh(vertices, np.array(bottom + top + sides), process=False)
+
+
+def hinge_hull(outline: ArrayLike, heights: ArrayLike) -> trimesh.Trimesh:
+    """
+    Convex hull of the edges of a convex CCW outline (k, 2), edge i (vertex i -> i+1) lifted to height
+    heights[i] (m; NaN: an edge with no hinge, left out): a thick panel whose every hinge line lies on
+    its surface, whatever the heights (a slab between the lowest and highest hinge buries the middle
+    ones). trimesh's hull runs on scipy's qhull.
+    """
+    p = np.asarray(outline, dtype=float)
+    h = np.asarray(heights, dtype=float)
+    ends = np.stack([p, np.roll(p, -1, axis=0)], 1)[np.isfinite(h)]  # (edges, 2, 2)
+    points = np.concatenate([ends, np.broadcast_to(h[np.isfinite(h)][:, None, None], (len(ends), 2, 1))], -1)
+    return trimesh.convex.convex_hull(points.reshape(-1, 3))

@@ -22,9 +22,9 @@ from sim_origami.kinematics.waterbomb import (
 )
 from sim_origami.kinematics.waterbomb_sheet import WaterbombSheet
 from sim_origami.report import FOLD_FRAMES, write
-from sim_origami.simulate import simulate
+from sim_origami.simulate import contact_distance, simulate
 from sim_origami.tolerances import TOLERANCES
-from sim_origami.validation import validate
+from sim_origami.validation import run_blockage, validate
 
 DEG = np.pi / 180
 # The seed prints 4 decimals (deg): half a unit of the last digit, in radians.
@@ -197,6 +197,45 @@ def test_bad_thickness_is_refused():
         scenes.get("waterbomb-thick").build(mu=0.0)
 
 
+def test_thick_panels_carry_every_hinge_line_on_their_surface():
+    """Each face is the hull of its hinge lines: both ends of every hinge are vertices of both panels' solids
+    (a slab between a face's lowest and highest hinge buries B2 inside face A12)."""
+    scene = scenes.get("waterbomb-thick").build()
+    pattern, bodies = scene.pattern, {b.name: b for b in scene.mechanism.bodies}
+    for crease in pattern.creases:
+        ends = np.array([[*pattern.vertices[v], crease.height] for v in (crease.start, crease.end)])
+        for face in pattern.crease_faces(crease):
+            gaps = np.min(np.linalg.norm(bodies[face].solid.vertices[None] - ends[:, None], axis=-1), axis=1)
+            assert np.max(gaps) <= 1e-12, (crease.name, face)
+
+
+def _closest_approach(alpha_deg: float, beta_deg: float) -> float:
+    scene = scenes.get("waterbomb-thick").build(alpha=alpha_deg * DEG, beta=beta_deg * DEG)
+    return float(np.min(contact_distance(scene, LINE, np.linspace(-0.005, -3.14, 315))))
+
+
+def test_thick_panels_interfere_only_for_alpha_above_45_degrees():
+    """Seed 000 section 5.4: "to avoid the interference at vertex A, 0 < alpha <= pi/4" (a collision claim
+    the digest could not test). Faces sharing no vertex, down to rho_A4 = -3.14 on path I: closest approach
+    measured 7.1e-2 m at the defaults (40/40), 1.35e-2 at 44.5/30, 5.7e-4 at 45/30, overlap -3.2e-3 at 45.5/30
+    (faces A43 and B12), the same threshold for beta 20-40, mu 0.5-2 and a 0.005-0.05."""
+    assert _closest_approach(40.0, 40.0) > 0.05
+    assert _closest_approach(44.5, 30.0) > 0.01
+    assert _closest_approach(45.5, 30.0) < -0.002
+
+
+def test_thick_interference_stops_a_force_limited_drive_at_the_contact():
+    """alpha = 50 deg: the panels touch at rho_A4 = -2.2289 on path I, where the servo stops (measured
+    1.5e-4 rad from it); at the defaults it folds on to the stacked end, -pi (stopped 3e-5 past it)."""
+    blocked, _ = run_blockage(scenes.get("waterbomb-thick").build(alpha=50 * DEG, beta=30 * DEG), LINE)
+    assert blocked.stopped and blocked.drive_saturated
+    assert blocked.contact_input == pytest.approx(-2.2289, abs=1e-3)
+    assert blocked.error <= TOLERANCES.blockage_rad
+    free, _ = run_blockage(scenes.get("waterbomb-thick").build(), LINE)
+    assert not free.stopped and np.isnan(free.contact_input)
+    assert free.stop_input == pytest.approx(-np.pi, abs=1e-3)
+
+
 def test_report_exports_the_simulated_motion_as_a_multi_frame_fold_file():
     scene = scenes.get("waterbomb-thick").build()
     report = validate(scene)
@@ -208,6 +247,12 @@ def test_report_exports_the_simulated_motion_as_a_multi_frame_fold_file():
     # creases come back in the pattern's order (named e<k>) with the hinge heights of the thick cell
     np.testing.assert_allclose(fold.frames[-1], q[-1, columns], atol=1e-12, rtol=0)
     assert [c.height for c in fold.pattern.creases] == [c.height for c in scene.pattern.creases]
+
+    # and the border edges' hinge heights (the periodic neighbours' creases), which shape the panels
+    def borders(pattern):
+        return {frozenset((a, b)): h for a, b, h in pattern.border_heights}
+
+    assert len(scene.pattern.border_heights) == 8 and borders(fold.pattern) == borders(scene.pattern)
     assert fold.pattern.loop_system().residual_norm(fold.frames).max() <= TOLERANCES.fast_residual_m
 
 

@@ -100,7 +100,35 @@ def unit_cell(alpha: float, beta: float, t: float, mu: float | None = None, a: f
         Crease("B1", B, Aup, "M", 0.0), Crease("B2", B, C, "M", m), Crease("B4", B, Cr, "M", low),
         Crease("B5", B, Ar, "V", s), Crease("B6", B, Crt, "M", m),
     )  # fmt: skip
-    return CreasePattern(v, faces, creases, FACES)
+    lattice = (v[Ar] - v[A], v[Aup] - v[A])  # the next base to the right, the next row's base
+    return CreasePattern(v, faces, creases, FACES, periodic_heights(v, faces, creases, lattice))
+
+
+def periodic_heights(
+    vertices: NDArray[np.float64],
+    faces: tuple[tuple[int, ...], ...],
+    creases: tuple[Crease, ...],
+    lattice: tuple[NDArray[np.float64], NDArray[np.float64]],
+) -> tuple[tuple[int, int, float], ...]:
+    """
+    (start, end, height) of every border edge of a periodic cell: the height of the crease it is a copy of,
+    translated by a lattice vector i L1 + j L2 (|i|, |j| <= 2); ParameterError unless that height is unique.
+    """
+    inside = {frozenset((c.start, c.end)) for c in creases}
+    shifts = [i * lattice[0] + j * lattice[1] for i in range(-2, 3) for j in range(-2, 3)]
+    out = []
+    for face in faces:
+        for a, b in zip(face, face[1:] + face[:1], strict=True):
+            if frozenset((a, b)) in inside:
+                continue
+            edge = vertices[[a, b]]
+            copies = [c.height for c in creases for d in shifts for ends in ([c.start, c.end], [c.end, c.start])
+                      if np.allclose(vertices[ends] + d, edge, atol=1e-9)]  # fmt: skip
+            if len(set(copies)) != 1:
+                raise ParameterError(f"border edge {a}-{b} of the periodic cell copies {len(copies)} creases "
+                                     f"(heights {sorted(set(copies))}); it must copy exactly one height")  # fmt: skip
+            out.append((a, b, copies[0]))
+    return tuple(out)
 
 
 def a_fold(alpha: float, x: NDArray) -> NDArray:

@@ -5,18 +5,25 @@ periodic copies B1 = A4 and B5 = A6 as joint couplings, driven at crease A4. The
 carries the seed's symmetry couplings (A3 = A5 = A6 = A2, B6 = B2) and has four branches from flat; the thick
 cell (hinges on panel surfaces) carries none and has one, path I, with the same fold angles: the thick
 model is kinematically equivalent to the zero-thickness path I and loses the bifurcation.
-Thick faces are slabs spanning their hinges' heights, for inertia and rendering; they carry no collision
-solids: the seed's panel placement (Fig. 5-8) is lost, and such slabs, inset 1e-3 m from every edge, already
-interpenetrate around vertex B (faces B45/B61 and A32/B12) at rho_A4 = -0.537 rad, where the seed reports no
-interference for alpha <= 45 deg, so a contact "blockage" there would be an artefact of the reconstruction.
+Thick faces are the convex hulls of their hinge lines (`solids.hinge_hull`; border edges at the height of the
+periodic neighbour's crease): Fig. 5-8's panel placement is lost, and a slab between a face's lowest and
+highest hinge would bury the middle hinge (B2 in face A12), so each hull keeps every hinge on its surface.
+Faces that share no vertex collide (solids inset RELIEF x a from every edge). They never touch on path I of
+the defaults (closest 0.071 m, down to rho_A4 = -3.14); they touch first for alpha > 45 deg, faces A43 and
+B12, at rho_A4 = -3.14 (alpha 45.5), -2.83 (46), -2.23 (50), -1.78 (55), for every beta, mu and a tried
+(beta 20-40, mu 0.5-2, a 0.005-0.05): the seed's "to avoid the interference at vertex A, 0 < alpha <= pi/4"
+(seed 000 section 5.4), which the digest lists as an unverified collision claim.
 `waterbomb-sheet` is the zero-thickness tessellation of rows x cols bases (`kinematics.waterbomb_sheet`): every
 crease folds as its type in the cell, checked by the sheet's own closure at A, B and C vertices.
 """
 
-from ..kinematics.waterbomb import Waterbomb
+import itertools
+
+from ..kinematics.waterbomb import FACES, Waterbomb
 from ..kinematics.waterbomb_sheet import WaterbombSheet
 from .base import Param, Scene, register
 from .patterns import pattern_scene
+from .thick_vertex4 import RELIEF
 
 ANGLES = (
     Param("alpha", "deg", 40.0, "design angle alpha (sector at A next to the vertical creases)"),
@@ -42,7 +49,7 @@ SWEEP_TIME_SCALE = 16.0
 ROOT, DRIVE = "A12", "A4"
 
 
-def _scene(name: str, kinematics: Waterbomb, params: dict[str, float], notes: str) -> Scene:
+def _scene(name: str, kinematics: Waterbomb, params: dict[str, float], notes: str, **contact) -> Scene:
     couplings = tuple((a, b, 1.0) for a, b in kinematics.couplings)
     return pattern_scene(
         name,
@@ -56,6 +63,7 @@ def _scene(name: str, kinematics: Waterbomb, params: dict[str, float], notes: st
         sweep_time_scale=SWEEP_TIME_SCALE,
         preset=PRESET,
         notes=notes,
+        **contact,
     )
 
 
@@ -71,10 +79,15 @@ def build_vertex(alpha: float, beta: float, t: float) -> Scene:
 @register("waterbomb-thick", "symmetric waterbomb cell with thick panels: two plane-symmetric Bricard linkages "
           "(seed 000 M9), input rho_A4", ANGLES + THICK)  # fmt: skip
 def build_thick(alpha: float, beta: float, t: float, mu: float, a: float) -> Scene:
+    kinematics = Waterbomb(alpha, beta, t, mu, a)
+    touching = set(kinematics.pattern.touching_faces())
     return _scene(
-        "waterbomb-thick", Waterbomb(alpha, beta, t, mu, a), {"alpha": alpha, "beta": beta, "t": t, "mu": mu, "a": a},
+        "waterbomb-thick", kinematics, {"alpha": alpha, "beta": beta, "t": t, "mu": mu, "a": a},
         "couplings: periodic B1 = A4, B5 = A6 only; hinge heights (2 + mu) a on A's valleys, (1 + mu) a on B2, B6, "
-        "2 a on B4; qpos = fold angle of the zero-thickness cell",
+        "2 a on B4; qpos = fold angle of the zero-thickness cell; panels are hinge hulls, faces sharing no vertex "
+        "collide",
+        collision_inset=RELIEF * a,
+        contact_pairs=tuple(p for p in itertools.combinations(FACES, 2) if p not in touching),
     )  # fmt: skip
 
 

@@ -75,7 +75,7 @@ def tube_pattern(kinematics: WaterbombTube) -> TubePattern:
     """The tube's strip (`kinematics.pattern`) with its seam vertices identified (`TubePattern`)."""
     strip = kinematics.pattern
     keys = tuple(int(k) for k in kinematics.layout.strip_keys)
-    return TubePattern(strip.vertices, strip.faces, strip.creases, strip.face_names, keys)
+    return TubePattern(strip.vertices, strip.faces, strip.creases, strip.face_names, strip_keys=keys)
 
 
 def seam_joints(pattern: CreasePattern, kinematics: WaterbombTube) -> tuple[Joint, ...]:
