@@ -1,5 +1,6 @@
 """Disjoint sets (union-find) and Kruskal spanning forests: the one implementation every layer uses (no imports)."""
 
+from collections import deque
 from collections.abc import Hashable, Iterable, Sequence
 
 
@@ -29,12 +30,39 @@ class DisjointSets:
 
 
 def spanning_edges(nodes: Iterable[Hashable], edges: Sequence[tuple[Hashable, Hashable]],
-                   prefer: Iterable[int] = ()) -> list[int]:  # fmt: skip
+                   prefer: Iterable[int] = (), root: Hashable | None = None) -> list[int]:  # fmt: skip
     """
     Indices of the edges of a spanning forest, Kruskal in edge order with the edges in `prefer` taken first (so
     they are never left out unless they close a cycle among themselves). Sorted by index.
+
+    With a `root`, the other edges go in order of their nearer end's breadth-first depth from it: a shortest-path
+    tree, as shallow as the graph allows (short loops through the tree).
     """
+    nodes = list(nodes)
     first = set(prefer)
+    depth = breadth_first_depths(nodes, edges, root) if root is not None else {}
     sets = DisjointSets(nodes)
-    order = sorted(range(len(edges)), key=lambda i: (i not in first, i))
-    return sorted(i for i in order if sets.union(*edges[i]))
+
+    def rank(i: int) -> tuple:
+        near = min(depth.get(edges[i][0], 0), depth.get(edges[i][1], 0))
+        return (i not in first, near, i)
+
+    return sorted(i for i in sorted(range(len(edges)), key=rank) if sets.union(*edges[i]))
+
+
+def breadth_first_depths(
+    nodes: Iterable[Hashable], edges: Sequence[tuple[Hashable, Hashable]], root: Hashable
+) -> dict[Hashable, int]:
+    """Edge count of the shortest path from `root` to every node it reaches."""
+    neighbours: dict[Hashable, list[Hashable]] = {n: [] for n in nodes}
+    for a, b in edges:
+        neighbours[a].append(b)
+        neighbours[b].append(a)
+    depth, queue = {root: 0}, deque([root])
+    while queue:
+        n = queue.popleft()
+        for m in neighbours[n]:
+            if m not in depth:
+                depth[m] = depth[n] + 1
+                queue.append(m)
+    return depth

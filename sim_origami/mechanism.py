@@ -109,13 +109,17 @@ class TreeEdge:
 
 @dataclass(frozen=True)
 class Mechanism:
-    """Bodies and joints; `root` is fixed to the world, joints in `keep` and in couplings stay in the tree."""
+    """
+    Bodies and joints; `root` is fixed to the world, joints in `keep` and in couplings stay in the tree;
+    `breadth_first` picks a shortest-path spanning tree from the root (else Kruskal in joint order).
+    """
 
     bodies: tuple[Body, ...]
     joints: tuple[Joint, ...]
     root: str
     keep: tuple[str, ...] = field(default=())
     couplings: tuple[tuple[str, str, float], ...] = field(default=())
+    breadth_first: bool = False
 
     def __post_init__(self):
         names = [b.name for b in self.bodies]
@@ -146,14 +150,16 @@ class Mechanism:
         """
         Spanning-tree edges in breadth-first order from the root.
 
-        Joints are taken Kruskal-style, those in `keep` or a coupling first, so they are not cut;
-        the chosen joints are then oriented breadth-first from the root.
+        Joints are taken Kruskal-style, those in `keep` or a coupling first, so they are not cut, then in
+        joint order or (`breadth_first`) nearest the root first; the chosen joints are oriented breadth-first
+        from the root.
         """
         names = [b.name for b in self.bodies]
         wanted = set(self.keep) | {name for c in self.couplings for name in c[:2]}
         wanted |= {j.name for j in self.joints if j.ball and not j.name.endswith("_z")}  # a ball cuts at its last
         prefer = [i for i, j in enumerate(self.joints) if j.name in wanted]
-        chosen = set(spanning_edges(names, [(j.parent, j.child) for j in self.joints], prefer))
+        root = self.root if self.breadth_first else None
+        chosen = set(spanning_edges(names, [(j.parent, j.child) for j in self.joints], prefer, root))
         seen, edges, queue = {self.root}, [], deque([self.root])
         while queue:
             body = queue.popleft()
@@ -268,7 +274,7 @@ class Mechanism:
         for name, (ix, _, iz) in self.balls.items():
             joints.append(Joint(name, self.joints[ix].parent, self.joints[iz].child, *self.ball_frames(name), (0.0,)))
         bodies = tuple(b for b in self.bodies if not b.spacer)
-        return Mechanism(bodies, tuple(joints), self.root, self.keep, self.couplings)
+        return Mechanism(bodies, tuple(joints), self.root, self.keep, self.couplings, self.breadth_first)
 
     def angles_from_poses(self, poses: dict[str, ArrayLike]) -> NDArray[np.float64]:
         """

@@ -50,12 +50,17 @@ def template(name: str) -> ET.Element:
     return ET.fromstring(text, parser=parser)
 
 
+def preset_number(preset: str, name: str) -> float:
+    """A number (custom numeric `name`) stated by a preset template."""
+    for numeric in template(f"options/{preset}.xml").iter("numeric"):
+        if numeric.get("name") == name:
+            return float(numeric.get("data"))
+    raise KeyError(f"preset {preset} has no {name}")
+
+
 def preset_duration(preset: str) -> float:
     """Sweep duration (s) stated by a preset template."""
-    for numeric in template(f"options/{preset}.xml").iter("numeric"):
-        if numeric.get("name") == "sweep_duration":
-            return float(numeric.get("data"))
-    raise KeyError(f"preset {preset} has no sweep_duration")
+    return preset_number(preset, "sweep_duration")
 
 
 def _fmt(values) -> str:

@@ -127,10 +127,12 @@ def pattern_mechanism(
     couplings: tuple[tuple[str, str, float], ...] = (),
     anchors: tuple[float, ...] = (0.5, 1.0),
     collision_inset: float | None = None,
+    breadth_first: bool = False,
 ) -> Mechanism:
     """
     A crease pattern as a mechanism: faces as bodies (frames = the flat sheet's world frame), creases as
-    hinges on their hinge lines (`creases` module for signs), a spanning tree from `root`.
+    hinges on their hinge lines (`creases` module for signs), a spanning tree from `root` (shortest-path with
+    `breadth_first`, see `Mechanism`).
 
     Faces whose hinges sit at several heights (thick panels) are the convex hulls of their edges lifted to
     their hinge heights (`solids.hinge_hull`, border edges at `pattern.border_heights`), so every hinge line
@@ -156,4 +158,4 @@ def pattern_mechanism(
         frame = pattern.hinge_frame(crease)
         span = pattern.length(crease)
         joints.append(Joint(crease.name, parent, child, frame, frame, tuple(a * span for a in anchors)))
-    return Mechanism(tuple(bodies), tuple(joints), root, keep, couplings)
+    return Mechanism(tuple(bodies), tuple(joints), root, keep, couplings, breadth_first)

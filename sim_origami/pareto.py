@@ -23,9 +23,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .checks.paths import compare
-from .mjcf import ModelOptions, build_xml, template
+from .mjcf import ModelOptions, build_xml, preset_number, template
 from .scenes.base import Scene
-from .simulate import Bindings, drive_targets, simulate, start_pose, track
+from .simulate import Bindings, drive_targets, scale_regularization, simulate, start_pose, track
 
 INTEGRATORS = {"RK4": mujoco.mjtIntegrator.mjINT_RK4, "Euler": mujoco.mjtIntegrator.mjINT_EULER,
                "implicitfast": mujoco.mjtIntegrator.mjINT_IMPLICITFAST}  # fmt: skip
@@ -47,6 +47,7 @@ class Setting:
     solimp: tuple[float, ...]
     closure: str = "connect2"
     drive: str = "equality"
+    regularization: float = 1.0  # scale on MuJoCo's constraint regulariser R (simulate.scale_regularization)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -66,7 +67,8 @@ def preset_setting(name: str) -> Setting:
     root = template(f"options/{name}.xml")
     option, closure = root.find("option"), root.find(".//default[@class='closure']/equality")
     tau, solimp = float(closure.get("solref").split()[0]), tuple(float(v) for v in closure.get("solimp").split())
-    return Setting(f"preset {name}", option.get("integrator"), float(option.get("timestep")), tau, solimp)
+    return Setting(f"preset {name}", option.get("integrator"), float(option.get("timestep")), tau, solimp,
+                   regularization=preset_number(name, "regularization_scale"))  # fmt: skip
 
 
 PRESETS = {name: preset_setting(name) for name in ("fast", "stiff")}
@@ -75,16 +77,19 @@ PRESETS = {name: preset_setting(name) for name in ("fast", "stiff")}
 def settings(closures: tuple[str, ...] = ("connect2", "connect1"), drives: tuple[str, ...] = ("equality", "servo"),
              quick: bool = False) -> Iterator[Setting]:  # fmt: skip
     """
-    MuJoCo's defaults, the presets, then every integrator x step x tau (solimp 0.9999) with the default closure and
-    drive, then each other closure type and drive at the presets' settings. `quick`: RK4 and Euler only, three steps.
+    MuJoCo's defaults, the presets, then every integrator x step x tau (solimp 0.9999, the presets' regulariser
+    scale) with the default closure and drive, then each other closure type and drive at the presets' settings, and
+    the presets with MuJoCo's own regulariser (scale 1). `quick`: RK4 and Euler only, three steps.
     """
     yield DEFAULTS
     yield from PRESETS.values()
     integrators = ("RK4", "Euler") if quick else tuple(INTEGRATORS)
     steps = (1.25, 2.5, 5.0) if quick else STEPS_MS
     for name, h_ms, k in itertools.product(integrators, steps, TAU_OVER_H):
-        yield Setting(f"{name} h={h_ms:g}ms tau={k}h", name, h_ms / 1000, k * h_ms / 1000, HIGH_IMPEDANCE)
+        yield Setting(f"{name} h={h_ms:g}ms tau={k}h", name, h_ms / 1000, k * h_ms / 1000, HIGH_IMPEDANCE,
+                      regularization=PRESETS["fast"].regularization)  # fmt: skip
     for preset, base in PRESETS.items():
+        yield dataclasses.replace(base, label=f"{preset}, MuJoCo's regulariser", regularization=1.0)
         for closure in closures[1:]:
             yield dataclasses.replace(base, label=f"{preset}, {closure}", closure=closure)
         for drive in drives[1:]:
@@ -107,6 +112,7 @@ def model_for(scene: Scene, setting: Setting) -> mujoco.MjModel:
     model = mujoco.MjModel.from_xml_string(build_xml(scene, ModelOptions(preset="fast", drive=setting.drive)))
     model.opt.integrator, model.opt.timestep = INTEGRATORS[setting.integrator], setting.h
     model.eq_solref[:, 0], model.eq_solimp[:] = setting.tau, setting.solimp
+    scale_regularization(model, setting.regularization)
     return model
 
 

@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .errors import DomainError, SimulationError
-from .mjcf import ModelOptions, build_xml, closures, mujoco_joints, preset_duration
+from .mjcf import ModelOptions, build_xml, closures, mujoco_joints, preset_duration, preset_number
 from .scenes.base import Scene
 
 # Closure residual is measured on at most this many samples of a run (after mj_kinematics each).
@@ -71,9 +71,20 @@ def captured_warnings():
 
 
 def compile_model(scene: Scene, options: ModelOptions) -> tuple[mujoco.MjModel, mujoco.MjData]:
-    """Compile the scene's MJCF for these options."""
+    """Compile the scene's MJCF for these options, with the preset's regularisation scale applied."""
     model = mujoco.MjModel.from_xml_string(build_xml(scene, options))
+    scale_regularization(model, preset_number(options.preset, "regularization_scale"))
     return model, mujoco.MjData(model)
+
+
+def scale_regularization(model: mujoco.MjModel, scale: float) -> None:
+    """
+    Multiply every constraint row's regulariser R = (1 - d) / d x diagApprox by `scale`, through the inverse
+    weights diagApprox is read from (body_invweight0: connects and contacts; dof_invweight0: joint equalities).
+    MuJoCo caps the impedance d at 0.9999; scale 0.01 acts as d = 0.999999 (mjcf_templates/options/).
+    """
+    model.body_invweight0[:] *= scale
+    model.dof_invweight0[:] *= scale
 
 
 class Bindings:

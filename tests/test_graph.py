@@ -1,7 +1,7 @@
 """Union-find and Kruskal spanning forests (`sim_origami.graph`), shared by the mechanism tree, crease patterns and
 the truss builder."""
 
-from sim_origami.graph import DisjointSets, spanning_edges
+from sim_origami.graph import DisjointSets, breadth_first_depths, spanning_edges
 
 
 def test_disjoint_sets_merge_once_and_keep_the_smallest_item_as_root():
@@ -15,3 +15,13 @@ def test_spanning_edges_take_preferred_edges_first_and_skip_cycles():
     assert spanning_edges("abcd", square) == [0, 1, 2]
     assert spanning_edges("abcd", square, prefer=[3]) == [0, 1, 3]  # the preferred edge stays, another is cut
     assert spanning_edges("abcde", square) == [0, 1, 2]  # a forest: e stays alone
+
+
+def test_spanning_edges_from_a_root_give_a_shortest_path_tree():
+    ring = [(k, (k + 1) % 6) for k in range(6)]  # a hexagon: Kruskal in edge order keeps the path 0-1-2-3-4-5
+    assert spanning_edges(range(6), ring) == [0, 1, 2, 3, 4]
+    assert max(breadth_first_depths(range(6), ring[:5], 0).values()) == 5
+    tree = spanning_edges(range(6), ring, root=0)  # from 0: an edge at the far node 3 is cut
+    assert tree == [0, 1, 2, 4, 5]
+    assert max(breadth_first_depths(range(6), [ring[i] for i in tree], 0).values()) == 3
+    assert spanning_edges(range(6), ring, prefer=[3], root=0) == [0, 1, 3, 4, 5]  # a preferred edge still stays

@@ -28,10 +28,13 @@ def test_fast_drives_degrade_as_the_square_of_the_sweep_time_and_stay_finite():
     assert 10 < fast / slow < 50 and fast < 1e-4
 
 
-def test_extreme_panel_aspect_ratio_needs_the_stiff_preset():
+def test_extreme_panel_aspect_ratio_costs_sweep_time_not_stability():
     scene = scenes.get("miura-sheet").build(rows=3, cols=3, a=0.05, b=2.0)  # panels 40 times longer than wide
-    fast, stiff = error(scene, "miura", duration=64.0), error(scene, "miura", preset="stiff", duration=64.0)
-    assert stiff <= TOLERANCES.fast_rad < fast  # measured 6.0e-8 (stiff) against 3.8e-6 rad (fast)
+    quick, slow = error(scene, "miura", duration=16.0), error(scene, "miura", duration=64.0)
+    stiff = error(scene, "miura", preset="stiff", duration=64.0)
+    # measured fast 5.0e-7 (16 s) and 3.8e-8 rad (64 s: 13x for 4x, square law 16x; 3.8e-6 with MuJoCo's own
+    # regulariser), stiff 1.4e-8; square panels reach 1.7e-6 in 2 s
+    assert max(slow, stiff) <= TOLERANCES.fast_rad / 10 and 8 < quick / slow < 24
 
 
 @st.composite

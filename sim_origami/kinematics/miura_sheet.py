@@ -10,7 +10,8 @@ Every interior vertex has the creases up, left, down, right (counter-clockwise) 
 flat-foldable, folding in the seed's mode S (seed 003 M6: rho_down = -rho_up, rho_right = rho_left) with the
 tan-half multiplier m = tan(rho_left/2) / tan(rho_up/2) of `vertex4.flat_foldable_multipliers` (even
 columns; the odd columns' is -m). Propagating along the lines gives the closed form of the whole sheet
-in the input x = rho of the vertical crease above vertex (2, 1) (or (1, 1) for one column):
+in the input x = rho of the vertical crease above vertex (i0, j0), the interior vertex nearest the centre with
+i0 even (i0 = 1 for one column), so that the drive sits mid-sheet:
 
     vertical crease above (i, j):          rho = (-1)^(i + j - i0 - j0) x
     zigzag crease from (i, j) to (i + 1, j): rho = (-1)^(j - j0 + i0) 2 atan(m tan(x/2))
@@ -95,7 +96,7 @@ class MiuraSheet(JointSpaceKinematics):
             if not value > 0:
                 raise ParameterError(f"{name} = {value:g} m; panel sides must be positive")
         self.rows, self.cols, self.a, self.b, self.gamma = int(rows), int(cols), float(a), float(b), float(gamma)
-        self.i0, self.j0 = (2 if self.cols > 2 else 1), 1
+        self.i0, self.j0 = (2 * max(1, self.cols // 4) if self.cols > 2 else 1), max(1, self.rows // 2)
         self.m = float(flat_foldable_multipliers([gamma, np.pi - gamma, np.pi - gamma, gamma])["S"][0])
         self.pattern = miura_pattern(self.rows, self.cols, a, b, gamma, self._signs(0.5))
         self.joint_names = tuple(f"rho_{c.name}" for c in self.pattern.creases)

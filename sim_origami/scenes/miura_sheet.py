@@ -1,7 +1,8 @@
 """Scene `miura-sheet`: a Miura-ori sheet of rows x cols panels, driven by one vertical crease.
 
-Every panel is a body; the spanning tree keeps rows x cols - 1 hinges and every other crease (one per interior
-vertex) is closed by two connects. The closed form is `kinematics.miura_sheet` (mode S at every vertex).
+Every panel is a body; the spanning tree (breadth-first from the input crease's panel) keeps rows x cols - 1
+hinges and every other crease (one per interior vertex) is closed by two connects. The closed form is
+`kinematics.miura_sheet` (mode S at every vertex).
 """
 
 import numpy as np
@@ -19,9 +20,10 @@ PARAMS = (
 )
 # Default sweep: 5% to 90% of the fold range (-pi, pi) of the input crease.
 PATH = (0.05 * np.pi, 0.9 * np.pi)
-# The soft closures' error grows with the sheet (inertia carried through more closures): fast, 2 s sweep,
-# 4.1e-6 rad (4 x 4), 9.4e-5 (8 x 8), 1.2e-3 (16 x 16, 5.3 s CPU dense, 2.7 s sparse); it falls as the square
-# of the sweep time, so the default 4 x 4 sheet is swept 8x slower.
+# The spanning tree is breadth-first from the drive's panel, which sits mid-sheet (`MiuraSheet`): on 16 x 16 its
+# depth is 16 instead of Kruskal's 27-31, which took the fast error (2 s sweep) from 1.2e-5 to 2.0e-6 rad and the
+# CPU from 1.7 to 0.9 s. Fast, 2 s sweep: 1.7e-6 rad on 4 x 4, 8 x 8 and 3.0e-6 on 16 x 16; the error falls as the
+# square of the sweep time (16 x 16: 7.3e-7 at 4 s, `scripts/miura_sheet_bench.py`; 4 x 4: 2.5e-8 at 16 s).
 SWEEP_TIME_SCALE = 8.0
 # Collision solids are inset from every panel edge by this fraction of the shorter side: panels sharing a
 # vertex are excluded anyway, the inset keeps the others from touching through the nominal plate thickness.
@@ -43,5 +45,6 @@ def build(rows: float, cols: float, a: float, b: float, gamma: float) -> Scene:
         sweep_time_scale=SWEEP_TIME_SCALE,
         collision_inset=INSET * min(a, b),
         self_contact=True,
+        breadth_first=True,
         notes=f"{int(rows)} x {int(cols)} panels; input {kinematics.input_crease}",
     )

@@ -26,12 +26,14 @@ def pattern_scene(
     collision_inset: float | None = None,
     self_contact: bool = False,
     contact_pairs: tuple[tuple[str, str], ...] = (),
+    breadth_first: bool = False,
 ) -> Scene:
     """A Scene whose mechanism is `pattern_mechanism(pattern)`, driven at crease `drive` (input = its fold angle)."""
     root = root or pattern.crease_faces(pattern.crease(drive))[0]
     mechanism = pattern_mechanism(
-        pattern, root=root, keep=(drive,), couplings=couplings, collision_inset=collision_inset
-    )
+        pattern, root=root, keep=(drive,), couplings=couplings, collision_inset=collision_inset,
+        breadth_first=breadth_first,
+    )  # fmt: skip
     return Scene(
         name=name, params=params, kinematics=kinematics, mechanism=mechanism,
         loop_joints=tuple(c.name for c in pattern.creases), drive_joint=drive, drive_scale=1.0, path=path,
