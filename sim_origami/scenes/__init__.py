@@ -15,6 +15,7 @@ from . import (  # noqa: F401  (registration side effect)
     rssr,
     square_twist,
     thick_diamond,
+    thick_square_twist,
     thick_vertex4,
     thick_vertex5,
     triangle_twist,
