@@ -101,6 +101,15 @@ class FormMotion:
         poses = self.body_poses(theta)
         return np.stack([poses[f"link_{k + 1}"][:, :3, 3] for k in range(len(self.rows))], axis=1)
 
+    def hinge_angles(self, theta: ArrayLike) -> dict[str, NDArray[np.float64]]:
+        """
+        Loop angle k (n,) (rad) as 'joint_<k>', the hinge name `reduced_form` gives joint k, shifted into
+        [-pi, pi] by 2 pi where it lies outside (the hinge angle of the poses; a ball's name is not among them).
+        """
+        q = self.loop_angles(np.atleast_1d(np.asarray(theta, dtype=float)))
+        q = np.where(q > np.pi, q - 2 * np.pi, np.where(q < -np.pi, q + 2 * np.pi, q))
+        return {f"joint_{k + 1}": q[:, k] for k in range(len(self.rows))}
+
     def events(self) -> tuple:
         return ()
 

@@ -187,3 +187,46 @@ class BricardThreefold(DHKinematics):
             )
             return tuple(Event("turning_point", end, both, detail) for end in (lo, hi))
         return ()
+
+
+Triple = tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]
+
+
+def bricard_trig(bricard: BricardThreefold, theta: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
+    """
+    cos theta, sin theta, cos phi, sin phi (n,) of `bricard` at inputs theta (n,) (rad) on its 'along' branch: phi
+    the root atan2(B, A) + atan2(sqrt D, -C) of A cos phi + B sin phi + C = 0 (`BricardThreefold.roots`), so
+    (cos phi, sin phi) = (-A C - B sqrt D, A sqrt D - B C) / (A^2 + B^2), with no angle computed.
+    """
+    c, s2 = bricard.c, bricard.s2
+    ct, st = np.cos(theta), np.sin(theta)
+    A, B, C = s2 + (1.0 + c * c) * ct, -2.0 * c * st, c * c + s2 * ct
+    root, norm = np.sqrt(bricard.discriminant(theta)), A * A + B * B
+    return ct, st, (-A * C - B * root) / norm, (A * root - B * C) / norm
+
+
+def bricard_axis(bricard: BricardThreefold, theta: NDArray[np.float64]) -> tuple[Triple, Triple, NDArray, NDArray]:
+    """
+    The threefold axis of `bricard` at inputs theta (n,) (rad, 'along' branch) in the D-H frame of link 1 (joint
+    1's frame after Rz(theta)), without poses: unit direction u and a point p (m), each as 3 arrays (n,) of x, y, z,
+    and cos phi, sin phi (`bricard_trig`). The turn carrying link 1 onto link 3, T = Tx(a) Rx(alpha) Rz(phi) Tx(a)
+    Rx(-alpha) Rz(theta) (the rows), is +120 deg about u = vee(R - R^T) / |.|, and p = t_perp / 2 + u x t / (2 sqrt 3)
+    solves (I - R) p = t across u (cot 60 deg = 1 / sqrt 3).
+    """
+    c, s, a, s2 = bricard.c, np.sin(bricard.alpha), bricard.a, bricard.s2
+    ct, st, cp, sp = bricard_trig(bricard, theta)
+    v = 1.0 - cp
+    u = (
+        s * (v * c * (1.0 - ct) - sp * st),
+        s * (v * c * st - sp * (1.0 + ct)),
+        2.0 * c * sp * ct + (2.0 * cp + v * s2) * st,
+    )
+    size = np.sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2])
+    u = u[0] / size, u[1] / size, u[2] / size
+    t = a * (1.0 + cp), a * c * sp, a * s * sp
+    along = t[0] * u[0] + t[1] * u[1] + t[2] * u[2]
+    k = 0.5 / np.sqrt(3.0)
+    p = (0.5 * (t[0] - along * u[0]) + k * (u[1] * t[2] - u[2] * t[1]),
+         0.5 * (t[1] - along * u[1]) + k * (u[2] * t[0] - u[0] * t[2]),
+         0.5 * (t[2] - along * u[2]) + k * (u[0] * t[1] - u[1] * t[0]))  # fmt: skip
+    return u, p, cp, sp

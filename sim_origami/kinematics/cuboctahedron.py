@@ -217,8 +217,13 @@ class CuboctahedronOctahedron:
         relative to the parent (`HINGES`) about +axis (4-8, 4-9). Bottom: D-H angle minus its deployed value;
         top: the negatives (mirror images).
         """
-        q = self.bennett_angles(theta) - np.array([self.theta_d, self.phi_d, self.theta_d, self.phi_d])
-        return np.concatenate([q, -q], axis=-1)
+        return np.stack(list(self.hinge_angles(theta).values()), axis=-1)
+
+    def hinge_angles(self, theta: ArrayLike) -> dict[str, NDArray[np.float64]]:
+        """`revolute_angles` (n,) (rad) by hinge name (`REVOLUTE`); |q| <= theta_d - theta_f = 96.38 deg."""
+        t = self._check(theta)
+        dt, dp = t - self.theta_d, self.phi(t) - self.phi_d
+        return dict(zip(REVOLUTE, (dt, dp, dt, dp, -dt, -dp, -dt, -dp), strict=True))
 
     def diagonals(self, theta: ArrayLike) -> dict[str, NDArray[np.float64]]:
         """The distances (m) the seed tracks (digest §2.6): BD, AI, EF (-> 0), AC, EH, BJ (-> sqrt 2)."""

@@ -29,6 +29,12 @@ value (the R joint at A3), |A4F4| = 1. Both Bricards follow the closed form exac
 is solved (Newton, from the deployed state, continued in theta). Its Jacobian is regular on the whole path
 (smallest singular value 0.10 on 101 samples, zeta = 0).
 
+The 15 R-joint angles alone (`hinge_angles`, what `evaluate` reports; no poses) come from the same closure in
+two unknowns, theta_D and the turn beta of the bar A3E3 about s_A3 (which holds E3 on a circle and is the
+angle at A3, B3, C3): in cylindrical coordinates about the common axis E3 fixes psi and h, leaving E3's radius
+= that of A3 on Bricard 2 and |A4F4| = 1 (`_closure`). Both Bricards' axes come from their closed form
+(`bricard_threefold.bricard_axis`); one chord step from a table dense in the input closes them to rounding.
+
 The path ends at the cube (theta_f = 166.1251 deg: A1 = B1 = C1, Bricard 1 folded, delta2 = 0 in (5-40));
 beyond it the squares pass through each other (the seed's rho < 0).
 """
@@ -42,10 +48,11 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import ConvergenceError, DomainError, ParameterError
 from ..geometry import enclosed_volume, minimal_rotation, rigid_fit, rotation, transform, transform_z, unit
 from .base import Event
-from .bricard_threefold import ALONG, BricardThreefold
+from .bricard_threefold import ALONG, BricardThreefold, bricard_axis, bricard_trig
 from .dh import DHRow, dh_from_axes
+from .path_table import PathTable, polish, wrap_if_needed
 
-SQ2, HALF = np.sqrt(2.0), np.sqrt(2.0) / 2
+SQ2, HALF, R3 = np.sqrt(2.0), np.sqrt(2.0) / 2, np.sqrt(3.0)
 # (5-1): the truncated octahedron, unit edges.
 VERTICES: dict[str, NDArray[np.float64]] = {
     name: np.array(xyz, dtype=float)
@@ -81,6 +88,9 @@ R2 = np.array([[0.0, -1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
 IMAGE = str.maketrans("ABC", "EDF")
 # The threefold turn (x, y, z) -> (z, x, y) about (1, 1, 1): square A -> B -> C, A3 -> B3 -> C3.
 THREEFOLD = np.array([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+# Rounding floor (m^2) of the reduced closure's residuals (`TruncatedOctahedronCube._closure`): Newton's method
+# stalls at 3.6e-15 (measured on 1e6 inputs).
+RESIDUAL_FLOOR = 8e-15
 # Exact volumes for unit edges: truncated octahedron 8 sqrt 2, cube 1 (seed 001 ch. 5 abstract: 11.3).
 VOLUME_RATIO = 8.0 * SQ2
 
@@ -185,6 +195,11 @@ class PathOutcome:
         return self.feasible and not self.turns
 
 
+def _dot(a: tuple | NDArray, b: tuple | NDArray) -> NDArray[np.float64]:
+    """a . b for 3-vectors given as 3-tuples of (n,) arrays or (3,) arrays (any mix)."""
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
 def _foot(p0: NDArray, s0: NDArray, p1: NDArray, s1: NDArray) -> NDArray[np.float64]:
     """Foot on line (p1, s1) of the common normal from line (p0, s0); unit directions, skew lines."""
     w, b = p0 - p1, s0 @ s1
@@ -216,7 +231,7 @@ class TruncatedOctahedronCube:
         rows, angles = dh_from_axes(points, dirs)
         self.rows: tuple[DHRow, ...] = rows
         self.bricard = BricardThreefold(rows[0].a, rows[0].alpha % (2 * np.pi))
-        self.theta_d = float(angles[0])
+        self.theta_d, self.phi_d = float(angles[0]), float(angles[1])
         # Joint 1's D-H frame (before Rz(theta_1)) in the deployed world frame: origin at the foot on axis
         # A1 of the common normal from axis B2, x along that normal (seed §2.0 step 2).
         foot_out = _foot(points[0], dirs[0], points[5], dirs[5])
@@ -393,6 +408,14 @@ class TruncatedOctahedronCube:
         DomainError
           When an input lies outside `domain`.
         """
+        t = self._inputs(theta)
+        grid, track, jacobians = self._track
+        start = np.stack([np.interp(t, grid, track[:, i]) for i in range(3)], axis=-1)
+        nearest = np.clip(np.searchsorted(grid, t), 0, len(grid) - 1)
+        return self._newton(t, start, jacobians[nearest])
+
+    def _inputs(self, theta: ArrayLike) -> NDArray[np.float64]:
+        """Inputs as a 1-D array (rad); DomainError naming the first one not finite or outside `domain` (+-1e-12)."""
         t = np.atleast_1d(np.asarray(theta, dtype=float))
         lo, hi = self.domain
         bad = t[~((t >= lo - 1e-12) & (t <= hi + 1e-12))]
@@ -401,10 +424,157 @@ class TruncatedOctahedronCube:
                 f"theta = {np.rad2deg(bad[0]):.6g} deg is outside the transformation, whose domain is "
                 f"[{np.rad2deg(lo):.6g}, {np.rad2deg(hi):.6g}] deg (truncated octahedron to cube)"
             )
-        grid, track, jacobians = self._track
-        start = np.stack([np.interp(t, grid, track[:, i]) for i in range(3)], axis=-1)
-        nearest = np.clip(np.searchsorted(grid, t), 0, len(grid) - 1)
-        return self._newton(t, start, jacobians[nearest])
+        return t
+
+    # --- the R-joint angles without poses (the throughput path of `hinge_angles`) ----------------------------------
+
+    def hinge_angles(self, theta: ArrayLike) -> dict[str, NDArray[np.float64]]:
+        """
+        Angle (n,) (rad) of each of the 15 R joints (`revolute_axes`, bar -> square about +axis, 0 deployed) at
+        inputs theta (rad), from the reduced closure (`_solve`), no poses: a Bricard's odd joints turn by its
+        theta - theta_d, its even ones by -(phi - phi_d) (the D-H angle turns the bar relative to the square), A3,
+        B3, C3 by -beta (the bar turns by beta relative to square A).
+        """
+        t = self._inputs(theta)
+        theta_d2, beta = self._solve(t, self._table)
+        out = {}
+        for bricard, angle in (("A1", t), ("E1", theta_d2)):
+            cp, sp = bricard_trig(self.bricard, angle)[2:]
+            dt, dp = wrap_if_needed(angle - self.theta_d), wrap_if_needed(self.phi_d - np.arctan2(sp, cp))
+            for k, vertex in enumerate(BRICARD_1):
+                out[vertex if bricard == "A1" else vertex.translate(IMAGE)] = dp if k % 2 else dt
+        q = wrap_if_needed(-beta)
+        return out | {vertex: q for vertex, _ in RS_BARS}
+
+    @cached_property
+    def _circle(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """
+        E3 on its circle about s_A3 through A3 (|A3E3| = 1, (E3 - A3) . s_A3 fixed), in square A's D-H frame:
+        rows centre, e1, e2 (3, 3) of E3 = centre + e1 cos beta + e2 sin beta (m), beta = 0 deployed and
+        right-handed about s_A3; and A3, A4 (3,) there.
+        """
+        to_a = np.linalg.inv(self._square_a)
+        a3, a4, e3 = (to_a[:3, :3] @ VERTICES[v] + to_a[:3, 3] for v in ("A3", "A4", "E3"))
+        s = to_a[:3, :3] @ self.s_a3
+        centre = a3 + ((e3 - a3) @ s) * s
+        e1 = e3 - centre
+        return np.stack([centre, e1, np.cross(s, e1)]), a3, a4
+
+    def _cylinder(self, theta: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
+        """
+        Square A in the cylindrical frame of the Bricard's axis at theta (n,) (`bricard_axis`, square A's D-H
+        frame): A3's radius (m), A4's planar coordinates X4, Y4 and height z4 from A3 (m), and the frame's unit
+        vectors x (toward A3), y, z (the axis) as 3-tuples of (n,) arrays.
+        """
+        u, p, _, _ = bricard_axis(self.bricard, theta)
+        _, a3, a4 = self._circle
+        d = a3[0] - p[0], a3[1] - p[1], a3[2] - p[2]
+        height = _dot(d, u)
+        x = d[0] - height * u[0], d[1] - height * u[1], d[2] - height * u[2]
+        radius = np.sqrt(_dot(x, x))
+        x = x[0] / radius, x[1] / radius, x[2] / radius
+        y = u[1] * x[2] - u[2] * x[1], u[2] * x[0] - u[0] * x[2], u[0] * x[1] - u[1] * x[0]
+        step = a4 - a3  # A4 - p = (A3 - p) + step, and A3 - p = radius x + height u
+        return radius, radius + _dot(step, x), _dot(step, y), _dot(step, u), x, y, u
+
+    def _bricard_1(self, theta: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
+        """
+        What the closure needs of Bricard 1 at inputs theta (n,): A4's X4, Y4, z4 (`_cylinder`) and E3's frame
+        coordinates (x, y, height from A3) as k0 + k1 cos beta + k2 sin beta, k0, k1, k2 each (3, n) (m).
+        """
+        radius, X4, Y4, z4, *frame = self._cylinder(theta)
+        circle, a3, _ = self._circle
+        k0 = np.array([_dot(circle[0] - a3, w) for w in frame])
+        k0[0] += radius  # E3 - p = (E3 - A3) + radius x + height u
+        k1, k2 = (np.array([_dot(v, w) for w in frame]) for v in circle[1:])
+        return X4, Y4, z4, k0, k1, k2
+
+    @staticmethod
+    def _closure(one: tuple[NDArray[np.float64], ...], two: tuple[NDArray[np.float64], ...], beta: NDArray) -> NDArray:
+        """
+        The reduced closure (n, 2) (m^2) from Bricard 1's `_bricard_1`, Bricard 2's shape `_cylinder` (at theta_D)
+        and beta: E3's radius about the common axis squared minus that of A3 about Bricard 2's own, and
+        |A4F4|^2 - 1. Bricard 2 is Bricard 1's shape turned over onto the common axis, (radius, angle, height) ->
+        (radius, psi - angle, zeta - height), psi and zeta fixed by E3 (the image of its A3); F4 is the image of
+        its C4, which is its A4 turned +120 deg about its axis: in complex planar coordinates F4 = E3 conj(w A4') /
+        |A3'| with w = exp(i 120 deg).
+        """
+        X4, Y4, z4, k0, k1, k2 = one
+        radius, X4b, Y4b, z4b = two[:4]
+        cb, sb = np.cos(beta), np.sin(beta)
+        Xe, Ye, ze = k0 + k1 * cb + k2 * sb
+        mr, mi = -0.5 * X4b - 0.5 * R3 * Y4b, 0.5 * Y4b - 0.5 * R3 * X4b
+        Fr, Fi = (Xe * mr - Ye * mi) / radius, (Xe * mi + Ye * mr) / radius
+        return np.stack(
+            [Xe * Xe + Ye * Ye - radius * radius, (X4 - Fr) ** 2 + (Y4 - Fi) ** 2 + (z4 - ze + z4b) ** 2 - 1.0], -1
+        )
+
+    @cached_property
+    def _table(self) -> PathTable:
+        """
+        `_columns` of the path (theta_D, beta, inverse Jacobian) on N = 16385 inputs, solved by `_solve` from the
+        same on 1025 inputs, solved by Newton's method from `_track` (the tracked path); the guesses it interpolates
+        are within about 1e-14 (m^2 residual).
+        """
+        lo, hi = self.domain
+        theta = PathTable.inputs(lo, hi, 1025)
+        rough = PathTable(lo, hi, self._columns(theta, self._newton_2(theta, self._tracked(theta))))
+        theta = PathTable.inputs(lo, hi, 16385)
+        return PathTable(lo, hi, self._columns(theta, np.stack(self._solve(theta, rough), axis=-1)))
+
+    def _tracked(self, theta: NDArray[np.float64]) -> NDArray[np.float64]:
+        """(theta_D, beta) (n, 2) at inputs theta, linear between the states of `_track` (0.5 deg apart)."""
+        grid, track, _ = self._track
+        e3 = self._points(grid, track[:, 0], track[:, 1], track[:, 2])[:, NAMES.index("E3")]
+        to_a = np.linalg.inv(self._square_a)
+        circle = self._circle[0]
+        arm = e3 @ to_a[:3, :3].T + to_a[:3, 3] - circle[0]
+        beta = np.unwrap(np.arctan2(arm @ circle[2], arm @ circle[1]))
+        return np.stack([np.interp(theta, grid, track[:, 0]), np.interp(theta, grid, beta)], -1)
+
+    def _newton_2(self, theta: NDArray[np.float64], guess: NDArray[np.float64]) -> NDArray[np.float64]:
+        """(theta_D, beta) (n, 2) closing `_closure` at inputs theta, by Newton's method (central differences)."""
+        one = self._bricard_1(theta)
+
+        def residual(y: NDArray[np.float64], rows: NDArray[np.intp]) -> NDArray[np.float64]:
+            return self._closure(tuple(a[..., rows] for a in one), self._cylinder(y[:, 0]), y[:, 1])
+
+        def correction(y: NDArray[np.float64], rows: NDArray[np.intp], r: NDArray[np.float64]) -> NDArray:
+            inverse = self._columns(theta[rows], y)[:, 2:].reshape(-1, 2, 2)
+            return np.einsum("nij,nj->ni", inverse, r)
+
+        return polish(guess, residual, correction, "theta_D and beta", RESIDUAL_FLOOR)
+
+    def _columns(self, theta: NDArray[np.float64], path: NDArray[np.float64]) -> NDArray[np.float64]:
+        """
+        The `_table` values (N, 6) at inputs theta for (theta_D, beta) (N, 2) on the path: those and the inverse
+        Jacobian of `_closure` with respect to them (row-major; central differences, step 1e-7).
+        """
+        one = self._bricard_1(theta)
+        J = np.empty((len(theta), 2, 2))
+        for k, step in enumerate(np.eye(2) * 1e-7):
+            up, down = path + step, path - step
+            J[:, :, k] = (self._closure(one, self._cylinder(up[:, 0]), up[:, 1])
+                          - self._closure(one, self._cylinder(down[:, 0]), down[:, 1])) / 2e-7  # fmt: skip
+        return np.column_stack([path, np.linalg.inv(J).reshape(-1, 4)])
+
+    def _solve(self, theta: NDArray[np.float64], table: PathTable) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """
+        theta_D and beta (n,) (rad) at inputs theta inside `domain`: chord steps on `_closure` from the guesses of
+        `table` (`_table`), with its inverse Jacobians. The same closure as `equations`, reduced to two unknowns:
+        the R joint at A3 holds E3 on a circle, and E3 fixes Bricard 2's turn psi and shift h on the common axis.
+        """
+        one = self._bricard_1(theta)
+        where = table.locate(theta)
+
+        def residual(y: NDArray[np.float64], rows: NDArray[np.intp]) -> NDArray[np.float64]:
+            return self._closure(tuple(a[..., rows] for a in one), self._cylinder(y[:, 0]), y[:, 1])
+
+        def correction(y: NDArray[np.float64], rows: NDArray[np.intp], r: NDArray[np.float64]) -> NDArray:
+            return np.einsum("nij,nj->ni", table.at(where, slice(2, 6), rows).reshape(-1, 2, 2), r)
+
+        y = polish(table.at(where, slice(0, 2)), residual, correction, "theta_D and beta", RESIDUAL_FLOOR)
+        return y[:, 0], y[:, 1]
 
     def vertices(self, theta: ArrayLike) -> NDArray[np.float64]:
         """Vertex positions (n, 24, 3) in `NAMES` order (m, deployed frame, square A fixed)."""

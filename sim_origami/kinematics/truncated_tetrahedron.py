@@ -29,7 +29,10 @@ which KLM turns positively about z (d psi > 0: the seed's KLM rotation 0 -> 30 d
 theta_f (A = C = E, digest case 16), where the path ends: beyond it the Bricard's links pass through each
 other. A path that reaches the tetrahedron ends exactly on its state (`tetrahedron_state`), where theta turns
 back; one that misses it (scheme I, delta1 >= -3 deg) ends at theta_f with K short of B (`end_gap`).
-Queries are solved by Newton from a cubic Hermite guess on the trace.
+Queries are solved by Newton from a cubic Hermite guess on the trace. The R-joint angles alone (`hinge_angles`,
+what `evaluate` reports; no poses) need only theta and q: KLM turns and slides on the Bricard's threefold axis,
+so the closure reduces to one equation, the distance of K (scheme I) or G (scheme II) from that axis
+(`bricard_axis`, in closed form), solved from a table dense in the input (`PathTable`).
 
 Inputs (the seed's driving angles): scheme I is driven by theta_G = theta_G0 + q_G (the seed's quartic unknown,
 the signed angle from B - G to K - G about s_G, 146.4427 deg deployed for delta1 = 0), which falls
@@ -48,8 +51,9 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import ConvergenceError, DomainError, ParameterError
 from ..geometry import enclosed_volume, invert, rotation, signed_angle, transform, transform_z, unit, wrap
 from .base import Event
-from .bricard_threefold import ALONG, BricardThreefold
+from .bricard_threefold import ALONG, BricardThreefold, bricard_axis, bricard_trig
 from .dh import DHRow, dh_from_axes
+from .path_table import PathTable, polish, wrap_if_needed
 
 R2, R3, R6 = np.sqrt(2.0), np.sqrt(3.0), np.sqrt(6.0)
 # (6-1): the truncated tetrahedron, unit edges.
@@ -83,6 +87,9 @@ REVOLUTE_II = ("A", "B", "C", "D", "E", "F", "K", "L", "M")
 PARENTS = {"A": ("FA", "ABG"), "B": ("ABG", "BC"), "C": ("BC", "CDH"), "D": ("CDH", "DE"), "E": ("DE", "EFJ"),
            "F": ("EFJ", "FA"), "G": ("ABG", "GK"), "H": ("CDH", "HL"), "J": ("EFJ", "JM"),
            "K": ("GK", "KLM"), "L": ("HL", "KLM"), "M": ("JM", "KLM")}  # fmt: skip
+# Rounding floor (m^2) of the squared radii (<= 4/3 m^2) in `Transformation._solve`'s residual: the residuals of
+# Newton's method stall at 1.9e-15 (measured on 1e6 inputs, either scheme).
+RESIDUAL_FLOOR = 4e-15
 # Exact volumes for unit edges: truncated tetrahedron 23 sqrt 2 / 12, tetrahedron sqrt 2 / 12 (seed ch. 6: 23).
 VOLUME_RATIO = 23.0
 
@@ -382,14 +389,7 @@ class Transformation:
         DomainError
           When an input is not finite or lies outside `domain`.
         """
-        x = np.atleast_1d(np.asarray(x, dtype=float))
-        lo, hi = self.domain
-        bad = x[~((x >= lo - 1e-12) & (x <= hi + 1e-12))]
-        if bad.size:
-            raise DomainError(
-                f"{self.input_name} = {np.rad2deg(bad[0]):.6g} deg is outside the transformation, whose domain is "
-                f"[{np.rad2deg(lo):.6g}, {np.rad2deg(hi):.6g}] deg (truncated tetrahedron to the Bricard fold)"
-            )
+        x = self._inputs(x)
         s, us = self.trace
         xs = self._monotone * self._input_of(us)
         rate = self._monotone * self._tangents[:, self._input]  # d(input)/ds >= 0 along the trace
@@ -407,6 +407,18 @@ class Transformation:
         out = self._correct_inputs(guess, x - self._offset)
         out[target <= xs[0]], out[target >= xs[-1]] = us[0], us[-1]
         return out
+
+    def _inputs(self, x: ArrayLike) -> NDArray[np.float64]:
+        """Inputs as a 1-D array (rad); DomainError naming the first one not finite or outside `domain` (+-1e-12)."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        lo, hi = self.domain
+        bad = x[~((x >= lo - 1e-12) & (x <= hi + 1e-12))]
+        if bad.size:
+            raise DomainError(
+                f"{self.input_name} = {np.rad2deg(bad[0]):.6g} deg is outside the transformation, whose domain is "
+                f"[{np.rad2deg(lo):.6g}, {np.rad2deg(hi):.6g}] deg (truncated tetrahedron to the Bricard fold)"
+            )
+        return x
 
     def _correct_inputs(self, u: NDArray[np.float64], value: NDArray[np.float64]) -> NDArray[np.float64]:
         """
@@ -469,9 +481,55 @@ class Transformation:
         B, D, F), the top joints all equal q; wrapped to (-pi, pi] (every one stays inside (-pi, pi) on the
         path, so they are continuous).
         """
-        u = self.state(x)
-        dt, dp = u[:, 0] - self.theta_d, self.phi(u[:, 0]) - self.phi_d
-        return wrap(np.stack([dt, dp, dt, dp, dt, dp, u[:, 1], u[:, 1], u[:, 1]], axis=-1))
+        return np.stack(list(self.hinge_angles(x).values()), axis=-1)
+
+    def hinge_angles(self, x: ArrayLike) -> dict[str, NDArray[np.float64]]:
+        """
+        `revolute_angles` (n,) (rad) by joint name (`REVOLUTE`), from theta and q of `_solve` (no poses): the
+        assembly's R joints (`scenes.truncated_tetrahedron`).
+        """
+        theta, q = self._solve(self._inputs(x), self._table)
+        cp, sp = bricard_trig(self.bricard, theta)[2:]
+        dt, dp, q = (wrap_if_needed(a) for a in (theta - self.theta_d, np.arctan2(sp, cp) - self.phi_d, q))
+        return dict(zip(self.REVOLUTE, (dt, dp, dt, dp, dt, dp, q, q, q), strict=True))
+
+    # --- theta and q without poses: one scalar equation per input ------------------------------------------------
+
+    def _solve(self, x: NDArray[np.float64], table: PathTable) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """
+        The Bricard angle theta and the top R-joint angle q (n,) (rad) at inputs x (rad) inside `domain`, solved
+        from the guesses of `table` (`_table`).
+        """
+        raise NotImplementedError
+
+    def _radius2(self, theta: NDArray[np.float64], point: NDArray[np.float64]) -> NDArray[np.float64]:
+        """
+        Squared distance (n,) (m^2) from the Bricard's threefold axis at Bricard angles theta (n,) of points (3,) or
+        (3, n) given in ABG's D-H frame (joint A's, after Rz(theta)): `bricard_axis`, no poses.
+        """
+        u, p, _, _ = bricard_axis(self.bricard, theta)
+        d = point[0] - p[0], point[1] - p[1], point[2] - p[2]
+        return d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - (d[0] * u[0] + d[1] * u[1] + d[2] * u[2]) ** 2
+
+    @cached_property
+    def _to_abg(self) -> NDArray[np.float64]:
+        """Deployed coordinates -> ABG's D-H frame (4, 4): the inverse of that frame at theta_d."""
+        return invert(self._frame @ transform_z(self.theta_d))
+
+    @cached_property
+    def _table(self) -> PathTable:
+        """
+        `_columns` of the path (theta, q, ...) on N = 16385 inputs, solved by `_solve` from the same on 1025 inputs
+        from `state` (the traced path); the guesses it interpolates are within about 1e-14 (m^2 residual).
+        """
+        lo, hi = self.domain
+        rough = PathTable(lo, hi, self._columns(self.state(PathTable.inputs(lo, hi, 1025))[:, :2]))
+        x = PathTable.inputs(lo, hi, 16385)
+        return PathTable(lo, hi, self._columns(np.stack(self._solve(x, rough), axis=-1)))
+
+    def _columns(self, path: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The `_table` values (N, m) for (theta, q) (N, 2) on the path."""
+        return path
 
     def monitors(self, x: ArrayLike) -> dict[str, NDArray[np.float64]]:
         """
@@ -549,6 +607,38 @@ class SchemeI(Transformation):
     def _top_angle(self, abg: NDArray[np.float64], klm: NDArray[np.float64]) -> float:
         return -self._offset  # theta_G = 0: the bar GK lies on GB
 
+    def _bar_k(self, q: NDArray[np.float64]) -> NDArray[np.float64]:
+        """K carried by the bar GK turned by q (n,) (rad) about s_G, in ABG's D-H frame (3, n) (m)."""
+        G, K = (_apply(self._to_abg, VERTICES[v]) for v in "GK")
+        s = self._to_abg[:3, :3] @ self.s_g
+        w = K - G
+        along = (w @ s) * s
+        return (G + along)[:, None] + np.outer(w - along, np.cos(q)) + np.outer(np.cross(s, w), np.sin(q))
+
+    def _columns(self, path: NDArray[np.float64]) -> NDArray[np.float64]:
+        """(theta, q, d residual / d theta (m^2/rad), central differences with step 1e-6) (N, 3): chord steps."""
+        theta, bar_k = path[:, 0], self._bar_k(path[:, 1])
+        slope = (self._radius2(theta + 1e-6, bar_k) - self._radius2(theta - 1e-6, bar_k)) / 2e-6
+        return np.column_stack([path, slope])
+
+    def _solve(self, x: NDArray[np.float64], table: PathTable) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """
+        q = theta_G - theta_G0; theta closes |K of the bar - Bricard axis|^2 = |K of KLM - KLM's axis|^2 (KLM
+        turns and slides on that axis), by chord steps with the table's slopes.
+        """
+        q = x - self._offset
+        bar_k, radius2 = self._bar_k(q), float(VERTICES["K"][:2] @ VERTICES["K"][:2])
+        where = table.locate(x)
+
+        def residual(theta: NDArray[np.float64], rows: NDArray[np.intp]) -> NDArray[np.float64]:
+            return self._radius2(theta, bar_k[:, rows]) - radius2
+
+        def correction(theta: NDArray[np.float64], rows: NDArray[np.intp], r: NDArray[np.float64]) -> NDArray:
+            return r / table.at(where, 2, rows)
+
+        theta = polish(table.at(where, 0), residual, correction, f"theta at {self.input_name}", RESIDUAL_FLOOR)
+        return theta, q
+
     def equations(self, u: ArrayLike) -> NDArray[np.float64]:
         u = np.atleast_2d(np.asarray(u, dtype=float))
         abg = self.bricard_motion(u[:, 0])[:, 0]
@@ -578,6 +668,31 @@ class SchemeII(Transformation):
     def _top_angle(self, abg: NDArray[np.float64], klm: NDArray[np.float64]) -> float:
         g = _apply(invert(klm), _apply(abg, VERTICES["G"]))  # G (on F) seen from KLM's deployed pose
         return -float(_angle_about(VERTICES["G"] - VERTICES["K"], g - VERTICES["K"], self.s_k))
+
+    def _solve(self, x: NDArray[np.float64], table: PathTable) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """
+        theta = x; q closes |G of the bar - KLM's axis|^2 = |G of ABG - the Bricard's axis|^2, the bar turned by q
+        about s_K (deployed frame: KLM's axis is z), by Newton's method (exact slope; it vanishes where theta turns
+        back, e.g. deployed for delta2 = 0, and q goes as sqrt(theta - theta_d)).
+        """
+        K, G = VERTICES["K"], VERTICES["G"]
+        w = G - K
+        along = (w @ self.s_k) * self.s_k
+        (cx, cy), (ax, ay), (bx, by) = (K + along)[:2], (w - along)[:2], -np.cross(self.s_k, w)[:2]
+        radius2 = self._radius2(x, _apply(self._to_abg, G))
+
+        def residual(q: NDArray[np.float64], rows: NDArray[np.intp]) -> NDArray[np.float64]:
+            cq, sq = np.cos(q), np.sin(q)
+            vx, vy = cx + ax * cq + bx * sq, cy + ay * cq + by * sq
+            return vx * vx + vy * vy - radius2[rows]
+
+        def correction(q: NDArray[np.float64], rows: NDArray[np.intp], r: NDArray[np.float64]) -> NDArray:
+            cq, sq = np.cos(q), np.sin(q)
+            vx, vy = cx + ax * cq + bx * sq, cy + ay * cq + by * sq
+            slope = 2.0 * (vx * (bx * cq - ax * sq) + vy * (by * cq - ay * sq))
+            return np.divide(r, slope, out=np.zeros_like(r), where=slope != 0.0)
+
+        return x, polish(table.at(table.locate(x), 1), residual, correction, "q at theta", RESIDUAL_FLOOR)
 
     def equations(self, u: ArrayLike) -> NDArray[np.float64]:
         u = np.atleast_2d(np.asarray(u, dtype=float))
