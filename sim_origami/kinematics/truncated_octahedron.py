@@ -337,22 +337,27 @@ class TruncatedOctahedronCube:
     ) -> NDArray[np.float64]:
         """
         Close the three equations at inputs theta (n,) from states x (n, 3), all inputs at once: chord steps with
-        the Jacobians J (n, 3, 3) when given (from nearby states), else Newton's method; ConvergenceError names
-        the first input that does not close.
+        the Jacobians J (n, 3, 3) when given (from nearby states), else Newton's method; inputs the chord steps
+        leave open are restarted with Newton's method (near the cube the Jacobian turns fast: zeta = 15 deg left
+        theta = 165.811 deg open). ConvergenceError names the first input that does not close.
         """
-        x, active, previous = x.copy(), np.arange(len(theta)), np.full(len(theta), np.inf)
+        start, active, previous = x, np.arange(len(theta)), np.full(len(theta), np.inf)
+        x = x.copy()
         for _ in range(30):
             f = self.equations(theta[active], x[active])
             size = np.max(np.abs(f), axis=-1)
             # done: closed, or stalled at the rounding floor (no longer halving below 1e-13)
-            going = (size >= 1e-15) & ~((size < 1e-13) & (size > 0.5 * previous[active]))
+            going = ~(size < 1e-15) & ~((size < 1e-13) & (size > 0.5 * previous[active]))  # NaN: not closed
             previous[active] = size
             active, f = active[going], f[going]
             if not len(active):
                 return x
             step_J = self._jacobian(theta[active], x[active]) if J is None else J[active]
             x[active] -= np.linalg.solve(step_J, f[..., None])[..., 0]
-        bad = np.max(np.abs(self.equations(theta, x)), axis=-1) >= 1e-13
+        bad = ~(np.max(np.abs(self.equations(theta, x)), axis=-1) < 1e-13)  # NaN (no real Bricard 2) is open
+        if np.any(bad) and J is not None:
+            x[bad] = self._newton(theta[bad], start[bad])
+            return x
         if np.any(bad):
             raise ConvergenceError(f"the reduced model did not close at theta = {np.rad2deg(theta[bad][0]):.6g} deg")
         return x
