@@ -6,6 +6,7 @@ numeric solver and MuJoCo can be compared with the closed form through the same 
 """
 
 from abc import ABC, abstractmethod
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
@@ -177,3 +178,15 @@ def domain_of(valid_at, lo: float, hi: float, anchor: float, samples: int = 4097
     start = grid[left] if left == 0 else refine(grid[left], grid[left - 1]) + EDGE_MARGIN
     stop = grid[right] if right == samples - 1 else refine(grid[right], grid[right + 1]) - EDGE_MARGIN
     return float(start), float(stop)
+
+
+# Inputs per block of a vectorised evaluation: a block's temporaries stay in the CPU cache. 1e6 inputs: Kokotsakis
+# Example 1 0.43 s of CPU (one block 0.75 s, 4096: 0.48 s, 16384: 0.63 s); 6 x 5 tube 1.10 s (one block 1.76 s,
+# 4096: 1.17 s, 16384: 1.43 s).
+BLOCK = 8192
+
+
+def input_blocks(n: int, size: int = BLOCK) -> Iterator[slice]:
+    """Consecutive slices of at most `size` of n inputs, for evaluations done block by block."""
+    for start in range(0, n, size):
+        yield slice(start, min(start + size, n))

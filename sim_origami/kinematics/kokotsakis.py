@@ -42,7 +42,8 @@ from A and from D; their difference is the loop mismatch, zero on a mesh branch.
 combinations of vertex branches whose mismatch vanishes at every probe input (named by the common vertex
 branch, e.g. ``S``, or per vertex when mixed). All pass through the flat state, a bifurcation where the
 closure's rank drops from 11 to 8 (4 loops of rank 2 in the sheet's plane: mobility 4), and end where a
-crease folds flat (a lock; every case here) or where the input turns back.
+crease folds flat (a lock; every case here) or where the input turns back. `evaluate` solves each vertex on
+the one root of eqn 2-5 its branch takes (`Vertex4.branch_folds`), on blocks of inputs.
 """
 
 import itertools
@@ -56,7 +57,7 @@ from ..closure import LoopSystem
 from ..creases import Crease, CreasePattern
 from ..errors import AssemblyError, ParameterError
 from ..geometry import wrap
-from .base import Branch, Event, JointSpaceKinematics, domain_of
+from .base import Branch, Event, JointSpaceKinematics, domain_of, input_blocks
 from .vertex4 import ANGLE_TOL, Vertex4
 
 CORNERS = ("A", "B", "C", "D")
@@ -342,14 +343,28 @@ class Kokotsakis(JointSpaceKinematics):
         return out
 
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        """`_chain` on blocks of `base.BLOCK` inputs, each vertex on its own root only (`Vertex4.branch_folds`)."""
         if branch not in self._combinations:
             self.branch(branch)  # raises with the list of names
         x = np.atleast_1d(np.asarray(x, dtype=float))
-        rho, valid = _chain(self._solvers, self.vertices, self._combinations[branch], x)
-        valid &= np.abs(x) <= np.pi
-        values = np.stack([rho[i, :, k - 1] for i, k in self._source], axis=-1)
-        values[~valid] = np.nan
+        values, valid = np.empty((x.size, len(self.creases))), np.empty(x.size, dtype=bool)
+        for block in input_blocks(x.size):
+            valid[block] = self._evaluate(self._combinations[branch], x[block], values[block])
         return values, valid
+
+    def _evaluate(self, combo: tuple[str, ...], x: NDArray[np.float64], out: NDArray[np.float64]) -> NDArray[np.bool_]:
+        """Crease folds (n, 12) into `out` at inputs x (n,) with the vertices on the branches `combo`; valid (n,)."""
+        rho, valid, value = [], np.ones(x.size, dtype=bool), x
+        for solver, v, b in zip(self._solvers, self.vertices, combo, strict=True):
+            ok = valid & np.isfinite(value)
+            folds, good = solver.branch_folds(b, np.where(ok, value, 0.0))
+            valid = ok & good
+            rho.append(folds)
+            value = x if len(rho) == 1 else folds[v.next - 1]
+        valid &= np.abs(x) <= np.pi
+        np.stack([rho[i][k - 1] for i, k in self._source], axis=-1, out=out)
+        out[~valid] = np.nan
+        return valid
 
     def vertex_folds(self, branch: str, x: ArrayLike) -> NDArray[np.float64]:
         """

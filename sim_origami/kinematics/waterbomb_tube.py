@@ -38,7 +38,9 @@ z -> -z (A_i <-> A_-i, B_i <-> C_(-i-1)). Even m starts from the equatorial row 
 a sin(theta/2) / sin(pi/n), z_B0 = -z_C0 = sqrt(L_r^2 - 2 rho^2 (1 - cos(pi/n))) / 2 (L_r = a / sin(alpha +
 beta)), then A_1, B_1, C_1, ...; the lower half is the half-turn z -> -z, azimuth + pi/n (A_i <-> A_(1-i),
 B_i <-> C_(-i)). This replaces the seeds' chain eqns 6-11...6-13 / 12a-g (garbled in places, CORRECTED in the
-digest) and seed 004's wrong eqn 18. Fold angles then follow from the 3-D vertices (`fold_angles`).
+digest) and seed 004's wrong eqn 18. Fold angles then follow from the 3-D vertices (`fold_angles`). `evaluate`
+measures only one crease per symmetry class (`FoldPlan`: 15 of the 258 creases of the 6 x 5 tube), without cross
+products (`crease_folds`), on blocks of inputs, and copies each to its class.
 
 Domain: the first connected interval of theta above 0 on which every circle meets, no crease is reversed through
 flat (the digest's "strict" criterion) and the middle row is not through the axis (r_A0 >= 0: theta >= 2 pi/n
@@ -54,6 +56,7 @@ equal-diameter, fully folded cylinder) and `alpha_min` (eqn 6-33). scripts/water
 seeds' numbers against ours.
 """
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -64,13 +67,17 @@ from ..closure import Coupling, Loop, LoopSystem
 from ..creases import Crease, CreasePattern
 from ..errors import AssemblyError, ParameterError
 from ..geometry import frame_along, invert, transform, wrap
-from .base import Branch, Event, JointSpaceKinematics, domain_of
+from .base import Branch, Event, JointSpaceKinematics, domain_of, input_blocks
 
 BRANCH = "radial-contraction"
 # A fold angle this far (rad) on the wrong side of flat counts as reversed.
 REVERSAL_TOL = 1e-9
-# Two creases are one symmetry class when their closed-form angles agree to this at two generic inputs (rad).
+# Two creases are one symmetry class when their closed-form angles agree to this at generic inputs (rad): two for the
+# couplings, five for `fold_plan`. Measured on the tubes and twists of the tests: <= 1.8e-15 within a class, >= 0.019
+# between classes.
 CLASS_TOL = 1e-9
+# Where in a branch's domain (fractions of its width) `fold_plan` compares the fold angles.
+PLAN_PROBES = np.array([0.5, 0.1, 0.3819660113, 0.6180339887, 0.9])
 # Samples of theta in (0, pi) on which the domain's first interval is found, before its ends are bisected.
 GRID = 4097
 
@@ -164,6 +171,32 @@ class TubeLayout:
     def unit0(self) -> NDArray[np.int64]:
         """Creases of unit 0 of every row: the contraction folds every unit of a row alike, so these show them all."""
         return np.array([k for k, name in enumerate(self.names) if name.split("_")[1] == "0"])
+
+    def _flat_vectors(self, ends: NDArray[np.int64]) -> NDArray[np.float64]:
+        """Flat-sheet vectors (k, 2) in m from vertex ends[:, 0] to ends[:, 1] (indices into keys), across the seam
+        where that is shorter (a face spans at most 2 a of the strip's width 2 n a)."""
+        d = self.flat[ends[:, 1]] - self.flat[ends[:, 0]]
+        width = 2 * self.n * self.a
+        d[:, 0] -= width * np.round(d[:, 0] / width)
+        return d
+
+    @cached_property
+    def crease_lengths(self) -> NDArray[np.float64]:
+        """Length l (m) of every crease in `creases`; the rigid faces keep it in 3-D (within 1.6e-15 m measured on
+        the tubes of the tests)."""
+        d = self._flat_vectors(np.array([c[1:3] for c in self.creases]))
+        return np.hypot(d[:, 0], d[:, 1])
+
+    @cached_property
+    def face_products(self) -> NDArray[np.float64]:
+        """(d.v_l)(d.v_r) (m^4) of every crease in `creases`: d from its start to its end, v_l and v_r from its start
+        to the third vertex of its left and right face. Each dot product stays within one rigid face, so it is the
+        flat sheet's."""
+        starts = np.array([c[1] for c in self.creases])
+        d = self._flat_vectors(np.array([c[1:3] for c in self.creases]))
+        left = self._flat_vectors(np.stack([starts, self.third_left], -1))
+        right = self._flat_vectors(np.stack([starts, self.third_right], -1))
+        return np.sum(d * left, axis=-1) * np.sum(d * right, axis=-1)
 
     def index(self, name: str) -> int:
         """Position of crease `name` in `creases`."""
@@ -324,6 +357,94 @@ def fold_angles(layout: TubeLayout, X: NDArray[np.float64], creases: ArrayLike |
     n_right = _cross(S - E, X[:, layout.third_right[pick]] - E)  # the right face runs end -> start -> third
     sine = np.sum(_cross(n_right, n_left) * d, axis=-1) / np.sqrt(np.sum(d * d, axis=-1))
     return np.arctan2(sine, np.sum(n_right * n_left, axis=-1))
+
+
+Position = Callable[[int], tuple[NDArray, NDArray, NDArray]]
+
+
+def crease_folds(layout: TubeLayout, position: Position, creases: ArrayLike) -> list[NDArray[np.float64]]:
+    """
+    Fold angles rho (N,) of the creases with indices `creases`, each in (-pi, pi], from the positions (x, y, z) (m)
+    that `position` gives for a vertex (its index in layout.keys): `fold_angles` without its three cross products.
+    With d = end - start, l = |d| (`TubeLayout.crease_lengths`), v_l and v_r the third vertex of the left and right
+    face less the start, the identities (d x a).(d x b) = (d.d)(a.b) - (d.a)(d.b) and (d x a) x (d x b) =
+    det(d, a, b) d give rho = atan2(-l det(d, v_r, v_l), (d.v_l)(d.v_r) - l^2 v_r.v_l), where (d.v_l)(d.v_r) is
+    constant (`TubeLayout.face_products`).
+    """
+    vectors: dict[tuple[int, int], tuple[NDArray, ...]] = {}
+
+    def vector(start: int, end: int) -> tuple[NDArray, ...]:
+        if (start, end) not in vectors:
+            vectors[start, end] = tuple(e - s for s, e in zip(position(start), position(end), strict=True))
+        return vectors[start, end]
+
+    out = []
+    for k in np.asarray(creases):
+        _, start, end, _ = layout.creases[k]
+        dx, dy, dz = vector(start, end)
+        lx, ly, lz = vector(start, int(layout.third_left[k]))
+        rx, ry, rz = vector(start, int(layout.third_right[k]))
+        det = dx * (ry * lz - rz * ly) + dy * (rz * lx - rx * lz) + dz * (rx * ly - ry * lx)
+        length = layout.crease_lengths[k]
+        out.append(np.arctan2(-length * det, layout.face_products[k] - length**2 * (rx * lx + ry * ly + rz * lz)))
+    return out
+
+
+def tube_positions(layout: TubeLayout, rows: dict[tuple[str, int], tuple[NDArray, NDArray]]) -> Position:
+    """The `Position` of the contraction's vertices (`vertices`, computed once each) at `rows` (`row_coordinates`)."""
+    cache: dict[int, tuple[NDArray, NDArray, NDArray]] = {}
+
+    def position(v: int) -> tuple[NDArray, NDArray, NDArray]:
+        if v not in cache:
+            kind, i, p = layout.keys[v]
+            r, z = rows[kind, i]
+            psi = p * np.pi / layout.n
+            cache[v] = (r * np.cos(psi), r * np.sin(psi), z)
+        return cache[v]
+
+    return position
+
+
+@dataclass(frozen=True)
+class FoldPlan:
+    """
+    The distinct fold angles of one motion: the motion's symmetry (units of a row alike, mirror images) leaves few
+    distinct angles, so only the representative creases `creases` (d,) are computed and every crease copies the
+    column `take` (n_creases,) of them.
+    """
+
+    creases: NDArray[np.int64]
+    take: NDArray[np.int64]
+
+    def evaluate(
+        self, x: NDArray[np.float64], valid: NDArray[np.bool_], distinct: Callable[[NDArray], list[NDArray]]
+    ) -> NDArray[np.float64]:
+        """
+        Fold angles (N, n_creases) at inputs x (N,), NaN where not `valid` (N,): distinct(x_block), the
+        representatives' angles (d arrays (n,)), on blocks of `base.BLOCK` inputs (their temporaries stay in the CPU
+        cache), then one copy to every crease.
+        """
+        columns = np.empty((x.size, self.creases.size))
+        for block in input_blocks(x.size):
+            np.stack(distinct(x[block]), -1, out=columns[block])
+        columns[~valid] = np.nan
+        return np.take(columns, self.take, axis=1)
+
+
+def fold_plan(layout: TubeLayout, q: NDArray[np.float64]) -> FoldPlan:
+    """
+    The `FoldPlan` of a motion from its fold angles q (P, n_creases) (rad) at P generic inputs: creases of one M/V
+    assignment whose angles agree to CLASS_TOL at every input share a representative (the first of them).
+    """
+    signs = assignment_signs(layout)
+    creases: list[int] = []
+    take = np.empty(q.shape[1], dtype=np.int64)
+    for k in range(q.shape[1]):
+        alike = np.all(np.abs(q[:, creases] - q[:, [k]]) <= CLASS_TOL, axis=0) & (signs[creases] == signs[k])
+        take[k] = np.argmax(alike) if np.any(alike) else len(creases)
+        if take[k] == len(creases):
+            creases.append(k)
+    return FoldPlan(np.array(creases), take)
 
 
 def vertex_loops(layout: TubeLayout) -> tuple[Loop, ...]:
@@ -655,13 +776,23 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
                    "radially (seed 004 §2)", self.domain),
         )  # fmt: skip
 
+    @cached_property
+    def plan(self) -> FoldPlan:
+        """The contraction's distinct fold angles (`FoldPlan`), found from `folds` at five inputs inside the domain."""
+        lo, hi = self.domain
+        return fold_plan(self.layout, self.folds(lo + (hi - lo) * PLAN_PROBES))
+
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        """Fold angles of every crease: the `plan`'s representatives, measured as `folds` does, copied to the rest."""
         lo, hi = self.branch(branch).domain
         x = np.atleast_1d(np.asarray(x, dtype=float))
         valid = (x >= lo) & (x <= hi)
-        values = self.folds(np.where(valid, x, 0.5 * (lo + hi)))
-        values[~valid] = np.nan
-        return values, valid
+
+        def distinct(block: NDArray) -> list[NDArray]:
+            with np.errstate(invalid="ignore", divide="ignore"):
+                return crease_folds(self.layout, tube_positions(self.layout, self.rows(block)), self.plan.creases)
+
+        return self.plan.evaluate(np.where(valid, x, 0.5 * (lo + hi)), valid, distinct), valid
 
     def _end(self, inside: float, outside: float) -> Event:
         """What stops the motion between an end of the domain (`inside`) and a point just past it."""

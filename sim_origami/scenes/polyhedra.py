@@ -22,7 +22,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..closure import LoopSystem
 from ..errors import ParameterError
 from ..geometry import transform, unit
-from ..kinematics.base import Branch, Event, Kinematics
+from ..kinematics.base import Branch, Event, Kinematics, input_blocks
 from ..mechanism import Mechanism
 from ..solids import inset_outline, prism
 
@@ -115,13 +115,13 @@ class AssemblyKinematics(Kinematics):
         blocks of CHUNK inputs (their temporaries stay in cache): the transpose of a (k, n) array filled by rows.
         """
         out = np.empty((len(self.joint_names), len(x)))
-        for start in range(0, len(x), CHUNK):
-            columns = self.model.hinge_angles(x[start : start + CHUNK] + self.reference)
+        for block in input_blocks(len(x), CHUNK):
+            columns = self.model.hinge_angles(x[block] + self.reference)
             missing = sorted(set(self.joint_names) - set(columns))
             if missing:
                 raise ParameterError(f"revolute joints {missing} have no closed-form angle in the model's hinge_angles")
             for k, name in enumerate(self.joint_names):
-                out[k, start : start + CHUNK] = columns[name]
+                out[k, block] = columns[name]
         return out.T
 
     def events(self) -> tuple[Event, ...]:
