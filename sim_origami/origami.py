@@ -159,3 +159,18 @@ def pattern_mechanism(
         span = pattern.length(crease)
         joints.append(Joint(crease.name, parent, child, frame, frame, tuple(a * span for a in anchors)))
     return Mechanism(tuple(bodies), tuple(joints), root, keep, couplings, breadth_first)
+
+
+def hinge_gap(pattern: CreasePattern, mechanism: Mechanism) -> float:
+    """
+    Largest distance (m) from an end of a crease's hinge line to the nearest vertex of each of its two panels'
+    solids: 0 when every hinge lies on the surface of both panels it joins (thick panels as hinge hulls).
+    """
+    bodies = {b.name: b for b in mechanism.bodies}
+    gap = 0.0
+    for crease in pattern.creases:
+        ends = np.array([[*pattern.vertices[v], crease.height] for v in (crease.start, crease.end)])
+        for face in pattern.crease_faces(crease):
+            distance = np.linalg.norm(bodies[face].solid.vertices[None] - ends[:, None], axis=-1)
+            gap = max(gap, float(np.max(np.min(distance, axis=1))))
+    return gap

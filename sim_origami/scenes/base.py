@@ -157,6 +157,15 @@ class SceneType:
 REGISTRY: dict[str, SceneType] = {}
 
 
+def choice(name: str, value: float, options: tuple[str, ...]) -> str:
+    """The option a numbered scene parameter picks (1-based, as given on the command line); ParameterError otherwise."""
+    if value != int(value) or not 1 <= value <= len(options):
+        raise ParameterError(
+            f"{name} = {value:g}; it must be a whole number from 1 to {len(options)} ({', '.join(options)})"
+        )
+    return options[int(value) - 1]
+
+
 def register(name: str, summary: str, params: tuple[Param, ...]):
     """Decorator: add a scene builder to the registry under `name`."""
 

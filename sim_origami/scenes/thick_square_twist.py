@@ -13,10 +13,9 @@ and a force-limited servo driven to pi stops at 2.8847090.
 
 import itertools
 
-from ..errors import ParameterError
 from ..kinematics.square_twist import INPUT, RIGID
 from ..kinematics.thick_square_twist import ThickSquareTwist
-from .base import Param, Scene, register
+from .base import Param, Scene, choice, register
 from .patterns import pattern_scene
 from .thick_vertex4 import RELIEF
 
@@ -38,19 +37,10 @@ SWEEP_TIME_SCALE = 4.0
 ROOT = "square"
 
 
-def mode_string(modes: float) -> str:
-    """The RIGID mode string of a scene's `modes` number (1-based); ParameterError otherwise."""
-    if modes != int(modes) or not 1 <= modes <= len(RIGID):
-        raise ParameterError(
-            f"modes = {modes:g}; it must be a whole number from 1 to {len(RIGID)} ({', '.join(RIGID)})"
-        )
-    return RIGID[int(modes) - 1]
-
-
 @register("thick-square-twist", "square twist with thick panels: four Bennett vertices (seed 003 M11), one rigid "
           "mode string selected by the hinge heights, input rho_AB", PARAMS)  # fmt: skip
 def build(alpha: float, b: float, modes: float, side: float, pleat: float) -> Scene:
-    kinematics = ThickSquareTwist(alpha, b, mode_string(modes), side, pleat)
+    kinematics = ThickSquareTwist(alpha, b, choice("modes", modes, RIGID), side, pleat)
     pattern = kinematics.pattern
     touching = set(pattern.touching_faces())
     return pattern_scene(

@@ -12,7 +12,6 @@ the scheme's M/V assignment (up to a global flip). A scheme whose loop gain is n
 Not registered: a locked sheet has nothing to validate; it serves blockage runs.
 """
 
-from ..errors import ParameterError
 from ..kinematics.triangle_twist import (
     INPUT,
     RIGID_SCHEMES,
@@ -23,7 +22,7 @@ from ..kinematics.triangle_twist import (
     example_angles,
     modes_of,
 )
-from .base import Param, Scene, register
+from .base import Param, Scene, choice, register
 from .patterns import pattern_scene
 
 PARAMS = (
@@ -39,16 +38,6 @@ SWEEP_TIME_SCALE = 8.0
 ROOT = "T"
 
 
-def scheme_name(scheme: float) -> str:
-    """The RIGID_SCHEMES class of a scene's `scheme` number (1-based); ParameterError otherwise."""
-    if scheme != int(scheme) or not 1 <= scheme <= len(RIGID_SCHEMES):
-        raise ParameterError(
-            f"scheme = {scheme:g}; it must be a whole number from 1 to {len(RIGID_SCHEMES)} "
-            f"({', '.join(RIGID_SCHEMES)})"
-        )
-    return RIGID_SCHEMES[int(scheme) - 1]
-
-
 def _scene(name: str, kinematics: TriangleTwist, params: dict, couplings: tuple, notes: str) -> Scene:
     return pattern_scene(name, params, kinematics, kinematics.pattern, drive=INPUT, path=PATH, root=ROOT,
                          couplings=couplings, sweep_time_scale=SWEEP_TIME_SCALE, notes=notes)  # fmt: skip
@@ -57,7 +46,7 @@ def _scene(name: str, kinematics: TriangleTwist, params: dict, couplings: tuple,
 @register("triangle-twist", "generalised triangle twist, zero thickness: three flat-foldable vertices round a "
           "triangle (seed 000 M2), one rigid M-V scheme per `scheme`, input rho_AB", PARAMS)  # fmt: skip
 def build(scheme: float, d: float, pleat: float) -> Scene:
-    name = scheme_name(scheme)
+    name = choice("scheme", scheme, RIGID_SCHEMES)
     types, angles = example_angles(name)
     kinematics = TriangleTwist(angles, d, pleat, types)
     return _scene(
