@@ -78,7 +78,7 @@ def test_validate_rejects_an_unknown_preset_naming_it():
 
 
 def test_a_scene_runs_its_own_preset_unless_told_otherwise():
-    scene = scenes.get("waterbomb-thick").build()
-    assert scene.preset == "stiff"  # chosen by scripts/preset_compare.py (README, accuracy and speed)
-    run = simulate(scene, "line-symmetric")
-    assert run.preset == "stiff" and simulate(scene, "line-symmetric", preset="fast").preset == "fast"
+    scene = scenes.get("truncated-octahedron").build()
+    assert scene.preset == "stiff"  # chosen by its blockage run near the singular cube (scenes/truncated_octahedron)
+    run = simulate(scene, "octahedron-to-cube", stop=0.5)
+    assert run.preset == "stiff" and simulate(scene, "octahedron-to-cube", stop=0.5, preset="fast").preset == "fast"

@@ -258,7 +258,7 @@ def test_events():
 
 def test_validate_the_twist_of_a_single_row():
     """validate() on the counter-clockwise twist of the 6 x 1 tube (the middle row alone: 36 faces, 42 hinges), with
-    the scene's preset (stiff) and sweep (8x): every verdict, MuJoCo's rank and the truss method's included."""
+    the scene's preset (fast) and sweep (8x): every verdict, MuJoCo's rank and the truss method's included."""
     report = validate(scenes.get("waterbomb-twist").build(m=1), branch=CCW)
     run = report.runs[0]
     assert run.followed == CCW and run.flips == 0

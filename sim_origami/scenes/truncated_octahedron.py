@@ -147,7 +147,9 @@ def interference_scene(zeta: float, model: TruncatedOctahedronCube | None = None
         drive_scale=1.0,
         path=(0.0, cube),
         # Seven coupled loops swept through 2.3 rad: stiff measured 1.8e-5 rad at the preset's 2 s sweep and
-        # 6.9e-8 rad (vertices 6.8e-8) 16x slower, in 0.45 s of CPU; fast 16x gave 4.4e-7.
+        # 6.9e-8 rad (vertices 6.8e-8) 16x slower, in 0.45 s of CPU; fast 16x gave 4.4e-7 with MuJoCo's own
+        # regulariser and 8.0e-9 with the presets' (8x: 3.1e-8), but its blockage run then stops 1.3e-2 rad short
+        # of the contact near the singular cube (stiff: within tolerance), so this scene stays stiff.
         preset="stiff",
         sweep_time_scale=16.0,
         # Squares share no joint: every pair may collide (faces passing through each other, digest §5); the
