@@ -1,5 +1,5 @@
 """Closure and energy drift over a long free run: the IFToMM A04 Bricard linkage released at rest under gravity
-for a million steps of a preset (fast: 5 ms, so 5000 s of simulated time). Prints the closure gap (paired closure
+for a million steps of a preset (fast: 8 ms, so 8000 s of simulated time). Prints the closure gap (paired closure
 sites) and the energy drift at every decade of steps, and the stepping rate.
 
     python scripts/long_run.py [steps] [preset]

@@ -23,25 +23,28 @@ class Tolerances:
     # Non-default geometries measured with RK4 5 ms: flat-foldable vertex branch S 2.1e-7, Myard alpha12 = 70 deg
     # 1.6e-7 (8 ms costs up to 3x on fast-turning linkages at equal sweep time).
     fast_rad: float = 1e-6
-    # Preset accurate (RK4 0.1 ms, 8 s sweep x sweep_time_scale): every scene's default sweeps <= 8.4e-11
-    # rad (thick diamond; Myard 7.8e-11, Bricard case 10 7.8e-11, vertex4 1.3e-11).
-    accurate_rad: float = 1e-9
+    # Preset accurate (RK4 0.1 ms, closures 4 h, regulariser x 0.01, 8 s sweep x sweep_time_scale): default
+    # sweeps <= 1.7e-12 rad (waterbomb-vertex; truncated polyhedra 1.1e-12, most scenes 1e-14 .. 2e-13); the
+    # A04 free run 2.3e-11 (10 s under gravity). Before the regulariser scale: 8.4e-11 (thick diamond).
+    accurate_rad: float = 2e-10
     # Kinematic projection (Gauss-Newton on MuJoCo's efc_pos to 1e-15 m): worst 2.3e-14 rad (the thin thick
     # waterbomb loop; 1.4e-14 the Miura sheet, <= 1.7e-14 Bricard case 10, 2e-15 single vertices). Stopping at
     # 1e-14 m instead left 1.8e-13 on the Miura sheet and 1.9e-13 on the waterbomb with a = 0.02 m.
     projection_rad: float = 1e-13
-    # Closure-site gap (m, 1 m links): fast worst 1.7e-7 (IFToMM A04), accurate 2.5e-11. Projection stops once
+    # Closure-site gap (m, 1 m links): fast worst 1.7e-7 (IFToMM A04), accurate 4.6e-13 (A04; 2.5e-11 before the
+    # regulariser scale). Projection stops once
     # every equality row is below 1e-14 m, so a gap can reach sqrt(3) 1e-14 (measured 1.2e-14).
     fast_residual_m: float = 2e-6
-    accurate_residual_m: float = 5e-10
+    accurate_residual_m: float = 5e-12
     projection_residual_m: float = 1e-13
     # Blockage: servo stop vs kinematic contact angle (stiff contacts, kp 50, +-20 N m): measured
     # 3.2e-4 rad on the thick Miura vertex (t = 0.02); spec mujoco.md 6.2 saw 2e-3 with default contacts.
     blockage_rad: float = 3e-3
     # Free motion under gravity (IFToMM A04, 10 s from rest, E0 = -29.43 J): total-energy drift (J)
-    # measured 5.9e-5 J with fast (RK4 8 ms; 1.5e-5 J at 5 ms), 1.3e-8 J with accurate (RK4 0.1 ms).
+    # measured 5.9e-5 J with fast (RK4 8 ms; 1.5e-5 J at 5 ms), 2.9e-9 J with accurate (RK4 0.1 ms; 1.3e-8 J
+    # before the regulariser scale).
     fast_energy: float = 6e-4
-    accurate_energy: float = 2e-7
+    accurate_energy: float = 3e-8
 
     def energy(self, preset: str) -> float:
         """Energy-drift tolerance (J) of a free run with this preset."""
