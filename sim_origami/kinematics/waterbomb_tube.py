@@ -422,13 +422,14 @@ class FoldPlan:
         """
         Fold angles (N, n_creases) at inputs x (N,), NaN where not `valid` (N,): distinct(x_block), the
         representatives' angles (d arrays (n,)), on blocks of `base.BLOCK` inputs (their temporaries stay in the CPU
-        cache), then one copy to every crease.
+        cache), then one copy to every crease: whole rows of a (n_creases, N) array (contiguous copies; a column
+        gather into (N, n_creases) took 0.48 s of 1.1 s at N = 1e6 on the 6 x 5 tube), returned transposed.
         """
-        columns = np.empty((x.size, self.creases.size))
+        rows = np.empty((self.creases.size, x.size))
         for block in input_blocks(x.size):
-            np.stack(distinct(x[block]), -1, out=columns[block])
-        columns[~valid] = np.nan
-        return np.take(columns, self.take, axis=1)
+            np.stack(distinct(x[block]), 0, out=rows[:, block])
+        rows[:, ~valid] = np.nan
+        return rows[self.take].T
 
 
 def fold_plan(layout: TubeLayout, q: NDArray[np.float64]) -> FoldPlan:
