@@ -190,3 +190,19 @@ def input_blocks(n: int, size: int = BLOCK) -> Iterator[slice]:
     """Consecutive slices of at most `size` of n inputs, for evaluations done block by block."""
     for start in range(0, n, size):
         yield slice(start, min(start + size, n))
+
+
+def transformation_inputs(x: ArrayLike, domain: tuple[float, float], name: str, what: str) -> NDArray[np.float64]:
+    """
+    Inputs `name` (rad) of a transformation `what` as a 1-D array; DomainError naming the first one not finite or
+    outside `domain` (1e-12 rad slack).
+    """
+    x = np.atleast_1d(np.asarray(x, dtype=float))
+    lo, hi = domain
+    bad = x[~((x >= lo - 1e-12) & (x <= hi + 1e-12))]
+    if bad.size:
+        raise DomainError(
+            f"{name} = {np.rad2deg(bad[0]):.6g} deg is outside the transformation, whose domain is "
+            f"[{np.rad2deg(lo):.6g}, {np.rad2deg(hi):.6g}] deg ({what})"
+        )
+    return x

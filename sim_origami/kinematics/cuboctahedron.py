@@ -38,9 +38,8 @@ there, so `domain` is [theta_f, theta_d].
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import DomainError
 from ..geometry import enclosed_volume, invert, rotation, transform, transform_z, unit
-from .base import Event
+from .base import Event, transformation_inputs
 from .dh import DHRow, dh_from_axes
 
 HALF = np.sqrt(2.0) / 2
@@ -157,15 +156,7 @@ class CuboctahedronOctahedron:
 
     def _check(self, theta: ArrayLike) -> NDArray[np.float64]:
         """Inputs as a 1-D array (rad); DomainError naming the first one outside `domain` (1e-12 rad slack)."""
-        t = np.atleast_1d(np.asarray(theta, dtype=float))
-        lo, hi = self.domain
-        bad = t[~((t >= lo - 1e-12) & (t <= hi + 1e-12))]
-        if bad.size:
-            raise DomainError(
-                f"theta_A = {np.rad2deg(bad[0]):.6g} deg is outside the transformation, whose domain is "
-                f"[{np.rad2deg(lo):.6g}, {np.rad2deg(hi):.6g}] deg (octahedron to cuboctahedron)"
-            )
-        return t
+        return transformation_inputs(theta, self.domain, "theta_A", "octahedron to cuboctahedron")
 
     def phi(self, theta: ArrayLike) -> NDArray[np.float64]:
         """Bennett angle phi (rad) at B and D: tan(theta/2) tan(phi/2) = 5/2, written continuously in theta."""

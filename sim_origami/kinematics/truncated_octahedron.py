@@ -45,9 +45,9 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import ConvergenceError, DomainError, ParameterError
+from ..errors import ConvergenceError, ParameterError
 from ..geometry import enclosed_volume, minimal_rotation, rigid_fit, rotation, transform, transform_z, unit
-from .base import Event
+from .base import Event, transformation_inputs
 from .bricard_threefold import ALONG, BricardThreefold, bricard_axis, bricard_trig
 from .dh import DHRow, dh_from_axes
 from .path_table import PathTable, polish, wrap_if_needed
@@ -421,15 +421,7 @@ class TruncatedOctahedronCube:
 
     def _inputs(self, theta: ArrayLike) -> NDArray[np.float64]:
         """Inputs as a 1-D array (rad); DomainError naming the first one not finite or outside `domain` (+-1e-12)."""
-        t = np.atleast_1d(np.asarray(theta, dtype=float))
-        lo, hi = self.domain
-        bad = t[~((t >= lo - 1e-12) & (t <= hi + 1e-12))]
-        if bad.size:
-            raise DomainError(
-                f"theta = {np.rad2deg(bad[0]):.6g} deg is outside the transformation, whose domain is "
-                f"[{np.rad2deg(lo):.6g}, {np.rad2deg(hi):.6g}] deg (truncated octahedron to cube)"
-            )
-        return t
+        return transformation_inputs(theta, self.domain, "theta", "truncated octahedron to cube")
 
     # --- the R-joint angles without poses (the throughput path of `hinge_angles`) ----------------------------------
 

@@ -48,9 +48,9 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import ConvergenceError, DomainError, ParameterError
+from ..errors import ConvergenceError, ParameterError
 from ..geometry import enclosed_volume, invert, rotation, signed_angle, transform, transform_z, unit, wrap
-from .base import Event
+from .base import Event, transformation_inputs
 from .bricard_threefold import ALONG, BricardThreefold, bricard_axis, bricard_trig
 from .dh import DHRow, dh_from_axes
 from .path_table import PathTable, polish, wrap_if_needed
@@ -410,15 +410,7 @@ class Transformation:
 
     def _inputs(self, x: ArrayLike) -> NDArray[np.float64]:
         """Inputs as a 1-D array (rad); DomainError naming the first one not finite or outside `domain` (+-1e-12)."""
-        x = np.atleast_1d(np.asarray(x, dtype=float))
-        lo, hi = self.domain
-        bad = x[~((x >= lo - 1e-12) & (x <= hi + 1e-12))]
-        if bad.size:
-            raise DomainError(
-                f"{self.input_name} = {np.rad2deg(bad[0]):.6g} deg is outside the transformation, whose domain is "
-                f"[{np.rad2deg(lo):.6g}, {np.rad2deg(hi):.6g}] deg (truncated tetrahedron to the Bricard fold)"
-            )
-        return x
+        return transformation_inputs(x, self.domain, self.input_name, "truncated tetrahedron to the Bricard fold")
 
     def _correct_inputs(self, u: NDArray[np.float64], value: NDArray[np.float64]) -> NDArray[np.float64]:
         """
