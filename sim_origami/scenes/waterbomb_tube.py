@@ -33,15 +33,14 @@ PARAMS = (
 # deg, through both uniform-radius states (98.72, 111.28 deg), which are regular points of the coupled closure.
 PATH_SHARE = 0.7
 # The symmetry couplings are soft (MuJoCo joint equalities) and set the path error, which falls as the square of
-# the sweep time. Fast preset, default sweep, every crease: 6 x 5 tube 2.8e-7 rad at 16x, 7.3e-8 at 32x (12800
-# steps, 70 s CPU, 183 steps/s); 6 x 3 tube 2.6e-6 at 4x, 2.3e-7 at 16x, 5.7e-8 at 32x (26 s CPU, 500 steps/s).
-# The stiff preset does better at equal CPU: 6 x 5 5.4e-7 at 4x, 1.3e-7 at 8x (16 s CPU, 786 steps/s); 6 x 3
-# 5.1e-7 at 4x, 1.3e-7 at 8x (5.7 s, 2250 steps/s); fast at 8x: 1.2e-6 and 9.3e-7.
-# Rates (scripts/waterbomb_tube_rate.py, this preset and sweep, CPU of the stepping loop, contact off): 648 steps/s on
-# the 6 x 5 tube (180 panels), 422 on 8 x 5, 297 on 10 x 5 (300 panels, 2.1e-7 rad); contact on costs 17-25 %. No
-# MuJoCo option reaches 1000 steps/s at 300 panels within 1e-6 rad (CG cut to 5 iterations: 755, 5.9e-4 rad).
-# With the presets' regulariser (scaled 0.01) fast at 8x measured 1.5e-8 rad in 11.5 s of CPU against stiff's
-# 1.3e-7 in 17.8 s (6 x 5), so the scene runs fast.
+# the sweep time. With MuJoCo's own regulariser: fast, default sweep, every crease, 6 x 5 tube 2.8e-7 rad at 16x
+# (70 s CPU), 1.2e-6 at 8x; stiff did better at equal CPU: 1.3e-7 at 8x (16 s CPU, 786 steps/s). With the presets'
+# regulariser (scaled 0.01) fast at 8x measured 1.5e-8 rad in 11.5 s of CPU against stiff's 1.3e-7 in 17.8 s (6 x
+# 5; 6 x 3: 1.3e-8 in 4.1 s), so the scene runs fast.
+# Rates (scripts/waterbomb_tube_rate.py, preset stiff: steps/s of the cheapest step, CPU of the stepping loop,
+# contact off): 648 steps/s on the 6 x 5 tube (180 panels), 422 on 8 x 5, 297 on 10 x 5 (300 panels, 2.1e-7 rad);
+# contact on costs 17-25 %. No MuJoCo option reaches 1000 steps/s at 300 panels within 1e-6 rad (CG cut to 5
+# iterations: 755, 5.9e-4 rad).
 PRESET = "fast"
 SWEEP_TIME_SCALE = 8.0
 ANCHORS = (0.5, 1.0)
