@@ -18,24 +18,30 @@ def polish(y: NDArray[np.float64], residual: Callable, correction: Callable, wha
     steps of those among them whose largest residual is >= `floor` (the rounding of the residuals): the others
     stop there, unchanged (near a turning point a step would be rounding over a vanishing slope), and so does a
     row once its largest step is below 1e-15. ConvergenceError naming `what` when a residual is still >= 1e-14
-    after 12 steps.
+    after 12 steps, or NaN (a row that has no real solution).
     """
     y, rows = y.copy(), np.arange(len(y))
     r = residual(y, slice(None))
     for _ in range(12):
-        need = (np.abs(r) if r.ndim == 1 else np.max(np.abs(r), axis=1)) >= floor
+        need = ~(_largest(r) < floor)  # a NaN residual (no real state) keeps its row open, to be reported
         rows, r = rows[need], r[need]
         if not len(rows):
             return y
         dy = correction(y[rows], rows, r)
         y[rows] -= dy
-        rows = rows[(np.abs(dy) if dy.ndim == 1 else np.max(np.abs(dy), axis=1)) >= 1e-15]
+        rows = rows[~(_largest(dy) < 1e-15)]
         r = residual(y[rows], rows)
-    if len(rows) and np.max(np.abs(r)) >= 1e-14:
-        bad = int(np.argmax(np.abs(r).reshape(len(rows), -1).max(axis=1)))
-        raise ConvergenceError(f"the closure of {what} did not converge at {y[rows[bad]]} (residual "
-                               f"{np.max(np.abs(r)):.3g} m^2)")  # fmt: skip
+    open_rows = np.flatnonzero(~(_largest(r) < 1e-14))
+    if open_rows.size:
+        k = int(open_rows[0])
+        raise ConvergenceError(f"the closure of {what} did not converge at {y[rows[k]]} (residual "
+                               f"{_largest(r)[k]:.3g} m^2)")  # fmt: skip
     return y
+
+
+def _largest(a: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Largest |entry| of each row of a (n,) or (n, k) array (NaN where a row holds NaN)."""
+    return np.abs(a) if a.ndim == 1 else np.max(np.abs(a), axis=1)
 
 
 @dataclass(frozen=True)
