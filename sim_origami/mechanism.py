@@ -17,6 +17,7 @@ periodic copy of a crease outside a unit cell); both joints must be in the tree.
 """
 
 from collections import deque
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from functools import cached_property
 
@@ -202,6 +203,20 @@ class Mechanism:
             F_from, sign, F_to = self._step(e.joint, e.parent)
             poses[e.child] = poses[e.parent] @ F_from @ transform_z(sign * q[..., e.joint]) @ invert(F_to)
         return poses
+
+    def hinge_mismatch(self, q: ArrayLike, joints: Iterable[str]) -> float:
+        """
+        Largest entry of |inv(T_parent F_p) T_child F_c - Rz(q_i)| over the named hinges, with the body poses of
+        the tree at angles q (..., n_joints): 0 when each of those hinges (cut ones included) turns by its angle.
+        """
+        q = np.asarray(q, dtype=float)
+        poses, worst = self.body_poses(q), 0.0
+        for name in joints:
+            i = self.joint_index(name)
+            j = self.joints[i]
+            turn = invert(poses[j.parent] @ j.frame_parent) @ poses[j.child] @ j.frame_child
+            worst = max(worst, float(np.max(np.abs(turn - transform_z(q[..., i])))))
+        return worst
 
     def reference_poses(self) -> dict[str, NDArray[np.float64]]:
         """Body poses at q = 0 (the reference pose of the MJCF model)."""

@@ -166,3 +166,13 @@ def test_mujoco_body_mass_and_inertia_equal_trimesh_at_panel_density(name, value
         np.testing.assert_allclose(model.body_ipos[b], solid.center_mass, atol=FLOAT32_MESH_ATOL, rtol=0)
         checked += 1
     assert checked == len(scene.mechanism.bodies) - 1
+
+
+def test_hinge_mismatch_is_zero_on_a_closed_pose_and_sees_a_wrong_cut_angle():
+    scene = scenes.get("vertex4").build()
+    q = scene.pose("odd2", 0.8)
+    cut = [scene.mechanism.joints[i].name for i in scene.mechanism.cut_joints]
+    assert scene.mechanism.hinge_mismatch(q, cut) <= 1e-14  # measured ~1e-16: the loop closes
+    q[scene.mechanism.cut_joints[0]] += 1e-3
+    # an angle off by d moves Rz's entries by d max(|sin q|, |cos q|): between d / sqrt 2 and d (measured 9.9e-4)
+    assert 0.7e-3 < scene.mechanism.hinge_mismatch(q, cut) <= 1.0001e-3
