@@ -30,11 +30,16 @@ Cases (`example`), each driven by the inner crease AB:
    alike: a mirror pair on one branch carries equal folds, so the crease it shares with the rest of the loop
    matches whenever A, B and C, D (pairs sharing crease 2) or B, C and D, A (sharing crease 1) are pairwise
    on one branch. The mixed ones are named per vertex (``odd2-odd2-odd3-odd3`` = A, B on odd2, C, D on odd3).
-
-Not built: the plane-symmetric case (Path3, eqn 2-19). Its central corners are alpha_12, alpha_23, alpha_23,
-alpha_12, so a planar central panel needs alpha_12 + alpha_23 = 180 deg: creases 1 and 3 of every vertex
-are collinear, which the seed excludes (M5: non-adjacent creases must not be collinear, or the pattern
-has more than 1 DOF).
+4. Plane-symmetric case (Path3, eqn 2-19) [RECON]: D and C are mirror images of A and B, the shared creases
+   are a2-b2, b3-c3, c2-d2, d1-a1, so the central corners are alpha_12, alpha_23, alpha_23, alpha_12 and a
+   planar central panel needs alpha_12 + alpha_23 = 180 deg: an isosceles trapezoid, mirror-symmetric about
+   the plane through the midpoints of DA and BC. The seed's figure vertex is not developable (digest M3), so
+   the mesh keeps its alpha_12 = 40 and alpha_41 = 100 deg and takes alpha_23 = 140, alpha_34 = 80 deg.
+   Creases 1 and 3 of every vertex are then collinear: a3-DA-d3 and b1-BC-c1 are straight lines across the
+   sheet, which the seed excludes (M5: "more than 1 DOF"). [NEW] Both hold: the mesh moves on one 1-DOF
+   branch with every vertex alike (odd1, A = B = C = D in rho, which is A = B, C = D = -A in the seed's D-H
+   angles), and on a 2-DOF family that folds the two straight lines alone (rho_AB = 0 on it, mobility 2
+   everywhere on it); the two meet at the flat state (`straight_lines`).
 
 Closed form. From the input x = rho_AB each vertex is solved in turn with `vertex4` (its input the crease
 it shares with the previous vertex): A and B from AB, C from BC, D from CD. Crease DA then comes out twice,
@@ -139,7 +144,12 @@ def example(case: int) -> tuple[MeshVertex, MeshVertex, MeshVertex, MeshVertex]:
     if case == 3:
         return (MeshVertex(generic, 1), MeshVertex(generic, 2, True), MeshVertex(generic, 1),
                 MeshVertex(generic, 2, True))  # fmt: skip
-    raise ParameterError(f"case = {case!r}; the Kokotsakis cases are 1 (Example 1), 2 (Example 2), 3 (two-fold)")
+    if case == 4:
+        plane = tuple(np.array([2, 7, 4, 5]) * np.pi / 9)  # (40, 140, 80, 100) deg: alpha_12 + alpha_23 = 180 deg
+        return (MeshVertex(plane, 1), MeshVertex(plane, 2), MeshVertex(plane, 3, True), MeshVertex(plane, 2, True))
+    raise ParameterError(
+        f"case = {case!r}; the Kokotsakis cases are 1 (Example 1), 2 (Example 2), 3 (two-fold), 4 (plane-symmetric)"
+    )
 
 
 def check_vertices(vertices: tuple[MeshVertex, ...]) -> None:
@@ -236,6 +246,28 @@ def crease_pattern(
             raise ParameterError(f"outer crease length {outer:g} m makes panel {name!r} non-convex: its creases cross")
     inner = tuple(Crease(n, CORNERS.index(n[0]), CORNERS.index(n[1])) for n in INNER)
     return CreasePattern(xy, tuple(faces), inner + tuple(outer_creases), FACES)
+
+
+def straight_lines(pattern: CreasePattern) -> tuple[tuple[str, str, str], ...]:
+    """
+    Crease lines straight across the mesh: (outer, inner, outer) crease names where an inner crease continues
+    into an outer crease at both ends (directions within ANGLE_TOL rad in the flat sheet). Each folds alone,
+    every other crease flat, as a simple hinge: a family of rigid motions with one DOF per line.
+    """
+    xy = pattern.vertices
+    out = []
+    for inner in pattern.creases[: len(INNER)]:
+        ends = []
+        for at, away in ((inner.start, inner.end), (inner.end, inner.start)):
+            u = xy[at] - xy[away]
+            for c in pattern.creases[len(INNER) :]:
+                v = xy[c.end] - xy[c.start]
+                cross = u[0] * v[1] - u[1] * v[0]
+                if c.start == at and abs(np.arctan2(cross, u @ v)) < ANGLE_TOL:
+                    ends.append(c.name)
+        if len(ends) == 2:
+            out.append((ends[0], inner.name, ends[1]))
+    return tuple(out)
 
 
 def crease_names(vertices: tuple[MeshVertex, ...]) -> tuple[str, ...]:
@@ -399,7 +431,12 @@ class Kokotsakis(JointSpaceKinematics):
 
     def events(self) -> tuple[Event, ...]:
         names = tuple(b.name for b in self._branches)
-        out = [Event("bifurcation", 0.0, names, "flat state: every mesh branch passes through it")]
+        detail = "flat state: every mesh branch passes through it"
+        lines = straight_lines(self.pattern)
+        if lines:
+            detail += (f"; so does the {len(lines)}-DOF family folding the straight crease lines "
+                       f"{', '.join('-'.join(line) for line in lines)} alone (rho_{INPUT} = 0 on it)")  # fmt: skip
+        out = [Event("bifurcation", 0.0, names, detail)]
         for b in self._branches:
             for end in b.domain:
                 out.append(self._end_event(b.name, end))

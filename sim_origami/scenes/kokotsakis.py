@@ -5,7 +5,8 @@ inner crease AB driven (`kinematics.kokotsakis`). The spanning tree keeps the fo
 outer crease per corner panel; the other outer crease of each corner panel is cut and closed by connects,
 one per vertex loop. `case` picks the seed's mesh: 1 = Example 1 (rotation case, identical generic vertices,
 eqn 2-34), 2 = Example 2 (variant rotation case, flat-foldable vertices, eqn 2-38), 3 = the two-fold case with
-identical (mirrored) vertices [RECON].
+identical (mirrored) vertices [RECON], 4 = the plane-symmetric case with identical (mirrored) vertices [RECON]:
+an isosceles trapezoid with two straight crease lines, so the flat state is also the start of a 2-DOF family.
 """
 
 from ..errors import ParameterError
@@ -14,7 +15,12 @@ from .base import Param, Scene, register
 from .patterns import pattern_scene
 
 PARAMS = (
-    Param("case", "", 1.0, "1 = Example 1 (eqn 2-34), 2 = Example 2 (eqn 2-38), 3 = two-fold case [RECON]"),
+    Param(
+        "case",
+        "",
+        1.0,
+        "1 = Example 1 (eqn 2-34), 2 = Example 2 (eqn 2-38), 3 = two-fold case [RECON], 4 = plane-symmetric [RECON]",
+    ),
     Param("outer", "m", 0.5, "length of the eight outer creases (central sides |AB| = |BC| = 1 m)"),
 )
 # Default sweep of x = rho_AB (rad) per case, clipped to each branch's domain by Scene.branch_path, kept away
@@ -22,12 +28,13 @@ PARAMS = (
 # on case 1 odd2, 0.28 x on odd3). Case 2 starts at 0.5: mode S folds BC only about 0.09 x as far as AB, so its
 # smallest nonzero singular value is 0.021 at x = 0.3 (0.036 at 0.5) and the numeric solve, stopped at a 1e-14
 # residual, was off by 7.4e-13 rad there (5.5e-14 from 0.5).
-PATHS = {1: (0.3, 1.1), 2: (0.5, 1.5), 3: (0.3, 1.1)}
+PATHS = {1: (0.3, 1.1), 2: (0.5, 1.5), 3: (0.3, 1.1), 4: (0.3, 1.1)}
 # The fast preset's error peaks just after the sweep starts (where the closure is thinnest and the minimum-jerk
 # ramp accelerates hardest) and falls as the square of the sweep time. Measured at the 2 s sweep: case 1 odd2
 # 4.3e-7, odd3 1.1e-6 (4x: 2.8e-8, 7.3e-8); case 2 from 0.5 C 2.2e-7, S 1.1e-5 (4x: 6.7e-7; 16x: C 9.0e-10,
-# S 4.3e-8); case 3 up to 8.7e-7 (odd3; 4x: 5.6e-8). Each run costs 0.01 s of CPU per 1x.
-SWEEP_TIME_SCALE = {1: 4.0, 2: 16.0, 3: 4.0}
+# S 4.3e-8); case 3 up to 8.7e-7 (odd3; 4x: 5.6e-8); case 4 1.7e-8 (4x: 1.1e-9). Each run costs 0.01 s of CPU
+# per 1x.
+SWEEP_TIME_SCALE = {1: 4.0, 2: 16.0, 3: 4.0, 4: 1.0}
 
 
 def _case(value: float) -> int:
@@ -37,7 +44,7 @@ def _case(value: float) -> int:
     return int(value)
 
 
-@register("kokotsakis", "3x3 Kokotsakis mesh of four degree-4 vertices (seed 003 M5), case 1-3, input rho_AB", PARAMS)
+@register("kokotsakis", "3x3 Kokotsakis mesh of four degree-4 vertices (seed 003 M5), case 1-4, input rho_AB", PARAMS)
 def build(case: float, outer: float) -> Scene:
     number = _case(case)
     kinematics = Kokotsakis(example(number), outer=outer)
