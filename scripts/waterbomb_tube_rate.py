@@ -14,29 +14,33 @@ compiled model. Rates are steps / CPU time (`time.thread_time`, this thread only
     python scripts/waterbomb_tube_rate.py              # every option but pgs on the 300-panel tube, baseline on all
     python scripts/waterbomb_tube_rate.py --sizes 10x5 --options pgs
 
-Measured (MuJoCo 4.0.1, the 2-core machine under load; 12800-step sweeps):
+Measured (MuJoCo 4.0.1, the 2-core machine; 12800-step sweeps), on the tube's shortest-path spanning tree from the
+input crease's face (depth 20 on 10 x 5; the strip's crease-order tree was 59 deep and stepped 297/s):
 
-    tube  panels  rows  option               off /s  error rad  window off  window on
-    6x5      180   639  newton-sparse           648    1.3e-07         596        492
-    8x5      240   855  newton-sparse           422    2.1e-07         445        367
-    10x5     300  1071  newton-sparse           297    2.1e-07         315        236
-    10x5     300  1071  newton-dense            286    2.1e-07         235        205
-    10x5     300  1071  newton-1-iteration      286    2.1e-07         301        191
-    10x5     300  1071  newton-tol-1e-12        291    2.1e-07         244        196
-    10x5     300  1071  newton-no-island        276    2.1e-07         277        215
-    10x5     300  1071  newton-no-warmstart     303    2.1e-07         309        239
-    10x5     300  1071  cg                      147    3.0e-06         144        122
-    10x5     300  1071  cg-dense                 41    3.4e-06          41         44
-    10x5     300  1071  cg-5                    755    5.9e-04         850        422
-    10x5     300  1071  pgs            11 (first 400 steps; on: 10), full sweep not run (about 20 min of CPU)
-    10x5     300  1071  implicitfast            280    2.1e-07         291        198
-    10x5     300   787  no-couplings            332    3.1e+00         351        250
+    tube  panels  rows option               off /s  error rad  window off  window on
+    6x5      180   639  newton-sparse          1328    1.4e-07        1510        912
+    8x5      240   855  newton-sparse           796    2.5e-07         937        549
+    10x5     300  1071  newton-sparse           554    3.5e-07         575        326
+    10x5     300  1071  newton-dense            330    3.5e-07         324        231
+    10x5     300  1071  newton-1-iteration      604    3.5e-07         610        367
+    10x5     300  1071  newton-tol-1e-12        608    3.5e-07         604        340
+    10x5     300  1071  newton-no-island        603    3.5e-07         661        373
+    10x5     300  1071  newton-no-warmstart     633    3.5e-07         629        375
+    10x5     300  1071  cg                      364    4.6e-07         323        217
+    10x5     300  1071  cg-dense                 59    4.6e-07          49         46
+    10x5     300  1071  cg-5                   1358    3.3e-04        1679        576
+    10x5     300  1071  pgs            11 (first 400 steps, crease-order tree; on: 10), full sweep not run
+    10x5     300  1071  implicitfast            542    3.5e-07         588        336
+    10x5     300   787  no-couplings            658    3.1e+00         686        396
 
-No option reaches TARGET at 300 panels within ACCURACY: Newton needs one iteration per step (warm start) and its
-Hessian and factorisation over nv = 299 with 1071 rows are about 80 % of a step (timers: constraint 3.2 of 4.0 ms;
-the bare tree, equalities off, steps at 8300/s); CG is only faster when cut to a few iterations, which loses the
-path; the couplings cannot go (the free tube leaves the symmetric path), nor can one of the two connects of a cut
-crease (6 x 3: 2.4 rad). Contact on, with no contact on the sweep, costs 17-50 % (broad phase and the exclusions).
+The 180-panel tube reaches TARGET; at 300 panels no option does within ACCURACY (the Newton rows within 10 % of
+each other are run-to-run noise). Newton needs one iteration per step (warm start) and its Hessian and
+factorisation over nv = 299 with 1071 rows are most of a step (timers: constraint 1.7 of 2.1 ms; the bare tree,
+equalities off, steps at 8300/s). The tree's depth sets the length of every closure row's Jacobian: the
+breadth-first tree took the 300-panel tube from 297 to 554 steps/s. CG is only faster when cut to a few
+iterations, which loses the path; the couplings cannot go (the free tube leaves the symmetric path), nor can one
+of the two connects of a cut crease (6 x 3: 2.4 rad). Contact on, with no contact on the sweep, costs 35-45 %
+(broad phase and the exclusions).
 """
 
 import argparse

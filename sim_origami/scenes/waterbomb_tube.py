@@ -3,13 +3,14 @@
 Every triangular face is a body (6nm) and every crease a hinge (9nm - 2n). The flat strip
 (`kinematics.waterbomb_tube`) gives the bodies and the strip's creases (`origami.pattern_mechanism`); the 2m - 1
 seam creases are added as hinges whose two frames sit on their two copies, 2 n a apart in the flat sheet, so
-they are cut and closed by connects like any other loop: the connects across the seam roll the strip into a
-tube. The free tube has 4n - 6 DOF; the seeds' symmetry (units alike round a row, plane-symmetric units,
-equatorial mirror or half-turn) is imposed by joint couplings, every spanning-tree crease to the first of its
-symmetry class (`WaterbombTube.couplings`, 98 on the 6 x 3 tube, 164 on the 6 x 5: redundant, 4n - 7 would do),
-which leaves the 1-DOF contraction, driven at the equatorial row's top midline A<r0>_0_1 (theta = pi + rho).
-Every face carries a collision solid and the scene has self contact (panels sharing a vertex of the tube excluded):
-with contact on, panels that pass through each other collide (INSET).
+that the spanning tree may keep them or cut them like any other crease: the tree is the shortest-path one from
+the input crease's face round the whole tube (`WaterbombTube.tree_creases`), and the connects on its cut
+creases roll the strip into a tube. The free tube has 4n - 6 DOF; the seeds' symmetry (units alike round a row,
+plane-symmetric units, equatorial mirror or half-turn) is imposed by joint couplings, every tree crease to the
+first of its symmetry class (`WaterbombTube.couplings`, 98 on the 6 x 3 tube, 164 on the 6 x 5: redundant,
+4n - 7 would do), which leaves the 1-DOF contraction, driven at the equatorial row's top midline A<r0>_0_1
+(theta = pi + rho). Every face carries a collision solid and the scene has self contact (panels sharing a vertex
+of the tube excluded): with contact on, panels that pass through each other collide (INSET).
 """
 
 from dataclasses import dataclass
@@ -38,9 +39,10 @@ PATH_SHARE = 0.7
 # regulariser (scaled 0.01) fast at 8x measured 1.5e-8 rad in 11.5 s of CPU against stiff's 1.3e-7 in 17.8 s (6 x
 # 5; 6 x 3: 1.3e-8 in 4.1 s), so the scene runs fast.
 # Rates (scripts/waterbomb_tube_rate.py, preset stiff: steps/s of the cheapest step, CPU of the stepping loop,
-# contact off): 648 steps/s on the 6 x 5 tube (180 panels), 422 on 8 x 5, 297 on 10 x 5 (300 panels, 2.1e-7 rad);
-# contact on costs 17-25 %. No MuJoCo option reaches 1000 steps/s at 300 panels within 1e-6 rad (CG cut to 5
-# iterations: 755, 5.9e-4 rad).
+# contact off), on the breadth-first spanning tree (`WaterbombTube.tree_creases`): 1328 steps/s on the 6 x 5 tube
+# (180 panels), 796 on 8 x 5, 554 on 10 x 5 (300 panels, 3.5e-7 rad; the crease-order tree: 648, 422, 297);
+# contact on costs 35-45 %. No MuJoCo option reaches 1000 steps/s at 300 panels within 1e-6 rad (CG cut to 5
+# iterations: 1358, 3.3e-4 rad).
 PRESET = "fast"
 SWEEP_TIME_SCALE = 8.0
 ANCHORS = (0.5, 1.0)
@@ -96,12 +98,11 @@ def tube_mechanism(kinematics: WaterbombTube, collision_inset: float | None = No
     right face. With `collision_inset` (m) the faces carry collision solids inset by that much from every edge."""
     pattern = kinematics.pattern
     drive = kinematics.input_crease
-    root = pattern.crease_faces(pattern.creases[kinematics.layout.index(drive)])[0]
+    root = kinematics.tree_root
     couplings = tuple((a, b, 1.0) for a, b in kinematics.couplings)
-    strip = pattern_mechanism(
-        pattern, root=root, keep=(drive,), couplings=couplings, anchors=ANCHORS, collision_inset=collision_inset
-    )
-    return Mechanism(strip.bodies, strip.joints + seam_joints(pattern, kinematics), root, (drive,), couplings)
+    strip = pattern_mechanism(pattern, root=root, anchors=ANCHORS, collision_inset=collision_inset)
+    joints = strip.joints + seam_joints(pattern, kinematics)
+    return Mechanism(strip.bodies, joints, root, (drive,), couplings, breadth_first=True)
 
 
 def default_path(kinematics: WaterbombTube) -> tuple[float, float]:
