@@ -30,6 +30,10 @@ OPENSIM_A04_S = 0.258
 # Bifurcation study: seed offsets (rad of input) tried in turn, and the length of each run (rad).
 SEED_OFFSETS = (1e-4, 1e-3, 1e-2, 1e-1)
 STUDY_SPAN = 0.3
+# The blockage run holds its final target this long (s) before its stop is read. Near a singular end the servo
+# creeps: the truncated octahedron at zeta = 15 deg touches at the contact, bounces, and is 3.1e-3 rad short of it
+# after 1 s, 2.5e-5 after 3 s (stiff); the thick Miura vertex (t = 0.02) 3.2e-4 and 9.8e-6.
+BLOCKAGE_HOLD = 3.0
 
 
 @dataclass(frozen=True)
@@ -227,13 +231,13 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
 
 
 def run_blockage(scene: Scene, branch: str) -> tuple[Blockage, float]:
-    """Force-limited servo from the path start to the branch's end in the direction of travel, held 1 s."""
+    """Force-limited servo from the path start to the branch's end in the direction of travel, held BLOCKAGE_HOLD."""
     start, stop = scene.branch_path(branch)
     lo, hi = scene.kinematics.branch(branch).domain
     lock = hi if stop >= start else lo
     t0 = time.thread_time()
     touch = contact_input(scene, branch, start, lock)
-    run = simulate(scene, branch, drive="servo", contact=True, start=start, stop=lock, hold=1.0)
+    run = simulate(scene, branch, drive="servo", contact=True, start=start, stop=lock, hold=BLOCKAGE_HOLD)
     x = run.q[:, scene.mechanism.joint_index(scene.drive_joint)] / scene.drive_scale
     result = assess(x, run.target, run.drive_force / scene.drive_scale, 20.0 / scene.drive_scale, touch, lock)
     return result, time.thread_time() - t0

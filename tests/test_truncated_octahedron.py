@@ -21,7 +21,8 @@ from sim_origami.kinematics.truncated_octahedron import (
 from sim_origami.mjcf import ModelOptions, mujoco_joints
 from sim_origami.scenes.truncated_octahedron import INPUT_JOINT, assembly
 from sim_origami.simulate import Bindings, compile_model
-from sim_origami.validation import validate
+from sim_origami.tolerances import TOLERANCES
+from sim_origami.validation import run_blockage, validate
 
 DEG = np.pi / 180
 INDEX = {v: k for k, v in enumerate(NAMES)}
@@ -219,3 +220,13 @@ def test_state_closes_on_every_input_of_designs_near_the_cube_singularity(zeta_d
     x = np.linspace(*model.domain, 401)
     residual = np.abs(model.equations(x, model.state(x)))
     assert np.all(residual < 1e-13)  # measured <= 1e-13 by construction; NaN fails this comparison
+
+
+def test_blockage_near_the_singular_cube_is_read_after_the_servo_settles():
+    """zeta = 15 deg: the servo touches the squares' contact, bounces, and creeps back toward it; held 1 s it was
+    3.1e-3 rad short (over the 3e-3 tolerance), held BLOCKAGE_HOLD = 3 s 2.5e-5."""
+    scene = scenes.get("truncated-octahedron").build(zeta=np.deg2rad(15.0))
+    blockage, _ = run_blockage(scene, scene.kinematics.branches()[0].name)
+    assert blockage.stopped and not blockage.drive_saturated
+    assert blockage.contact_input == pytest.approx(2.290717, abs=1e-6)
+    assert blockage.error <= TOLERANCES.blockage_rad  # measured 2.5e-5
