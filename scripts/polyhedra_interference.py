@@ -22,6 +22,7 @@ from sim_origami.errors import ParameterError
 from sim_origami.kinematics.truncated_octahedron import CUBE, NAMES, PathOutcome, TruncatedOctahedronCube
 from sim_origami.scenes.base import Scene
 from sim_origami.simulate import simulate
+from sim_origami.validation import BLOCKAGE_HOLD
 
 DEG = np.pi / 180
 ZETAS = (-89.9, -85, -80, -75, -70, -65, -63, -62, -61.5, -61, -60.9, -60.7, -60.5, -60, -55, -40, -20, -10, 0,
@@ -60,7 +61,7 @@ def servo_run(scene: Scene, stop: float) -> tuple[np.ndarray, np.ndarray, float,
     """Servo with contact from the deployed pose (all joints 0) to input `stop`: inputs, mechanism angles, first
     contact input (nan if none), CPU (s)."""
     branch = scene.kinematics.branches()[0].name
-    run = simulate(scene, branch, drive="servo", contact=True, start=0.0, stop=stop, hold=1.0,
+    run = simulate(scene, branch, drive="servo", contact=True, start=0.0, stop=stop, hold=BLOCKAGE_HOLD,
                    initial=np.zeros(len(scene.mechanism.joints)))  # fmt: skip
     x = run.q[:, scene.mechanism.joint_index(scene.drive_joint)] / scene.drive_scale
     touched = np.flatnonzero(run.contacts > 0)

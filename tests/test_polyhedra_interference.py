@@ -12,6 +12,7 @@ from sim_origami import scenes
 from sim_origami.errors import ParameterError
 from sim_origami.kinematics.truncated_octahedron import NAMES, TruncatedOctahedronCube
 from sim_origami.simulate import contact_distance, simulate
+from sim_origami.validation import BLOCKAGE_HOLD
 
 DEG = np.pi / 180
 INDEX = {v: k for k, v in enumerate(NAMES)}
@@ -79,7 +80,7 @@ def servo_stop(zeta_deg: float) -> tuple[float, float, np.ndarray, int]:
     """Final A1 (rad), first-contact A1 (rad, nan if none), final vertices (24, 3), contacts at the end."""
     scene = octahedron_scene.interference_scene(zeta_deg * DEG)
     run = simulate(scene, scene.kinematics.branches()[0].name, drive="servo", contact=True, start=0.0,
-                   stop=scene.path[1], hold=1.0, initial=np.zeros(len(scene.mechanism.joints)))  # fmt: skip
+                   stop=scene.path[1], hold=BLOCKAGE_HOLD, initial=np.zeros(len(scene.mechanism.joints)))  # fmt: skip
     x = run.q[:, scene.mechanism.joint_index("A1")]
     touched = np.flatnonzero(run.contacts > 0)
     P = scene.kinematics.observe_points(scene.mechanism_to_loop(run.q[-1:]))[0]
@@ -94,14 +95,14 @@ def rho(P: np.ndarray, a: str, at: str, b: str) -> float:
 def test_feasible_design_closes_into_the_cube_and_stops_on_contact():
     cube = TruncatedOctahedronCube().theta_f - TruncatedOctahedronCube().theta_d
     stop, touch, P, _ = servo_stop(0.0)
-    assert abs(stop - touch) < 1e-3  # rests against the plates (measured 1.0e-4 rad short of the first touch)
+    assert abs(stop - touch) < 1e-3  # rests against the plates (measured 1.2e-5 rad short of the first touch)
     assert 0.005 < cube - stop < 0.015  # plates touch 9.8 mrad before the cube (measured 0.0098)
     assert np.linalg.norm(P[INDEX["A1"]] - P[INDEX["B1"]]) < 0.02  # measured 0.0115 m: the corner closes
 
 
 def test_zeta_30_stops_with_bricard_2_open():
     stop, touch, P, _ = servo_stop(30.0)
-    assert abs(stop - touch) < 1e-4  # stopped by contact (measured within 1e-4 deg)
+    assert abs(stop - touch) < 1e-4  # stopped by contact (measured 6.7e-5 rad short of the first touch)
     assert rho(P, "B1", "C2", "C1") < 1 * DEG  # Bricard 1 folded (measured 0.65 deg)
     assert abs(rho(P, "D1", "F2", "F1") / DEG - 51.2) < 1.0  # Bricard 2 far from it (measured 51.18 deg)
 
@@ -110,7 +111,7 @@ def test_zeta_minus_70_jams_mid_path_where_fold_angles_see_nothing():
     # Bricard 2 runs backwards (theta_D falls to -97.8 deg) and its squares D, E, F hit each other at rho2 =
     # 116.87 deg: signed rho2 stays positive, so the seed's fold-angle criterion misses this interference.
     stop, touch, P, _ = servo_stop(-70.0)
-    assert abs(stop / DEG - 53.07) < 0.05 and abs(stop - touch) < 1e-3  # measured 53.069, contact 53.077 deg
+    assert abs(stop / DEG - 53.07) < 0.05 and abs(stop - touch) < 1e-3  # measured 53.069, contact 53.084 deg
     assert abs(rho(P, "D1", "F2", "F1") / DEG - 116.87) < 0.05  # closed form at that theta: 116.866 deg
 
 

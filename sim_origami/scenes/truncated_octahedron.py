@@ -148,9 +148,12 @@ def interference_scene(zeta: float, model: TruncatedOctahedronCube | None = None
         path=(0.0, cube),
         # Seven coupled loops swept through 2.3 rad: stiff measured 1.8e-5 rad at the preset's 2 s sweep and
         # 6.9e-8 rad (vertices 6.8e-8) 16x slower, in 0.45 s of CPU; fast 16x gave 4.4e-7 with MuJoCo's own
-        # regulariser and 8.0e-9 with the presets' (8x: 3.1e-8), but its blockage run then stops 1.3e-2 rad short
-        # of the contact near the singular cube (stiff: within tolerance), so this scene stays stiff.
-        preset="stiff",
+        # regulariser and 8.0e-9 with the presets' (8x: 3.1e-8). Near the singular cube the blockage servo is
+        # slow to settle (it bounces off the contact and creeps back): held 1 s, fast stopped 1.3e-2 rad short,
+        # so the scene ran stiff; held 3 s (validation.BLOCKAGE_HOLD) fast 16x stops 9.6e-10 (zeta = 0) and 5.5e-6
+        # rad (15 deg) from the contact in 5.1-5.7 s of CPU, stiff 16x 2.0e-11 and 2.4e-5 in 8.5 s; fast 8x 3.5e-4
+        # and 1.1e-2 (too short at 15 deg).
+        preset="fast",
         sweep_time_scale=16.0,
         # Squares share no joint: every pair may collide (faces passing through each other, digest §5); the
         # collision plates touch 9.8 mrad of A1 before the cube, where the servo stops (blockage study).
