@@ -78,7 +78,9 @@ def test_validate_rejects_an_unknown_preset_naming_it():
 
 
 def test_a_scene_runs_its_own_preset_unless_told_otherwise():
-    scene = scenes.get("truncated-octahedron").build()
-    assert scene.preset == "stiff"  # chosen by its blockage run near the singular cube (scenes/truncated_octahedron)
-    run = simulate(scene, "octahedron-to-cube", stop=0.5)
-    assert run.preset == "stiff" and simulate(scene, "octahedron-to-cube", stop=0.5, preset="fast").preset == "fast"
+    # every registered scene now runs fast (the truncated octahedron, the last on stiff, switched with the 3 s
+    # blockage hold); a scene that picks stiff gets it
+    assert {scenes.get(name).build().preset for name in ("vertex4", "truncated-octahedron")} == {"fast"}
+    scene = dataclasses.replace(scenes.get("vertex4").build(), preset="stiff")
+    run = simulate(scene, "odd1", stop=0.5)
+    assert run.preset == "stiff" and simulate(scene, "odd1", stop=0.5, preset="fast").preset == "fast"
