@@ -50,6 +50,27 @@ coincide) and no crease is reversed through flat (`waterbomb_tube.reversed_creas
 losing its place. Rows whose A's cross the axis (r_A = 0, kappa_Bi,4 = 0: limit (d), eqn 15) are lock events inside
 the domain, as in `waterbomb_tube` (interference; the digest's twist ranges keep it too, B.6 Fig 14c): with beta >
 beta_max (eqn 40) rows +-1 already start through the axis.
+
+Other rows (seed 004 Fig 16 paths I and III; digest B.3.6 "Bifurcation", B.6 item 20). At beta = beta_max the
+contraction ends in the fully folded equal-diameter cylinder (configuration iii: every row's A's on the axis), from
+which any row may twist (`row` = seed row k: +1 top, path I; -1 bottom, path III; 0 the middle, path II). The
+construction above builds each side of the twisting row outward by the chain, so a row's place does not depend on
+the rows farther out (as for the contraction, seed 004 Fig 7): the twist of row k in the m-row tube is the middle-row
+twist of the m + 2 |k| row tube, its seed rows i - k kept as rows i (`twist_rows`; slots shift by k, which turns the
+whole tube by k pi / n and leaves every fold angle as it is). Checked, not assumed: every vertex loop and the ring
+closes to 5.4e-15 along both senses, and the start equals the contraction's end at theta = 2 pi / n (configuration
+iii) to 8.9e-16 rad (n6 m3 alpha 40, rows -1, 0, 1; tests/test_waterbomb_twist_rows.py). The input is then the
+twisting row's A<k + r0>_0_2; the limits (a), (b) apply to its diagonals, (c), (d) to the other rows, which touch the
+axis at the start (r_A = c (zeta - pi/2)^2, not a crossing). For beta != beta_max the row k is not fully folded
+where the contraction ends (r_A = -1.615 a (beta - beta_max) for rows +-1 of n6 alpha 40), so its twist would start
+from a state off the contraction: refused unless |r_A| <= FOLDED_TOL a there. The half-turn about the horizontal
+radius through the middle row at azimuth (k mod 2) pi / n maps the twist of row k onto that of row -k at the same
+input and end-ring twist: on the flat strip the point reflection A_i <-> A_-i, B_i <-> C_(-i-1), slot p <-> 2 (k mod
+2) - p (the input A<k + r0>_0_2 <-> A<r0 - k>_0_5, equal to A<r0 - k>_0_2 by the twisting row's line symmetry;
+checked in the tests). Only the twist is modelled for row != 0: its couplings (found from the closed form as for row
+0; 91 on the 6 x 3 tube) make the twisting row's A line-symmetric (eta01 = eta04), which the radial contraction
+breaks in rows +-1 (its coupled residual 0.80), so "radial-contraction" is not a branch of that model (the
+contraction is the row-0 model's).
 """
 
 from functools import cached_property
@@ -87,6 +108,12 @@ CCW = "twist-ccw"
 CW = "twist-cw"
 # The domain's ends are told apart by evaluating this far (rad of zeta) beyond them.
 BEYOND = 1e-7
+# A row is fully folded (its A's on the axis) where |r_A| <= FOLDED_TOL a, the threshold `waterbomb_tube` reports the
+# equal-diameter cylinder with. A row other than the middle one twists from the contraction's end only if it is fully
+# folded there, i.e. beta = beta_max: r_A(+-1) = -1.615 a (beta - beta_max) (rad) at the end (n6 m3 alpha 40,
+# measured), so |beta - beta_max| <= 6.2e-10 rad (3.5e-8 deg); the twist's start then differs from the contraction's
+# end by <= 6.93 |beta - beta_max| = 4.3e-9 rad of fold angle (measured), below MuJoCo's fast target 1e-7 rad.
+FOLDED_TOL = 1e-9
 
 
 def start_input(n: int, alpha: float) -> float:
@@ -121,12 +148,19 @@ def middle_points(
 
 
 def twist_rows(
-    n: int, m: int, alpha: float, beta: float, a: float, zeta: ArrayLike
+    n: int, m: int, alpha: float, beta: float, a: float, zeta: ArrayLike, row: int = 0
 ) -> tuple[dict[tuple[str, int], tuple[NDArray, NDArray]], NDArray[np.float64]]:
     """
     (r, z) in m of every vertex kind and seed row, {(kind, row): (r (N,), z (N,))}, and the upper half's azimuth
-    offset delta (N,) (rad), at side-edge tilts zeta (N,) (rad); NaN where a vertex cannot be placed.
+    offset delta (N,) (rad), at side-edge tilts zeta (N,) (rad), seed row `row` twisting; NaN where a vertex cannot
+    be placed. Row `row` != 0: the middle-row twist of the m + 2 |row| row tube, its seed rows i - row kept as rows
+    i (module docstring, "Other rows").
     """
+    if row:
+        rows, delta = twist_rows(n, m + 2 * abs(row), alpha, beta, a, zeta)
+        bottom, top = row_range(m)
+        kept = {(kind, i): rz for (kind, i), rz in rows.items() if bottom - (kind != "A") <= i + row <= top}
+        return {(kind, i + row): rz for (kind, i), rz in kept.items()}, delta
     L = lengths(alpha, beta, a)
     bottom, top = row_range(m)
     rows, delta = middle_row(n, alpha, beta, a, zeta)
@@ -180,19 +214,21 @@ def expanded_middle_input(n: int, alpha: float, beta: float, a: float, zeta: Arr
     return unwrapped_fold(np.arctan2(np.sqrt(b_b) * det, cosine), 1.0)
 
 
-def upper_half(layout: TubeLayout) -> NDArray[np.bool_]:
-    """Per vertex key: in the upper half (B_i, C_i with i >= 0, A_i with i >= 1; A_0 is on the axis)."""
-    return np.array([i >= (1 if kind == "A" else 0) for kind, i, _ in layout.keys])
+def upper_half(layout: TubeLayout, row: int = 0) -> NDArray[np.bool_]:
+    """Per vertex key: in the upper half of the twist of seed row `row` (B_i, C_i with i >= row, A_i with i >= row +
+    1; the A_row are on the axis)."""
+    return np.array([i >= row + (1 if kind == "A" else 0) for kind, i, _ in layout.keys])
 
 
-def twist_vertices(layout: TubeLayout, zeta: ArrayLike) -> NDArray[np.float64]:
-    """3-D vertices (N, len(layout.keys), 3) in m at side-edge tilts zeta (N,) (rad), axis +z (module docstring)."""
-    rows, delta = twist_rows(layout.n, layout.m, layout.alpha, layout.beta, layout.a, zeta)
+def twist_vertices(layout: TubeLayout, zeta: ArrayLike, row: int = 0) -> NDArray[np.float64]:
+    """3-D vertices (N, len(layout.keys), 3) in m at side-edge tilts zeta (N,) (rad) of the twist of seed row `row`,
+    axis +z (module docstring)."""
+    rows, delta = twist_rows(layout.n, layout.m, layout.alpha, layout.beta, layout.a, zeta, row)
     names = list(rows)
     pick = np.array([names.index((kind, i)) for kind, i, _ in layout.keys])
     r = np.stack([rows[key][0] for key in names], -1)[:, pick]
     z = np.stack([rows[key][1] for key in names], -1)[:, pick]
-    side = np.where(upper_half(layout), 1.0, -1.0)
+    side = np.where(upper_half(layout, row), 1.0, -1.0)
     psi = np.array([p for _, _, p in layout.keys]) * np.pi / layout.n + side * delta[:, None]
     return np.stack([r * np.cos(psi), r * np.sin(psi), z], -1)
 
@@ -243,28 +279,32 @@ def unwrapped(layout: TubeLayout, q: ArrayLike, creases: ArrayLike | None = None
     return s * np.pi / 2 + wrap(np.asarray(q, dtype=float) - s * np.pi / 2)
 
 
-def twist_folds(layout: TubeLayout, zeta: ArrayLike, creases: ArrayLike | None = None) -> NDArray[np.float64]:
-    """Fold angles (N, n) of all creases (or the indices `creases`) at side-edge tilts zeta (N,) (rad), `unwrapped`;
-    NaN where the tube does not assemble."""
+def twist_folds(
+    layout: TubeLayout, zeta: ArrayLike, creases: ArrayLike | None = None, row: int = 0
+) -> NDArray[np.float64]:
+    """Fold angles (N, n) of all creases (or the indices `creases`) at side-edge tilts zeta (N,) (rad) of the twist
+    of seed row `row`, `unwrapped`; NaN where the tube does not assemble."""
     with np.errstate(invalid="ignore", divide="ignore"):
-        q = fold_angles(layout, twist_vertices(layout, zeta), creases)
+        q = fold_angles(layout, twist_vertices(layout, zeta, row), creases)
     return unwrapped(layout, q, creases)
 
 
-def middle_diagonals(layout: TubeLayout) -> tuple[int, int]:
-    """Indices of A<r0>_0_2 (the input, eta02) and A<r0>_0_3 (eta03 = eta06) in layout.creases."""
-    r0 = -row_range(layout.m)[0]
-    return layout.index(f"A{r0}_0_2"), layout.index(f"A{r0}_0_3")
+def middle_diagonals(layout: TubeLayout, row: int = 0) -> tuple[int, int]:
+    """Indices of A<r>_0_2 (the input, eta02) and A<r>_0_3 (eta03 = eta06) of seed row `row` (named r = row + r0)
+    in layout.creases."""
+    r = row - row_range(layout.m)[0]
+    return layout.index(f"A{r}_0_2"), layout.index(f"A{r}_0_3")
 
 
-def twist_checks(layout: TubeLayout, zeta: ArrayLike) -> dict[str, NDArray[np.bool_]]:
+def twist_checks(layout: TubeLayout, zeta: ArrayLike, row: int = 0) -> dict[str, NDArray[np.bool_]]:
     """
-    The domain's conditions (N,) at side-edge tilts zeta (N,) (module docstring): 'placed' (every vertex), 'diagonals'
-    (eta02, eta03 >= 0), 'unreversed' (no crease reversed through flat). Unit 0 of each row stands for its row.
+    The domain's conditions (N,) at side-edge tilts zeta (N,) of the twist of seed row `row` (module docstring):
+    'placed' (every vertex), 'diagonals' (the twisting row's eta02, eta03 >= 0), 'unreversed' (no crease reversed
+    through flat). Unit 0 of each row stands for its row.
     """
     zeta = np.atleast_1d(np.asarray(zeta, dtype=float))
-    picks = np.concatenate([layout.unit0, middle_diagonals(layout)])
-    q = twist_folds(layout, zeta, picks)
+    picks = np.concatenate([layout.unit0, middle_diagonals(layout, row)])
+    q = twist_folds(layout, zeta, picks, row)
     with np.errstate(invalid="ignore"):
         return {
             "placed": np.all(np.isfinite(q), axis=-1),
@@ -273,22 +313,34 @@ def twist_checks(layout: TubeLayout, zeta: ArrayLike) -> dict[str, NDArray[np.bo
         }
 
 
-def valid_tilts(layout: TubeLayout, zeta: ArrayLike, strict: bool = True) -> NDArray[np.bool_]:
-    """Where the twist is a rigid motion (N,) at side-edge tilts zeta (N,) (rad): every `twist_checks` holds;
-    `strict=False` drops 'unreversed', the seeds' criterion (the chain real, digest B.3.4 "paper")."""
-    checks = twist_checks(layout, zeta)
+def valid_tilts(layout: TubeLayout, zeta: ArrayLike, strict: bool = True, row: int = 0) -> NDArray[np.bool_]:
+    """Where the twist of seed row `row` is a rigid motion (N,) at side-edge tilts zeta (N,) (rad): every
+    `twist_checks` holds; `strict=False` drops 'unreversed', the seeds' criterion (the chain real, digest B.3.4
+    "paper")."""
+    checks = twist_checks(layout, zeta, row)
     if not strict:
         del checks["unreversed"]
     return np.logical_and.reduce(list(checks.values()))
 
 
-def tilt_range(layout: TubeLayout, strict: bool = True) -> tuple[float, float] | None:
-    """The twist's range of side-edge tilts zeta (rad): the interval around pi/2 where `valid_tilts` holds, its ends
-    bisected to about 1e-13 (`base.domain_of`); None where the start itself is not valid."""
+def tilt_range(layout: TubeLayout, strict: bool = True, row: int = 0) -> tuple[float, float] | None:
+    """The range of side-edge tilts zeta (rad) of the twist of seed row `row`: the interval around pi/2 where
+    `valid_tilts` holds, its ends bisected to about 1e-13 (`base.domain_of`); None where the start is not valid."""
     try:
-        return domain_of(lambda z: valid_tilts(layout, z, strict), 1e-9, np.pi - 1e-9, np.pi / 2, GRID)
+        return domain_of(lambda z: valid_tilts(layout, z, strict, row), 1e-9, np.pi - 1e-9, np.pi / 2, GRID)
     except ParameterError:
         return None
+
+
+def twisting_row(m: int, row: float) -> int:
+    """The seed row `row` of an m-row tube as an int; ParameterError unless it is one of the tube's seed rows."""
+    bottom, top = row_range(m)
+    if row != int(row) or not bottom <= row <= top:
+        rows = ", ".join(str(i) for i in range(bottom, top + 1))
+        raise ParameterError(
+            f"row = {row:g}; the {m}-row tube twists in one of its seed rows {rows} (0 the middle row, {top} the top)"
+        )
+    return int(row)
 
 
 class WaterbombTwist(TubeLoops, JointSpaceKinematics):
@@ -307,14 +359,19 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
       (eqn 40) rows +-1 start through the axis (lock events where they leave it).
     a : float
       Half-width of a unit (m).
+    row : int
+      Seed row that twists (0 the middle row, +1 the one above it, ...; module docstring, "Other rows"); a row other
+      than 0 only at beta = beta_max (|r_A| <= FOLDED_TOL a where the contraction ends), without the contraction
+      branch. The input is that row's A<row + r0>_0_2.
 
     Raises
     ------
     ParameterError
-      For a geometry out of range, or one whose middle row cannot fully fold or twist rigidly.
+      For a geometry out of range, one whose middle row cannot fully fold or twist rigidly, a row that is not one of
+      the tube's seed rows, or a row other than 0 that is not fully folded where the contraction ends.
     """
 
-    def __init__(self, n: int, m: int, alpha: float, beta: float, a: float = 1.0):
+    def __init__(self, n: int, m: int, alpha: float, beta: float, a: float = 1.0, row: int = 0):
         if int(m) == m and m % 2 == 0:
             raise ParameterError(f"m = {m:g} rows; the rigid twist needs an odd m, a middle row to fold (seed 004 §3)")
         if int(n) == n and n >= 3 and alpha >= alpha_limit(int(n)):
@@ -329,7 +386,8 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         self.pattern = self.layout.pattern
         self.crease_names = self.layout.names
         self.joint_names = tuple(f"rho_{c}" for c in self.crease_names)
-        self.input_crease = self.crease_names[middle_diagonals(self.layout)[0]]
+        self.row = twisting_row(self.m, row)
+        self.input_crease = self.crease_names[middle_diagonals(self.layout, self.row)[0]]
         self.input_name = f"rho_{self.input_crease}"
         self.start = start_input(self.n, self.alpha)
         if abs(self.tube.domain[0] - (2 * np.pi / self.n - np.pi)) > 1e-9:  # bisected ends sit 1e-13 inside
@@ -338,13 +396,29 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
                 f"cannot contract to its fully folded middle row: its contraction starts at eta01 = "
                 f"{np.rad2deg(np.pi + self.tube.domain[0]):.6g} deg, not 360/n (seed 004 eqn 13)"
             )
+        if self.row:
+            self._check_folded_row()
         self.tilts = self._tilts()
         self.domain = (float(self.input_of(self.tilts[1])[0]), float(self.input_of(self.tilts[0])[0]))
+
+    def _check_folded_row(self) -> None:
+        """ParameterError unless the twisting row is fully folded where the contraction ends (theta = 2 pi / n):
+        |r_A| <= FOLDED_TOL a there, i.e. beta = beta_max (eqn 40) to about 6e-10 rad (FOLDED_TOL)."""
+        bottom = row_range(self.m)[0]
+        radius = float(self.tube.radii(np.array([2 * np.pi / self.n - np.pi]))[0, self.row - bottom])
+        if abs(radius) > FOLDED_TOL * self.a:
+            raise ParameterError(
+                f"beta = {np.rad2deg(self.beta):.10g} deg is not beta_max = "
+                f"{np.rad2deg(beta_max(self.alpha, self.n)):.10g} deg (seed 004 eqn 40): seed row {self.row} "
+                f"has r_A = {radius / self.a:.3g} a where the contraction ends (theta = 360/n), not fully folded "
+                f"(|r_A| <= {FOLDED_TOL:g} a), so its twist does not start from the contraction; only the middle row "
+                "(row 0) twists from there unless beta = beta_max (Fig 16)"
+            )
 
     # -- closed form -------------------------------------------------------------------------------------------
     def _tilts(self) -> tuple[float, float]:
         """The twist's range of zeta (rad) (`tilt_range`); x(zeta) checked strictly decreasing on it."""
-        tilts = tilt_range(self.layout)
+        tilts = tilt_range(self.layout, row=self.row)
         if tilts is None:
             raise ParameterError(
                 f"the {self.n} x {self.m} tube (alpha = {np.rad2deg(self.alpha):.6g}, beta = "
@@ -403,14 +477,14 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         x = np.atleast_1d(np.asarray(x, dtype=float))
         if not self._twist(branch):
             return self.tube.vertices(self.contraction_theta(x) - np.pi)
-        return twist_vertices(self.layout, self.tilt(x))
+        return twist_vertices(self.layout, self.tilt(x), self.row)
 
     def folds(self, branch: str, x: ArrayLike) -> NDArray[np.float64]:
         """Fold angles (N, n_creases) (rad, `unwrapped`) at inputs x (N,) on `branch` (no domain check)."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
         if not self._twist(branch):
             return unwrapped(self.layout, self.tube.folds(self.contraction_theta(x) - np.pi))
-        return twist_folds(self.layout, self.tilt(x))
+        return twist_folds(self.layout, self.tilt(x), row=self.row)
 
     def end_twist(self, branch: str, x: ArrayLike) -> NDArray[np.float64]:
         """Relative end-ring twist (N,) (rad, counter-clockwise about +z positive) at inputs x (N,); 0 on the
@@ -428,6 +502,15 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
     # -- contract ----------------------------------------------------------------------------------------------
     def branches(self) -> tuple[Branch, ...]:
         lo, hi = self.domain
+        if self.row:
+            which = "top" if self.row > 0 else "bottom"
+            return (
+                Branch(CCW, f"seed row {self.row} ({which} side) twists from the equal-diameter cylinder (seed 004 "
+                       "Fig 16), the rows above it turn counter-clockwise about +z against those below: x rises, "
+                       "its eta02 falls to 0 or the domain's end", (self.start, hi)),
+                Branch(CW, f"seed row {self.row} twists, the rows above it turn clockwise: x falls, its eta02 rises "
+                       "and eta03 = eta06 falls to 0 or the domain's end", (lo, self.start)),
+            )  # fmt: skip
         c_lo = float(self.contraction_input(np.pi + self.tube.domain[1]))
         return (
             Branch(CCW, "middle row twists, upper half turns counter-clockwise about +z against the lower half "
@@ -449,7 +532,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
 
     @cached_property
     def _upper(self) -> NDArray[np.bool_]:
-        return upper_half(self.layout)
+        return upper_half(self.layout, self.row)
 
     @cached_property
     def _signs(self) -> NDArray[np.float64]:
@@ -460,7 +543,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         creases = self.plans[branch].creases
         with np.errstate(invalid="ignore", divide="ignore"):
             if self._twist(branch):
-                rows, delta = twist_rows(self.n, self.m, self.alpha, self.beta, self.a, self.tilt(x))
+                rows, delta = twist_rows(self.n, self.m, self.alpha, self.beta, self.a, self.tilt(x), self.row)
                 position = twist_positions(self.layout, rows, delta, self._upper)
             else:
                 position = tube_positions(self.layout, self.tube.rows(self.contraction_theta(x) - np.pi))
@@ -476,17 +559,19 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
 
     def _twist_end(self, branch: str, tilt: float, beyond: float) -> Event:
         """What ends the twist between the tilt `tilt` at a domain end and `beyond` just past it."""
-        checks = {k: bool(v[0]) for k, v in twist_checks(self.layout, np.array([beyond])).items()}
+        checks = {k: bool(v[0]) for k, v in twist_checks(self.layout, np.array([beyond]), self.row).items()}
         x = float(self.input_of(np.array([tilt]))[0])
         twist = np.rad2deg(ring_twist(self.alpha, tilt))
         where = f"zeta = {np.rad2deg(tilt):.6g} deg, end-ring twist {twist:.6g} deg"
         if not checks["placed"]:
-            detail = (f"no assembly beyond ({where}): a vertex loses its place, the top row's up midlines flat "
+            outer = "top row's up" if not self.row else "outermost row's outer"
+            detail = (f"no assembly beyond ({where}): a vertex loses its place, the {outer} midlines flat "
                       "(seed 004 eqn 14, limit (c))")  # fmt: skip
             return Event("turning_point", x, (branch,), detail)
         if not checks["diagonals"]:
             crease = "eta02" if branch == CCW else "eta03 = eta06"
-            detail = (f"{crease} = 0 ({where}): the big and small triangles of the middle units coincide (seed 004 "
+            units = "middle units" if not self.row else f"units of seed row {self.row}"
+            detail = (f"{crease} = 0 ({where}): the big and small triangles of the {units} coincide (seed 004 "
                       "Fig 13, limits (a)/(b); the double root of eqn 41 with W5 corrected, digest B.3.6)")  # fmt: skip
         else:
             detail = f"a crease folds flat and would reverse ({where}; strict criterion)"
@@ -494,9 +579,17 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
 
     def _tilt_radii(self, zeta: ArrayLike) -> NDArray[np.float64]:
         """Signed radius r_A (N, m) in m of each row's A vertices, rows bottom to top, at side-edge tilts zeta (N,)."""
-        rows, _ = twist_rows(self.n, self.m, self.alpha, self.beta, self.a, zeta)
+        rows, _ = twist_rows(self.n, self.m, self.alpha, self.beta, self.a, zeta, self.row)
         bottom, top = row_range(self.m)
         return np.stack([rows["A", i][0] for i in range(bottom, top + 1)], -1)
+
+    def _row_radius(self, zeta: NDArray[np.float64], row: int, touching: bool) -> NDArray[np.float64]:
+        """r_A (N,) in m of seed row `row` at tilts zeta (N,); for a row `touching` the axis at the start (beta =
+        beta_max) |r_A| <= FOLDED_TOL a reads 0: there r_A = c (zeta - pi/2)^2 (c = 0.93, 1.73 m for the rows next
+        to and two from the twisting one, n6 alpha 40, measured) touches 0 with round-off of either sign (6.7e-16 m)
+        and is no crossing."""
+        r = self._tilt_radii(zeta)[:, row - row_range(self.m)[0]]
+        return np.where(np.abs(r) <= FOLDED_TOL * self.a, 0.0, r) if touching else r
 
     def _crossings(self) -> list[Event]:
         """Lock events where rows' A's cross the axis during the twist (r_A = 0, their vertical edges folded flat
@@ -504,10 +597,11 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         which the seeds' ranges keep: digest B.6, Fig 14c). Rows i and -i cross together (the half-turn)."""
         lo, hi = self.tilts
         bottom, top = row_range(self.m)
+        touching = np.abs(self._tilt_radii(np.array([np.pi / 2]))[0]) <= FOLDED_TOL * self.a
         crossings: dict[float, list[int]] = {}
         for i in range(bottom, top + 1):
-            if i != 0:
-                for zeta in sign_changes(lambda z, i=i: self._tilt_radii(z)[:, i - bottom], lo, hi):
+            if i != self.row:
+                for zeta in sign_changes(lambda z, i=i: self._row_radius(z, i, touching[i - bottom]), lo, hi):
                     crossings.setdefault(round(zeta, 9), []).append(i)
         out = []
         for zeta, rows in crossings.items():
@@ -523,6 +617,8 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         meet_detail = ("the fully folded middle row (eta01 = 2 pi/n, kappa_B0,4 = 0, every A_0 on the axis, seed 004 "
                        "eqn 13): the radial contraction ends and the twist branches off (eqn 39a); the coupled "
                        "closure's mobility is 2 here")  # fmt: skip
+        if self.row:
+            return self._row_events()
         through = np.flatnonzero(self._tilt_radii(np.array([np.pi / 2]))[0] < 0)
         if len(through):
             meet_detail += (f"; rows {', '.join(str(r) for r in through)} are through the axis here (beta > beta_max "
@@ -541,6 +637,22 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
                 out.append(Event(e.kind, float(self.contraction_input(np.pi + e.input)), (CONTRACTION,), e.detail))
         return tuple(sorted(out, key=lambda e: e.input))
 
+    def _row_events(self) -> tuple[Event, ...]:
+        """`events` of the twist of a row other than the middle one (module docstring, "Other rows")."""
+        lo, hi = self.tilts
+        meet_detail = (f"the fully folded equal-diameter cylinder (configuration iii, beta = beta_max, eqn 40): every "
+                       f"row's A's on the axis; seed row {self.row}'s twist (Fig 16 path "
+                       f"{'I' if self.row > 0 else 'III'}) branches off where the radial contraction and the other "
+                       "rows' twists end or start; the coupled closure's mobility is 2 here")  # fmt: skip
+        out = [
+            Event("bifurcation", self.start, (CW,), meet_detail + "; the clockwise twist leaves it to smaller x"),
+            Event("bifurcation", self.start, (CCW,), meet_detail + "; the counter-clockwise twist to larger x"),
+            self._twist_end(CCW, lo, lo - BEYOND),
+            self._twist_end(CW, hi, hi + BEYOND),
+            *self._crossings(),
+        ]  # fmt: skip
+        return tuple(sorted(out, key=lambda e: e.input))
+
     @cached_property
     def couplings(self) -> tuple[tuple[str, str], ...]:
         """
@@ -554,7 +666,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
           If the coupled closure's mobility at a third tilt is not 1.
         """
         lo, hi = self.tilts
-        q = twist_folds(self.layout, lo + (hi - lo) * np.array([0.3, 0.2, 0.7]))
+        q = twist_folds(self.layout, lo + (hi - lo) * np.array([0.3, 0.2, 0.7]), row=self.row)
         out, dof = self.symmetry_classes(q)
         if dof != 1:
             raise AssemblyError(f"the twist's couplings leave {dof} degrees of freedom at zeta = "

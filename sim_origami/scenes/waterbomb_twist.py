@@ -8,6 +8,8 @@ of the twisted tube plus the plane symmetry of each half; 163 on the 6 x 5 tube,
 contraction keeps those symmetries too, so the coupled mechanism carries both motions; the scene's branches are the
 two twist senses and the contraction, which meet at the fully folded middle row (the sweeps stay clear of it).
 `tube_mechanism` reads only pattern, layout, input_crease and couplings, which `WaterbombTwist` has as well.
+With `row` != 0 (at beta = beta_max, e.g. `-p row=1 -p beta=42.0105238`) that seed row twists instead, driven at its
+own A<row + r0>_0_2 (seed 004 Fig 16 paths I, III; `WaterbombTwist`, "Other rows"), on the two twist senses only.
 """
 
 from ..kinematics.waterbomb_twist import WaterbombTwist
@@ -23,6 +25,8 @@ PARAMS = (
     Param("alpha", "deg", 40.0, "design angle alpha, below atan(1 / cos(180/n)) (seed 004 eqn 38)"),
     Param("beta", "deg", 40.0, "design angle beta, at most beta_max(alpha) (seed 004 eqn 40)"),
     Param("a", "m", 0.5, "half-width of a unit"),
+    # rows other than 0 twist from the contraction's end only at beta = beta_max (seed 004 Fig 16 paths I, III)
+    Param("row", "", 0.0, "seed row that twists: 0 the middle row, +1 .. (m-1)/2 above, -1 .. below"),
 )
 # The symmetry couplings are soft (MuJoCo joint equalities) and set the path error, which falls as the square of
 # the sweep time. Default sweeps (each branch's domain less Scene.branch_path's margins: the counter-clockwise twist
@@ -37,16 +41,17 @@ SWEEP_TIME_SCALE = 8.0
 
 
 @register("waterbomb-twist", "generalized waterbomb tube, n units x m rows (m odd), twist of the fully folded middle "
-          "row under the twist's symmetry (seed 004 §3, seed 000 M13), input rho of the middle row's upper-right "
-          "diagonal", PARAMS)  # fmt: skip
-def build(n: float, m: float, alpha: float, beta: float, a: float) -> Scene:
-    kinematics = WaterbombTwist(n, m, alpha, beta, a)
+          "row (any row at beta_max, Fig 16) under the twist's symmetry (seed 004 §3, seed 000 M13), input rho of the "
+          "twisting row's upper-right diagonal", PARAMS)  # fmt: skip
+def build(n: float, m: float, alpha: float, beta: float, a: float, row: float) -> Scene:
+    kinematics = WaterbombTwist(n, m, alpha, beta, a, row)
     lo, hi = kinematics.branch("twist-cw").domain[0], kinematics.branch("twist-ccw").domain[1]
     return Scene(
-        name="waterbomb-twist", params={"n": n, "m": m, "alpha": alpha, "beta": beta, "a": a},
+        name="waterbomb-twist", params={"n": n, "m": m, "alpha": alpha, "beta": beta, "a": a, "row": row},
         kinematics=kinematics, mechanism=tube_mechanism(kinematics), loop_joints=kinematics.crease_names,
         drive_joint=kinematics.input_crease, drive_scale=1.0, path=(lo, hi),
         sweep_time_scale=SWEEP_TIME_SCALE, preset=PRESET, pattern=kinematics.pattern,
-        notes=f"{int(n)} x {int(m)} tube; {len(kinematics.couplings)} twist-symmetry couplings; "
+        notes=f"{int(n)} x {int(m)} tube, seed row {kinematics.row} twisting; {len(kinematics.couplings)} "
+        "twist-symmetry couplings; "
         f"{len(kinematics.layout.seam)} seam creases closed by connects",
     )  # fmt: skip
