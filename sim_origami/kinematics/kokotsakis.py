@@ -53,7 +53,7 @@ the one root of eqn 2-5 its branch takes (`Vertex4.branch_folds`), on blocks of 
 
 import itertools
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cache, cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -275,10 +275,17 @@ def crease_names(vertices: tuple[MeshVertex, ...]) -> tuple[str, ...]:
     return INNER + tuple(f"{n.lower()}{k}" for n, v in zip(CORNERS, vertices, strict=True) for k in v.outer)
 
 
+@cache
+def _solver(alpha: tuple[float, float, float, float], crease: int) -> Vertex4:
+    """The closed-form vertex of sectors `alpha` (rad) driven by crease `crease`, built once (its branch domains
+    are traced at construction) and shared by every mesh that uses it."""
+    return Vertex4(np.asarray(alpha, dtype=float), crease)
+
+
 def _solvers(vertices: tuple[MeshVertex, ...]) -> tuple[Vertex4, ...]:
     """One closed-form vertex per corner, driven by the crease it shares with the previous vertex (A: AB)."""
-    first = Vertex4(np.asarray(vertices[0].alpha), vertices[0].next)
-    return (first, *(Vertex4(np.asarray(v.alpha), v.previous) for v in vertices[1:]))
+    first = _solver(tuple(vertices[0].alpha), vertices[0].next)
+    return (first, *(_solver(tuple(v.alpha), v.previous) for v in vertices[1:]))
 
 
 def _chain(
@@ -312,6 +319,21 @@ def loop_mismatch(vertices: tuple[MeshVertex, ...], branches: tuple[str, ...], x
     check_vertices(vertices)
     x = np.atleast_1d(np.asarray(x, dtype=float))
     return _mismatch(*_chain(_solvers(vertices), vertices, tuple(branches), x), vertices)
+
+
+def branch_mismatches(vertices: tuple[MeshVertex, ...]) -> dict[tuple[str, ...], float]:
+    """
+    Largest |loop mismatch| (rad) at PROBES of every combination of vertex branches (A, B, C, D), inf where no
+    probe lies in the combination's domain. A combination closes the mesh where it is <= CLOSE_TOL; the side and
+    outer crease lengths do not enter.
+    """
+    check_vertices(vertices)
+    solvers = _solvers(vertices)
+    out = {}
+    for combo in itertools.product(*([b.name for b in s.branches()] for s in solvers)):
+        m = np.abs(_mismatch(*_chain(solvers, vertices, combo, np.array(PROBES)), vertices))
+        out[combo] = float(np.nanmax(m)) if np.any(np.isfinite(m)) else np.inf
+    return out
 
 
 class Kokotsakis(JointSpaceKinematics):
@@ -353,13 +375,7 @@ class Kokotsakis(JointSpaceKinematics):
 
     @cached_property
     def _tried(self) -> dict[tuple[str, ...], float]:
-        """Largest |loop mismatch| (rad) at PROBES of every combination of vertex branches."""
-        names = [[b.name for b in s.branches()] for s in self._solvers]
-        out = {}
-        for combo in itertools.product(*names):
-            m = np.abs(_mismatch(*_chain(self._solvers, self.vertices, combo, np.array(PROBES)), self.vertices))
-            out[combo] = float(np.nanmax(m)) if np.any(np.isfinite(m)) else np.inf
-        return out
+        return branch_mismatches(self.vertices)
 
     @property
     def _smallest(self) -> float:
