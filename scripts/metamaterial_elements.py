@@ -1,0 +1,54 @@
+"""Double-corrugated metamaterial elements 1 and 2 (seed 003 §3.2.3, digest M8): seed value, ours, difference.
+
+    python scripts/metamaterial_elements.py      (under 1 s of CPU; no MuJoCo)
+
+For the digest's sample table (alpha = 3 pi/4, beta = pi/3, l = 1; the printed phi are pi/3, pi/2, 2 pi/3) it
+prints W, H, L of both elements from the seed's formulas (`checks.metamaterial.element_formulas`) and measured
+as vertex distances on the closed-form P sheet of scene `corrugated-sheet` (element 1 on SCSC, element 2 on
+SCCS; `checks.metamaterial` docstring), then phi_II (maximum height) and the closed-form Poisson's ratios.
+"""
+
+import numpy as np
+
+import sim_origami.scenes.corrugated_sheet  # noqa: F401  (registers `corrugated-sheet`)
+from sim_origami import scenes
+from sim_origami.checks.metamaterial import (
+    ELEMENTS,
+    element_dimensions,
+    element_formulas,
+    formula_poisson,
+    max_height_angle,
+)
+from sim_origami.checks.poisson import vertex_positions
+
+ALPHA, BETA = 3 * np.pi / 4, np.pi / 3
+PHI = np.array([np.pi / 3, np.pi / 2, 2 * np.pi / 3])
+# digest M8 table: element -> (W, H, L) per phi
+SEED = {
+    1: ((0.824937, 0.705701, 1.325076), (1.137055, 0.654654, 1.467314), (1.380314, 0.530926, 1.668058)),
+    2: ((0.824937, 1.411402, 2.650152), (1.137055, 1.309307, 2.934628), (1.380314, 1.061852, 3.336116)),
+}
+
+
+def main() -> None:
+    sc = scenes.get("corrugated-sheet").build(unit=0.0, rows=2, cols=2)
+    print(f"{'element':>7} {'phi':>8} {'dim':>3} {'seed':>9} {'formula':>12} {'sheet':>12} {'formula-seed':>13}")
+    for element, (branch, _, _) in ELEMENTS.items():
+        q = sc.loop_to_mechanism(sc.kinematics.joint_angles(branch, np.pi - PHI))
+        positions, _ = vertex_positions(sc.pattern, sc.mechanism.body_poses(q))
+        ours = element_formulas(PHI, ALPHA, BETA, element)
+        sheet = element_dimensions(sc.pattern, positions, PHI, element)
+        for k, phi in enumerate(PHI):
+            for col, name in enumerate("WHL"):
+                seed, f, m = SEED[element][k][col], getattr(ours, name)[k], getattr(sheet, name)[k]
+                print(f"{element:>7} {phi:>8.6f} {name:>3} {seed:>9.6f} {f:>12.9f} {m:>12.9f} {f - seed:>13.2e}")
+    phi_ii = max_height_angle(ALPHA, BETA)
+    h_max = element_formulas(phi_ii, ALPHA, BETA, 1).H[0]
+    print(f"phi_II (maximum height) = {phi_ii:.9f} rad; H_max element 1 = {h_max:.9f} m (element 2: twice)")
+    for element in ELEMENTS:
+        nu_in, nu_out = (np.round(v, 6) for v in formula_poisson(PHI, ALPHA, BETA, element))
+        print(f"element {element}: nu_in = {nu_in}, nu_out = {nu_out} at phi = {np.round(PHI, 6)}")
+
+
+if __name__ == "__main__":
+    main()
