@@ -248,3 +248,29 @@ def enclosed_volume(points: ArrayLike, faces: list[list[int]]) -> NDArray[np.flo
         for a, b in zip(k, k[1:] + k[:1], strict=True):
             total = total + np.einsum("...i,...i", centre, np.cross(P[..., a, :], P[..., b, :]))
     return total / 6.0
+
+
+def triangles_cross(
+    first: ArrayLike, second: ArrayLike, graze: float = 1e-12, parallel: float = 1e-15
+) -> NDArray[np.bool_]:
+    """
+    Whether each pair of triangles (..., 3, 3) (vertices in m) crosses: an edge of one passes through the other's
+    interior (Moller-Trumbore, both ways). An edge must reach `graze` (barycentric, and along the edge) inside, so
+    edges that only end on each other to rounding do not count; edges closer to parallel to the other's plane than
+    `parallel` (m^3) are skipped. The zero-thickness panels' collision test (seed 004's "physical interference").
+    """
+    first, second = np.asarray(first, dtype=float), np.asarray(second, dtype=float)
+    hit = np.zeros(np.broadcast_shapes(first.shape, second.shape)[:-2], dtype=bool)
+    for one, other in ((first, second), (second, first)):
+        e1, e2 = other[..., 1, :] - other[..., 0, :], other[..., 2, :] - other[..., 0, :]
+        for k in range(3):
+            p0, d = one[..., k, :], one[..., (k + 1) % 3, :] - one[..., k, :]
+            h = np.cross(d, e2)
+            det = np.sum(e1 * h, axis=-1)
+            s = p0 - other[..., 0, :]
+            q = np.cross(s, e1)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                det = np.where(np.abs(det) > parallel, det, np.nan)
+                u, v, t = (np.sum(s * h, -1) / det, np.sum(d * q, -1) / det, np.sum(e2 * q, -1) / det)
+                hit |= (u > graze) & (v > graze) & (u + v < 1 - graze) & (t > graze) & (t < 1 - graze)
+    return hit

@@ -21,7 +21,7 @@ import mujoco
 import numpy as np
 from numpy.typing import NDArray
 
-from .errors import DomainError, SimulationError
+from .errors import DomainError, ParameterError, SimulationError
 from .mjcf import ModelOptions, build_xml, closures, mujoco_joints, preset_duration, preset_number
 from .scenes.base import Scene
 
@@ -340,7 +340,7 @@ def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: s
 
 def contact_distance(scene: Scene, branch: str, inputs: NDArray[np.float64]) -> NDArray[np.float64]:
     """
-    Smallest signed distance (m) between the scene's contact pairs, posed by the closed form.
+    Smallest signed distance (m) between the collision solids of `Scene.colliding_pairs`, posed by the closed form.
 
     A kinematic sweep (no dynamics): negative means the solids overlap at that input.
     """
@@ -349,9 +349,11 @@ def contact_distance(scene: Scene, branch: str, inputs: NDArray[np.float64]) -> 
 
 def _contact_probe(scene: Scene, branch: str) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
     """contact_distance on one compiled model: a function of the inputs (rad) for repeated calls."""
+    if not scene.colliding_pairs:
+        raise ParameterError(f"scene {scene.name!r} has no collision solids (no contact pairs, no self contact)")
     model, data = compile_model(scene, ModelOptions(contact=True))
     binds = Bindings(scene, model)
-    pairs = [(model.geom(f"{a}_collision").id, model.geom(f"{b}_collision").id) for a, b in scene.contact_pairs]
+    pairs = [(model.geom(f"{a}_collision").id, model.geom(f"{b}_collision").id) for a, b in scene.colliding_pairs]
     fromto = np.zeros(6)
 
     def distance(inputs: NDArray[np.float64]) -> NDArray[np.float64]:

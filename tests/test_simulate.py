@@ -10,7 +10,7 @@ import pytest
 from sim_origami import pareto, scenes
 from sim_origami.checks.branches import classify
 from sim_origami.checks.paths import compare
-from sim_origami.errors import DomainError, SimOrigamiError, SimulationError
+from sim_origami.errors import DomainError, ParameterError, SimOrigamiError, SimulationError
 from sim_origami.geometry import rotation
 from sim_origami.mjcf import ModelOptions, build_xml, preset_number
 from sim_origami.origami import crease_directions
@@ -247,3 +247,9 @@ def test_the_scaled_regulariser_is_what_makes_the_thin_loop_accurate():
     scaled = pareto.measure(scene, "diamond", pareto.PRESETS["fast"], repeats=1).error
     plain = pareto.measure(scene, "diamond", replace(pareto.PRESETS["fast"], regularization=1.0), repeats=1).error
     assert plain / scaled > 30, (scaled, plain)
+
+
+def test_contact_probe_refuses_a_scene_without_collision_solids():
+    scene = scenes.get("vertex4").build()
+    with pytest.raises(ParameterError, match="scene 'vertex4' has no collision solids"):
+        contact_distance(scene, "odd1", np.array([0.3]))

@@ -5,11 +5,12 @@ import numpy as np
 import pytest
 
 from sim_origami import scenes
+from sim_origami.checks.blockage import assess
 from sim_origami.checks.branches import classify
 from sim_origami.checks.paths import compare
 from sim_origami.errors import ParameterError
 from sim_origami.fold import read_fold
-from sim_origami.geometry import wrap
+from sim_origami.geometry import triangles_cross, wrap
 from sim_origami.kinematics.dh import DHRow, dh_loop
 from sim_origami.kinematics.waterbomb import (
     CREASES,
@@ -23,9 +24,9 @@ from sim_origami.kinematics.waterbomb import (
 from sim_origami.kinematics.waterbomb_sheet import WaterbombSheet
 from sim_origami.origami import hinge_gap
 from sim_origami.report import FOLD_FRAMES, write
-from sim_origami.simulate import contact_distance, simulate
+from sim_origami.simulate import contact_distance, contact_input, simulate
 from sim_origami.tolerances import TOLERANCES
-from sim_origami.validation import run_blockage, validate
+from sim_origami.validation import BLOCKAGE_HOLD, run_blockage, validate
 
 DEG = np.pi / 180
 # The seed prints 4 decimals (deg): half a unit of the last digit, in radians.
@@ -271,6 +272,40 @@ def test_waterbomb_sheet_scene_follows_path_one_in_mujoco():
     scene = scenes.get("waterbomb-sheet").build()
     path = compare(scene, LINE, simulate(scene, LINE).q)
     assert path.max_error() <= TOLERANCES.fast_rad  # measured 4.5e-8 worst branch (stiff, 16x)
+
+
+def sheet_triangles_cross(scene, branch: str, x: float) -> bool:
+    """Whether any two of the sheet's zero-thickness triangles that share no vertex cross at input x (rad)."""
+    pattern, poses = scene.pattern, scene.mechanism.body_poses(scene.pose(branch, x))
+    flat = np.c_[pattern.vertices[:, :2], np.zeros(len(pattern.vertices)), np.ones(len(pattern.vertices))]
+    faces = zip(pattern.face_names, pattern.faces, strict=True)
+    tri = np.array([(flat[list(f)] @ poses[n].T)[:, :3] for n, f in faces])
+    index = {n: k for k, n in enumerate(pattern.face_names)}
+    pairs = np.array([(index[a], index[b]) for a, b in scene.colliding_pairs])
+    return bool(np.any(triangles_cross(tri[pairs[:, 0]], tri[pairs[:, 1]])))
+
+
+def test_waterbomb_sheet_self_contact_finds_the_straight_line_branch_folding_into_itself():
+    """Issue 4's tessellations with contact between panels that share no vertex. On the two-straight-lines branch
+    the sheet's straight crease lines fold alike, so its cross-section is an equiangular polygon whose end strips
+    meet at rho = 2 pi / 5 on the 2 x 2 sheet (72.0000 deg at alpha, beta = 40/40, 30/40, 40/30, 35/45): the bare
+    triangles cross from there, the inset solids touch a little later and a force-limited servo stops there. The
+    other branches stay clear on their default sweep."""
+    scene = scenes.get("waterbomb-sheet").build()
+    branch = "two-straight-lines"
+    onset = -2 * np.pi / 5
+    assert not sheet_triangles_cross(scene, branch, onset + 1e-6) and sheet_triangles_cross(scene, branch, onset - 1e-6)
+    touch = contact_input(scene, branch, -0.5, -1.8)
+    assert touch == pytest.approx(-1.313122, abs=1e-6)  # measured -1.3131225 (inset 0.05 t)
+    run = simulate(scene, branch, drive="servo", contact=True, start=-0.5, stop=-1.8, hold=BLOCKAGE_HOLD)
+    x = run.q[:, scene.mechanism.joint_index(scene.drive_joint)]
+    blocked = assess(x, run.target, run.drive_force, 20.0, touch, -1.8)
+    assert blocked.stopped and blocked.error <= TOLERANCES.blockage_rad  # measured 1.7e-5 rad past the touch
+    for other in ("line-symmetric", "plane-symmetric", "A-straight-B-degree4"):
+        start, stop = scene.branch_path(other)
+        assert np.min(contact_distance(scene, other, np.linspace(start, stop, 14))) > 0.0  # first touch |x| >= 2.86
+    line = compare(scene, LINE, simulate(scene, LINE, contact=True).q).max_error()
+    assert line == pytest.approx(compare(scene, LINE, simulate(scene, LINE).q).max_error(), rel=1e-9)  # no contact
 
 
 def test_waterbomb_sheet_bad_size():

@@ -9,6 +9,7 @@ import numpy as np
 import sim_origami.scenes.waterbomb_tube  # noqa: F401  (registers the scene)
 from sim_origami import scenes
 from sim_origami.checks.blockage import assess
+from sim_origami.geometry import triangles_cross
 from sim_origami.kinematics.waterbomb_tube import BRANCH, WaterbombTube
 from sim_origami.mjcf import ModelOptions
 from sim_origami.simulate import Bindings, compile_model, simulate
@@ -80,18 +81,7 @@ def crossing_pairs(kinematics: WaterbombTube, theta: float) -> int:
     shared = (faces[:, None, :, None] == faces[None, :, None, :]).any(axis=(2, 3))
     a, b = np.nonzero(np.triu(~shared, 1))
     tri = kinematics.vertices(np.array([theta * DEG - np.pi]))[0][faces]
-    hit = np.zeros(len(a), dtype=bool)
-    for one, other in ((tri[a], tri[b]), (tri[b], tri[a])):
-        e1, e2 = other[:, 1] - other[:, 0], other[:, 2] - other[:, 0]
-        for k in range(3):
-            p0, d = one[:, k], one[:, (k + 1) % 3] - one[:, k]
-            h = np.cross(d, e2)
-            det = np.sum(e1 * h, axis=-1)
-            s = p0 - other[:, 0]
-            q = np.cross(s, e1)
-            det = np.where(np.abs(det) > PARALLEL, det, np.nan)  # an edge parallel to the plane does not cross it
-            u, v, t = (np.sum(s * h, -1) / det, np.sum(d * q, -1) / det, np.sum(e2 * q, -1) / det)
-            hit |= (u > GRAZE) & (v > GRAZE) & (u + v < 1 - GRAZE) & (t > GRAZE) & (t < 1 - GRAZE)
+    hit = triangles_cross(tri[a], tri[b], GRAZE, PARALLEL)
     return int(np.count_nonzero(hit))
 
 

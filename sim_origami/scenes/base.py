@@ -76,12 +76,23 @@ class Scene:
     # slower than the preset's; the soft closures' angle error falls as the square of the sweep time
     # (measured 4.0x per doubling on every scene). Each scene that sets it states its measured error.
     sweep_time_scale: float = 1.0
-    # The preset runs use unless told otherwise, chosen per scene from `scripts/preset_compare.py` ('fast' on
-    # single well-conditioned loops, 'stiff' on coupled or ill-conditioned multi-loop scenes).
+    # The preset runs use unless told otherwise, chosen per scene from `scripts/preset_compare.py` (with the
+    # presets' scaled regulariser 'fast' beats 'stiff' on every scene, and every registered scene runs it).
     preset: str = "fast"
     notes: str = ""
     pattern: CreasePattern | None = None
     self_contact: bool = False
+
+    @property
+    def colliding_pairs(self) -> tuple[tuple[str, str], ...]:
+        """Pairs of bodies whose collision solids may touch: `contact_pairs`, and with `self_contact` every pair of
+        the pattern's faces that shares no vertex (as the MJCF's contact section allows them)."""
+        if not self.self_contact:
+            return self.contact_pairs
+        touching = set(self.pattern.touching_faces())
+        names = self.pattern.face_names
+        free = tuple((a, b) for i, a in enumerate(names) for b in names[i + 1 :] if (a, b) not in touching)
+        return self.contact_pairs + free
 
     def loop_to_mechanism(self, q_loop: ArrayLike) -> NDArray[np.float64]:
         """Mechanism joint angles (n, n_joints) from loop joint angles (n, n_loop)."""

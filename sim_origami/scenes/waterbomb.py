@@ -95,6 +95,9 @@ def build_thick(alpha: float, beta: float, t: float, mu: float, a: float) -> Sce
 # over the four branches (A-straight-B-degree4 worst), stiff 1.8e-7 at 8x; with the presets' (scaled 0.01) fast at
 # 16x 1.0e-8 on path I in 0.34 s of CPU (stiff 2.4e-8 in 0.84 s).
 SHEET_SWEEP_TIME_SCALE = 16.0
+# The sheet's panels carry collision solids inset by SHEET_INSET x t from every edge, and every pair of panels that
+# shares no vertex may collide (Scene.self_contact, as the Miura and corrugated sheets).
+SHEET_INSET = 0.05
 SHEET = (
     Param("rows", "", 2, "rows of bases (>= 2)"),
     Param("cols", "", 2, "bases per row (>= 2)"),
@@ -124,5 +127,7 @@ def build_sheet(alpha: float, beta: float, t: float, rows: float, cols: float) -
         couplings=tuple(couplings),
         sweep_time_scale=SHEET_SWEEP_TIME_SCALE,
         preset=PRESET,
+        collision_inset=SHEET_INSET * t,
+        self_contact=True,
         notes=f"{int(rows)} x {int(cols)} bases; {len(couplings)} symmetry couplings on tree hinges",
     )
