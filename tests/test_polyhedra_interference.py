@@ -120,3 +120,23 @@ def test_zeta_40_stalls_at_the_turning_point_without_contact():
     assert np.isnan(touch)
     assert abs(stop / DEG - (76.86 - 34.31)) < 1.5  # theta turns back at 76.86 deg (measured A1 = 41.72 deg)
     assert abs(rho(P, "B1", "C2", "C1") / DEG - 86.4) < 1.0  # seed's rho1 min 86.4 (measured 87.08 deg)
+
+
+@pytest.mark.parametrize(
+    ("zeta", "cube", "drivable"),
+    [
+        (-62.63, False, False),  # rho1 goes negative first: the closed form's edge is -62.621 (bisected)
+        (-62.61, True, False),  # reaches the cube after theta dips below theta_d
+        (-60.86, True, False),  # drivable (theta monotone) from -60.849: the seed's -60.9 to its printed 0.1 deg
+        (-60.84, True, True),
+        (18.90, True, True),  # drivable up to 18.909
+        (18.92, True, False),  # reaches the cube through a turning point of theta, up to 19.457: the seed's 19.5
+        (19.45, True, False),
+        (19.465, False, False),
+    ],
+)
+def test_feasible_band_edges(zeta, cube, drivable):
+    """The zeta band's edges, bisected: the seed's -60.9 <= zeta <= 19.5 (digest §2.7) is the drivable edge below
+    and the reach-the-cube edge above, each within 0.05 deg."""
+    o = TruncatedOctahedronCube(zeta * DEG).outcome()
+    assert (o.kind == "cube", o.kind == "cube" and o.drivable) == (cube, drivable)
