@@ -9,11 +9,13 @@ MuJoCo's own constraint residuals by Gauss-Newton at each input: the accuracy ce
 Joint angles come from the recorded qpos (the cut joints measured from the tree pose in numpy);
 the closure residual is measured independently from the closure sites after `mj_kinematics`, so
 poses are consistent with qpos when read (after `mj_step`, xpos lags one step). Any MuJoCo warning
-aborts the run with `SimulationError`; warnings are captured so no MUJOCO_LOG.TXT is written.
+aborts the run with `SimulationError`; warnings are captured so no MUJOCO_LOG.TXT is written, and outside a run
+(a script's own stepping loop) they become Python RuntimeWarnings (`warn_in_python`, installed on import).
 """
 
 import contextlib
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -56,6 +58,16 @@ class Trajectory:
     steps: int
     contacts: NDArray[np.int64] = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
     drive_force: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+
+
+def warn_in_python(message: str) -> None:
+    """MuJoCo's warnings outside a harness run (scripts' own loops, benches): a Python RuntimeWarning, instead of
+    MuJoCo's default of printing and appending to MUJOCO_LOG.TXT in the working directory."""
+    warnings.warn(f"MuJoCo: {message}", RuntimeWarning, stacklevel=2)
+
+
+# Installed on import, so no code path that uses the harness writes MUJOCO_LOG.TXT; runs capture their own.
+mujoco.set_mju_user_warning(warn_in_python)
 
 
 @contextlib.contextmanager

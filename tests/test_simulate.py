@@ -14,7 +14,16 @@ from sim_origami.errors import DomainError, ParameterError, SimOrigamiError, Sim
 from sim_origami.geometry import rotation
 from sim_origami.mjcf import ModelOptions, build_xml, preset_number
 from sim_origami.origami import crease_directions
-from sim_origami.simulate import Bindings, compile_model, contact_distance, contact_input, project, ramp, simulate
+from sim_origami.simulate import (
+    Bindings,
+    compile_model,
+    contact_distance,
+    contact_input,
+    project,
+    ramp,
+    simulate,
+    warn_in_python,
+)
 from sim_origami.tolerances import TOLERANCES
 
 RUNS = [("vertex4", "odd1"), ("vertex4", "odd2"), ("miura", "miura")]
@@ -253,3 +262,16 @@ def test_contact_probe_refuses_a_scene_without_collision_solids():
     scene = scenes.get("vertex4").build()
     with pytest.raises(ParameterError, match="scene 'vertex4' has no collision solids"):
         contact_distance(scene, "odd1", np.array([0.3]))
+
+
+def test_a_raw_stepping_loop_warns_in_python_and_leaves_no_mujoco_log(tmp_path, monkeypatch):
+    """A script's own mj_step loop (as the benches and scripts run) on a model that blows up: MuJoCo's warning
+    arrives as a RuntimeWarning and no MUJOCO_LOG.TXT lands in the working directory."""
+    monkeypatch.chdir(tmp_path)
+    assert mujoco.get_mju_user_warning() is warn_in_python  # installed by importing the harness
+    model, data = compile_model(scene_of("vertex4"), ModelOptions())
+    data.qvel[:] = 1e200  # deterministic: MuJoCo reports a bad QVEL/QACC on the first step
+    with pytest.warns(RuntimeWarning, match="MuJoCo: .*"):
+        for _ in range(3):
+            mujoco.mj_step(model, data)
+    assert not (tmp_path / "MUJOCO_LOG.TXT").exists()
