@@ -46,7 +46,7 @@ from numpy.typing import NDArray
 
 from sim_origami import scenes
 from sim_origami.errors import ParameterError, SimulationError
-from sim_origami.geometry import wrap
+from sim_origami.geometry import rigid_fit, wrap
 from sim_origami.kinematics.waterbomb_tube import beta_max
 from sim_origami.kinematics.waterbomb_twist import WaterbombTwist
 from sim_origami.mjcf import ModelOptions
@@ -87,24 +87,16 @@ def free_tube(beta: float = np.deg2rad(40.0), n: int = 6, m: int = 3) -> Scene:
     return dataclasses.replace(scene, mechanism=dataclasses.replace(scene.mechanism, couplings=()))
 
 
-def kabsch(P: NDArray[np.float64], Q: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Rotation R and translation t with Q = R P + t in the least-squares sense, points (k, 3)."""
-    pc, qc = P.mean(0), Q.mean(0)
-    U, _, Vt = np.linalg.svd((P - pc).T @ (Q - qc))
-    R = Vt.T @ np.diag([1.0, 1.0, np.sign(np.linalg.det(Vt.T @ U.T))]) @ U.T
-    return R, qc - R @ pc
-
-
 class VertexMap:
     """World positions of the tube's vertices (`layout.keys`) from MuJoCo body poses: each vertex on one face body
     containing it, its body-frame coordinates fixed at a closed pose X (keys, 3) in the tube frame mapped to the world
-    by the root face (the world body, at its flat placement: Kabsch on its three vertices)."""
+    by the root face (the world body, at its flat placement: `geometry.rigid_fit` on its three vertices)."""
 
     def __init__(self, scene: Scene, model: mujoco.MjModel, data: mujoco.MjData, X: NDArray[np.float64]):
         layout, pattern, root = scene.kinematics.layout, scene.kinematics.pattern, scene.mechanism.root
         face = list(pattern.faces[pattern.face_names.index(root)])
-        self.R, self.t = kabsch(X[layout.strip_keys[face]], np.c_[pattern.vertices[face], np.zeros(3)])
-        world = X @ self.R.T + self.t
+        fit = rigid_fit(X[layout.strip_keys[face]], np.c_[pattern.vertices[face], np.zeros(3)])
+        world = X @ fit[:3, :3].T + fit[:3, 3]
         self.body = np.zeros(len(layout.keys), dtype=int)
         for name, verts in zip(pattern.face_names, pattern.faces, strict=True):
             self.body[layout.strip_keys[list(verts)]] = 0 if name == root else model.body(name).id
