@@ -68,7 +68,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from sim_origami.errors import ParameterError
-from sim_origami.kinematics.kokotsakis import CLOSE_TOL, MeshVertex, branch_mismatches, check_vertices, example
+from sim_origami.kinematics.kokotsakis import (
+    CLOSE_TOL,
+    MeshVertex,
+    branch_mismatches,
+    check_vertices,
+    combination_name,
+    example,
+)
 from sim_origami.kinematics.vertex4 import ANGLE_TOL
 
 DEG = np.pi / 180
@@ -157,7 +164,7 @@ def closing(tried: dict[tuple[str, ...], float], straight: bool = False) -> tupl
     folds a crease line running straight across the mesh, a family of its own that seed M5 excludes ("more than
     1 DOF"; `kokotsakis.straight_lines`).
     """
-    names = (c[0] if len(set(c)) == 1 else "-".join(c) for c, m in tried.items() if m <= CLOSE_TOL)
+    names = (combination_name(c) for c, m in tried.items() if m <= CLOSE_TOL)
     return tuple(sorted(n for n in names if ("straight" in n) == straight))
 
 

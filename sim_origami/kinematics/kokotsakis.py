@@ -321,6 +321,11 @@ def loop_mismatch(vertices: tuple[MeshVertex, ...], branches: tuple[str, ...], x
     return _mismatch(*_chain(_solvers(vertices), vertices, tuple(branches), x), vertices)
 
 
+def combination_name(combo: tuple[str, ...]) -> str:
+    """A mesh branch's name from its vertex branches (A, B, C, D): the common one, or all four joined by '-'."""
+    return combo[0] if len(set(combo)) == 1 else "-".join(combo)
+
+
 def branch_mismatches(vertices: tuple[MeshVertex, ...]) -> dict[tuple[str, ...], float]:
     """
     Largest |loop mismatch| (rad) at PROBES of every combination of vertex branches (A, B, C, D), inf where no
@@ -387,7 +392,7 @@ class Kokotsakis(JointSpaceKinematics):
         out = {}
         for combo, m in self._tried.items():
             if m <= CLOSE_TOL:
-                out[combo[0] if len(set(combo)) == 1 else "-".join(combo)] = combo
+                out[combination_name(combo)] = combo
         return out
 
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
