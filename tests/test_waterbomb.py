@@ -8,6 +8,7 @@ from sim_origami import scenes
 from sim_origami.checks.blockage import assess
 from sim_origami.checks.branches import classify
 from sim_origami.checks.paths import compare
+from sim_origami.checks.poisson import vertex_positions
 from sim_origami.errors import ParameterError
 from sim_origami.fold import read_fold
 from sim_origami.geometry import triangles_cross, wrap
@@ -276,10 +277,9 @@ def test_waterbomb_sheet_scene_follows_path_one_in_mujoco():
 
 def sheet_triangles_cross(scene, branch: str, x: float) -> bool:
     """Whether any two of the sheet's zero-thickness triangles that share no vertex cross at input x (rad)."""
-    pattern, poses = scene.pattern, scene.mechanism.body_poses(scene.pose(branch, x))
-    flat = np.c_[pattern.vertices[:, :2], np.zeros(len(pattern.vertices)), np.ones(len(pattern.vertices))]
-    faces = zip(pattern.face_names, pattern.faces, strict=True)
-    tri = np.array([(flat[list(f)] @ poses[n].T)[:, :3] for n, f in faces])
+    pattern = scene.pattern
+    positions, _ = vertex_positions(pattern, scene.mechanism.body_poses(scene.pose(branch, x)))
+    tri = positions[0][np.array(pattern.faces)]
     index = {n: k for k, n in enumerate(pattern.face_names)}
     pairs = np.array([(index[a], index[b]) for a, b in scene.colliding_pairs])
     return bool(np.any(triangles_cross(tri[pairs[:, 0]], tri[pairs[:, 1]])))
