@@ -1,6 +1,7 @@
 """What leaving things out of a model saves, measured in one run: CPU time of the same driven sweep with one
-feature put back at a time (contact detection, gravity, render assets, sensors, redundant closure rows), and
-the cost of rendering every N steps. Best of REPEATS; ratios to the pruned model as generated.
+feature put back at a time (contact detection, gravity, render assets, sensors, redundant closure rows), on
+scenes with couplings the closures they imply taken out (`without_implied_closures`), and the cost of rendering
+every N steps. Best of REPEATS; ratios to the pruned model as generated.
 
     python scripts/pruning.py [scene ...]      (default: vertex4 miura-sheet)
 """
@@ -18,6 +19,7 @@ import numpy as np
 
 from sim_origami import scenes
 from sim_origami.mjcf import ModelOptions, build_xml
+from sim_origami.scenes.base import without_implied_closures
 from sim_origami.simulate import Bindings, preset_duration, ramp, start_pose
 
 REPEATS = 3
@@ -83,6 +85,8 @@ def variants(scene) -> dict[str, mujoco.MjModel]:
     out["+ a third connect per cut crease"] = compile_(
         build_xml(dataclasses.replace(scene, mechanism=redundant), ModelOptions())
     )
+    if scene.mechanism.couplings:
+        out["- closures the couplings imply"] = compile_(build_xml(without_implied_closures(scene), ModelOptions()))
     return out  # fmt: skip
 
 

@@ -21,7 +21,7 @@ BRANCH = "radial-contraction"
 
 def main(n: int = 6, m: int = 3) -> None:
     scene = scenes.get("waterbomb-tube").build(n=n, m=m)
-    free = dataclasses.replace(scene, mechanism=dataclasses.replace(scene.mechanism, couplings=()))
+    free = dataclasses.replace(scene, mechanism=scene.mechanism.uncoupled())
     print(f"{n} x {m} tube, {len(scene.mechanism.couplings)} symmetry couplings in the symmetric model")
     print(f"{'model':10s} {'max dev (rad)':>14s} {'median (rad)':>13s} {'creases > 0.1':>14s} {'closure gap (m)':>16s}")
     for label, model in (("symmetric", scene), ("free", free)):

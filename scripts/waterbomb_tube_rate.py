@@ -3,7 +3,7 @@ path error each option gives on the scene's sweep (issue 5).
 
 Every run is the `waterbomb-tube` scene's default sweep (preset stiff, SWEEP_TIME_SCALE) of an n x m tube with
 alpha = beta = 40 deg, driven by the joint-equality drive as `simulate` drives it, with one option changed on the
-compiled model. Rates are steps / CPU time (`time.thread_time`, this thread only) of the stepping loop:
+compiled model or the scene. Rates are steps / CPU time (`time.thread_time`, this thread only) of the stepping loop:
 
 * "off": the whole sweep (a fixed number of mj_step calls: sweep time / step), contact off; its path error is the
   largest |simulated - closed form| over every crease (rad), which must stay <= ACCURACY for the option to count;
@@ -11,36 +11,42 @@ compiled model. Rates are steps / CPU time (`time.thread_time`, this thread only
   every panel, vertex-sharing pairs excluded; the default tube never touches on its sweep, so both runs move alike
   and the ratio is the cost of collision detection).
 
-    python scripts/waterbomb_tube_rate.py              # every option but pgs on the 300-panel tube, baseline on all
+    python scripts/waterbomb_tube_rate.py              # every option but pgs on the 300-panel tube;
+                                                       # baseline and independent-closures on all
     python scripts/waterbomb_tube_rate.py --sizes 10x5 --options pgs
 
 Measured (MuJoCo 4.0.1, the 2-core machine; 12800-step sweeps), on the tube's shortest-path spanning tree from the
 input crease's face (depth 20 on 10 x 5; the strip's crease-order tree was 59 deep and stepped 297/s):
 
-    tube  panels  rows option               off /s  error rad  window off  window on
-    6x5      180   639  newton-sparse          1328    1.4e-07        1510        912
-    8x5      240   855  newton-sparse           796    2.5e-07         937        549
-    10x5     300  1071  newton-sparse           554    3.5e-07         575        326
-    10x5     300  1071  newton-dense            330    3.5e-07         324        231
-    10x5     300  1071  newton-1-iteration      604    3.5e-07         610        367
-    10x5     300  1071  newton-tol-1e-12        608    3.5e-07         604        340
-    10x5     300  1071  newton-no-island        603    3.5e-07         661        373
-    10x5     300  1071  newton-no-warmstart     633    3.5e-07         629        375
-    10x5     300  1071  cg                      364    4.6e-07         323        217
-    10x5     300  1071  cg-dense                 59    4.6e-07          49         46
-    10x5     300  1071  cg-5                   1358    3.3e-04        1679        576
+    tube  panels  rows option                off /s  error rad  window off  window on
+    6x5      180   639  newton-sparse          1406    1.4e-07        1487        929
+    6x5      180   201  independent-closures   4054    1.4e-07        4055       1467
+    8x5      240   855  newton-sparse           837    2.5e-07         840        557
+    8x5      240   261  independent-closures   2510    2.5e-07        2496        895
+    10x5     300  1071  newton-sparse           543    3.5e-07         560        346
+    10x5     300  1071  newton-dense            322    3.5e-07         301        201
+    10x5     300  1071  newton-1-iteration      538    3.5e-07         589        345
+    10x5     300  1071  newton-tol-1e-12        575    3.5e-07         563        355
+    10x5     300  1071  newton-no-island        590    3.5e-07         589        350
+    10x5     300  1071  newton-no-warmstart     590    3.5e-07         600        369
+    10x5     300  1071  cg                      373    4.6e-07         324        237
+    10x5     300  1071  cg-dense                 64    4.6e-07          54         52
+    10x5     300  1071  cg-5                   1738    3.3e-04        1787        608
     10x5     300  1071  pgs            11 (first 400 steps, crease-order tree; on: 10), full sweep not run
-    10x5     300  1071  implicitfast            542    3.5e-07         588        336
-    10x5     300   787  no-couplings            658    3.1e+00         686        396
+    10x5     300  1071  implicitfast            577    3.5e-07         574        357
+    10x5     300   321  independent-closures   1793    3.0e-07        1820        579
+    10x5     300   787  no-couplings            688    3.1e+00         694        394
 
-The 180-panel tube reaches TARGET; at 300 panels no option does within ACCURACY (the Newton rows within 10 % of
-each other are run-to-run noise). Newton needs one iteration per step (warm start) and its Hessian and
-factorisation over nv = 299 with 1071 rows are most of a step (timers: constraint 1.7 of 2.1 ms; the bare tree,
-equalities off, steps at 8300/s). The tree's depth sets the length of every closure row's Jacobian: the
-breadth-first tree took the 300-panel tube from 297 to 554 steps/s. CG is only faster when cut to a few
-iterations, which loses the path; the couplings cannot go (the free tube leaves the symmetric path), nor can one
-of the two connects of a cut crease (6 x 3: 2.4 rad). Contact on, with no contact on the sweep, costs 35-45 %
-(broad phase and the exclusions).
+`independent-closures` reaches TARGET on every tube: the symmetry couplings and 6 of the 131 cut creases close the
+other 125 loops (`scenes.base.without_implied_closures`), which are then measured and not imposed, so the rows fall
+from 1071 to 321 and the step's Hessian with them. With every loop imposed no MuJoCo option does within ACCURACY
+(the Newton rows within 10 % of each other are run-to-run noise): Newton needs one iteration per step (warm start)
+and its Hessian and factorisation over nv = 299 with 1071 rows are most of a step (timers: constraint 1.7 of 2.1
+ms; the bare tree, equalities off, steps at 8300/s). CG is only faster when cut to a few iterations, which loses
+the path; the couplings cannot go (the free tube leaves the symmetric path), nor can one of the two connects of
+every cut crease (6 x 3: 2.4 rad). Contact on, with no contact on the sweep, costs 35-45 % with every loop imposed
+and 64-68 % with the independent ones (broad phase and the exclusions, the same work on a cheaper step).
+The scene itself imposes every loop: under `fast` the left-out loops cost accuracy (`without_implied_closures`).
 """
 
 import argparse
@@ -56,7 +62,7 @@ from sim_origami import scenes
 from sim_origami.checks.paths import compare
 from sim_origami.kinematics.waterbomb_tube import BRANCH
 from sim_origami.mjcf import ModelOptions, preset_duration
-from sim_origami.scenes.base import Scene
+from sim_origami.scenes.base import Scene, without_implied_closures
 from sim_origami.simulate import Bindings, compile_model, drive_targets
 
 ACCURACY = 1e-6  # rad, the path-error tolerance of the stiff and fast presets (tolerances.py)
@@ -70,12 +76,17 @@ Solver, Jacobian, Integrator, Disable = mujoco.mjtSolver, mujoco.mjtJacobian, mu
 
 @dataclasses.dataclass(frozen=True)
 class Option:
-    """One change to the scene's stiff model: `apply` edits the compiled model; `couplings` False drops the
-    symmetry couplings (joint equalities) from the mechanism."""
+    """One change to the scene's stiff model: `apply` edits the compiled model, `prepare` the scene before it is
+    compiled."""
 
     name: str
     apply: Callable[[mujoco.MjModel], None]
-    couplings: bool = True
+    prepare: Callable[[Scene], Scene] = lambda scene: scene
+
+
+def uncoupled(scene: Scene) -> Scene:
+    """The scene without its symmetry couplings: the free tube, every loop closed."""
+    return dataclasses.replace(scene, mechanism=scene.mechanism.uncoupled())
 
 
 def _set(**fields) -> Callable[[mujoco.MjModel], None]:
@@ -107,10 +118,12 @@ OPTIONS = {
         Option("cg-5", _set(solver=Solver.mjSOL_CG, iterations=5)),
         Option("pgs", _set(solver=Solver.mjSOL_PGS)),
         Option("implicitfast", _set(integrator=Integrator.mjINT_IMPLICITFAST)),
-        Option("no-couplings", _set(), couplings=False),
+        Option("independent-closures", _set(), without_implied_closures),
+        Option("no-couplings", _set(), uncoupled),
     )
 }
 BASELINE = "newton-sparse"
+FEWEST_ROWS = "independent-closures"
 SLOW = ("pgs",)  # 11 steps/s on the 300-panel tube: only when named
 
 
@@ -125,11 +138,8 @@ class Run:
 
 
 def tube(n: int, m: int, option: Option) -> Scene:
-    """The default tube of n x m units, with or without its symmetry couplings."""
-    scene = scenes.get("waterbomb-tube").build(n=n, m=m)
-    if option.couplings:
-        return scene
-    return dataclasses.replace(scene, mechanism=dataclasses.replace(scene.mechanism, couplings=()))
+    """The default tube of n x m units, prepared for the option."""
+    return option.prepare(scenes.get("waterbomb-tube").build(n=n, m=m))
 
 
 def sweep(scene: Scene, option: Option, contact: bool, steps: int | None = None) -> Run:
@@ -182,7 +192,8 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--sizes", default=",".join(f"{n}x{m}" for n, m in SIZES), help="tubes n x m, comma-separated")
     parser.add_argument("--options", default="", help=f"option names (default: all but {', '.join(SLOW)} on the "
-                        f"largest tube, {BASELINE} on every tube); any of {', '.join(OPTIONS)}")  # fmt: skip
+                        f"largest tube, {BASELINE} and {FEWEST_ROWS} on every tube); any of "
+                        f"{', '.join(OPTIONS)}")  # fmt: skip
     args = parser.parse_args()
     sizes = [tuple(int(v) for v in s.split("x")) for s in args.sizes.split(",")]
     largest = max(sizes, key=lambda s: s[0] * s[1])
@@ -191,7 +202,7 @@ def main() -> None:
     print(header, flush=True)
     for n, m in sizes:
         every = [name for name in OPTIONS if name not in SLOW]
-        names = args.options.split(",") if args.options else (every if (n, m) == largest else [BASELINE])
+        names = args.options.split(",") if args.options else (every if (n, m) == largest else [BASELINE, FEWEST_ROWS])
         for name in names:
             r = measure(n, m, OPTIONS[name])
             print(f"{n:>3d}x{m:<2d} {r['panels']:6d} {r['nv']:4d} {r['rows']:5d} {name:20s} {r['steps']:6d} "

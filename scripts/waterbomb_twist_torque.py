@@ -84,7 +84,7 @@ class TorqueRun:
 def free_tube(beta: float = np.deg2rad(40.0), n: int = 6, m: int = 3) -> Scene:
     """Scene `waterbomb-tube` (alpha 40 deg, a 0.5 m) without its symmetry couplings; beta in rad."""
     scene = scenes.get("waterbomb-tube").build(n=n, m=m, alpha=np.deg2rad(40.0), beta=beta)
-    return dataclasses.replace(scene, mechanism=dataclasses.replace(scene.mechanism, couplings=()))
+    return dataclasses.replace(scene, mechanism=scene.mechanism.uncoupled())
 
 
 class VertexMap:

@@ -13,12 +13,14 @@ one, so q is the fold angle rho of `sim_origami.conventions`.
 A breadth-first spanning tree from the root body (fixed to the world) keeps the joints that must
 be driven or coupled; every other joint is cut and becomes a loop closure. A coupling
 (joint, other, scale) imposes q_joint = scale * q_other (a symmetry the model assumes, or the
-periodic copy of a crease outside a unit cell); both joints must be in the tree.
+periodic copy of a crease outside a unit cell); both joints must be in the tree. A cut joint in `implied`
+is a loop the couplings and the other closures already close (`implied_cuts`): the MJCF measures it but does
+not impose it, which removes redundant constraint rows (the waterbomb tube's symmetry makes most of them so).
 """
 
 from collections import deque
 from collections.abc import Iterable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 
 import numpy as np
@@ -29,6 +31,18 @@ from .closure import Coupling, Loop, LoopSystem
 from .errors import ParameterError
 from .geometry import invert, transform_z, xyz_angles
 from .graph import spanning_edges
+
+# A loop is implied when its leftover closure rows (past the span of the couplings and the kept loops) are below
+# IMPLIED_RTOL of their size. Measured on the waterbomb tube and twist: see `implied_cuts`' callers (scenes.base).
+IMPLIED_RTOL = 1e-9
+
+
+def _orthonormal_rows(A: NDArray[np.float64], tol: float) -> NDArray[np.float64]:
+    """Orthonormal rows spanning the rows of A (singular values above tol; absolute when A is a leftover)."""
+    if not len(A):
+        return np.zeros((0, A.shape[1]))
+    _, s, Vt = np.linalg.svd(A, full_matrices=False)
+    return Vt[s > tol]
 
 
 @dataclass(frozen=True)
@@ -112,7 +126,8 @@ class TreeEdge:
 class Mechanism:
     """
     Bodies and joints; `root` is fixed to the world, joints in `keep` and in couplings stay in the tree;
-    `breadth_first` picks a shortest-path spanning tree from the root (else Kruskal in joint order).
+    `breadth_first` picks a shortest-path spanning tree from the root (else Kruskal in joint order); `implied`
+    names cut hinges whose closure is measured but not imposed (see `implied_cuts`).
     """
 
     bodies: tuple[Body, ...]
@@ -121,6 +136,7 @@ class Mechanism:
     keep: tuple[str, ...] = field(default=())
     couplings: tuple[tuple[str, str, float], ...] = field(default=())
     breadth_first: bool = False
+    implied: tuple[str, ...] = field(default=())
 
     def __post_init__(self):
         names = [b.name for b in self.bodies]
@@ -138,6 +154,10 @@ class Mechanism:
                     raise ParameterError(
                         f"coupled joint {name!r} was cut to close a loop; couplings need joints of the spanning tree"
                     )
+        cut = {self.joints[i].name for i in self.cut_joints if not self.joints[i].ball} if self.implied else set()
+        for name in self.implied:
+            if name not in cut:
+                raise ParameterError(f"implied closure {name!r} is not a cut hinge; cut hinges are {sorted(cut)}")
 
     def joint_index(self, name: str) -> int:
         """Position of joint `name` in `joints`."""
@@ -334,6 +354,44 @@ class Mechanism:
             loops.append(Loop(tuple(i for i, _ in steps), np.array(links), tuple(f[1] for f in factors)))
         couplings = tuple(Coupling(self.joint_index(a), self.joint_index(b), scale) for a, b, scale in self.couplings)
         return LoopSystem(len(self.joints), tuple(loops), couplings)
+
+    def implied_cuts(self, q: ArrayLike, rtol: float = IMPLIED_RTOL) -> tuple[str, ...]:
+        """
+        Cut hinges whose loop closure the couplings and the loops kept before them imply at every pose of q
+        (k, n_joints) (rad): the closures left out of a model without changing what it can do there.
+
+        Loops are taken in cut-joint order. A loop's six closure-Jacobian rows, combined so that the cut joint's
+        own columns vanish (MuJoCo has no coordinate for them: a cut hinge's connects leave its angle free, a cut
+        spherical joint's connect all three), constrain the tree's joints; the loop is implied when those rows lie
+        in the span of the couplings' and the kept loops' rows at every pose (leftover singular values <= rtol
+        times the rows' largest). Loops cut at spherical joints are always kept. Sample poses on every branch,
+        ends and bifurcations included, so that no pose leans on a loop left out.
+        """
+        q = np.atleast_2d(np.asarray(q, dtype=float))
+        system = self.loop_system()
+        jacobians = [system.jacobian(pose) for pose in q]
+        n_loops = len(system.loops)
+        bases = [_orthonormal_rows(J[6 * n_loops :], rtol) for J in jacobians]
+        implied = []
+        for m, c in enumerate(self.cut_joints):
+            joint = self.joints[c]
+            own = list(self.balls[joint.ball]) if joint.ball else [c]
+            leftovers = []
+            for J, basis in zip(jacobians, bases, strict=True):
+                rows = J[6 * m : 6 * m + 6]
+                U, s, _ = np.linalg.svd(rows[:, own])
+                rows = U[:, int(np.sum(s > rtol * max(s[0], 1.0))) :].T @ rows  # left null space of own columns
+                leftovers.append((rows - (rows @ basis.T) @ basis, np.linalg.norm(rows, 2)))
+            if not joint.ball and all(np.linalg.norm(r, 2) <= rtol * scale for r, scale in leftovers):
+                implied.append(joint.name)
+                continue
+            bases = [np.vstack([basis, _orthonormal_rows(r, rtol * scale)])
+                     for basis, (r, scale) in zip(bases, leftovers, strict=True)]  # fmt: skip
+        return tuple(implied)
+
+    def uncoupled(self) -> "Mechanism":
+        """This mechanism without its couplings, every loop closed (the closures they implied no longer are)."""
+        return replace(self, couplings=(), implied=())
 
     def anchor_points(self, i: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Closure anchor points (k, 3) of joint i in its parent's and its child's body frames."""

@@ -8,7 +8,8 @@ geoms sit on the world body), hinges as the mechanism's joints, meshes `<body>_s
 
 A hinge's qpos equals the mechanism's joint angle: a joint traversed from its child to its parent
 in the spanning tree gets the reversed axis. Each cut joint is closed by one site-based `connect`
-per anchor on its axis (sites need not coincide at qpos0, spec mujoco.md §2.1). Contact, gravity
+per anchor on its axis (sites need not coincide at qpos0, spec mujoco.md §2.1), unless the mechanism marks it
+implied (closed by its couplings and the other loops): then only its sites are written. Contact, gravity
 and render assets enter only the models that use them.
 """
 
@@ -290,11 +291,16 @@ def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarr
     if mechanism.cut_joints:
         equality.append(ET.Comment(" loops cut at hinges (anchors on the axis, away from shared vertices) or at "
                                    "spherical joints (one connect at the centre) "))  # fmt: skip
+    if mechanism.implied:
+        equality.append(ET.Comment(f" {len(mechanism.implied)} cut hinges closed by the couplings and the other "
+                                   "loops: their sites are measured, not connected "))  # fmt: skip
     for c in closures(mechanism):
         for side, body, pos in (("parent", c.parent, c.on_parent), ("child", c.child, c.on_child)):
             ET.SubElement(elements[body], "site", name=f"{c.joint}_{side}_{c.k}", pos=_fmt(pos)).set(
                 "class", "closure_site"
             )
+        if c.joint in mechanism.implied:
+            continue
         ET.SubElement(
             equality, "connect", name=f"close_{c.joint}_{c.k}", site1=f"{c.joint}_child_{c.k}",
             site2=f"{c.joint}_parent_{c.k}",

@@ -7,9 +7,11 @@ minimum-jerk ramp (the harness's own loop, `simulate`), and is scored by the lar
 (Euler, 2 ms, solref 0.02 1, solimp 0.9 0.95 0.001, two connects per cut hinge, equality drive) come first so
 every ratio is taken in the same run.
 
-Closure types: `connect2`, the harness's two connects on each cut hinge's axis (6 rows, one redundant), and
+Closure types: `connect2`, the harness's two connects on each cut hinge's axis (6 rows, one redundant),
 `connect1`, one connect at the far anchor (3 rows: enough where the rest of the loop holds the axis, e.g. a
-spherical loop; a scene it under-constrains shows up as a large error). Drives: `equality`, the joint equality
+spherical loop; a scene it under-constrains shows up as a large error), and `independent`, connect2 on only the
+loops that the couplings and the other loops do not imply (`scenes.base.without_implied_closures`; the rest are
+measured, not imposed). Drives: `equality`, the joint equality
 the harness tracks with feed-forward, and `servo`, the force-limited position actuator of blockage runs.
 """
 
@@ -24,7 +26,7 @@ from numpy.typing import NDArray
 
 from .checks.paths import compare
 from .mjcf import ModelOptions, build_xml, preset_number, template
-from .scenes.base import Scene
+from .scenes.base import Scene, without_implied_closures
 from .simulate import Bindings, drive_targets, scale_regularization, simulate, start_pose, track
 
 INTEGRATORS = {"RK4": mujoco.mjtIntegrator.mjINT_RK4, "Euler": mujoco.mjtIntegrator.mjINT_EULER,
@@ -74,8 +76,8 @@ def preset_setting(name: str) -> Setting:
 PRESETS = {name: preset_setting(name) for name in ("fast", "stiff")}
 
 
-def settings(closures: tuple[str, ...] = ("connect2", "connect1"), drives: tuple[str, ...] = ("equality", "servo"),
-             quick: bool = False) -> Iterator[Setting]:  # fmt: skip
+def settings(closures: tuple[str, ...] = ("connect2", "connect1", "independent"),
+             drives: tuple[str, ...] = ("equality", "servo"), quick: bool = False) -> Iterator[Setting]:  # fmt: skip
     """
     MuJoCo's defaults, the presets, then every integrator x step x tau (solimp 0.9999, the presets' regulariser
     scale) with the default closure and drive, then each other closure type and drive at the presets' settings, and
@@ -97,9 +99,12 @@ def settings(closures: tuple[str, ...] = ("connect2", "connect1"), drives: tuple
 
 
 def _scene_for(scene: Scene, closure: str) -> Scene:
-    """The scene with each cut hinge closed by `closure` (connect1: its far anchor only)."""
+    """The scene with each cut hinge closed by `closure` (connect1: its far anchor only; independent: only the
+    loops nothing else implies)."""
     if closure == "connect2":
         return scene
+    if closure == "independent":
+        return without_implied_closures(scene)
     mech = scene.mechanism
     cut = set(mech.cut_joints)
     joints = tuple(dataclasses.replace(j, anchors=j.anchors[-1:]) if i in cut and not j.ball else j
