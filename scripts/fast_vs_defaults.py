@@ -15,13 +15,13 @@ from sim_origami import pareto, scenes
 
 
 def main(names: list[str]) -> None:
-    fast = pareto.PRESETS["fast"]
-    plain = dataclasses.replace(fast, label="fast, MuJoCo's regulariser", regularization=1.0)
     print("| scene | defaults error (rad) | `fast` error | more accurate, CPU | with MuJoCo's regulariser |")
     print("|---|---|---|---|---|")
     for name in names or scenes.names():
         scene = scenes.get(name).build()
         branch = scene.kinematics.branches()[0].name
+        fast = pareto.scene_presets(scene)["fast"]
+        plain = dataclasses.replace(fast, label="fast, MuJoCo's regulariser", regularization=1.0)
         default, ours, theirs = (pareto.measure(scene, branch, s) for s in (pareto.DEFAULTS, fast, plain))
         gain = f"{default.error / ours.error:.0f}x" if default.error < float("inf") else "defaults diverge"
         print(f"| {name} | {default.error:.1e} | {ours.error:.1e} | {gain}, {ours.cpu / default.cpu:.2f}x "

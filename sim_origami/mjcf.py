@@ -85,6 +85,16 @@ def _merge(root: ET.Element, fragment: ET.Element) -> None:
         _section(root, child.tag).extend(list(child))
 
 
+def _scale_step(root: ET.Element, scale: float) -> None:
+    """The merged preset's timestep and its closure and drive solref time constants times `scale`."""
+    option = root.find("option")
+    option.set("timestep", _fmt(float(option.get("timestep")) * scale))
+    for cls in ("closure", "drive"):
+        equality = root.find(f".//default[@class='{cls}']/equality")
+        tau, *rest = (float(v) for v in equality.get("solref").split())
+        equality.set("solref", _fmt([tau * scale, *rest]))
+
+
 def _add_meshes(asset: ET.Element, mechanism: Mechanism) -> None:
     for body in mechanism.bodies:
         for suffix, mesh in (("solid", body.solid), ("collision", body.collision)):
@@ -277,6 +287,8 @@ def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarr
         fragments += ["visual.xml", "render_scene.xml"]
     for name in fragments:
         _merge(root, template(name))
+    if options.preset == "fast" and scene.fast_step_scale != 1.0:
+        _scale_step(root, scene.fast_step_scale)
     if contact:
         root.find("option/flag").set("contact", "enable")
     if options.gravity:

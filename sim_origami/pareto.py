@@ -76,21 +76,29 @@ def preset_setting(name: str) -> Setting:
 PRESETS = {name: preset_setting(name) for name in ("fast", "stiff")}
 
 
+def scene_presets(scene: Scene) -> dict[str, Setting]:
+    """The presets as `scene` runs them: fast with its step and time constant times `Scene.fast_step_scale`."""
+    fast, k = PRESETS["fast"], scene.fast_step_scale
+    return PRESETS | {"fast": dataclasses.replace(fast, h=fast.h * k, tau=fast.tau * k)}
+
+
 def settings(closures: tuple[str, ...] = ("connect2", "connect1", "independent"),
-             drives: tuple[str, ...] = ("equality", "servo"), quick: bool = False) -> Iterator[Setting]:  # fmt: skip
+             drives: tuple[str, ...] = ("equality", "servo"), quick: bool = False,
+             presets: dict[str, Setting] = PRESETS) -> Iterator[Setting]:  # fmt: skip
     """
-    MuJoCo's defaults, the presets, then every integrator x step x tau (solimp 0.9999, the presets' regulariser
-    scale) with the default closure and drive, then each other closure type and drive at the presets' settings, and
-    the presets with MuJoCo's own regulariser (scale 1). `quick`: RK4 and Euler only, three steps.
+    MuJoCo's defaults, the presets (as a scene runs them: `scene_presets`), then every integrator x step x tau
+    (solimp 0.9999, the presets' regulariser scale) with the default closure and drive, then each other closure type
+    and drive at the presets' settings, and the presets with MuJoCo's own regulariser (scale 1). `quick`: RK4 and
+    Euler only, three steps.
     """
     yield DEFAULTS
-    yield from PRESETS.values()
+    yield from presets.values()
     integrators = ("RK4", "Euler") if quick else tuple(INTEGRATORS)
     steps = (1.25, 2.5, 5.0) if quick else STEPS_MS
     for name, h_ms, k in itertools.product(integrators, steps, TAU_OVER_H):
         yield Setting(f"{name} h={h_ms:g}ms tau={k}h", name, h_ms / 1000, k * h_ms / 1000, HIGH_IMPEDANCE,
                       regularization=PRESETS["fast"].regularization)  # fmt: skip
-    for preset, base in PRESETS.items():
+    for preset, base in presets.items():
         yield dataclasses.replace(base, label=f"{preset}, MuJoCo's regulariser", regularization=1.0)
         for closure in closures[1:]:
             yield dataclasses.replace(base, label=f"{preset}, {closure}", closure=closure)
@@ -156,7 +164,7 @@ def bare_loop_cpu(scene: Scene, branch: str, target: NDArray, repeats: int = 3) 
     CPU time (s) of the minimal loop driving the same path with the fast preset: one eq_data write and one mj_step
     per step from the same start pose, with no logging, checks or feed-forward bookkeeping.
     """
-    model = model_for(scene, PRESETS["fast"])
+    model = model_for(scene, scene_presets(scene)["fast"])
     data = mujoco.MjData(model)
     setpoint = model.eq_data[model.equality(f"drive_{scene.drive_joint}").id]
     targets, pose = (scene.drive_scale * target).tolist(), start_pose(scene, branch, float(target[0]))
@@ -179,6 +187,6 @@ def sweep(scene: Scene, *, quick: bool = False, repeats: int = 3) -> tuple[str, 
     stepping CPU over a bare mj_step loop's on the fast preset's sweep).
     """
     branch = scene.kinematics.branches()[0].name
-    points = [measure(scene, branch, s, repeats) for s in settings(quick=quick)]
+    points = [measure(scene, branch, s, repeats) for s in settings(quick=quick, presets=scene_presets(scene))]
     run = simulate(scene, branch, preset="fast", duration=SWEEP_S)
     return branch, points, run.cpu_time_s / bare_loop_cpu(scene, branch, run.target, repeats)

@@ -6,7 +6,7 @@ import mujoco
 import numpy as np
 import pytest
 
-from sim_origami import scenes
+from sim_origami import pareto, scenes
 from sim_origami.mjcf import ModelOptions, build_xml, closures, mujoco_joints, preset_duration, qpos_order
 
 # Menagerie's top-level order; `visual` appears only in rendered models.
@@ -234,3 +234,16 @@ def test_stiff_preset_is_semi_implicit_euler_with_closures_at_twice_its_step():
     assert model.opt.integrator == mujoco.mjtIntegrator.mjINT_EULER and model.opt.timestep == 0.00125
     closures = [i for i in range(model.neq) if model.equality(i).name.startswith(("close_", "couple_"))]
     assert closures and all(model.eq_solref[i, 0] == 2 * model.opt.timestep for i in closures)
+
+
+def test_a_scenes_fast_step_scale_lengthens_fast_only_and_keeps_tau_over_h():
+    """The twist runs fast at 1.25x its step (10 ms, closures and drive at 25 ms); stiff and other scenes as written."""
+    scene = scenes.get("waterbomb-twist").build()
+    assert scene.fast_step_scale == 1.25
+    fast, _ = compiled(scene, preset="fast")
+    stiff, _ = compiled(scene, preset="stiff")
+    plain, _ = compiled(scenes.get("waterbomb-vertex").build(), preset="fast")
+    assert (fast.opt.timestep, stiff.opt.timestep, plain.opt.timestep) == (0.01, 0.00125, 0.008)
+    rows = [i for i in range(fast.neq) if fast.equality(i).name.startswith(("close_", "couple_", "drive_"))]
+    assert rows and np.allclose(fast.eq_solref[rows, 0], 0.025, rtol=0, atol=1e-15)
+    assert pareto.scene_presets(scene)["fast"].h == fast.opt.timestep

@@ -35,7 +35,8 @@ def run(args: argparse.Namespace) -> int:
     spherical = f", {len(mech.balls)} spherical" if mech.balls else ""
     print(f"mechanism: {len(reduced.bodies)} bodies, {len(reduced.joints) - len(mech.balls)} hinges{spherical}, "
           f"root {mech.root}, loops cut at {', '.join(sorted(cut)) or 'none'}")  # fmt: skip
-    print(f"preset: {scene.preset}, sweep {scene.sweep_time_scale:g}x the preset's duration")
+    scaled = f"; fast at {scene.fast_step_scale:g}x its step and time constant" if scene.fast_step_scale != 1 else ""
+    print(f"preset: {scene.preset}, sweep {scene.sweep_time_scale:g}x the preset's duration{scaled}")
     print("branches:")
     for b in kin.branches():
         lo, hi = b.domain

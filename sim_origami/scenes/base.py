@@ -82,6 +82,9 @@ class Scene:
     # The preset runs use unless told otherwise, chosen per scene from `scripts/preset_compare.py` (with the
     # presets' scaled regulariser 'fast' beats 'stiff' on every scene, and every registered scene runs it).
     preset: str = "fast"
+    # The fast preset's step and closure and drive time constants times this (their ratio kept), where the scene's
+    # own Pareto front shows its error set by the closures rather than the step (`sim-origami bench`); 1 elsewhere.
+    fast_step_scale: float = 1.0
     notes: str = ""
     pattern: CreasePattern | None = None
     self_contact: bool = False
@@ -145,8 +148,8 @@ def without_implied_closures(scene: Scene) -> Scene:
     span (IMPLIED_RTOL 1e-9), kept ones >= 0.057 at every pose. The 10 x 5 tube keeps 6 of its 131 cut creases
     (1071 constraint rows -> 321) and steps 3.3x faster under `stiff` at the same path error, whose error is the
     step's (scripts/waterbomb_tube_rate.py). Under `fast` the soft closures set the error, which grows as the
-    constraint's smallest singular value shrinks: 6 x 5 tube, 8x sweep, all 79 loops 1.5e-8 rad in 6.3 s of CPU,
-    these 6 loops 1.2e-6 in 3.1 s (sigma_min 0.146 -> 0.014), so the scenes impose every loop by default.
+    constraint's smallest singular value shrinks: 6 x 5 tube, 8x sweep, fast at 8 ms, all 79 loops 1.5e-8 rad in
+    6.3 s of CPU, these 6 loops 1.2e-6 in 3.1 s (sigma_min 0.146 -> 0.014), so scenes impose every loop by default.
     """
     mechanism = replace(scene.mechanism, implied=scene.mechanism.implied_cuts(scene.domain_poses(CLOSURE_SAMPLES)))
     return replace(scene, mechanism=mechanism)

@@ -38,6 +38,12 @@ PARAMS = (
 # stiff's 2.6e-8 in 7.1 s, so the scene runs fast.
 PRESET = "fast"
 SWEEP_TIME_SCALE = 8.0
+# fast at 1.25x its step and closure time constant (10 ms, solref 25 ms): on the 2 s sweep of `sim-origami bench`
+# the 6 x 5 tube measured 9.8e-7 rad at 0.97-1.00x the CPU of MuJoCo's defaults (8 ms) against 1.6e-6 at 0.78x
+# (10 ms), and the twist 2.2e-7 at 1.01-1.02x against 3.4e-7 at 0.79x: the closures, not the step, set their error,
+# so RK4's four force evaluations per step buy nothing at 8 ms over Euler's one per 2 ms. 12.5 ms: tube 2.5e-6 at
+# 0.66x, twist 5.5e-7 at 0.64x.
+FAST_STEP_SCALE = 1.25
 
 
 @register("waterbomb-twist", "generalized waterbomb tube, n units x m rows (m odd), twist of the fully folded middle "
@@ -50,7 +56,7 @@ def build(n: float, m: float, alpha: float, beta: float, a: float, row: float) -
         name="waterbomb-twist", params={"n": n, "m": m, "alpha": alpha, "beta": beta, "a": a, "row": row},
         kinematics=kinematics, mechanism=tube_mechanism(kinematics), loop_joints=kinematics.crease_names,
         drive_joint=kinematics.input_crease, drive_scale=1.0, path=(lo, hi),
-        sweep_time_scale=SWEEP_TIME_SCALE, preset=PRESET, pattern=kinematics.pattern,
+        sweep_time_scale=SWEEP_TIME_SCALE, preset=PRESET, fast_step_scale=FAST_STEP_SCALE, pattern=kinematics.pattern,
         notes=f"{int(n)} x {int(m)} tube, seed row {kinematics.row} twisting; {len(kinematics.couplings)} "
         "twist-symmetry couplings; "
         f"{len(kinematics.layout.seam)} seam creases closed by connects",
