@@ -2,7 +2,8 @@
 
 For each scene (its first branch, its default sweep, the same 2 s ramp for every setting): MuJoCo's defaults,
 the presets, every integrator (RK4 / Euler / implicitfast) x step (0.625-8 ms) x closure time constant (2h-8h,
-solimp 0.9999), and the presets with one connect per cut hinge and with the servo drive (`sim_origami.pareto`).
+solimp 0.9999), and the presets with one connect per cut hinge, with only the loops nothing else implies and with
+the servo drive (`sim_origami.pareto`).
 Prints each front with its ratios to the defaults; writes pareto.csv and pareto.png.
 
     python scripts/pareto.py [scene ...]          (default: vertex4 waterbomb-vertex miura-sheet)
