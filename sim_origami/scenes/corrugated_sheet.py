@@ -26,6 +26,12 @@ PARAMS = (
 # 5.4e-8 at 32x (others <= 3.3e-8); Q sheet worst SCSC 1.2e-7 at 16x, 3.5e-8 at 32x. About 1.0 s of CPU per
 # branch at 32x; with self-contact on, 1.3 s and the same path (no panels touch before 2 rad).
 SWEEP_TIME_SCALE = 32.0
+# fast at 1.25x its step and closure time constant (Scene.fast_step_scale: 10 ms, solref 25 ms). At 8 ms
+# RK4's four force evaluations a step cost what Euler's one per 2 ms does: the sheet measured 0.94-0.96x the
+# CPU of MuJoCo's defaults on their 2 s sweep (96146x more accurate); at 1.25x, 62392x at 0.77x
+# (scripts/fast_vs_defaults.py). Scene runs (32x, six branches): worst 1.45e-9 rad in 6.0 s of CPU at 8 ms,
+# 2.3e-9 in 4.6 s at 10 ms.
+FAST_STEP_SCALE = 1.25
 # Collision solids are inset from every panel edge by this fraction of the shortest length (as `miura-sheet`).
 INSET = 0.05
 
@@ -58,6 +64,7 @@ def build(
         root=ROOT,
         sweep_time_scale=SWEEP_TIME_SCALE,
         collision_inset=INSET * min(L1, L2, L3),
+        fast_step_scale=FAST_STEP_SCALE,
         self_contact=True,
         notes=f"{int(rows)} x {int(cols)} units {name}; hinge qpos = fold angle rho (> 0 valley from +z); "
         "no M/V joint limits",

@@ -27,6 +27,7 @@ def pattern_scene(
     self_contact: bool = False,
     contact_pairs: tuple[tuple[str, str], ...] = (),
     breadth_first: bool = False,
+    fast_step_scale: float = 1.0,
 ) -> Scene:
     """A Scene whose mechanism is `pattern_mechanism(pattern)`, driven at crease `drive` (input = its fold angle)."""
     root = root or pattern.crease_faces(pattern.crease(drive))[0]
@@ -38,5 +39,5 @@ def pattern_scene(
         name=name, params=params, kinematics=kinematics, mechanism=mechanism,
         loop_joints=tuple(c.name for c in pattern.creases), drive_joint=drive, drive_scale=1.0, path=path,
         sweep_time_scale=sweep_time_scale, preset=preset, notes=notes, pattern=pattern, self_contact=self_contact,
-        contact_pairs=contact_pairs,
+        contact_pairs=contact_pairs, fast_step_scale=fast_step_scale,
     )  # fmt: skip

@@ -159,13 +159,22 @@ def _scene(scheme: str, delta: float) -> Scene:
         # measured at the preset's 2 s sweep: stiff 1.2e-5 rad (I) and 1.1e-5 (II); fast 9.1e-5 and 3.6e-5 with
         # MuJoCo's regulariser, 2.0e-6 and 1.2e-6 with the presets' (scaled 0.01); the error falls as the square of
         # the sweep time: fast 8x 2.9e-8 and 1.8e-8 rad in 0.05 s of CPU (stiff 16x: 4.6e-8 and 4.3e-8 in 0.23 s);
-        # the blockage runs stop 5e-7 and 3.9e-6 rad from the kinematic contact
+        # the blockage runs stop 5e-7 and 3.9e-6 rad from the kinematic contact. At FAST_STEP_SCALE (10 ms): fast
+        # 8x 4.6e-8 and 2.8e-8 rad, blockage 7.2e-7 and 6.0e-6
         preset="fast",
+        fast_step_scale=FAST_STEP_SCALE,
         sweep_time_scale=8.0,
         contact_pairs=TRIANGLE_PAIRS,
         notes=f"input {INPUT_JOINT[scheme]} = {closed_form.input_name} - its deployed value (rad); "
         "S joints as MuJoCo ball joints",
     )
+
+
+# fast at 1.25x its step and closure time constant (Scene.fast_step_scale: 10 ms, solref 25 ms). At 8 ms
+# RK4's four force evaluations a step cost what Euler's one per 2 ms does: scheme I measured 0.91-1.00x the CPU
+# of MuJoCo's defaults on their 2 s sweep (35413x more accurate), scheme II 0.90-0.94x (21672x); at 1.25x, I
+# 22718x at 0.73x, II 13497x at 0.80x (scripts/fast_vs_defaults.py).
+FAST_STEP_SCALE = 1.25
 
 
 @register(

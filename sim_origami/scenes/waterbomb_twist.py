@@ -38,11 +38,10 @@ PARAMS = (
 # stiff's 2.6e-8 in 7.1 s, so the scene runs fast.
 PRESET = "fast"
 SWEEP_TIME_SCALE = 8.0
-# fast at 1.25x its step and closure time constant (10 ms, solref 25 ms): on the 2 s sweep of `sim-origami bench`
-# the 6 x 5 tube measured 9.8e-7 rad at 0.97-1.00x the CPU of MuJoCo's defaults (8 ms) against 1.6e-6 at 0.78x
-# (10 ms), and the twist 2.2e-7 at 1.01-1.02x against 3.4e-7 at 0.79x: the closures, not the step, set their error,
-# so RK4's four force evaluations per step buy nothing at 8 ms over Euler's one per 2 ms. 12.5 ms: tube 2.5e-6 at
-# 0.66x, twist 5.5e-7 at 0.64x.
+# fast at 1.25x its step and closure time constant (Scene.fast_step_scale: 10 ms, solref 25 ms). At 8 ms
+# RK4's four force evaluations a step cost what Euler's one per 2 ms does: the 6 x 3 twist measured 1.01-1.02x the
+# CPU of MuJoCo's defaults on their 2 s sweep (68190x more accurate); at 1.25x, 43014x at 0.79-0.85x
+# (scripts/fast_vs_defaults.py). 12.5 ms: tube 2.5e-6 rad at 0.66x, twist 5.5e-7 at 0.64x.
 FAST_STEP_SCALE = 1.25
 
 
