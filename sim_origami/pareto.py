@@ -11,8 +11,8 @@ Closure types: `connect2`, the harness's two connects on each cut hinge's axis (
 `connect1`, one connect at the far anchor (3 rows: enough where the rest of the loop holds the axis, e.g. a
 spherical loop; a scene it under-constrains shows up as a large error), and `independent`, connect2 on only the
 loops that the couplings and the other loops do not imply (`scenes.base.without_implied_closures`; the rest are
-measured, not imposed). Drives: `equality`, the joint equality
-the harness tracks with feed-forward, and `servo`, the force-limited position actuator of blockage runs.
+measured, not imposed). Drives: `equality`, the joint equality the harness tracks with feed-forward, and `servo`,
+the force-limited position actuator of blockage runs.
 """
 
 import dataclasses

@@ -82,8 +82,9 @@ class Scene:
     # The preset runs use unless told otherwise, chosen per scene from `scripts/preset_compare.py` (with the
     # presets' scaled regulariser 'fast' beats 'stiff' on every scene, and every registered scene runs it).
     preset: str = "fast"
-    # The fast preset's step and closure and drive time constants times this (their ratio kept), where the scene's
-    # own Pareto front shows its error set by the closures rather than the step (`sim-origami bench`); 1 elsewhere.
+    # The fast preset's step and closure and drive time constants times this (their ratio kept). Larger models set
+    # 1.25: at 8 ms RK4's four force evaluations per step cost what Euler's one per 2 ms does, and MuJoCo's defaults
+    # (scripts/fast_vs_defaults.py) matched fast's CPU there; 1.25x costs 1.6x the error at 0.8x the CPU.
     fast_step_scale: float = 1.0
     notes: str = ""
     pattern: CreasePattern | None = None
