@@ -63,13 +63,18 @@ def test_mjcf_connects_the_kept_loops_and_measures_every_one():
         model.site(f"{name}_parent_0"), model.site(f"{name}_child_1")  # KeyError if missing
 
 
-def test_implied_loops_stay_closed_in_mujoco():
-    """The 6 x 3 tube's default sweep with 5 of its 43 loops imposed follows the contraction, and every implied
-    crease turns about its own axis. Less tightly than with every loop imposed (path 1.2e-8 rad, gaps 1.3e-8 m):
-    the soft closures' error grows as the constraint's smallest singular value shrinks (0.17 -> 0.036)."""
-    scene = without_implied_closures(scenes.get("waterbomb-tube").build(n=6, m=3))
-    mech = scene.mechanism
-    run = simulate(scene, BRANCH)
-    assert compare(scene, BRANCH, run.q).max_error() <= TOLERANCES.fast_rad  # measured 4.0e-7 rad
-    assert mech.hinge_mismatch(run.q, mech.implied) <= TOLERANCES.fast_residual_m  # measured 6.9e-7
-    assert np.max(run.closure_residual) <= TOLERANCES.fast_residual_m  # measured 7.9e-7 m, implied loops included
+def test_under_stiff_leaving_out_the_implied_loops_changes_nothing():
+    """stiff, the rate script's setting, whose error is the step's: the 6 x 3 tube's default sweep with 5 of its 43
+    loops imposed follows the contraction as closely as with all 43, and the implied creases stay as closed as when
+    imposed (measured: path 1.05e-7 rad both; implied hinge mismatch 1.09e-7 against 1.10e-7; site gaps 1.18e-7 m
+    both). Under fast the soft closures set the error and it grows (6 x 3 at 10 ms: 6.4e-7 rad against 1.8e-8)."""
+    full = scenes.get("waterbomb-tube").build(n=6, m=3)
+    reduced = without_implied_closures(full)
+    implied = reduced.mechanism.implied
+    runs = [simulate(scene, BRANCH, preset="stiff") for scene in (full, reduced)]
+    paths = [compare(scene, BRANCH, run.q).max_error() for scene, run in zip((full, reduced), runs, strict=True)]
+    mismatch = [full.mechanism.hinge_mismatch(run.q, implied) for run in runs]
+    gaps = [np.max(run.closure_residual) for run in runs]
+    assert paths[1] <= 1.1 * paths[0] and paths[1] <= TOLERANCES.fast_rad
+    assert mismatch[1] <= 1.1 * mismatch[0] and mismatch[1] <= TOLERANCES.fast_residual_m
+    assert gaps[1] <= 1.1 * gaps[0] and gaps[1] <= TOLERANCES.fast_residual_m  # implied loops' sites included
