@@ -14,21 +14,9 @@ import sys
 
 from sim_origami import pareto, scenes
 
-# The small scenes' 2 s sweeps take 3-20 ms of CPU and this machine has slow spells seconds long: with each
-# setting's repeats in a row (best of 7), the truncated octahedron printed 0.92x, 1.31x and 1.44x in three runs.
-# Rounds that take every setting in turn let a slow spell fall on all of them.
+# The small scenes' 2 s sweeps take 3-20 ms of CPU and this machine has slow spells seconds long:
+# `pareto.measure_all` takes the settings in turn, best of REPEATS rounds.
 REPEATS = 7
-
-
-def interleaved(scene, branch: str, settings: list[pareto.Setting]) -> list[pareto.Point]:
-    """Each setting measured once per round for REPEATS rounds; the point of its fastest round."""
-    best: list[pareto.Point | None] = [None] * len(settings)
-    for _ in range(REPEATS):
-        for k, setting in enumerate(settings):
-            point = pareto.measure(scene, branch, setting, repeats=1)
-            if best[k] is None or point.cpu < best[k].cpu:
-                best[k] = point
-    return best
 
 
 def main(names: list[str]) -> None:
@@ -39,7 +27,7 @@ def main(names: list[str]) -> None:
         branch = scene.kinematics.branches()[0].name
         fast = pareto.scene_presets(scene)["fast"]
         plain = dataclasses.replace(fast, label="fast, MuJoCo's regulariser", regularization=1.0)
-        default, ours, theirs = interleaved(scene, branch, [pareto.DEFAULTS, fast, plain])
+        default, ours, theirs = pareto.measure_all(scene, branch, [pareto.DEFAULTS, fast, plain], REPEATS)
         gain = f"{default.error / ours.error:.0f}x" if default.error < float("inf") else "defaults diverge"
         print(f"| {name} | {default.error:.1e} | {ours.error:.1e} | {gain}, {ours.cpu / default.cpu:.2f}x "
               f"| {theirs.error:.1e} |", flush=True)  # fmt: skip

@@ -129,27 +129,64 @@ def model_for(scene: Scene, setting: Setting) -> mujoco.MjModel:
     return model
 
 
-def measure(scene: Scene, branch: str, setting: Setting, repeats: int = 3) -> Point:
-    """Max error and best-of-`repeats` CPU time of the harness's drive with `setting` over the default sweep."""
+@dataclasses.dataclass
+class _Run:
+    """One setting's compiled sweep, ready to step again (a fresh MjData each time: a tube's arena is 46 MB, and a
+    sweep holds some 60 settings at once)."""
+
+    scene: Scene
+    setting: Setting
+    model: mujoco.MjModel
+    binds: Bindings
+    target: NDArray
+    pose: NDArray
+    qpos: NDArray
+    cpu: float = np.inf
+
+    def step_through(self) -> None:
+        """Run the sweep from its start pose once; keep the lowest stepping CPU time."""
+        model, data, drive = self.model, mujoco.MjData(self.model), f"drive_{self.scene.drive_joint}"
+        if self.setting.drive == "equality":
+            setpoint, index = model.eq_data[model.equality(drive).id], 0
+        else:
+            setpoint, index = data.ctrl, model.actuator(drive).id
+        self.binds.set_pose(data, self.pose)
+        mujoco.mj_forward(model, data)
+        self.cpu = min(self.cpu, track(model, data, setpoint, index, self.target, self.qpos))
+
+
+def _prepare(scene: Scene, branch: str, setting: Setting) -> _Run:
     scene = _scene_for(scene, setting.closure)
     model = model_for(scene, setting)
     start, stop = scene.branch_path(branch)
-    h = model.opt.timestep
-    binds, data = Bindings(scene, model), mujoco.MjData(model)
-    _, target = drive_targets(scene, model, setting.drive, start, stop, SWEEP_S, round(SWEEP_S / h))
-    if setting.drive == "equality":
-        setpoint, index = model.eq_data[model.equality(f"drive_{scene.drive_joint}").id], 0
-    else:
-        setpoint, index = data.ctrl, model.actuator(f"drive_{scene.drive_joint}").id
-    qpos, best, pose = np.empty((len(target), model.nq)), np.inf, start_pose(scene, branch, start)
+    _, target = drive_targets(scene, model, setting.drive, start, stop, SWEEP_S, round(SWEEP_S / model.opt.timestep))
+    qpos = np.empty((len(target), model.nq))
+    return _Run(scene, setting, model, Bindings(scene, model), target, start_pose(scene, branch, start), qpos)
+
+
+def measure_all(scene: Scene, branch: str, settings: list[Setting], repeats: int = 3) -> list[Point]:
+    """
+    Max error and best CPU time of the harness's drive with each setting over the default sweep, in `repeats`
+    rounds that step every setting once: a slow spell of the machine falls on all settings alike instead of on one
+    setting's repeats (which put one 0.92x scene at 1.31x and 1.44x the defaults' CPU in two runs of
+    scripts/fast_vs_defaults.py).
+    """
+    runs = [_prepare(scene, branch, setting) for setting in settings]
     for _ in range(repeats):
-        mujoco.mj_resetData(model, data)
-        binds.set_pose(data, pose)
-        mujoco.mj_forward(model, data)
-        best = min(best, track(model, data, setpoint, index, target, qpos))
-    if not np.all(np.isfinite(qpos)):
-        return Point(setting, float("inf"), best)
-    return Point(setting, compare(scene, branch, binds.angles(scene, qpos)).max_error(), best)
+        for run in runs:
+            run.step_through()
+    return [Point(r.setting, _error(r, branch), r.cpu) for r in runs]
+
+
+def _error(run: _Run, branch: str) -> float:
+    if not np.all(np.isfinite(run.qpos)):
+        return float("inf")
+    return compare(run.scene, branch, run.binds.angles(run.scene, run.qpos)).max_error()
+
+
+def measure(scene: Scene, branch: str, setting: Setting, repeats: int = 3) -> Point:
+    """Max error and best-of-`repeats` CPU time of the harness's drive with `setting` over the default sweep."""
+    return measure_all(scene, branch, [setting], repeats)[0]
 
 
 def front(points: list[Point]) -> list[Point]:
@@ -187,6 +224,6 @@ def sweep(scene: Scene, *, quick: bool = False, repeats: int = 3) -> tuple[str, 
     stepping CPU over a bare mj_step loop's on the fast preset's sweep).
     """
     branch = scene.kinematics.branches()[0].name
-    points = [measure(scene, branch, s, repeats) for s in settings(quick=quick, presets=scene_presets(scene))]
+    points = measure_all(scene, branch, list(settings(quick=quick, presets=scene_presets(scene))), repeats)
     run = simulate(scene, branch, preset="fast", duration=SWEEP_S)
     return branch, points, run.cpu_time_s / bare_loop_cpu(scene, branch, run.target, repeats)
