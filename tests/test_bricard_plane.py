@@ -264,6 +264,7 @@ def test_table_4_1_classification_and_branch_names(case, a_zero, delta, branches
     assert kin.gruebler() == 0
 
 
+@pytest.mark.slow
 def test_case_7_is_a_rigid_structure_assembled_only_at_theta2_pi():
     kin = model(TABLE_4_1[7])
     assert kin.branches() == ()

@@ -209,6 +209,7 @@ def test_closed_form_matches_numeric_continuation(alpha, branch):
     assert np.max(np.abs(numeric[:, [0, 1]] - numeric[:, [4, 5]])) < 1e-11
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("alpha", "x"), [(300.0, 1.0), (90.0, 1.0), (30.0, 3.0)])
 def test_multistart_finds_exactly_the_two_closed_form_assemblies(alpha, x):
     m = model(alpha)

@@ -58,6 +58,7 @@ def test_classify_leaves_flat_state_unlabelled_and_labels_the_branch_elsewhere(n
         assert (labels.followed, labels.flips) == (branch, 0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", SINGLE_BRANCH_SCENES)
 def test_classify_labels_every_sample_of_a_single_branch_linkage(name):
     scene = scenes.get(name).build()

@@ -92,6 +92,7 @@ def test_validate_reports_blockage_event_for_thick_miura(capsys, tmp_path):
     assert any(e["kind"] == "blockage" for e in doc["events"])
 
 
+@pytest.mark.slow
 def test_installed_script_runs():
     # the script sits beside the interpreter of the environment the package is installed in
     exe = Path(sys.executable).parent / "sim-origami"

@@ -161,6 +161,7 @@ def test_closed_form_closes_matches_numeric_and_has_the_expected_mobility(unit):
     assert [(e.kind, e.input) for e in model.events()] == [("bifurcation", 0.0), ("lock", -np.pi), ("lock", np.pi)]
 
 
+@pytest.mark.slow
 def test_scene_p_validates_three_ways():
     scene = scenes.get("corrugated-unit").build()
     report = validate(scene)

@@ -63,6 +63,7 @@ def test_every_vertex_repeats_its_unit_vertex():
         assert signs == {1.0, -1.0}  # some vertices repeat their unit vertex flipped (x -> -x)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("unit", ["P", "Q"])
 def test_closed_form_closes_and_matches_the_numeric_solve(unit):
     sheet = CorrugatedSheet(unit, SECTORS, (1.0, 0.7, 1.3), 2, 2)
@@ -86,6 +87,7 @@ def test_locked_mode_strings_do_not_close():
         sheet.gains("CCCC")
 
 
+@pytest.mark.slow
 def test_validate_default_sheet_and_self_contact():
     scene = scenes.get("corrugated-sheet").build()
     report = validate(scene)

@@ -348,6 +348,7 @@ def test_unknown_revolute_vertex():
 # --- MuJoCo (scene `cuboctahedron`: S joints as ball joints) --------------------------------------------------
 
 
+@pytest.mark.slow
 def test_mujoco_follows_the_transformation_and_sees_the_octahedron_bifurcation():
     report = validate(scenes.get("cuboctahedron").build())
     assert report.passed

@@ -18,6 +18,7 @@ from sim_origami.simulate import compile_model, simulate
 from sim_origami.tolerances import TOLERANCES
 
 
+@pytest.mark.slow
 def test_the_300_panel_tube_keeps_six_of_its_closures_and_poses_between_the_samples_agree():
     """The 10 x 5 tube's symmetry couplings and 6 cut creases close the other 125 loops (digest B.2: the couplings
     leave one DOF); 41 poses a branch, between the 9 the scene samples, imply the same loops."""
@@ -63,6 +64,7 @@ def test_mjcf_connects_the_kept_loops_and_measures_every_one():
         model.site(f"{name}_parent_0"), model.site(f"{name}_child_1")  # KeyError if missing
 
 
+@pytest.mark.slow
 def test_under_stiff_leaving_out_the_implied_loops_changes_nothing():
     """stiff, the rate script's setting, whose error is the step's: the 6 x 3 tube's default sweep with 5 of its 43
     loops imposed follows the contraction as closely as with all 43, and the implied creases stay as closed as when

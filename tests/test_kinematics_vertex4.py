@@ -154,6 +154,7 @@ def test_flat_foldable_multipliers_compose_to_one_around_the_vertex():
 # ---------------------------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 @HYPOTHESIS
 @given(developable_vertices())
 def test_closed_form_closes_loop_over_whole_domain_of_every_branch(vertex_spec):
@@ -167,6 +168,7 @@ def test_closed_form_closes_loop_over_whole_domain_of_every_branch(vertex_spec):
         assert system.residual_norm(values[valid]).max() <= 1e-12
 
 
+@pytest.mark.slow
 @HYPOTHESIS
 @given(developable_vertices(generic=True), st.floats(0.1, 0.9), st.sampled_from([-1.0, 1.0]))
 def test_closed_form_matches_multistart_solve(vertex_spec, fraction, sign):
@@ -182,6 +184,7 @@ def test_closed_form_matches_multistart_solve(vertex_spec, fraction, sign):
         assert np.min(np.max(np.abs(wrap(found - q)), axis=-1)) <= 1e-10
 
 
+@pytest.mark.slow
 @HYPOTHESIS
 @given(developable_vertices())
 def test_central_symmetry_on_each_named_branch(vertex_spec):
@@ -196,6 +199,7 @@ def test_central_symmetry_on_each_named_branch(vertex_spec):
         )
 
 
+@pytest.mark.slow
 @HYPOTHESIS
 @given(developable_vertices(generic=True))
 def test_generic_vertex_has_two_odd_branches_named_by_their_sign_pattern(vertex_spec):
@@ -210,6 +214,7 @@ def test_generic_vertex_has_two_odd_branches_named_by_their_sign_pattern(vertex_
         assert np.all(others == others[:, :1]) and np.all(signs[:, k] == -others[:, 0])
 
 
+@pytest.mark.slow
 @HYPOTHESIS
 @given(developable_vertices())
 def test_evaluate_is_valid_inside_domain_and_nan_just_outside(vertex_spec):
@@ -224,6 +229,7 @@ def test_evaluate_is_valid_inside_domain_and_nan_just_outside(vertex_spec):
         assert not valid.any() and np.isnan(values).all()
 
 
+@pytest.mark.slow
 @HYPOTHESIS
 @given(flat_foldable_vertices())
 def test_flat_foldable_closed_form_equals_general_closed_form_on_modes_s_and_c(alpha):
@@ -447,6 +453,7 @@ def test_case4_odd3_locks_where_crease4_folds_flat():
     assert len(locks) == 2 and all("crease 4" in e.detail for e in locks)
 
 
+@pytest.mark.slow
 @HYPOTHESIS
 @given(developable_vertices(generic=True))
 def test_events_of_random_vertices_are_consistent(vertex_spec):

@@ -111,6 +111,7 @@ def test_example2_follows_the_flat_foldable_multipliers_and_the_loop_gain():
     assert min(abs(g - 1) for k, g in gains.items() if k not in ("SSSS", "CCCC")) >= 0.97
 
 
+@pytest.mark.slow
 def test_example2_mixed_modes_do_not_close():
     mesh = Kokotsakis(example(2))
     assert [b.name for b in mesh.branches()] == ["C", "S"]
@@ -131,6 +132,7 @@ def test_example2_mixed_modes_do_not_close():
         assert min(np.max(np.abs(f - q)) for f in found) <= 1e-12  # measured 2.4e-15
 
 
+@pytest.mark.slow
 def test_example1_closes_only_with_every_vertex_on_one_branch():
     mesh = Kokotsakis(example(1))
     assert [b.name for b in mesh.branches()] == ["odd2", "odd3"]
@@ -141,6 +143,7 @@ def test_example1_closes_only_with_every_vertex_on_one_branch():
     assert np.nanmin(np.abs(mismatch)) >= 0.15
 
 
+@pytest.mark.slow
 def test_two_fold_case_closes_on_six_combinations():
     """[NEW] A mirror pair sharing a crease on one branch carries equal folds, so the loop closes whenever
     A, B and C, D (sharing crease 2) or B, C and D, A (sharing crease 1) are pairwise on one branch."""
@@ -178,6 +181,7 @@ def test_plane_symmetric_case_moves_on_one_branch_and_a_two_dof_family():
     assert straight_lines(Kokotsakis(example(1)).pattern) == ()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", [1, 2, 3, 4])
 def test_closed_form_closes_every_vertex_loop(case):
     mesh = Kokotsakis(example(case))
@@ -190,6 +194,7 @@ def test_closed_form_closes_every_vertex_loop(case):
         assert np.max(loops.residual_norm(q)) <= TOLERANCES.closed_form_residual
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", [1, 2, 3, 4])
 def test_one_dof_along_every_branch_and_four_at_flat(case):
     mesh = Kokotsakis(example(case))
@@ -203,6 +208,7 @@ def test_one_dof_along_every_branch_and_four_at_flat(case):
     assert s[7] >= 0.5 and s[8] <= 1e-12  # measured s[7] = 0.657 / 0.865 / 0.707 / 0.909 (cases 1-4), s[8] <= 3.3e-16
 
 
+@pytest.mark.slow
 def test_events_name_the_creases_that_fold_flat():
     events = Kokotsakis(example(1)).events()
     assert events[0].kind == "bifurcation" and events[0].input == 0.0 and events[0].branches == ("odd2", "odd3")
@@ -212,6 +218,7 @@ def test_events_name_the_creases_that_fold_flat():
     assert locks["odd3", -1.756657].endswith("CD, a4, b4")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", [1, 2, 3, 4])
 def test_validate_closed_form_numeric_and_mujoco(case):
     scene = scenes.get("kokotsakis").build(case=float(case))
@@ -268,6 +275,7 @@ def test_a_mesh_whose_loop_never_closes_is_rigid():
         Kokotsakis(rigid)
 
 
+@pytest.mark.slow
 def test_bad_scene_input_is_refused():
     kokotsakis = scenes.get("kokotsakis")
     for case in (0.0, 1.5, 5.0):

@@ -68,6 +68,7 @@ def test_variants_are_the_supplement_sets_that_stay_developable():
     assert (kv.R_CLASS["aapp"], kv.R_CLASS["pppp"], kv.R_CLASS["appa"]) == ("R8", "R4", "R3")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("base", "transmission"), list(COUNTS))
 def test_census_counts(base, transmission):
     rows = kv.census(base, kv.BASES[base], transmission)
@@ -78,6 +79,7 @@ def test_census_counts(base, transmission):
     assert min(r.best_open for r in good) >= 0.03
 
 
+@pytest.mark.slow
 def test_example2_is_found_and_closes_on_s_and_c_only():
     rows = kv.census("example 2", kv.BASES["example 2"], "rotation")
     found = [r for r in rows if r.label == "example 2"]
@@ -92,6 +94,7 @@ def test_example2_is_found_and_closes_on_s_and_c_only():
     assert ("aaaa", "aaaa", "apap", "papa") in [r.codes for r in new]
 
 
+@pytest.mark.slow
 def test_census_agrees_with_the_kokotsakis_class():
     for base, transmission, codes in (("example 2", "rotation", ("aaaa", "pppp", "aaaa", "pppp")),
                                       ("generic 2-34", "two-fold", ("aaaa", "pppp", "aaaa", "pppp"))):  # fmt: skip
@@ -102,6 +105,7 @@ def test_census_agrees_with_the_kokotsakis_class():
         Kokotsakis(rigid)
 
 
+@pytest.mark.slow
 def test_generic_new_meshes_exist_for_every_generic_base():
     """Random generic bases (no sector pair summing to 180 deg, none near 90): the rotation type closes only with
     identical vertices, as the thesis says; the two-fold type closes with A = C = base, B = D = mirrored all-supplement
@@ -117,6 +121,7 @@ def test_generic_new_meshes_exist_for_every_generic_base():
         assert ("aaaa", "aaaa", "pppp", "pppp") in {r.codes for r in by_type["plane-sym"] if r.label == "new"}
 
 
+@pytest.mark.slow
 def test_new_two_fold_mesh_of_the_generic_vertex_is_rigid_origami():
     """Seed 2-34 vertex, two-fold layout, B and D the all-supplement variant (90, 110, 120, 40) deg: a parallelogram
     whose four vertices carry the same four crease lines; 1 DOF on each of 6 branches, per-vertex loops closed."""
@@ -139,6 +144,7 @@ def test_new_two_fold_mesh_of_the_generic_vertex_is_rigid_origami():
     assert abs(loop_mismatch(v, ("odd2", "odd1", "odd3", "odd1"), 0.3)[0]) >= 0.3
 
 
+@pytest.mark.slow
 def test_new_plane_symmetric_layout_mesh_in_mujoco():
     """Generic vertex, plane-symmetric layout, C and D the (mirrored) all-supplement variant: planar for every base,
     not mirror-symmetric (unlike case 4), yet MuJoCo follows all 4 branches of the closed form (validate: 2.7 s CPU)."""

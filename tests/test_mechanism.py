@@ -47,6 +47,7 @@ def test_mechanism_loop_system_closes_on_closed_form_angles(name, branch):
     assert np.max(residual) <= TOLERANCES.closed_form_residual
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", scenes.names())
 def test_mechanism_loop_system_is_open_when_one_angle_is_off(name):
     scene = scenes.get(name).build()

@@ -169,6 +169,7 @@ def test_closed_form_ratios_and_the_texts_claims():
         assert np.all(nu_out[phi < peak] < 0) and np.all(nu_out[phi > peak] > 0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("element", "stop", "nu_out_tol", "min_samples"),
     [  # fast preset, 32x sweep, x from 0.3 rad, 1.2-1.4 s CPU each. Elements 1, 2: to x = 2.4, phi from 2.84

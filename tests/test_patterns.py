@@ -82,6 +82,7 @@ def cli(capsys, *argv: str) -> tuple[int, str, str]:
     return code, out, err
 
 
+@pytest.mark.slow
 def test_cli_validate_fold(tmp_path, capsys):
     vertex = Vertex4(ALPHA)
     path = write_fold(tmp_path / "v4.fold", vertex_pattern(ALPHA), vertex.joint_angles("odd1", [1.0]))
@@ -116,6 +117,7 @@ def test_miura_sheet_numeric_and_mujoco():
     assert compare(scene, "miura", simulate(scene, "miura").q).max_error() <= TOLERANCES.fast_rad  # 6.8e-8
 
 
+@pytest.mark.slow
 def test_16_by_16_miura_sheet_folds_within_1e6_rad_with_contact_on():
     """Issue 4: a 16 x 16 sheet (256 panels, 225 connect pairs) from 5% to 90% of its range, contact on. Fast, 4 s
     sweep: measured 7.3e-7 rad in 500 steps (3.4-3.7 s of CPU on the shared 2-core machine, 2.0 s contact off);

@@ -21,6 +21,7 @@ INDEX = {v: k for k, v in enumerate(NAMES)}
 # --- closed form: the zeta study of digest §2.7 --------------------------------------------------------------
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("zeta", "kind", "gap", "rho1_max"),
     [
@@ -37,18 +38,21 @@ def test_feasible_designs_reach_the_cube(zeta, kind, gap, rho1_max):
     assert o.drivable == (zeta > -60.8)  # -62: theta dips below theta_d first (turns at 34.415, 33.399 deg)
 
 
+@pytest.mark.slow
 def test_zeta_30_folds_bricard_1_first():
     o = TruncatedOctahedronCube(30 * DEG).outcome()
     assert o.kind == "rho1-negative" and not o.feasible
     assert abs(o.rho2 / DEG - 46.85) < 0.01  # measured 46.847; seed: rho2 stuck at 47.2 where its trace stalled
 
 
+@pytest.mark.slow
 def test_zeta_40_turns_back_early():
     o = TruncatedOctahedronCube(40 * DEG).outcome()
     assert o.kind == "loop" and o.turns
     assert abs(o.rho1_min / DEG - 86.4) < 0.05  # seed: rho1 min 86.4 (measured 86.406)
 
 
+@pytest.mark.slow
 def test_build_refuses_a_design_the_closed_form_cannot_follow():
     with pytest.raises(ParameterError, match=r"zeta = 30 deg: .*Bricard 1 folds .*-60.9 <= zeta <= 19.5"):
         scenes.get("truncated-octahedron").build(zeta=30 * DEG)
@@ -122,6 +126,7 @@ def test_zeta_40_stalls_at_the_turning_point_without_contact():
     assert abs(rho(P, "B1", "C2", "C1") / DEG - 86.4) < 1.0  # seed's rho1 min 86.4 (measured 87.08 deg)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("zeta", "cube", "drivable"),
     [

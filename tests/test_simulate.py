@@ -97,6 +97,7 @@ def test_projection_path_error_and_residual_within_projection_tolerances(name, b
     assert np.max(run.closure_residual) <= TOLERANCES.projection_residual_m
 
 
+@pytest.mark.slow
 def test_accurate_preset_on_vertex4_within_accurate_tolerances():
     scene = scene_of("vertex4")
     run = simulate(scene, "odd2", preset="accurate")
@@ -145,6 +146,7 @@ def test_flat_foldable_vertex_has_branches_s_and_c():
     assert {b.name for b in flat_foldable_scene().kinematics.branches()} == {"S", "C"}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("branch", ["S", "C"])
 def test_flat_seed_with_tangent_bias_reaches_the_requested_branch(branch):
     scene = flat_foldable_scene()

@@ -247,6 +247,7 @@ def test_rigid_assignment_folds_from_flat_in_mujoco():
         assert compare(scene, modes, run.q).max_error() <= TOLERANCES.fast_rad
 
 
+@pytest.mark.slow
 def test_validate_square_twist_every_branch():
     scene = scenes.get("square-twist").build()
     report = validate(scene)

@@ -28,6 +28,7 @@ def test_fast_drives_degrade_as_the_square_of_the_sweep_time_and_stay_finite():
     assert 10 < fast / slow < 50 and fast < 1e-4
 
 
+@pytest.mark.slow
 def test_extreme_panel_aspect_ratio_costs_sweep_time_not_stability():
     scene = scenes.get("miura-sheet").build(rows=3, cols=3, a=0.05, b=2.0)  # panels 40 times longer than wide
     quick, slow = error(scene, "miura", duration=16.0), error(scene, "miura", duration=64.0)

@@ -54,6 +54,7 @@ def test_unknown_parameter_is_refused_before_any_point_runs():
         sweep("miura", [Axis("beta9", (1.0,))])
 
 
+@pytest.mark.slow
 def test_cli_sweep_writes_tables_and_plot_and_exits_1_when_a_point_fails(tmp_path, capsys):
     out = tmp_path / "s"
     code = main(["sweep", "vertex4", "--grid", "alpha1=55:60:5", "--workers", "2", "--out", str(out)])

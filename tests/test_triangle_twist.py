@@ -122,6 +122,7 @@ def test_case3_compatible_epsilon_against_the_seed():
     assert TriangleTwist(angles).branches()[0].name == "RSP" and scheme_class("RSP") == "PRS"
 
 
+@pytest.mark.slow
 def test_verdict_table_reproduces_the_seed_eight_rigid_four_never():
     table = verdict_table()
     assert [v.name for v in table] == list(RIGID_SCHEMES + LOCKED_SCHEMES)
@@ -208,6 +209,7 @@ def test_closed_form_closes_matches_the_numeric_solve_and_the_vertex_modes(schem
         np.testing.assert_allclose(np.tan(f4 / 2), m * np.tan(f1 / 2), rtol=1e-12)  # measured <= 2.9e-15
 
 
+@pytest.mark.slow
 def test_validate_every_rigid_scheme():
     for k, scheme in enumerate(RIGID_SCHEMES, start=1):
         report = validate(scenes.get("triangle-twist").build(scheme=float(k)))

@@ -69,6 +69,7 @@ def test_bricard_parameters_match_case_12(model):
     assert (hi / DEG, model.phi(hi)[0] % (2 * np.pi) / DEG) == pytest.approx((166.1251, 268.4470), abs=1e-3)
 
 
+@pytest.mark.slow
 def test_deployed_state_is_the_truncated_octahedron(model):
     P = model.vertices(model.theta_d)[0]
     assert np.max(np.abs(P - np.array([VERTICES[v] for v in NAMES]))) < 1e-13  # measured 5.7e-16 m
@@ -187,6 +188,7 @@ def test_spherical_joints_become_ball_joints_or_one_connect(scene):
     assert np.max(np.abs(binds.angles(scene, data.qpos[None])[0] - q)) < 1e-13  # measured 1.6e-15
 
 
+@pytest.mark.slow
 def test_mujoco_follows_the_transformation(scene):
     report = validate(scene)
     assert report.passed
@@ -212,6 +214,7 @@ def test_input_outside_the_transformation(model, theta_deg):
         model.vertices(theta_deg * DEG)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("zeta_deg", [15.0, 18.0])
 def test_state_closes_on_every_input_of_designs_near_the_cube_singularity(zeta_deg):
     """zeta = 15 deg: chord steps with the track's Jacobian left theta = 165.811 deg open (now restarted with Newton);
@@ -222,6 +225,7 @@ def test_state_closes_on_every_input_of_designs_near_the_cube_singularity(zeta_d
     assert np.all(residual < 1e-13)  # measured <= 1e-13 by construction; NaN fails this comparison
 
 
+@pytest.mark.slow
 def test_blockage_near_the_singular_cube_is_read_after_the_servo_settles():
     """zeta = 15 deg: the servo touches the squares' contact, bounces, and creeps back toward it; held 1 s it was
     3.1e-3 rad short (over the 3e-3 tolerance), held BLOCKAGE_HOLD = 3 s 2.5e-5."""

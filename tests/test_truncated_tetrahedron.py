@@ -124,6 +124,7 @@ def test_corrected_axes():
     assert abs((B - G) @ printed - (K - G) @ printed) > 0.1
 
 
+@pytest.mark.slow
 def test_delta_peak_of_the_bricard(two):
     """delta = angle BAF rises from 120 to its peak 129.52 deg (at rho ≈ 102.4 deg) then falls to 60 deg."""
     x = np.linspace(*two.domain, 301)
@@ -179,12 +180,14 @@ def test_scheme_i_turned_axis_reaches_the_tetrahedron(one_reaching):
     assert "the tetrahedron" in one_reaching.events()[1].detail
 
 
+@pytest.mark.slow
 def test_scheme_i_threshold_near_minus_3_5_deg():
     """Digest §2.8: the tetrahedron is reached for delta1 <~ -3.5 deg and missed above."""
     assert SchemeI(-3.5 * DEG).end_gap < 1e-12  # measured 9.6e-16 m
     assert SchemeI(-3 * DEG).end_gap > 1e-3  # measured 0.0084 m
 
 
+@pytest.mark.slow
 def test_scheme_ii_negative_delta_over_opens():
     """delta2 = -5 deg: rho first rises to 122.03 deg (digest truss), so theta turns back and cannot drive it."""
     kinematics = SchemeII(-5 * DEG)
@@ -207,6 +210,7 @@ TABLE_II = [
 ]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("row", TABLE_II)
 def test_scheme_ii_path_matches_seed_table(two, row):
     m = two.monitors(rho_input(two, row[0] * DEG))
@@ -224,6 +228,7 @@ TABLE_I = [
 ]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("row", TABLE_I)
 def test_scheme_i_path_matches_seed_table(one_reaching, row):
     m = one_reaching.monitors(rho_input(one_reaching, row[0] * DEG))
@@ -340,6 +345,7 @@ def test_theta_g_outside_the_transformation(one):
 # --- MuJoCo (scenes `truncated-tetrahedron-i`, `-ii`: S joints as ball joints) -------------------------------
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["truncated-tetrahedron-i", "truncated-tetrahedron-ii"])
 def test_mujoco_follows_the_transformation(name):
     report = validate(scenes.get(name).build())

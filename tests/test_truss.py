@@ -37,6 +37,7 @@ def poses(scene) -> list[tuple[str, float]]:
     return [(first, scene.branch_path(first)[0]), *events]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", scenes.names())
 def test_truss_mobility_equals_jacobian_mobility(name):
     # Issue 6 item 5: at the start pose and at every bifurcation, truss m = numeric rank = MuJoCo rank; the ranks
@@ -141,6 +142,7 @@ def test_path_follower_keeps_joint_couplings():
         assert np.abs(run.q[:, index(a)] - c * run.q[:, index(b)]).max() < 1e-12
 
 
+@pytest.mark.slow
 def test_bricard_threefold_closed_path_crosses_the_bundle_twice():
     # Seed 001 §2.5: from theta = 129.31 deg the motion is closed (theta1 grows by 720 deg) and passes the bundle
     # twice, at theta1 = pi and 3 pi, where the mobility is 2; 'keep' goes straight through.
@@ -186,6 +188,7 @@ def test_branch_choice_at_a_bifurcation(name, branch, start, stop, kept, switche
         assert np.abs(wrap(scene.outputs(run.q[after]) - kin.evaluate(other, x)[0])).max() > 0.1
 
 
+@pytest.mark.slow
 def test_truss_rejects_bad_input():
     scene = scenes.get("bennett").build()
     q = scene.pose("bennett", 1.0)

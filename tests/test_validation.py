@@ -24,6 +24,7 @@ def every_verdict(report) -> list[Verdict]:
     return list(report.verdicts) + [v for run in report.runs for v in run.verdicts]
 
 
+@pytest.mark.slow
 def test_validate_vertex4_passes_every_verdict_on_every_branch():
     report = report_of("vertex4")
     branches = [b.name for b in report.scene.kinematics.branches()]
@@ -41,6 +42,7 @@ def test_validate_vertex4_passes_every_verdict_on_every_branch():
     assert point["input_rad"] == 0.0 and set(point["seed_offset_followed_rad"]) == set(branches)
 
 
+@pytest.mark.slow
 def test_validate_thick_miura_adds_a_passing_blockage_verdict():
     report = report_of("miura", 0.02)
     assert report.passed

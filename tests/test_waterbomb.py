@@ -88,6 +88,7 @@ def test_case19_blockage_onsets_of_path_two():
     assert [e.kind for e in events] == ["lock", "lock"] and events[0].input == -events[1].input
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("alpha", "beta"), [(40, 40), (35, 45), (20, 30), (10, 70), (44, 45)])
 @pytest.mark.parametrize("mu", [None, 0.5, 2.0])
 def test_closed_forms_close_the_cell_and_match_the_numeric_solve(alpha, beta, mu):
@@ -222,6 +223,7 @@ def test_thick_panels_interfere_only_for_alpha_above_45_degrees():
     assert _closest_approach(45.5, 30.0) < -0.002
 
 
+@pytest.mark.slow
 def test_thick_interference_stops_a_force_limited_drive_at_the_contact():
     """alpha = 50 deg: the panels touch at rho_A4 = -2.2289 on path I, where the servo stops (measured
     1.5e-4 rad from it); at the defaults it folds on to the stacked end, -pi (stopped 3e-5 past it)."""
@@ -234,6 +236,7 @@ def test_thick_interference_stops_a_force_limited_drive_at_the_contact():
     assert free.stop_input == pytest.approx(-np.pi, abs=1e-3)
 
 
+@pytest.mark.slow
 def test_report_exports_the_simulated_motion_as_a_multi_frame_fold_file():
     scene = scenes.get("waterbomb-thick").build()
     report = validate(scene)
@@ -285,6 +288,7 @@ def sheet_triangles_cross(scene, branch: str, x: float) -> bool:
     return bool(np.any(triangles_cross(tri[pairs[:, 0]], tri[pairs[:, 1]])))
 
 
+@pytest.mark.slow
 def test_waterbomb_sheet_self_contact_finds_the_straight_line_branch_folding_into_itself():
     """Issue 4's tessellations with contact between panels that share no vertex. On the two-straight-lines branch
     the sheet's straight crease lines fold alike, so its cross-section is an equiangular polygon whose end strips

@@ -162,6 +162,7 @@ def test_closed_form_closes_every_vertex_and_the_ring(n, m, alpha, beta):
         assert np.max(np.abs(np.linalg.norm(X[:, e] - X[:, s], axis=-1) - np.linalg.norm(d))) <= 1e-13
 
 
+@pytest.mark.slow
 def test_folding_the_strip_with_the_closed_form_closes_the_tube():
     """Fold the flat strip face by face along the mechanism's spanning tree with the closed-form angles: every seam
     crease meets its copy (the tube closes round its circumference) and the vertices are the coordinate model's."""
@@ -186,6 +187,7 @@ def test_folding_the_strip_with_the_closed_form_closes_the_tube():
     assert np.max(np.abs(pairs(folded) - pairs(X))) <= 1e-12
 
 
+@pytest.mark.slow
 def test_free_tube_has_4n_minus_6_dof_and_the_couplings_leave_one():
     """Digest B.2 / validation case 23: 18 DOF for n = 6 at generic states, 19 with the equatorial row fully folded
     (the twist bifurcation); the symmetry couplings leave the contraction alone."""
@@ -201,6 +203,7 @@ def test_free_tube_has_4n_minus_6_dof_and_the_couplings_leave_one():
     assert np.max(coupled.residual_norm(model.joint_angles(BRANCH, np.linspace(lo, hi, 21)))) <= 1e-14
 
 
+@pytest.mark.slow
 def test_closed_form_matches_the_numeric_continuation():
     model = WaterbombTube(6, 2, 40 * DEG, 40 * DEG)
     lo, hi = model.domain
@@ -246,6 +249,7 @@ def top_row_interferes(m, alpha, beta):
     return bool(np.min(r_top) < 0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("predicate", "published", "tol"),
     [  # seed 004 Fig. 8c (n6 m7 beta 40, alpha varies) and 8d (alpha 45, beta varies), 1 decimal printed
@@ -325,6 +329,7 @@ def test_pattern_lengths_and_counts():
     assert {s.name for s in layout.seam}.isdisjoint(c.name for c in layout.pattern.creases)
 
 
+@pytest.mark.slow
 def test_spanning_tree_is_shortest_path_round_the_tube():
     """Every face sits in the MuJoCo tree at its distance from the root across the tube's creases (seam included):
     short closure Jacobians, which took the 10 x 5 tube from 297 to 554 steps/s (scripts/waterbomb_tube_rate.py)."""
@@ -342,6 +347,7 @@ def test_spanning_tree_is_shortest_path_round_the_tube():
     assert coupled <= mechanism.tree_joint_names()
 
 
+@pytest.mark.slow
 def test_mujoco_follows_the_contraction_crease_by_crease():
     """The 6 x 3 tube (108 faces, 150 hinges, 43 connect closures, 98 symmetry couplings) driven along the default
     sweep, every crease against the closed form, with the scene's preset (fast) and sweep (8x)."""

@@ -5,6 +5,7 @@ a force-limited servo stopped by it, and the default tube's contraction free of 
 
 import mujoco
 import numpy as np
+import pytest
 
 import sim_origami.scenes.waterbomb_tube  # noqa: F401  (registers the scene)
 from sim_origami import scenes
@@ -107,6 +108,7 @@ def test_tube_pattern_also_excludes_panels_that_meet_across_the_seam():
         assert np.min(np.linalg.norm(np.abs(gaps) - period, axis=-1)) < 1e-12
 
 
+@pytest.mark.slow
 def test_bare_triangles_cross_where_the_seed_says():
     """The digest's own test (triangle-triangle crossing, zero thickness): none at alpha = 54.5 deg, crossing at the
     bottom of the range at 54.6 deg; at 56 deg they cross up to 95.168 deg (seed 95.04)."""
@@ -123,6 +125,7 @@ def test_bare_triangles_cross_where_the_seed_says():
     np.testing.assert_allclose(inside, SEED_END_DEG, atol=SEED_END_TOL_DEG)
 
 
+@pytest.mark.slow
 def test_contact_onset_is_the_seed_middle_row_interference():
     """Fig. 8c: no panel contact anywhere on the range at alpha = 54.5 deg; at 54.6 deg contact at the bottom of the
     range between rows -1, 0, 1 (rows 2-4 from the bottom), which the dihedral criteria do not see (digest B.4)."""
@@ -152,6 +155,7 @@ def test_contact_part_of_the_range_at_alpha_56_matches_the_seed():
     assert all(contacts.at(t) for t in np.linspace(lo + 1e-7, end - 0.01, 21))
 
 
+@pytest.mark.slow
 def test_force_limited_servo_stops_at_the_interference():
     """Driven from theta = 105 deg down to 89.5 deg, inside the colliding part, with contact on: the servo stops at
     the solids' contact angle (measured 95.107 deg against 95.130, 4.0e-4 rad; settled to 0.004 deg over the
@@ -167,6 +171,7 @@ def test_force_limited_servo_stops_at_the_interference():
     np.testing.assert_allclose(theta_deg(result.stop_input), SEED_END_DEG, atol=SEED_END_TOL_DEG)
 
 
+@pytest.mark.slow
 def test_default_tube_contracts_without_false_contact():
     """6 x 5, alpha = beta = 40 deg: the solids touch only where the middle row folds flat and its A's meet on the
     axis (theta < 60.83 deg, the contraction's end), and the default sweep with contact on is the sweep without."""

@@ -128,6 +128,7 @@ def test_seed000_square_tube_twist():
                                [60.993, 30.510, 58.514], atol=5e-4, rtol=0)  # fmt: skip
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("n", "m", "published"),
     [(6, 7, (7.44, 92.01)), (6, 9, (17.46, 80.28)), (6, 11, (34.19, 61.69)), (5, 5, (31.44, 87.86))],
@@ -142,6 +143,7 @@ def test_fig14_twist_ranges_where_the_top_row_deploys(n, m, published):
     assert max(published[0] - ours[0], ours[1] - published[1]) <= 0.11
 
 
+@pytest.mark.slow
 def test_fig14_no_twist_and_alpha_threshold():
     """m = 13 (Fig 14a) and n = 4 (14b) have no twist; on the seeds' (non-strict) criterion the n6 m5 beta = 40 tube
     twists from alpha = 26.85 (digest B.6; the paper's 25.7 is not reproduced) and eta02 reaches 0 from 35.73 (ours
@@ -158,6 +160,7 @@ def test_fig14_no_twist_and_alpha_threshold():
         assert (eta02 < 1e-9) == reaches
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("n", "m", "alpha", "beta"), [(6, 5, 40, 40), (6, 3, 45, 45), (5, 5, 40, 40),
                                                        (8, 3, 35, 38), (6, 3, 40, 42.0105)])  # fmt: skip
 def test_closed_form_closes_the_twisted_tube(n, m, alpha, beta):
@@ -199,6 +202,7 @@ def test_folding_the_strip_closes_the_twisted_tube_round_its_circumference():
     assert np.max(np.abs(pairs(folded) - pairs(X))) <= 1e-12  # measured 2.8e-14 m
 
 
+@pytest.mark.slow
 def test_symmetry_couplings_and_mobility():
     """The couplings hold on both twist senses and on the contraction; the coupled closure has mobility 1 on each
     branch and 2 at their meeting point, where the free tube gains one mode (19 = 4n - 5, digest case 23)."""
@@ -218,6 +222,7 @@ def test_symmetry_couplings_and_mobility():
     assert abs(q[TWIST_6X5.layout.index("A2_0_2")] - q[TWIST_6X5.layout.index("A2_0_3")]) > 0.1
 
 
+@pytest.mark.slow
 def test_closed_form_matches_the_numeric_continuation():
     model = TWIST_6X5
     joint = model.loop_input()[0]
@@ -231,6 +236,7 @@ def test_closed_form_matches_the_numeric_continuation():
         assert np.max(np.abs(wrap(numeric - q))) <= TOLERANCES.closed_form_rad
 
 
+@pytest.mark.slow
 def test_events():
     events = TWIST_6X5.events()
     kinds = {(e.kind, e.branches) for e in events}
@@ -250,6 +256,7 @@ def test_events():
     assert {e.branches[0] for e in crossings} == {CCW, CW}
 
 
+@pytest.mark.slow
 def test_validate_the_twist_of_a_single_row():
     """validate() on the counter-clockwise twist of the 6 x 1 tube (the middle row alone: 36 faces, 42 hinges), with
     the scene's preset (fast) and sweep (8x): every verdict, MuJoCo's rank and the truss method's included."""
@@ -264,6 +271,7 @@ def test_validate_the_twist_of_a_single_row():
     assert report.passed, [v for v in report.verdicts if not v.passed]
 
 
+@pytest.mark.slow
 def test_mujoco_follows_the_clockwise_twist_not_the_contraction():
     """The 6 x 3 tube (108 faces, 150 hinges, 43 connects, the twist's couplings) on its clockwise twist, which leaves
     the fully folded middle row on the same side of the input as the contraction: MuJoCo keeps to the twist."""

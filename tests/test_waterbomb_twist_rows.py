@@ -27,6 +27,7 @@ def inputs(model: WaterbombTwist, branch: str, k: int = 21) -> np.ndarray:
     return np.linspace(*model.branch(branch).domain, k)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("model", [PATH_I, PATH_III], ids=["I", "III"])
 def test_closed_form_closes_the_tube(model):
     """Every vertex loop and the ring round the middle row, free and with the couplings, on both senses; every edge
@@ -59,6 +60,7 @@ def test_rows_do_not_depend_on_the_rows_farther_out():
     assert np.max(np.abs(q3 - q5[:, pick])) <= 1e-12  # measured 0 rad: the same arithmetic
 
 
+@pytest.mark.slow
 def test_start_is_the_equal_diameter_cylinder():
     """Paths I, II, III and the contraction meet at configuration iii: the contraction's end (theta = 360/n), every
     row's A's on the axis, every vertical edge folded flat (kappa_Bi,4 = kappa_Ci,4 = 0)."""
@@ -109,6 +111,7 @@ def test_mirror_relation():
         assert np.max(np.abs(PATH_III.end_twist(branch, x) - PATH_I.end_twist(branch, x))) <= 1e-15
 
 
+@pytest.mark.slow
 def test_couplings_leave_one_degree_of_freedom():
     """The couplings found from the closed form (91 on the 6 x 3 tube) leave mobility 1 on each sense and 2 at the
     start; the radial contraction breaks them (the twisting row's A is line-symmetric), so it is no branch here."""
@@ -124,6 +127,7 @@ def test_couplings_leave_one_degree_of_freedom():
     assert np.max(coupled.residual_norm(contraction)) > 0.1  # measured 0.80
 
 
+@pytest.mark.slow
 def test_closed_form_matches_the_numeric_continuation():
     loops, joint = PATH_I.loop_system(), PATH_I.loop_input()[0]
     for branch in (CCW, CW):
@@ -134,6 +138,7 @@ def test_closed_form_matches_the_numeric_continuation():
         assert np.max(np.abs(wrap(numeric - q))) <= TOLERANCES.closed_form_rad  # measured 9.6e-14 rad
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("row", "branch"), [(1, CCW), (-1, CW)])
 def test_mujoco_follows_the_twist_of_an_end_row(row, branch):
     """The 6 x 3 tube at beta_max twisting in its top (path I) or bottom row (III), scene preset fast 8x: every
@@ -162,6 +167,7 @@ def test_bad_row_or_beta_is_refused(values, match):
         scenes.get("waterbomb-twist").build_from_user(values)
 
 
+@pytest.mark.slow
 def test_beta_window():
     """The twisting row must be fully folded where the contraction ends, |r_A| <= 1e-9 a: r_A = -1.615 a (beta -
     beta_max), so beta_max +- 5e-10 rad passes and +- 1e-9 rad does not; 42.0105238 deg (typed) passes."""
