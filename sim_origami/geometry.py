@@ -186,6 +186,13 @@ def frame_along(axis: ArrayLike, point: ArrayLike = (0.0, 0.0, 0.0)) -> NDArray[
     return transform(np.stack([x, y, z], axis=1), point)
 
 
+def common_normal_foot(p0: ArrayLike, s0: ArrayLike, p1: ArrayLike, s1: ArrayLike) -> NDArray[np.float64]:
+    """Foot on line (p1, s1) of the common normal of lines (p0, s0) and (p1, s1); unit directions, not parallel."""
+    p0, s0, p1, s1 = (np.asarray(v, dtype=float) for v in (p0, s0, p1, s1))
+    w, b = p0 - p1, s0 @ s1
+    return p1 + ((s1 @ w) - b * (s0 @ w)) / (1.0 - b * b) * s1
+
+
 def signed_angle(u: ArrayLike, v: ArrayLike, axis: ArrayLike) -> NDArray[np.float64]:
     """Right-handed angle (...) from vectors u to v about `axis`; all (..., 3)."""
     u, v, axis = (np.asarray(x, dtype=float) for x in (u, v, axis))

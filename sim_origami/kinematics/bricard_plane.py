@@ -58,7 +58,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..closure import LoopSystem
 from ..errors import ParameterError
-from ..geometry import wrap
+from ..geometry import rot_x, rot_z, wrap
 from .base import Branch, Event, domain_of
 from .dh import DHKinematics, DHRow, dh_loop
 
@@ -241,23 +241,11 @@ def theta4_from_rotation(g: Geometry, theta1: ArrayLike, theta2: ArrayLike, thet
     """
     t1, t2, t3 = (np.atleast_1d(np.asarray(v, dtype=float)) for v in (theta1, theta2, theta3))
     twists = [r.alpha for r in g.rows]
-    rx = [_rot_x(al) for al in twists]
-    P = _rot_z(t1) @ rx[0] @ _rot_z(t2) @ rx[1] @ _rot_z(t3) @ rx[2]
-    Q = rx[3] @ _rot_z(t3) @ rx[4] @ _rot_z(t2) @ rx[5]
+    rx = [rot_x(al) for al in twists]
+    P = rot_z(t1) @ rx[0] @ rot_z(t2) @ rx[1] @ rot_z(t3) @ rx[2]
+    Q = rx[3] @ rot_z(t3) @ rx[4] @ rot_z(t2) @ rx[5]
     QP = Q @ P
     return np.arctan2(QP[:, 0, 1], QP[:, 0, 0])
-
-
-def _rot_z(t: NDArray[np.float64]) -> NDArray[np.float64]:
-    c, s = np.cos(t), np.sin(t)
-    R = np.zeros((*np.shape(t), 3, 3))
-    R[..., 0, 0], R[..., 0, 1], R[..., 1, 0], R[..., 1, 1], R[..., 2, 2] = c, -s, s, c, 1.0
-    return R
-
-
-def _rot_x(alpha: float) -> NDArray[np.float64]:
-    c, s = np.cos(alpha), np.sin(alpha)
-    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
 
 
 def path_one(beta: float, theta2: ArrayLike) -> NDArray[np.float64]:

@@ -38,7 +38,7 @@ there, so `domain` is [theta_f, theta_d].
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..geometry import enclosed_volume, invert, rotation, transform, transform_z, unit
+from ..geometry import common_normal_foot, enclosed_volume, invert, rotation, transform, transform_z, unit
 from .base import Event, transformation_inputs
 from .dh import DHRow, dh_from_axes
 
@@ -111,12 +111,6 @@ def volume(points: ArrayLike) -> NDArray[np.float64]:
     return enclosed_volume(points, [[index[v] for v in face] for face in faces()])
 
 
-def _foot(p0: NDArray, s0: NDArray, p1: NDArray, s1: NDArray) -> NDArray[np.float64]:
-    """Foot on line (p1, s1) of the common normal from line (p0, s0); unit directions, skew lines."""
-    w, b = p0 - p1, s0 @ s1
-    return p1 + ((s1 @ w) - b * (s0 @ w)) / (1.0 - b * b) * s1
-
-
 def _reflection(point: NDArray[np.float64], normal: NDArray[np.float64]) -> NDArray[np.float64]:
     """Reflections (n, 4, 4) in the planes through points (n, 3) with unit normals (n, 3)."""
     M = np.broadcast_to(np.eye(4), (len(point), 4, 4)).copy()
@@ -144,8 +138,8 @@ class CuboctahedronOctahedron:
         self.theta_d, self.phi_d = float(angles[0]), float(angles[1])
         # Link ABE's D-H frame (after Rz(theta_A)) in the deployed world frame: origin at the foot on axis A of
         # the common normal to axis B (offsets are 0), x along that normal (seed §2.0 steps 1-2).
-        foot_a = _foot(points[1], self.dirs[1], points[0], self.dirs[0])
-        x = unit(_foot(points[0], self.dirs[0], points[1], self.dirs[1]) - foot_a)
+        foot_a = common_normal_foot(points[1], self.dirs[1], points[0], self.dirs[0])
+        x = unit(common_normal_foot(points[0], self.dirs[0], points[1], self.dirs[1]) - foot_a)
         self._abe = transform(np.stack([x, np.cross(self.dirs[0], x), self.dirs[0]], axis=1), foot_a)
         self._chain_d = self._chain(np.array([self.theta_d]))[0]
 

@@ -46,7 +46,16 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ConvergenceError, ParameterError
-from ..geometry import enclosed_volume, minimal_rotation, rigid_fit, rotation, transform, transform_z, unit
+from ..geometry import (
+    common_normal_foot,
+    enclosed_volume,
+    minimal_rotation,
+    rigid_fit,
+    rotation,
+    transform,
+    transform_z,
+    unit,
+)
 from .base import Event, transformation_inputs
 from .bricard_threefold import ALONG, BricardThreefold, bricard_axis, bricard_trig
 from .dh import DHRow, dh_from_axes
@@ -200,12 +209,6 @@ def _dot(a: tuple | NDArray, b: tuple | NDArray) -> NDArray[np.float64]:
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-def _foot(p0: NDArray, s0: NDArray, p1: NDArray, s1: NDArray) -> NDArray[np.float64]:
-    """Foot on line (p1, s1) of the common normal from line (p0, s0); unit directions, skew lines."""
-    w, b = p0 - p1, s0 @ s1
-    return p1 + ((s1 @ w) - b * (s0 @ w)) / (1.0 - b * b) * s1
-
-
 class TruncatedOctahedronCube:
     """
     Truncated octahedron -> cube, 1-DOF design with R joints at A3, B3, C3 (seed 001 ch. 5).
@@ -234,8 +237,8 @@ class TruncatedOctahedronCube:
         self.theta_d, self.phi_d = float(angles[0]), float(angles[1])
         # Joint 1's D-H frame (before Rz(theta_1)) in the deployed world frame: origin at the foot on axis
         # A1 of the common normal from axis B2, x along that normal (seed §2.0 step 2).
-        foot_out = _foot(points[0], dirs[0], points[5], dirs[5])
-        foot_in = _foot(points[5], dirs[5], points[0], dirs[0])
+        foot_out = common_normal_foot(points[0], dirs[0], points[5], dirs[5])
+        foot_in = common_normal_foot(points[5], dirs[5], points[0], dirs[0])
         x = unit(foot_in - foot_out)
         frame = transform(np.stack([x, np.cross(dirs[0], x), dirs[0]], axis=1), foot_in)
         # Square A's pose (link 1) at the deployed angles; every Bricard-1 body is placed relative to it.

@@ -49,7 +49,17 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ConvergenceError, ParameterError
-from ..geometry import enclosed_volume, invert, rotation, signed_angle, transform, transform_z, unit, wrap
+from ..geometry import (
+    common_normal_foot,
+    enclosed_volume,
+    invert,
+    rotation,
+    signed_angle,
+    transform,
+    transform_z,
+    unit,
+    wrap,
+)
 from .base import Event, transformation_inputs
 from .bricard_threefold import ALONG, BricardThreefold, bricard_axis, bricard_trig
 from .dh import DHRow, dh_from_axes
@@ -167,12 +177,6 @@ def _hermite(v0: ArrayLike, v1: ArrayLike, d0: ArrayLike, d1: ArrayLike, w: floa
     return (2 * w**3 - 3 * w**2 + 1) * v0 + (w**3 - 2 * w**2 + w) * d0 + (3 * w**2 - 2 * w**3) * v1 + (w**3 - w**2) * d1
 
 
-def _foot(p0: NDArray, s0: NDArray, p1: NDArray, s1: NDArray) -> NDArray[np.float64]:
-    """Foot on line (p1, s1) of the common normal from line (p0, s0); unit directions, skew lines."""
-    w, b = p0 - p1, s0 @ s1
-    return p1 + ((s1 @ w) - b * (s0 @ w)) / (1.0 - b * b) * s1
-
-
 class Transformation:
     """
     Shared closed form of both schemes (see the module docstring); subclasses set the top joints.
@@ -200,8 +204,8 @@ class Transformation:
         self.theta_d, self.phi_d = float(angles[0]), float(angles[1])
         # Joint A's D-H frame (before Rz(theta)), fixed to bar FA: origin at the foot on axis A of the common
         # normal from axis F, x along that normal (seed §2.0); the chain below is placed from it.
-        foot_out = _foot(points[0], dirs[0], points[5], dirs[5])
-        foot_in = _foot(points[5], dirs[5], points[0], dirs[0])
+        foot_out = common_normal_foot(points[0], dirs[0], points[5], dirs[5])
+        foot_in = common_normal_foot(points[5], dirs[5], points[0], dirs[0])
         x = unit(foot_in - foot_out)
         self._frame = transform(np.stack([x, np.cross(dirs[0], x), dirs[0]], axis=1), foot_in)
         self._deployed_inv = invert(self._chain(np.array([self.theta_d]))[0])
