@@ -8,7 +8,12 @@ its RRSRR / RSRRR forms (truss counts, forced together after a 1 deg axis tilt).
 
 import numpy as np
 
-from sim_origami.fabrication import (
+from sim_origami.kinematics.bennett import Bennett
+from sim_origami.kinematics.dh import DHRow, dh_from_axes, dh_loop
+from sim_origami.kinematics.myard import BRANCH, Myard
+from sim_origami.linkage import dh_mechanism
+from sim_origami.linkage_forms import chain_poses, reduced_form
+from sim_origami.studies.fabrication import (
     DEG,
     FINE_LENGTH,
     NOMINAL,
@@ -23,11 +28,6 @@ from sim_origami.fabrication import (
     study,
     tilted,
 )
-from sim_origami.kinematics.bennett import Bennett
-from sim_origami.kinematics.dh import DHRow, dh_from_axes, dh_loop
-from sim_origami.kinematics.myard import BRANCH, Myard
-from sim_origami.linkage import dh_mechanism
-from sim_origami.linkage_forms import chain_poses, reduced_form
 from sim_origami.truss import analyse, truss_of
 
 

@@ -12,7 +12,8 @@ Prints a markdown table.
 import dataclasses
 import sys
 
-from sim_origami import pareto, scenes
+from sim_origami import scenes
+from sim_origami.studies import pareto
 
 # The small scenes' 2 s sweeps take 3-20 ms of CPU and this machine has slow spells seconds long:
 # `pareto.measure_all` takes the settings in turn, best of REPEATS rounds.

@@ -14,7 +14,7 @@ import numpy as np
 
 import sim_origami.scenes.corrugated_sheet  # noqa: F401  (registers `corrugated-sheet`)
 from sim_origami import scenes
-from sim_origami.checks.metamaterial import (
+from sim_origami.studies.metamaterial import (
     ELEMENTS,
     element3_theta,
     element_dimensions,
@@ -22,7 +22,7 @@ from sim_origami.checks.metamaterial import (
     formula_poisson,
     max_height_angle,
 )
-from sim_origami.checks.poisson import vertex_positions
+from sim_origami.studies.poisson import vertex_positions
 
 ALPHA, BETA = 3 * np.pi / 4, np.pi / 3
 PHI = np.array([np.pi / 3, np.pi / 2, 2 * np.pi / 3])

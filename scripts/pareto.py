@@ -11,10 +11,11 @@ Prints each front with its ratios to the defaults; writes pareto.csv and pareto.
 
 import sys
 
-from sim_origami import pareto, scenes
+from sim_origami import scenes
 from sim_origami.cli.bench import pareto_table
 from sim_origami.files import write_text
 from sim_origami.plots import plot_pareto
+from sim_origami.studies import pareto
 
 
 def main(names: list[str]) -> None:

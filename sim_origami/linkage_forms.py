@@ -20,9 +20,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .errors import ParameterError
-from .fabrication import RSSR
 from .geometry import transform_z
 from .kinematics.dh import DHRow
+from .kinematics.rssr import RSSR
 from .linkage import bar
 from .mechanism import Body, Joint, Mechanism, ball_joint
 from .origami import PALETTE

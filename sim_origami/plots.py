@@ -9,7 +9,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from .files import atomic_path
-from .pareto import Point, front
+from .studies.pareto import Point, front
 from .validation import Report
 
 # Simulated markers drawn per branch (the CSV keeps every sample); joints named in a legend at most.

@@ -6,7 +6,16 @@ import pytest
 
 from sim_origami import scenes
 from sim_origami.errors import AssemblyError, ParameterError
-from sim_origami.fabrication import (
+from sim_origami.geometry import transform_z, wrap
+from sim_origami.kinematics.bennett import Bennett
+from sim_origami.kinematics.dh import DHRow, dh_from_axes, dh_loop
+from sim_origami.kinematics.myard import BRANCH, Myard
+from sim_origami.linkage import dh_mechanism
+from sim_origami.linkage_forms import chain_poses, reduced_form
+from sim_origami.scenes.base import Scene
+from sim_origami.scenes.polyhedra import kutzbach
+from sim_origami.simulate import mujoco_mobility, simulate
+from sim_origami.studies.fabrication import (
     DEG,
     FINE_LENGTH,
     NOMINAL,
@@ -24,15 +33,6 @@ from sim_origami.fabrication import (
     tilted,
     waggle,
 )
-from sim_origami.geometry import transform_z, wrap
-from sim_origami.kinematics.bennett import Bennett
-from sim_origami.kinematics.dh import DHRow, dh_from_axes, dh_loop
-from sim_origami.kinematics.myard import BRANCH, Myard
-from sim_origami.linkage import dh_mechanism
-from sim_origami.linkage_forms import chain_poses, reduced_form
-from sim_origami.scenes.base import Scene
-from sim_origami.scenes.polyhedra import kutzbach
-from sim_origami.simulate import mujoco_mobility, simulate
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.truss import analyse, truss_of
 

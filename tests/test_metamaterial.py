@@ -6,7 +6,9 @@ import pytest
 
 import sim_origami.scenes.corrugated_sheet  # noqa: F401  (registers `corrugated-sheet`)
 from sim_origami import scenes
-from sim_origami.checks.metamaterial import (
+from sim_origami.errors import ParameterError
+from sim_origami.simulate import simulate
+from sim_origami.studies.metamaterial import (
     ELEMENTS,
     check_element,
     element3_dimensions,
@@ -17,9 +19,7 @@ from sim_origami.checks.metamaterial import (
     formula_poisson,
     max_height_angle,
 )
-from sim_origami.checks.poisson import vertex_positions
-from sim_origami.errors import ParameterError
-from sim_origami.simulate import simulate
+from sim_origami.studies.poisson import vertex_positions
 
 ALPHA, BETA = 3 * np.pi / 4, np.pi / 3  # the digest's sample values = the scene's defaults (Fig 3-2)
 # The digest prints 6 decimals: half a unit of the last digit.

@@ -6,8 +6,9 @@ import mujoco
 import numpy as np
 import pytest
 
-from sim_origami import pareto, scenes
+from sim_origami import scenes
 from sim_origami.mjcf import ModelOptions, build_xml, closures, mujoco_joints, preset_duration, qpos_order
+from sim_origami.studies import pareto
 
 # Menagerie's top-level order; `visual` appears only in rendered models.
 MENAGERIE_ORDER = (

@@ -6,16 +6,16 @@ import pytest
 
 import sim_origami.scenes.square_twist  # noqa: F401  (registers `square-twist`)
 from sim_origami import scenes
-from sim_origami.checks.poisson import (
+from sim_origami.errors import ParameterError
+from sim_origami.kinematics.square_twist import metamaterial_unit
+from sim_origami.simulate import simulate
+from sim_origami.studies.poisson import (
     check_square_twist,
     poisson_ratio,
     square_twist_dimensions,
     thin,
     vertex_positions,
 )
-from sim_origami.errors import ParameterError
-from sim_origami.kinematics.square_twist import metamaterial_unit
-from sim_origami.simulate import simulate
 
 # a = pleat = 1, b = c = side / 2 = 1: the digest's tables
 GEOMETRY = {"side": 2.0, "pleat": 1.0}

@@ -7,7 +7,7 @@ import mujoco
 import numpy as np
 import pytest
 
-from sim_origami import pareto, scenes
+from sim_origami import scenes
 from sim_origami.checks.branches import classify
 from sim_origami.checks.paths import compare
 from sim_origami.errors import DomainError, ParameterError, SimOrigamiError, SimulationError
@@ -24,6 +24,7 @@ from sim_origami.simulate import (
     simulate,
     warn_in_python,
 )
+from sim_origami.studies import pareto
 from sim_origami.tolerances import TOLERANCES
 
 RUNS = [("vertex4", "odd1"), ("vertex4", "odd2"), ("miura", "miura")]

@@ -8,7 +8,6 @@ from sim_origami import scenes
 from sim_origami.checks.blockage import assess
 from sim_origami.checks.branches import classify
 from sim_origami.checks.paths import compare
-from sim_origami.checks.poisson import vertex_positions
 from sim_origami.errors import ParameterError
 from sim_origami.fold import read_fold
 from sim_origami.geometry import triangles_cross, wrap
@@ -26,6 +25,7 @@ from sim_origami.kinematics.waterbomb_sheet import WaterbombSheet
 from sim_origami.origami import hinge_gap
 from sim_origami.report import FOLD_FRAMES, write
 from sim_origami.simulate import contact_distance, contact_input, simulate
+from sim_origami.studies.poisson import vertex_positions
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import BLOCKAGE_HOLD, run_blockage, validate
 

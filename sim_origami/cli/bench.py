@@ -18,11 +18,12 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import pareto, scenes
+from .. import scenes
 from ..checks.paths import compare
 from ..files import write_text
 from ..plots import plot_pareto
 from ..simulate import project, simulate
+from ..studies import pareto
 from .options import add_params, parse_params
 
 NAME = "bench"

@@ -9,7 +9,7 @@ scaled 100 mm -> 1 m) is `-p a1=1.015 -p a2=0.6922`. Outputs: theta1 and theta2 
 
 import numpy as np
 
-from ..fabrication import RSSR
+from ..kinematics.rssr import RSSR
 from ..linkage_forms import rssr_mechanism, rssr_motion
 from .base import Param, Scene, register
 from .polyhedra import AssemblyKinematics, kutzbach

@@ -24,10 +24,10 @@ import mujoco
 import numpy as np
 from numpy.typing import NDArray
 
-from .checks.paths import compare
-from .mjcf import ModelOptions, build_xml, preset_number, template
-from .scenes.base import Scene, without_implied_closures
-from .simulate import Bindings, drive_targets, scale_regularization, simulate, start_pose, track
+from ..checks.paths import compare
+from ..mjcf import ModelOptions, build_xml, preset_number, template
+from ..scenes.base import Scene, without_implied_closures
+from ..simulate import Bindings, drive_targets, scale_regularization, simulate, start_pose, track
 
 INTEGRATORS = {"RK4": mujoco.mjtIntegrator.mjINT_RK4, "Euler": mujoco.mjtIntegrator.mjINT_EULER,
                "implicitfast": mujoco.mjtIntegrator.mjINT_IMPLICITFAST}  # fmt: skip
