@@ -73,6 +73,8 @@ def as_dict(report: Report) -> dict:
         "timings_s": report.timings,
         "passed": report.passed,
     }
+    if report.reference is not None:
+        out["reference"] = report.reference
     if report.blockage is not None:
         b = report.blockage
         out["blockage"] = {
