@@ -177,3 +177,27 @@ def test_cli_reference_verdicts_in_report_and_printout(tmp_path, capsys):
     assert "FAIL reference curves vs numeric loop closure" in printed and "line 33" in printed
     report = json.loads((tmp_path / "b" / "report.json").read_text())
     assert report["passed"] is False and report["reference"]["worst"]["line"] == 33
+
+
+def test_fold_file_scene_takes_a_reference_through_the_same_interface(tmp_path):
+    """A FOLD pattern's scene (numeric path, input rho_e0 = one of its joints) checked against a degree-4 vertex's
+    closed form written to CSV; the same curve with crease 3 off by 1e-3 rad fails."""
+    from test_patterns import vertex_pattern  # the degree-4 vertex as a crease pattern
+
+    from sim_origami.fold import write_fold
+    from sim_origami.kinematics.vertex4 import Vertex4
+    from sim_origami.scenes.fold_file import fold_scene
+
+    alpha = np.deg2rad([60.0, 100.0, 90.0, 110.0])
+    vertex = Vertex4(alpha)
+    scene = fold_scene(write_fold(tmp_path / "v4.fold", vertex_pattern(alpha), vertex.joint_angles("odd2", [0.5, 1.2])))
+    x = np.linspace(0.6, 1.1, 11)
+    rows = np.column_stack([x, vertex.joint_angles("odd2", x)[:, 1:]])
+    header = ",".join(f"{n}[rad]" for n in scene.kinematics.joint_names)
+    result = compare_reference(read_reference(write_csv(tmp_path / "ok.csv", rows, header, 12), scene.kinematics),
+                               scene)  # fmt: skip
+    assert all(v.passed for v in result.verdicts) and result.doc["reference_vs_numeric_max_rad"] < 1e-11
+    rows[4, 2] += 1e-3
+    result = compare_reference(read_reference(write_csv(tmp_path / "bad.csv", rows, header, 12), scene.kinematics),
+                               scene)  # fmt: skip
+    assert not result.verdicts[0].passed and result.doc["worst"]["joint"] == scene.kinematics.joint_names[2]
