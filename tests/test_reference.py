@@ -6,6 +6,10 @@ none of the package's code is used to make it.
 """
 
 import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -201,3 +205,28 @@ def test_fold_file_scene_takes_a_reference_through_the_same_interface(tmp_path):
     result = compare_reference(read_reference(write_csv(tmp_path / "bad.csv", rows, header, 12), scene.kinematics),
                                scene)  # fmt: skip
     assert not result.verdicts[0].passed and result.doc["worst"]["joint"] == scene.kinematics.joint_names[2]
+
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+
+def test_fold_example_with_its_reference_passes(tmp_path, capsys):
+    """docs/extending.md's FOLD example, as printed there."""
+    fold, curves = EXAMPLES / "reference" / "vertex4.fold", EXAMPLES / "reference" / "vertex4_curves.csv"
+    assert main(["validate", "--fold", str(fold), "--reference", str(curves), "--out", str(tmp_path / "run")]) == 0
+    doc = json.loads((tmp_path / "run" / "report.json").read_text())["reference"]
+    assert doc["compared_samples"] == doc["mujoco_samples"] == 13
+    assert doc["reference_vs_numeric_max_rad"] < 2e-11  # measured 8.5e-12 (9 printed decimals of a degree)
+
+
+@pytest.mark.parametrize(
+    ("script", "outputs"),
+    [("reference/make_vertex4_curves.py", ("vertex4_curves.csv",)),
+     ("user_package/make_curves.py", ("four_bar_curves.csv", "four_bar_curves_misprinted.csv"))],
+)  # fmt: skip
+def test_example_curves_are_what_their_scripts_write(tmp_path, script, outputs):
+    source = EXAMPLES / script
+    shutil.copy(source, tmp_path / source.name)
+    subprocess.run([sys.executable, source.name], cwd=tmp_path, check=True)
+    for name in outputs:
+        assert (tmp_path / name).read_text() == (source.parent / name).read_text()
