@@ -230,3 +230,11 @@ def test_example_curves_are_what_their_scripts_write(tmp_path, script, outputs):
     subprocess.run([sys.executable, source.name], cwd=tmp_path, check=True)
     for name in outputs:
         assert (tmp_path / name).read_text() == (source.parent / name).read_text()
+
+
+def test_spreadsheet_export_with_byte_order_mark_and_spaces_is_read(tmp_path, miura):
+    path = tmp_path / "excel.csv"
+    path.write_bytes("\ufefftheta [deg], rho_c [deg]\r\n10, 20\r\n20, 40.0\r\n".encode())
+    ref = read_reference(path, miura.kinematics)
+    assert ref.joints == ("rho_c",) and np.allclose(ref.values[:, 0], np.deg2rad([20.0, 40.0]))
+    assert ref.printed[1, 0] == pytest.approx(np.deg2rad(0.05))

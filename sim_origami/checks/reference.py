@@ -140,7 +140,7 @@ def read_reference(
     if tol is not None and not (math.isfinite(tol) and tol > 0):
         raise ParameterError(f"reference tolerance {tol!r} rad; it must be a finite number > 0")
     try:
-        text = path.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8-sig")  # a spreadsheet may lead with a byte-order mark
     except FileNotFoundError:
         raise ParameterError(f"reference {source}: no such file") from None
     except IsADirectoryError:
