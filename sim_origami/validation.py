@@ -14,7 +14,7 @@ import numpy as np
 from .checks.blockage import Blockage, assess
 from .checks.branches import classify
 from .checks.paths import PathComparison, compare
-from .checks.reference import ReferenceCurves, compare_reference
+from .checks.reference import ReferenceCheck, ReferenceCurves, compare_reference
 from .checks.verdict import Verdict
 from .errors import ParameterError
 from .mjcf import PRESETS, preset_duration
@@ -66,7 +66,7 @@ class Report:
     bifurcations: tuple[dict, ...] = ()
     free_run: dict | None = None
     timings: dict[str, float] = field(default_factory=dict)
-    reference: dict | None = None  # the user's curves against the numeric path and MuJoCo (checks.reference)
+    reference: ReferenceCheck | None = None  # the user's curves against the numeric path and MuJoCo
 
     @property
     def passed(self) -> bool:
@@ -332,9 +332,8 @@ def validate(
     checked = None
     if reference is not None:
         t2 = time.thread_time()
-        check = compare_reference(reference, scene, runs)
-        verdicts += check.verdicts
-        checked = check.doc
+        checked = compare_reference(reference, scene, runs)
+        verdicts += checked.verdicts
         timings["reference_cpu_s"] = time.thread_time() - t2
     timings["total_cpu_s"] = time.thread_time() - t0
     return Report(scene, preset, seed, tuple(runs), tuple(verdicts), blockage, study, free, timings, checked)

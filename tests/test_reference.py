@@ -181,6 +181,10 @@ def test_cli_reference_verdicts_in_report_and_printout(tmp_path, capsys):
     assert "FAIL reference curves vs numeric loop closure" in printed and "line 33" in printed
     report = json.loads((tmp_path / "b" / "report.json").read_text())
     assert report["passed"] is False and report["reference"]["worst"]["line"] == 33
+    table = (tmp_path / "b" / "reference.csv").read_text().splitlines()
+    assert len(table) == 1 + len(THETA) and table[0].startswith("line,input_rad,branch,phi_reference_rad")
+    row = dict(zip(table[0].split(","), table[31].split(","), strict=True))
+    assert row["line"] == "33" and float(row["psi_error_rad"]) == pytest.approx(1e-3, rel=1e-6)
 
 
 def test_fold_file_scene_takes_a_reference_through_the_same_interface(tmp_path):

@@ -17,6 +17,7 @@ numeric truth's own accuracy). `tol` replaces that by one number for every value
 """
 
 import csv
+import io
 import itertools
 import math
 import re
@@ -302,10 +303,12 @@ def _mujoco(scene: Scene, runs, branch: str, x: NDArray[np.float64]) -> NDArray[
 
 @dataclass(frozen=True)
 class ReferenceCheck:
-    """The comparison's numbers (report.json's `reference`, radians) and its verdicts."""
+    """The comparison's numbers (report.json's `reference`, radians), its verdicts, and one row per sample
+    (reference.csv: line, input, branch, and per joint reference, numeric, MuJoCo, error and tolerance)."""
 
     doc: dict
     verdicts: tuple[Verdict, ...]
+    table: str = ""
 
 
 def _max(a: NDArray[np.float64]) -> float | None:
@@ -384,7 +387,21 @@ def compare_reference(ref: ReferenceCurves, scene: Scene, runs=()) -> ReferenceC
         "worst": worst,
         "disagreeing": disagree,
     }
-    return ReferenceCheck(doc, _verdicts(doc, n))
+    return ReferenceCheck(doc, _verdicts(doc, n), _table(ref, labels, numeric, mujoco, error, tol))
+
+
+def _table(ref: ReferenceCurves, labels, numeric, mujoco, error, tol) -> str:
+    """reference.csv: one row per sample ('nan' where a value does not exist: off every branch, not simulated)."""
+    buf = io.StringIO()
+    header = ["line", "input_rad", "branch"]
+    for j in ref.joints:
+        header += [f"{j}_reference_rad", f"{j}_numeric_rad", f"{j}_mujoco_rad", f"{j}_error_rad", f"{j}_tolerance_rad"]
+    buf.write(",".join(header) + "\n")
+    values = np.stack([ref.values, numeric, mujoco, error, tol], -1).reshape(len(ref.x), -1)
+    for i in range(len(ref.x)):
+        cells = [str(int(ref.lines[i])), f"{ref.x[i]:.17g}", str(labels[i])] + [f"{v:.17g}" for v in values[i]]
+        buf.write(",".join(cells) + "\n")
+    return buf.getvalue()
 
 
 def _sample(ref: ReferenceCurves, labels, error, tol, i: int, j: int) -> dict:
