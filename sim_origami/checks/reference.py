@@ -309,6 +309,15 @@ class ReferenceCheck:
     doc: dict
     verdicts: tuple[Verdict, ...]
     table: str = ""
+    joints: tuple[str, ...] = ()  # the reference's joint columns
+    x: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))  # (n,) inputs (rad)
+    labels: tuple[str, ...] = ()  # branch of each sample, '' outside every branch
+    values: NDArray[np.float64] = field(default_factory=lambda: np.zeros((0, 0)))  # (n, m) the reference (rad)
+    error: NDArray[np.float64] = field(default_factory=lambda: np.zeros((0, 0)))  # (n, m) |reference - numeric|
+
+    def on(self, branch: str) -> NDArray[np.bool_]:
+        """Which samples lie on `branch`."""
+        return np.array([lab == branch for lab in self.labels], dtype=bool)
 
 
 def _max(a: NDArray[np.float64]) -> float | None:
@@ -387,7 +396,8 @@ def compare_reference(ref: ReferenceCurves, scene: Scene, runs=()) -> ReferenceC
         "worst": worst,
         "disagreeing": disagree,
     }
-    return ReferenceCheck(doc, _verdicts(doc, n), _table(ref, labels, numeric, mujoco, error, tol))
+    return ReferenceCheck(doc, _verdicts(doc, n), _table(ref, labels, numeric, mujoco, error, tol), ref.joints, ref.x,
+                          tuple(str(lab) for lab in labels), ref.values, error)  # fmt: skip
 
 
 def _table(ref: ReferenceCurves, labels, numeric, mujoco, error, tol) -> str:
