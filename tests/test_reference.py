@@ -70,6 +70,21 @@ def test_correct_reference_passes_through_the_bifurcation(tmp_path, miura):
     assert doc["kinematics_vs_numeric_max_rad"] < 1e-12
 
 
+def test_a_sample_at_the_bifurcation_itself(tmp_path, miura):
+    """Samples symmetric about the flat state, one of them at it: the numeric solve starts away from the bifurcation
+    (where its first step could take either branch) and is allowed SINGULAR_RAD there, where it converges only to
+    about the square root of its residual (measured 4.5e-7 rad); 1e-3 rad off there still fails."""
+    x = np.arange(-20.0, 20.1, 5.0)
+    rows = np.column_stack([x, np.rad2deg(miura.kinematics.joint_angles("miura", np.deg2rad(x)))])
+    header = "theta[deg],phi[deg],psi[deg],rho_a[deg],rho_b[deg],rho_c[deg],rho_d[deg]"
+    result = compare_reference(read_reference(write_csv(tmp_path / "a.csv", rows, header), miura.kinematics), miura)
+    assert all(v.passed for v in result.verdicts) and result.doc["singular_samples"] == [7]  # theta = 0
+    assert [s["branch"] for s in result.doc["branches"]] == ["miura"]
+    rows[4, 3] += np.rad2deg(1e-3)
+    result = compare_reference(read_reference(write_csv(tmp_path / "b.csv", rows, header), miura.kinematics), miura)
+    assert not result.verdicts[0].passed and result.doc["worst"]["line"] == 7
+
+
 def test_sign_error_fails(tmp_path, miura):
     rows = kamrava(THETA)
     rows[:, 2] *= -1  # psi with the wrong sign

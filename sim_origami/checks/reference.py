@@ -8,12 +8,15 @@ are checked alike.
 
 Each sample is put on the branch nearest to it (max-norm over its joint columns) and kept on the previous one
 while that is as near within the sample's tolerance, so a curve through a bifurcation stays on its branch. The
-truth is the independent numeric loop solve, followed by continuation from the middle sample of each stretch on
-one branch (steps of at most MAX_STEP rad); the scene's kinematics and MuJoCo are reported beside it.
+truth is the independent numeric loop solve, followed by continuation from the sample of each stretch on one branch
+that lies farthest from the branch's events (steps of at most MAX_STEP rad); the scene's kinematics and MuJoCo
+are reported beside it.
 
 The default tolerance of a value is what its printing allows: half a unit in its last printed digit, plus the
 joint's slope times half a unit in the last digit of the printed input, plus TOLERANCES.closed_form_rad (the
-numeric truth's own accuracy). `tol` replaces that by one number for every value.
+numeric truth's own accuracy), plus SINGULAR_RAD at a sample where the closure Jacobian loses rank (a bifurcation
+point: there the solve pins the joints only to about the square root of its residual). `tol` replaces that by one
+number for every value.
 """
 
 import csv
@@ -44,6 +47,10 @@ MAX_STEP = 0.02
 LISTED = 20
 # Input step (rad) of the central difference that gives a joint's slope for the printed-input term.
 SLOPE_STEP = 1e-6
+# The numeric solve's accuracy where the closure Jacobian loses rank: Newton converges only linearly there and stops
+# with joints off by about sqrt(residual). Measured 4.5e-7 rad at the Miura vertex's flat bifurcation (30/60 deg;
+# 1e-13 residual), against 1e-14 on either side of it.
+SINGULAR_RAD = 2e-6
 COLUMN = re.compile(r"^\s*([^\[\]]*?)\s*(?:\[\s*([^\[\]]*?)\s*\])?\s*$")
 
 
@@ -78,7 +85,8 @@ class ReferenceCurves:
         if self.tol is not None:
             return f"{self.tol:.3g} rad for every value (given)"
         return ("half a unit in the last printed digit of each value, plus its slope times half a unit in the "
-                f"input's last printed digit, plus {TOLERANCES.closed_form_rad:g} rad (the numeric solve)")  # fmt: skip
+                f"input's last printed digit, plus {TOLERANCES.closed_form_rad:g} rad (the numeric solve; "
+                f"{SINGULAR_RAD:g} rad at singular samples)")  # fmt: skip
 
 
 def half_unit(text: str) -> float:
@@ -248,23 +256,39 @@ def _assign(kin: Kinematics, ref: ReferenceCurves, cols: list[int], row_tol: NDA
     return out
 
 
-def _numeric(kin: Kinematics, branch: str, x: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Outputs (n, k) of the numeric loop solve at inputs x (monotone), followed by continuation both ways from the
-    middle sample, started at the kinematics' pose there; steps of at most MAX_STEP rad."""
+def _start(kin: Kinematics, branch: str, x: NDArray[np.float64]) -> int:
+    """The sample to start the numeric solve at: the farthest from every event of the branch (at a bifurcation the
+    first step could take either branch, at a lock the loop is singular); the middle one if there are none."""
+    events = np.array([e.input for e in kin.events() if branch in e.branches])
+    if not events.size:
+        return len(x) // 2
+    clearance = np.min(np.abs(x[:, None] - events[None, :]), axis=1)
+    return int(np.argmax(clearance))
+
+
+def _numeric(kin: Kinematics, branch: str, x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """
+    Outputs (n, k) of the numeric loop solve at inputs x (monotone), followed by continuation both ways from the
+    sample farthest from the branch's events (`_start`), started at the kinematics' pose there; steps of at most
+    MAX_STEP rad. Also whether each sample is singular: its instantaneous mobility above the start's.
+    """
     loops = kin.loop_system()
     joint, scale = kin.loop_input()
-    mid = len(x) // 2
+    mid = _start(kin, branch, x)
     q0 = kin.loop_angles(kin.evaluate(branch, x[mid : mid + 1])[0])[0]
     out = np.empty((len(x), len(kin.joint_names)))
+    singular = np.zeros(len(x), dtype=bool)
+    regular = loops.mobility(q0)
     for idx in (np.arange(mid, len(x)), np.arange(mid, -1, -1)):
         grid, at = [x[idx[0]]], [0]
         for a, b in itertools.pairwise(x[idx]):
             steps = max(1, math.ceil(abs(b - a) / MAX_STEP))
             grid.extend(np.linspace(a, b, steps + 1)[1:])
             at.append(len(grid) - 1)
-        q = loops.follow(q0, joint, scale * np.array(grid))
-        out[idx] = kin.observe(q[at])
-    return out
+        q = loops.follow(q0, joint, scale * np.array(grid))[at]
+        out[idx] = kin.observe(q)
+        singular[idx] = [loops.mobility(qi) > regular for qi in q]
+    return out, singular
 
 
 def _slopes(kin: Kinematics, branch: str, x: NDArray[np.float64], cols: list[int]) -> NDArray[np.float64]:
@@ -342,17 +366,19 @@ def compare_reference(ref: ReferenceCurves, scene: Scene, runs=()) -> ReferenceC
     kinematic = np.full((n, m), np.nan)
     mujoco = np.full((n, m), np.nan)
     simulated = np.zeros(n, dtype=bool)
+    singular = np.zeros(n, dtype=bool)
     stalls, segments = [], []
     for name, group in itertools.groupby(range(n), key=lambda i: labels[i]):
         idx = np.array(list(group))
         if not name:
             continue
         xb = branches.inputs[name][idx]
-        segments.append({"branch": name, "samples": len(idx), "lines": [int(ref.lines[idx[0]]),
+        segments.append({"branch": str(name), "samples": len(idx), "lines": [int(ref.lines[idx[0]]),
                          int(ref.lines[idx[-1]])], "input_range_rad": [float(xb[0]), float(xb[-1])]})  # fmt: skip
         kinematic[idx] = branches.values[name][idx][:, cols]
         try:
-            numeric[idx] = _numeric(kin, name, xb)[:, cols]
+            values, singular[idx] = _numeric(kin, name, xb)
+            numeric[idx] = values[:, cols]
         except ConvergenceError as exc:
             stalls.append({"branch": name, "lines": [int(ref.lines[idx[0]]), int(ref.lines[idx[-1]])],
                            "error": str(exc)})  # fmt: skip
@@ -362,7 +388,10 @@ def compare_reference(ref: ReferenceCurves, scene: Scene, runs=()) -> ReferenceC
         if sim is not None:
             mujoco[idx] = sim[:, cols]
             simulated[idx] = np.all(np.isfinite(sim[:, cols]), axis=1)
-    tol = np.full((n, m), ref.tol) if ref.tol is not None else ref.printed + slope_tol + TOLERANCES.closed_form_rad
+    if ref.tol is not None:
+        tol = np.full((n, m), ref.tol)
+    else:
+        tol = ref.printed + slope_tol + TOLERANCES.closed_form_rad + np.where(singular, SINGULAR_RAD, 0.0)[:, None]
     error = np.abs(wrap(ref.values - numeric))
     compared = np.all(np.isfinite(error), axis=1)
     over = np.isfinite(error) & (error > tol)
@@ -384,6 +413,7 @@ def compare_reference(ref: ReferenceCurves, scene: Scene, runs=()) -> ReferenceC
         "branches": segments,
         "outside_every_branch": outside,
         "numeric_stalls": stalls,
+        "singular_samples": [int(line) for line in ref.lines[singular]],
         "compared_samples": int(np.sum(compared)),
         "over_tolerance": {"samples": int(np.sum(np.any(over, axis=1))), "values": int(np.sum(over))},
         "reference_vs_numeric_max_rad": _max(error),
