@@ -257,3 +257,13 @@ def test_spreadsheet_export_with_byte_order_mark_and_spaces_is_read(tmp_path, mi
     ref = read_reference(path, miura.kinematics)
     assert ref.joints == ("rho_c",) and np.allclose(ref.values[:, 0], np.deg2rad([20.0, 40.0]))
     assert ref.printed[1, 0] == pytest.approx(np.deg2rad(0.05))
+
+
+@pytest.mark.parametrize("branch", ["miura", "straight"])
+def test_a_curve_starting_at_the_bifurcation_is_one_stretch_on_its_branch(tmp_path, miura, branch):
+    x = np.arange(0.0, 20.1, 5.0)
+    rows = np.column_stack([x, np.rad2deg(miura.kinematics.joint_angles(branch, np.deg2rad(x)))])
+    header = "theta[deg],phi[deg],psi[deg],rho_a[deg],rho_b[deg],rho_c[deg],rho_d[deg]"
+    result = compare_reference(read_reference(write_csv(tmp_path / "a.csv", rows, header), miura.kinematics), miura)
+    assert all(v.passed for v in result.verdicts)
+    assert [(s["branch"], s["samples"]) for s in result.doc["branches"]] == [(branch, 5)]

@@ -253,6 +253,14 @@ def _assign(kin: Kinematics, ref: ReferenceCurves, cols: list[int], row_tol: NDA
             nearest = previous
         out.labels.append(nearest)
         previous = nearest
+    # Samples before the first one that tells the branches apart (a curve starting at a bifurcation) take its branch.
+    clear = [i for i, lab in enumerate(out.labels)
+             if lab and all(dist[b][i] > dist[lab][i] + row_tol[i] for b in dist if b != lab)]  # fmt: skip
+    if clear:
+        first = out.labels[clear[0]]
+        for i in range(clear[0]):
+            if out.labels[i] and dist[first][i] <= dist[out.labels[i]][i] + row_tol[i]:
+                out.labels[i] = first
     return out
 
 
