@@ -40,7 +40,9 @@ def example_env(tmp_path: Path, extra: str = "") -> dict[str, str]:
     """Environment in which the example package (and `extra` entry points) is installed."""
     pyproject = (EXAMPLE / "pyproject.toml").read_text()
     name, value = re.search(r'\[project\.entry-points\."sim_origami\.scenes"\]\n(\S+) = "(.+)"\n', pyproject).groups()
-    site = distribution(tmp_path / "site", "sim_origami_fourbar", f"{name} = {value}" + ("\n" + extra if extra else ""))
+    site = distribution(tmp_path / "site", "sim_origami_fourbar", f"{name} = {value}")
+    if extra:  # a distribution of its own: one name is one distribution (an editable install may already hold it)
+        distribution(site, "other_plugins", extra)
     path = os.pathsep.join([str(EXAMPLE / "src"), str(site), str(tmp_path / "mods")])
     return os.environ | {"PYTHONPATH": path}
 

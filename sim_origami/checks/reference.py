@@ -388,7 +388,7 @@ def compare_reference(ref: ReferenceCurves, scene: Scene, runs=()) -> ReferenceC
             values, singular[idx] = _numeric(kin, name, xb)
             numeric[idx] = values[:, cols]
         except ConvergenceError as exc:
-            stalls.append({"branch": name, "lines": [int(ref.lines[idx[0]]), int(ref.lines[idx[-1]])],
+            stalls.append({"branch": str(name), "lines": [int(ref.lines[idx[0]]), int(ref.lines[idx[-1]])],
                            "error": str(exc)})  # fmt: skip
         if ref.tol is None:
             slope_tol[idx] = _slopes(kin, name, xb, cols) * ref.x_printed[idx, None]
