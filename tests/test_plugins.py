@@ -17,7 +17,7 @@ import pytest
 
 from sim_origami import scenes
 from sim_origami.cli import main
-from sim_origami.errors import ParameterError
+from sim_origami.errors import ParameterError, SimOrigamiError
 from sim_origami.kinematics.bennett import Bennett
 from sim_origami.linkage import dh_mechanism
 from sim_origami.scenes import plugins
@@ -127,6 +127,10 @@ def test_plugins_load_and_broken_ones_are_left_out_with_one_line(tmp_path, monke
 
         def register_late():
             register("plugin-late", "registered by a callable", ())(build)
+
+        @register("plugin-buggy", "a builder with a bug", ())
+        def buggy():
+            return {}["no such key"]
         """))  # fmt: skip
     (mods / "clobber_plugin.py").write_text(
         "from sim_origami.scenes import register\nregister('miura', 'not the Miura vertex', ())(lambda: None)\n"
@@ -139,7 +143,7 @@ def test_plugins_load_and_broken_ones_are_left_out_with_one_line(tmp_path, monke
     monkeypatch.syspath_prepend(str(site))
     miura = REGISTRY["miura"]
     added = plugins.load_plugins(force=True)
-    assert set(added) == {"plugin-bennett", "plugin-late"}
+    assert set(added) == {"plugin-bennett", "plugin-late", "plugin-buggy"}
     assert REGISTRY["miura"] is miura and "bennett" in scenes.names()
     err = capsys.readouterr().err.splitlines()
     assert len(err) == 3, err
@@ -148,6 +152,10 @@ def test_plugins_load_and_broken_ones_are_left_out_with_one_line(tmp_path, monke
     assert any("'raising'" in e and "RuntimeError: boom on two lines" in e for e in err)
     scene = scenes.get("plugin-bennett").build_from_user({"a": 2.0})
     assert scene.kinematics.a == 2.0 and scene.drive_joint == "joint_1"
+    with pytest.raises(SimOrigamiError, match=r"scene 'plugin-buggy' of plugin 'good' \(good_plugin\) failed to build: "
+                       "KeyError: 'no such key'"):  # fmt: skip
+        scenes.get("plugin-buggy").build()
+    assert main(["describe", "plugin-buggy"]) == 2 and capsys.readouterr().err.count("\n") == 1
 
 
 def test_example_package_lists_and_validates_with_its_reference(tmp_path, monkeypatch, capsys, registry):

@@ -8,14 +8,20 @@ An installed package names a module (registers its scenes with `scenes.register`
 
 Plugins load once, the first time the registry is asked for a scene or the names (`scenes.get`,
 `scenes.names`). A plugin that fails to load, or that would replace a scene already registered, is left out
-with one line on stderr naming it (also kept in `FAILED`); the built-in scenes and the other plugins stay.
+with one line on stderr naming it (also kept in `FAILED`); the built-in scenes and the other plugins stay. A
+plugin's builder that fails with anything but a SimOrigamiError raises one SimOrigamiError naming the scene and
+the plugin (one line and exit 2 on the command line).
 """
 
+import functools
 import sys
+from collections.abc import Callable
+from dataclasses import replace
 from importlib.metadata import EntryPoint, entry_points
 from types import ModuleType
 
-from .base import REGISTRY
+from ..errors import SimOrigamiError
+from .base import REGISTRY, Scene
 
 GROUP = "sim_origami.scenes"
 # One line per plugin left out: "name (value): why".
@@ -50,7 +56,32 @@ def load_one(ep: EntryPoint) -> tuple[str, ...]:
     added = tuple(sorted(n for n in REGISTRY if n not in before))
     if not added:
         _fail(ep, "loading it registered no scene (does its module call sim_origami.scenes.register?)")
+    for name in added:
+        REGISTRY[name] = replace(REGISTRY[name], build_fn=_guarded(ep, name, REGISTRY[name].build_fn))
     return added
+
+
+def _guarded(ep: EntryPoint, name: str, build: Callable[..., Scene]) -> Callable[..., Scene]:
+    """The plugin's builder, with its own bugs (anything but a SimOrigamiError, which names the bad value already)
+    turned into one SimOrigamiError naming the scene and the plugin, so the command line prints one line."""
+
+    @functools.wraps(build)
+    def guarded(**values: float) -> Scene:
+        try:
+            scene = build(**values)
+        except SimOrigamiError:
+            raise
+        except Exception as exc:
+            raise SimOrigamiError(f"scene {name!r} of plugin {ep.name!r} ({ep.value}) failed to build: "
+                                  f"{type(exc).__name__}: {' '.join(str(exc).split())}") from exc  # fmt: skip
+        if not isinstance(scene, Scene):
+            raise SimOrigamiError(
+                f"scene {name!r} of plugin {ep.name!r} ({ep.value}): its builder returned a {type(scene).__name__}, "
+                "not a Scene (see sim_origami.scenes.custom_scene)"
+            )
+        return scene
+
+    return guarded
 
 
 def load_plugins(*, force: bool = False) -> tuple[str, ...]:
