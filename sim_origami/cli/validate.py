@@ -40,7 +40,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
         choices=("closed", "flat"),
         help="start at a closed pose on the branch, or 1e-4 rad from flat on it (with --preset accurate)",
     )
-    parser.add_argument("--reference", type=Path, metavar="CSV", help="your own curves (CSV: input and joint columns) to check")
+    parser.add_argument("--reference", type=Path, metavar="CSV", help="your own curves (input and joint columns)")
     parser.add_argument("--reference-units", choices=("deg", "rad"), help="units of reference columns stating none")
     parser.add_argument("--reference-tol", type=float, metavar="DEG",
                         help="one tolerance (deg) for every reference value (default: its printed precision)")
