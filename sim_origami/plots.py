@@ -37,6 +37,13 @@ def plot_report(report: Report, path: str | Path) -> Path:
             top.plot(np.rad2deg(sim.input[pick]), np.rad2deg(sim.simulated[pick, k]), "o", ms=3.5,
                      mfc="none", color=c)  # fmt: skip
             bottom.semilogy(np.rad2deg(sim.input), np.maximum(sim.error[:, k], 1e-17), color=c, lw=1)
+        if report.reference is not None:  # the user's curves: crosses on the curves, their error to the numeric solve
+            ref = report.reference
+            on = ref.on(run.requested)
+            for m, name in enumerate(ref.joints):
+                c = colors[kin.joint_names.index(name) % len(colors)]
+                top.plot(np.rad2deg(ref.x[on]), np.rad2deg(ref.values[on, m]), "x", ms=5, color=c)
+                bottom.semilogy(np.rad2deg(ref.x[on]), np.maximum(ref.error[on, m], 1e-17), "x", ms=4, color=c)
         top.set_title(f"{report.scene.name}: branch {run.requested}\n(followed {run.followed or '-'})", fontsize=10)
         top.set_xlabel(f"{kin.input_name} (deg)")
         top.set_ylabel("joint angle (deg)")
@@ -46,7 +53,8 @@ def plot_report(report: Report, path: str | Path) -> Path:
         bottom.set_xlabel(f"{kin.input_name} (deg)")
         bottom.set_ylabel(f"|MuJoCo {report.preset} - closed form| (rad)")
         bottom.grid(alpha=0.3, which="both")
-    fig.suptitle("lines: closed form; markers: MuJoCo", fontsize=9)
+    crosses = "; crosses: reference curves (error: to the numeric solve)" if report.reference is not None else ""
+    fig.suptitle(f"lines: closed form; markers: MuJoCo{crosses}", fontsize=9)
     with atomic_path(path) as tmp:
         fig.savefig(tmp, dpi=110, format="png")
     plt.close(fig)

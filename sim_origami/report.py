@@ -73,6 +73,8 @@ def as_dict(report: Report) -> dict:
         "timings_s": report.timings,
         "passed": report.passed,
     }
+    if report.reference is not None:
+        out["reference"] = report.reference.doc
     if report.blockage is not None:
         b = report.blockage
         out["blockage"] = {
@@ -122,7 +124,8 @@ def motion_fold(report: Report, out: Path) -> Path:
 
 
 def write(report: Report, out: str | Path) -> dict[str, Path]:
-    """Write report.json, curves.csv and, for crease-pattern scenes, motion.fold into `out` (atomically)."""
+    """Write report.json, curves.csv and, for crease-pattern scenes, motion.fold, with reference curves
+    reference.csv, into `out` (atomically)."""
     out = Path(out)
     paths = {
         "report": write_text(out / "report.json", json.dumps(as_dict(report), indent=2, default=plain) + "\n"),
@@ -130,4 +133,6 @@ def write(report: Report, out: str | Path) -> dict[str, Path]:
     }
     if report.scene.pattern is not None:
         paths["fold"] = motion_fold(report, out / "motion.fold")
+    if report.reference is not None:
+        paths["reference"] = write_text(out / "reference.csv", report.reference.table)
     return paths

@@ -14,6 +14,7 @@ import numpy as np
 from .checks.blockage import Blockage, assess
 from .checks.branches import classify
 from .checks.paths import PathComparison, compare
+from .checks.reference import ReferenceCheck, ReferenceCurves, compare_reference
 from .checks.verdict import Verdict
 from .errors import ParameterError
 from .mjcf import PRESETS, preset_duration
@@ -65,6 +66,7 @@ class Report:
     bifurcations: tuple[dict, ...] = ()
     free_run: dict | None = None
     timings: dict[str, float] = field(default_factory=dict)
+    reference: ReferenceCheck | None = None  # the user's curves against the numeric path and MuJoCo
 
     @property
     def passed(self) -> bool:
@@ -263,9 +265,17 @@ def run_free(scene: Scene, preset: str) -> tuple[dict, list[Verdict]]:
     return doc, verdicts
 
 
-def validate(scene: Scene, *, preset: str | None = None, branch: str | None = None, seed: str = "closed") -> Report:
+def validate(
+    scene: Scene,
+    *,
+    preset: str | None = None,
+    branch: str | None = None,
+    seed: str = "closed",
+    reference: ReferenceCurves | None = None,
+) -> Report:
     """
-    Cross-check a scene on one branch (or all of them).
+    Cross-check a scene on one branch (or all of them); with `reference` (`checks.reference.read_reference`) also
+    the user's own curves against the numeric loop solve, the scene's kinematics and MuJoCo's runs.
 
     Raises
     ------
@@ -319,5 +329,11 @@ def validate(scene: Scene, *, preset: str | None = None, branch: str | None = No
             )
         )
     timings["bifurcation_study_cpu_s"] = time.thread_time() - t1
+    checked = None
+    if reference is not None:
+        t2 = time.thread_time()
+        checked = compare_reference(reference, scene, runs)
+        verdicts += checked.verdicts
+        timings["reference_cpu_s"] = time.thread_time() - t2
     timings["total_cpu_s"] = time.thread_time() - t0
-    return Report(scene, preset, seed, tuple(runs), tuple(verdicts), blockage, study, free, timings)
+    return Report(scene, preset, seed, tuple(runs), tuple(verdicts), blockage, study, free, timings, checked)

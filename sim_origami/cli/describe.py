@@ -29,6 +29,9 @@ def run(args: argparse.Namespace) -> int:
         f"input: {kin.input_name} (degrees here, radians in JSON); drives {scene.drive_joint} x {scene.drive_scale:g}"
     )
     print(f"joints: {', '.join(kin.joint_names)}")
+    columns = [kin.input_name] + [j for j in kin.joint_names if j != kin.input_name]
+    more = ",..." if len(columns) > 9 else ""  # any subset of the joints will do
+    print(f"reference CSV header (validate --reference): {','.join(f'{c}[deg]' for c in columns[:9])}{more}")
     mech = scene.mechanism
     reduced = mech.reduced()  # spherical joints as one joint each, without their spacer bodies
     cut = {mech.joints[i].ball or mech.joints[i].name for i in mech.cut_joints}

@@ -9,6 +9,8 @@ import numpy as np
 from tqdm import tqdm
 
 from .. import scenes
+from ..checks.reference import read_reference, summary_lines
+from ..conventions import deg_to_rad
 from ..errors import ParameterError
 from ..files import write_text
 from ..report import as_dict, plain, write
@@ -38,16 +40,20 @@ def add_args(parser: argparse.ArgumentParser) -> None:
         choices=("closed", "flat"),
         help="start at a closed pose on the branch, or 1e-4 rad from flat on it (with --preset accurate)",
     )
+    parser.add_argument("--reference", type=Path, metavar="CSV", help="your own curves (input and joint columns)")
+    parser.add_argument("--reference-units", choices=("deg", "rad"), help="units of reference columns stating none")
+    parser.add_argument("--reference-tol", type=float, metavar="DEG",
+                        help="one tolerance (deg) for every reference value (default: its printed precision)")
     parser.add_argument("--out", type=Path, help="output folder (default runs/<scene>)")
     parser.add_argument("--render", action="store_true", help="also write frames/, fold.gif and fold.mp4")
     parser.add_argument("--json", action="store_true", help="print report.json to stdout")
 
 
-def run_one(scene, args, out: Path) -> dict:
+def run_one(scene, args, out: Path, reference=None) -> dict:
     """Validate, write every output file into `out`, return the report as a dict."""
     from ..plots import plot_report
 
-    report = validate(scene, preset=args.preset, branch=args.branch, seed=args.seed)
+    report = validate(scene, preset=args.preset, branch=args.branch, seed=args.seed, reference=reference)
     write(report, out)
     plot_report(report, out / "curves.png")
     doc = as_dict(report)
@@ -79,6 +85,10 @@ def run(args: argparse.Namespace) -> int:
         raise ParameterError("give one of a SCENE, --all or --fold FILE")
     if args.input and args.fold is None:
         raise ParameterError("--input names the driven crease of a --fold pattern")
+    if args.reference is None and (args.reference_units or args.reference_tol is not None):
+        raise ParameterError("--reference-units and --reference-tol qualify a --reference FILE")
+    if args.all and args.reference is not None:
+        raise ParameterError("--reference checks one scene's curves; give a SCENE (or --fold FILE), not --all")
     if args.all:
         if args.param or args.branch:
             raise ParameterError("--all runs every scene with its defaults; -p and --branch need a SCENE")
@@ -97,8 +107,12 @@ def run(args: argparse.Namespace) -> int:
         scene = fold_scene(args.fold, args.input)
     else:
         scene = scenes.get(args.scene).build_from_user(parse_params(args.param))
+    reference = None
+    if args.reference is not None:  # read and checked before anything is simulated
+        tol = None if args.reference_tol is None else float(deg_to_rad(args.reference_tol))
+        reference = read_reference(args.reference, scene.kinematics, units=args.reference_units, tol=tol)
     out = args.out or Path("runs") / scene.name
-    doc = run_one(scene, args, out)
+    doc = run_one(scene, args, out, reference)
     if args.json:
         print(json.dumps(doc, indent=2, default=plain))
     else:
@@ -106,5 +120,9 @@ def run(args: argparse.Namespace) -> int:
         for v in doc["verdicts"] + [v for b in doc["branches"] for v in b["verdicts"]]:
             mark = "ok  " if v["passed"] else "FAIL"
             print(f"  {mark} {v['name']}: {v['measured']:.3g} (tolerance {v['tolerance']:g})")
+            if v["name"].startswith("reference") and not v["passed"]:
+                print(f"       {v['detail']}")
+        if "reference" in doc:
+            print("\n".join(summary_lines(doc["reference"])))
         print(f"outputs in {out}/")
     return 0 if doc["passed"] else 1

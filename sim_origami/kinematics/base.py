@@ -3,6 +3,20 @@
 A model maps one input angle to named output joints on named branches. Each model also exposes
 its loop as a `closure.LoopSystem` over "loop joints" (the revolute joints of the linkage), so the
 numeric solver and MuJoCo can be compared with the closed form through the same `observe` map.
+
+Writing your own (a closed form in your own module, made a scene with `scenes.custom_scene`; docs/extending.md):
+
+* `input_name` (str) and `joint_names` (tuple of str): what `describe` prints and reference CSVs name.
+* `branches()`: every motion branch, named by geometry, each with a closed, finite input domain (rad).
+* `evaluate(branch, x)`: vectorised over x (rad); values (n, len(joint_names)) and a validity mask (n,);
+  NaN exactly where invalid; never raises for an input outside the domain. Keep each branch continuous
+  along its domain (no 2 pi jumps): the numeric solve follows it by continuity and is compared without wrapping.
+* `loop_system()`: the linkage as closed chains of revolute joints (`closure.Loop`, `dh.dh_loop` for a D-H
+  loop); this is the independent truth, so build it from the geometry, never from the closed form.
+* `loop_input()`: (loop joint index, scale): that loop joint equals scale * input; the scene drives it.
+* `loop_angles(values)` and `observe(q_loop)`: outputs to loop joint angles and back; each inverts the other.
+  `JointSpaceKinematics` (outputs = loop joints) and `dh.DHKinematics` (one D-H loop) provide them.
+* `events()`: bifurcations, locks and turning points (may be empty); `gruebler()`: the Kutzbach count.
 """
 
 from abc import ABC, abstractmethod
@@ -36,7 +50,10 @@ class Event:
 
 
 class Kinematics(ABC):
-    """Closed-form kinematics of one mechanism; all angles in radians."""
+    """
+    Closed-form kinematics of one mechanism; all angles in radians. Subclass it and define the abstract
+    members below (the module docstring lists the rules); `scenes.custom.check_kinematics` checks them.
+    """
 
     input_name: str
     joint_names: tuple[str, ...]
