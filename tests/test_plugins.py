@@ -1,5 +1,6 @@
 """Scenes from outside the package: `custom_scene`, the entry point group `sim_origami.scenes`, and the worked example
-examples/user_package (a planar four-bar with its own closed form and reference curves from Freudenstein's equation).
+docs/examples/user_package (a planar four-bar with its own closed form and reference curves from Freudenstein's
+equation).
 
 The example is made importable the way an installed package is: its source folder on the path and a
 `*.dist-info` folder holding the entry point copied from its pyproject.toml, so no network or build is needed.
@@ -23,7 +24,7 @@ from sim_origami.linkage import dh_mechanism
 from sim_origami.scenes import plugins
 from sim_origami.scenes.base import REGISTRY
 
-EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "user_package"
+EXAMPLE = Path(__file__).resolve().parents[1] / "docs" / "examples" / "user_package"
 EXE = Path(sys.executable).parent / "sim-origami"
 
 

@@ -226,7 +226,7 @@ def test_fold_file_scene_takes_a_reference_through_the_same_interface(tmp_path):
     assert not result.verdicts[0].passed and result.doc["worst"]["joint"] == scene.kinematics.joint_names[2]
 
 
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+EXAMPLES = Path(__file__).resolve().parents[1] / "docs" / "examples"
 
 
 def test_fold_example_with_its_reference_passes(tmp_path, capsys):
