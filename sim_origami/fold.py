@@ -20,9 +20,9 @@ Units. Lengths are in the geometry frame's `frame_unit` and converted to metres 
 
 Signs and sides. FOLD's counter-clockwise face order gives each face its normal and a valley folds the normals
 into each other, so for faces counter-clockwise seen from +z FOLD's M/V and fold-angle signs are those of
-`sim_origami.creases` (rho > 0 valley seen from +z). Faces are first given one orientation over the whole sheet
-(each shared side run both ways); when every face of the file is clockwise the paper is seen from -z, so M and V
-swap and fold angles change sign. A file mixing both orientations is read as seen from +z.
+`sim_origami.creases` (rho > 0 valley seen from +z). Faces are first given one orientation over the whole
+sheet (each shared side run both ways); when the file's faces run clockwise (most of the area, seen from +z)
+the paper is seen from -z, so M and V swap and fold angles change sign.
 
 Faces. `faces_vertices`, else `faces_edges`, else the faces of the planar edge graph (`fold_mesh.planar_faces`).
 Faces must be simple polygons of non-zero area; they may be non-convex. Every face side must be an edge, a "B"
@@ -134,17 +134,22 @@ def read_fold(source: str | os.PathLike | Mapping[str, Any]) -> FoldPattern:
             raise ParameterError(f"file_frames[{k}] is a {type(frame).__name__}; a frame is a JSON object")
     frames = [_resolve(raw, k, key) for k in range(1, len(raw) + 1)]
     crease_frame = next((k for k, f in enumerate(frames) if _is_crease_pattern(f)), None)
+    if crease_frame is not None:
+        other, label = frames[crease_frame], f"frame {crease_frame + 1} (frame_classes creasePattern)"
+    elif "vertices_flatUnfoldCoords" in key:  # Crease Pattern Editor's flat folds carry their unfolding
+        other, label = {**key, "vertices_coords": key["vertices_flatUnfoldCoords"]}, "vertices_flatUnfoldCoords"
+    else:
+        other, label = None, ""
     if "vertices_coords" in key:
         try:
-            sheet = _read_sheet(key, "vertices_coords", prefer_frame=crease_frame is not None)
+            sheet = _read_sheet(key, "vertices_coords", prefer_frame=other is not None)
             geometry = key
         except _FoldedFormError as why:
-            if crease_frame is None:
+            if other is None:
                 raise ParameterError(str(why)) from None
-            geometry = frames[crease_frame]
-            sheet = _read_sheet(geometry, f"frame {crease_frame + 1}", prefer_frame=False)
-            sheet.notes.insert(0, f"the key frame is a folded form ({why}); the crease pattern is frame "
-                                  f"{crease_frame + 1} (frame_classes creasePattern)")  # fmt: skip
+            geometry = other
+            sheet = _read_sheet(geometry, label, prefer_frame=False)
+            sheet.notes.insert(0, f"the key frame is a folded form ({why}); the crease pattern is {label}")
     else:
         pick = crease_frame if crease_frame is not None else next(
             (k for k, f in enumerate(frames) if "vertices_coords" in f), None)  # fmt: skip
@@ -441,19 +446,19 @@ def _check_incidence(edges: list[tuple[int, int]], letters: list[str], faces: li
             raise ParameterError(f"edge {k} ({e[0]}-{e[1]}, {letter!r}) borders {n} face(s); {rule}")
 
 
-def _check_developable(pattern: CreasePattern) -> None:
+def _check_developable(pattern: CreasePattern, tol: float = DEVELOPABLE_TOL) -> None:
     """
-    Sector angles round each interior vertex must sum to 2 pi within DEVELOPABLE_TOL. A flat fan closes
+    Sector angles round each interior vertex must sum to 2 pi within `tol` (rad). A flat fan closes
     at a multiple of 2 pi, so this catches a sheet wrapping round a vertex more than once.
     """
     total = np.zeros(len(pattern.vertices))
     for face in pattern.faces:
         total[list(face)] += _corner_angles(pattern.vertices[list(face)])
     for v in pattern.interior_vertices():
-        if abs(total[v] - 2 * np.pi) > DEVELOPABLE_TOL:
+        if abs(total[v] - 2 * np.pi) > tol:
             raise ParameterError(
                 f"interior vertex {v}: sector angles sum to {np.rad2deg(total[v]):.12g} deg; a developable "
-                f"vertex needs 360 deg (within {DEVELOPABLE_TOL:g} rad)"
+                f"vertex needs 360 deg (within {tol:.3g} rad)"
             )
 
 
@@ -531,7 +536,7 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
     if flat:
         for k, face in enumerate(faces):
             _check_area(k, face, xy, "file unit^2")
-    all_clockwise = flat and all(signed_area(xy, face) < 0 for face in faces)
+    below = flat and sum(signed_area(xy, face) for face in faces) < 0  # the file's faces clockwise (by area)
     faces = fold_mesh.orient(faces)
     if flat:
         positive = [signed_area(xy, face) > 0 for face in faces]
@@ -544,8 +549,9 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
             )
         if not positive[0]:
             faces = [reverse(face) for face in faces]
-    if sum(a != b for a, b in zip(faces, file_faces, strict=True)) and not all_clockwise:
-        notes.append("faces reversed where needed to give the sheet one normal")
+    turned = sum(a != b for a, b in zip(faces, file_faces, strict=True))
+    if 0 < turned < len(faces):
+        notes.append(f"{min(turned, len(faces) - turned)} face(s) reversed to give the sheet one normal")
     cuts = {frozenset(edges[k]) for k, letter in enumerate(letters) if letter == "C"}
     by_side = fold_mesh.side_faces(faces)
     source, new_of = np.arange(n), {(f, v): v for f, face in enumerate(faces) for v in face}
@@ -581,10 +587,10 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
     heights = np.zeros(len(edges))
     if HEIGHT_KEY in frame:
         heights = scale * _heights(frame[HEIGHT_KEY], letters)
-    sign = -1.0 if all_clockwise else 1.0
-    if all_clockwise:
-        notes.append("every face is clockwise: the paper is seen from -z, so M/V and fold-angle signs swap")
-    table = DOWN if all_clockwise else UP
+    sign = -1.0 if below else 1.0
+    if below:
+        notes.append("the faces run clockwise seen from +z: the paper is seen from -z, so M/V and angle signs swap")
+    table = DOWN if below else UP
     crease_edges = [j for j, letter in enumerate(new_letters) if letter in table]
     creases = tuple(
         Crease(f"e{fold_index[j]}", *new_edges[j], table[new_letters[j]], float(heights[fold_index[j]]))
@@ -593,7 +599,10 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
     border = tuple((*new_edges[j], float(heights[fold_index[j]])) for j, letter in enumerate(new_letters)
                    if letter == "B" and np.isfinite(heights[fold_index[j]]))  # fmt: skip
     pattern = CreasePattern(xy, tuple(faces), creases, tuple(f"f{k}" for k in range(len(faces))), border)
-    _check_developable(pattern)
+    tol = DEVELOPABLE_TOL
+    if not flat:  # an unfolded form closes round its vertices only as well as its coordinates allow
+        tol = max(tol, fold_mesh.develop_tolerance(xyz) / float(np.min(lengths)))
+    _check_developable(pattern, tol)
     left = {side: f for f, face in enumerate(faces) for side in _sides(face)}
     hinges = [(c.start, c.end, left[c.start, c.end], left[c.end, c.start]) for c in creases]
     signs = np.array([{"V": 1.0, "M": -1.0}.get(c.assignment, 0.0) for c in creases])

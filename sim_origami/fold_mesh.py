@@ -20,6 +20,11 @@ from .geometry import minimal_rotation
 PLANE_RTOL = 1e-6
 # Unfolding: a vertex placed by two faces may differ by this, relative to the sheet's size.
 DEVELOP_RTOL = 1e-9
+# Coordinates printed to a decimal step q <= QUANTUM_RTOL of the size (e.g. 6 decimals) widen the unfolding
+# tolerance to QUANTUM_FACTOR * q: rounding each coordinate by q / 2 moves a vertex placed through a chain of faces
+# by about q (measured: 1.6 q on a square twist printed to 6 decimals).
+QUANTUM_RTOL = 1e-5
+QUANTUM_FACTOR = 10.0
 # A measured fold angle this close to +-pi takes its sign from the crease's M/V letter (rad).
 FLAT_FOLD_TOL = 1e-6
 
@@ -34,6 +39,27 @@ def sides(face: Face) -> Iterator[tuple[int, int]]:
 def size(xyz: NDArray[np.float64]) -> float:
     """The diagonal of the bounding box of points (n, d)."""
     return float(np.linalg.norm(np.ptp(xyz, axis=0))) if len(xyz) else 0.0
+
+
+def quantum(xyz: NDArray[np.float64]) -> float:
+    """
+    The coarsest decimal step 10^-d (d <= 12) that every coordinate is a multiple of, when it is at most
+    QUANTUM_RTOL of the size (rounding); else 0 (full precision, or exact hand-typed numbers such as 0.25).
+    """
+    scale = size(xyz)
+    if scale == 0.0:
+        return 0.0
+    for d in range(int(np.floor(-np.log10(scale))), 13):
+        scaled = xyz * 10.0**d
+        if np.all(np.abs(scaled - np.round(scaled)) <= 1e-3):
+            return 10.0**-d if 10.0**-d <= QUANTUM_RTOL * scale else 0.0
+    return 0.0
+
+
+def develop_tolerance(xyz: NDArray[np.float64]) -> float:
+    """How far apart (file units) two placements of a vertex may land when unfolding `xyz`."""
+    scale, q = size(xyz), quantum(xyz)
+    return max(DEVELOP_RTOL * scale, QUANTUM_FACTOR * q)
 
 
 def signed_area(xy: NDArray[np.float64], face: Face) -> float:
@@ -294,7 +320,7 @@ def unfold(xyz: NDArray[np.float64], faces: list[Face]) -> tuple[NDArray[np.floa
     own edge lengths and angles, counter-clockwise; separate pieces are laid side by side. ParameterError when a
     vertex placed by two faces lands at two points more than DEVELOP_RTOL of the size apart (not developable).
     """
-    scale = size(xyz)
+    scale, tol = size(xyz), develop_tolerance(xyz)
     xy = np.full((len(xyz), 2), np.nan)
     by_side = {side: f for f, face in enumerate(faces) for side in sides(face)}
     normals = face_normals(xyz, faces)
@@ -327,10 +353,10 @@ def unfold(xyz: NDArray[np.float64], faces: list[Face]) -> tuple[NDArray[np.floa
                     xy[w] = p
                 else:
                     gap = float(np.linalg.norm(p - xy[w]))
-                    if gap > DEVELOP_RTOL * scale:
+                    if gap > tol:
                         raise ParameterError(
                             f"folded form not developable: unfolding places vertex {w} twice, {gap:.3g} apart "
-                            f"({gap / scale:.3g} of the sheet's size, more than {DEVELOP_RTOL:g}); the faces' edge "
+                            f"({gap / scale:.3g} of the sheet's size, more than {tol / scale:.3g}); the faces' edge "
                             "lengths and angles do not fit one flat sheet (panels bent or stretched)"
                         )
                     worst = max(worst, gap)
@@ -341,6 +367,7 @@ def unfold(xyz: NDArray[np.float64], faces: list[Face]) -> tuple[NDArray[np.floa
                     queue.append((g, (d, c, xy[d].copy(), xy[c].copy())))
     notes.append(
         f"unfolded the 3-D folded form into the plane across {len(faces)} faces ({pieces} piece(s)); vertices "
-        f"placed twice agree to {worst / scale if scale else 0.0:.2g} of the sheet's size"
+        f"placed twice agree to {worst / scale:.2g} of the sheet's size (allowed {tol / scale:.2g}"
+        + (f", coordinates printed to steps of {quantum(xyz):g})" if tol > DEVELOP_RTOL * scale else ")")
     )
     return xy, notes
