@@ -25,7 +25,7 @@ from numpy.typing import NDArray
 
 from .closure import Coupling, Loop, LoopSystem
 from .errors import ParameterError
-from .geometry import frame_along, invert
+from .geometry import frame_along, frames_along, invert
 from .graph import spanning_edges
 
 # M mountain, V valley, U unassigned (free), F flat (a crease present but meant to stay unfolded).
@@ -165,22 +165,42 @@ class CreasePattern:
 
     def vertex_creases(self, v: int) -> list[tuple[int, NDArray[np.float64]]]:
         """(crease index, outward unit direction) of the creases at interior vertex v, counter-clockwise."""
-        out = []
-        for b in self._out_edges.get(v, ()):
-            k = self._crease_of_edge.get((min(v, b), max(v, b)))
-            if k is None:
-                raise ParameterError(f"edge {v}-{b} at interior vertex {v} joins two faces but is not a crease")
-            d = self.vertices[b] - self.vertices[v]
-            out.append((k, np.array([*d, 0.0]) / np.linalg.norm(d)))
-        return sorted(out, key=lambda kd: np.arctan2(kd[1][1], kd[1][0]))
+        ks, d, _ = self._around((v,))
+        return list(zip(ks.tolist(), d, strict=True))
+
+    def _around(self, vertices: tuple[int, ...]) -> tuple[NDArray[np.int_], NDArray[np.float64], NDArray[np.int_]]:
+        """
+        The creases round each of `vertices`, counter-clockwise, listed vertex after vertex: crease indices,
+        outward unit directions (n, 3) and how many round each vertex.
+        """
+        counts = np.array([len(self._out_edges.get(v, ())) for v in vertices], dtype=int)
+        at = np.repeat(np.asarray(vertices, dtype=int), counts)
+        ends = np.fromiter((b for v in vertices for b in self._out_edges.get(v, ())), dtype=int, count=len(at))
+        ks = [self._crease_of_edge.get((min(a, b), max(a, b))) for a, b in zip(at.tolist(), ends.tolist(), strict=True)]
+        if None in ks:
+            a, b = at[ks.index(None)], ends[ks.index(None)]
+            raise ParameterError(f"edge {a}-{b} at interior vertex {a} joins two faces but is not a crease")
+        d = np.zeros((len(at), 3))
+        d[:, :2] = self.vertices[ends] - self.vertices[at]
+        d /= np.sqrt(d[:, None, :] @ d[:, :, None])[:, 0]  # rounded as np.linalg.norm of each row
+        order = np.lexsort((np.arctan2(d[:, 1], d[:, 0]), np.repeat(np.arange(len(vertices)), counts)))
+        return np.asarray(ks, dtype=int)[order], d[order], counts
 
     def loop_system(self, couplings: tuple[Coupling, ...] = ()) -> LoopSystem:
         """One PoE closure per interior vertex over the crease angles (in `creases` order)."""
-        loops = []
-        for v in self.interior_vertices():
-            around = self.vertex_creases(v)
-            frames = [frame_along(d, (*self.vertices[v], self.creases[k].height)) for k, d in around]
-            n = len(frames)
-            links = np.stack([invert(frames[i]) @ frames[(i + 1) % n] for i in range(n)])
-            loops.append(Loop(tuple(k for k, _ in around), links, (1,) * n))
-        return LoopSystem(len(self.creases), tuple(loops), couplings)
+        interior = self.interior_vertices()
+        if not interior:
+            return LoopSystem(len(self.creases), (), couplings)
+        # every hinge frame and link at once (the same numbers as vertex by vertex)
+        ks, d, lengths = self._around(interior)
+        heights = np.array([c.height for c in self.creases])[ks]
+        frames = frames_along(d, np.column_stack([np.repeat(self.vertices[list(interior)], lengths, axis=0), heights]))
+        group = np.repeat(np.arange(len(interior)), lengths)
+        starts = np.cumsum(lengths) - lengths
+        nxt = starts[group] + (np.arange(len(ks)) - starts[group] + 1) % lengths[group]
+        links = invert(frames) @ frames[nxt]
+        ks_list = ks.tolist()
+        loops = tuple(
+            Loop(tuple(ks_list[s : s + n]), links[s : s + n], (1,) * n) for s, n in zip(starts, lengths, strict=True)
+        )
+        return LoopSystem(len(self.creases), loops, couplings)

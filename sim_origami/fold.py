@@ -65,7 +65,7 @@ from . import fold_mesh
 from .creases import Crease, CreasePattern
 from .errors import ParameterError
 from .files import write_text
-from .fold_mesh import Face, reverse, signed_area
+from .fold_mesh import Face, key, reverse
 
 FILE_SPEC = 1.2
 HEIGHT_KEY = "edges_sim_origami:hingeHeight"
@@ -333,11 +333,11 @@ def _vertex_lists(value: Any, field: str, n_vertices: int) -> list[tuple[int, ..
 def _edges(value: Any, n_vertices: int) -> list[tuple[int, int]]:
     """Edges as (u, v) of two distinct vertices; no two edges join the same pair."""
     edges = _vertex_lists(value, "edges_vertices", n_vertices)
-    first: dict[frozenset, int] = {}
+    first: dict[tuple[int, int], int] = {}
     for k, e in enumerate(edges):
         if len(e) != 2 or e[0] == e[1]:
             raise ParameterError(f"edges_vertices[{k}] = {list(e)}; an edge joins two distinct vertices")
-        other = first.setdefault(frozenset(e), k)
+        other = first.setdefault(key(*e), k)
         if other != k:
             raise ParameterError(f"edges {other} and {k} both join vertices {e[0]} and {e[1]}; edges must differ")
     return edges
@@ -375,46 +375,54 @@ def _file_faces(frame: Mapping[str, Any], edges: list[tuple[int, int]], n_vertic
     return faces
 
 
-def _cross(a: NDArray, b: NDArray) -> NDArray:
-    """z of the cross product of 2-D vectors (..., 2)."""
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+def _cross(a: tuple[float, float], b: tuple[float, float]) -> float:
+    """z of the cross product of 2-D vectors."""
+    return a[0] * b[1] - a[1] * b[0]
 
 
-def _corner_angles(p: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Interior angles (rad, in [0, 2 pi)) at the corners of a counter-clockwise polygon (n, 2)."""
-    to_next, to_prev = np.roll(p, -1, axis=0) - p, np.roll(p, 1, axis=0) - p
-    return np.mod(np.arctan2(_cross(to_next, to_prev), np.sum(to_next * to_prev, axis=-1)), 2 * np.pi)
+def _segments_meet(p: tuple, q: tuple, r: tuple, s: tuple) -> bool:
+    """Whether the closed segments pq and rs (points as float pairs) share a point."""
 
+    def sub(a: tuple, b: tuple) -> tuple[float, float]:
+        return a[0] - b[0], a[1] - b[1]
 
-def _segments_meet(p: NDArray, q: NDArray, r: NDArray, s: NDArray) -> bool:
-    """Whether the closed segments pq and rs share a point."""
-    d = (_cross(q - p, r - p), _cross(q - p, s - p), _cross(s - r, p - r), _cross(s - r, q - r))
+    d = (_cross(sub(q, p), sub(r, p)), _cross(sub(q, p), sub(s, p)), _cross(sub(s, r), sub(p, r)),
+         _cross(sub(s, r), sub(q, r)))  # fmt: skip
     if d[0] * d[1] < 0 and d[2] * d[3] < 0:
         return True
     ends = ((d[0], r, p, q), (d[1], s, p, q), (d[2], p, r, s), (d[3], q, r, s))
-    return any(o == 0 and np.all(np.minimum(a, b) <= x) and np.all(x <= np.maximum(a, b)) for o, x, a, b in ends)
+    return any(o == 0 and all(min(a[i], b[i]) <= x[i] <= max(a[i], b[i]) for i in (0, 1)) for o, x, a, b in ends)
 
 
-def _check_area(k: int, face: Face, xy: NDArray[np.float64], unit: str = "m^2") -> None:
-    """A face must have non-zero area, relative to its longest side squared."""
-    p = xy[list(face)]
-    area = signed_area(xy, face)
-    longest = float(np.max(np.sum((np.roll(p, -1, axis=0) - p) ** 2, axis=-1)))
-    if abs(area) <= AREA_RTOL * longest:
-        raise ParameterError(f"face {k} {list(face)} has area {area:.3g} {unit}; faces must not be degenerate")
+def _check_areas(faces: list[Face], xy: NDArray[np.float64], unit: str = "m^2") -> NDArray[np.float64]:
+    """Signed areas of the faces, each non-zero relative to its longest side squared."""
+    areas = fold_mesh.signed_areas(xy, faces)
+    f_of, v, nxt, _ = fold_mesh.corners(faces)
+    longest = np.zeros(len(faces))
+    np.maximum.at(longest, f_of, np.sum((xy[nxt] - xy[v]) ** 2, axis=1))
+    bad = np.flatnonzero(np.abs(areas) <= AREA_RTOL * longest)
+    if bad.size:
+        k = int(bad[0])
+        raise ParameterError(f"face {k} {list(faces[k])} has area {areas[k]:.3g} {unit}; faces must not be degenerate")
+    return areas
 
 
-def _check_face(k: int, face: Face, xy: NDArray[np.float64]) -> None:
-    """A counter-clockwise face must have non-zero area and be a simple polygon."""
-    _check_area(k, face, xy)
-    _check_simple(k, face, xy[list(face)])
-
-
-def _check_simple(k: int, face: Face, p: NDArray[np.float64]) -> None:
-    """A counter-clockwise face (vertices p) must be a simple polygon: no spike, no meeting sides."""
-    spikes = np.flatnonzero(_corner_angles(p) == 0.0)
+def _check_faces(faces: list[Face], xy: NDArray[np.float64]) -> None:
+    """Counter-clockwise faces must have non-zero area and be simple polygons (no spike, no meeting sides)."""
+    _check_areas(faces, xy)
+    _, angles = fold_mesh.corner_angles(xy, faces)
+    spikes = np.flatnonzero(angles == 0.0)
     if spikes.size:
-        raise ParameterError(f"face {k} doubles back at vertex {face[spikes[0]]}; faces must be simple polygons")
+        f_of, v, _, _ = fold_mesh.corners(faces)
+        k = int(f_of[spikes[0]])
+        raise ParameterError(f"face {k} doubles back at vertex {v[spikes[0]]}; faces must be simple polygons")
+    for k, face in enumerate(faces):
+        if len(face) > 3:  # a triangle of non-zero area is simple
+            _check_simple(k, face, [tuple(p) for p in xy[list(face)].tolist()])
+
+
+def _check_simple(k: int, face: Face, p: list[tuple[float, float]]) -> None:
+    """A counter-clockwise face (vertices p) must not have two sides that meet."""
     n = len(face)
     for i in range(n):
         for j in range(i + 2, n - (i == 0)):
@@ -432,14 +440,14 @@ def _sides(face: tuple[int, ...]) -> Iterator[tuple[int, int]]:
 
 def _check_incidence(edges: list[tuple[int, int]], letters: list[str], faces: list[Face]) -> None:
     """Every face side is an edge; a boundary edge borders one face, every other edge two."""
-    index = {frozenset(e) for e in edges}
-    count = Counter(frozenset(side) for face in faces for side in _sides(face))
+    index = {key(*e) for e in edges}
+    count = Counter(key(*side) for face in faces for side in _sides(face))
     for f, face in enumerate(faces):
         for a, b in _sides(face):
-            if frozenset((a, b)) not in index:
+            if key(a, b) not in index:
                 raise ParameterError(f"side {a}-{b} of face {f} is not in edges_vertices; every face side is an edge")
     for k, (e, letter) in enumerate(zip(edges, letters, strict=True)):
-        n, need = count[frozenset(e)], 1 if letter == "B" else 2
+        n, need = count[key(*e)], 1 if letter == "B" else 2
         if n != need:
             rule = {"B": "a boundary edge borders one face", "C": "a cut runs between two faces",
                     "J": "a join merges two faces"}.get(letter, "a crease joins two faces")  # fmt: skip
@@ -451,9 +459,8 @@ def _check_developable(pattern: CreasePattern, tol: float = DEVELOPABLE_TOL) -> 
     Sector angles round each interior vertex must sum to 2 pi within `tol` (rad). A flat fan closes
     at a multiple of 2 pi, so this catches a sheet wrapping round a vertex more than once.
     """
-    total = np.zeros(len(pattern.vertices))
-    for face in pattern.faces:
-        total[list(face)] += _corner_angles(pattern.vertices[list(face)])
+    v, angles = fold_mesh.corner_angles(pattern.vertices, list(pattern.faces))
+    total = np.bincount(v, weights=angles, minlength=len(pattern.vertices))
     for v in pattern.interior_vertices():
         if abs(total[v] - 2 * np.pi) > tol:
             raise ParameterError(
@@ -526,20 +533,18 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
         faces = fold_mesh.planar_faces(xy, edges)
         notes.append(f"{len(faces)} faces built from the planar edge graph (no faces_vertices in the file)")
     if letters is None:
-        count = Counter(frozenset(side) for face in faces for side in _sides(face))
-        letters = ["B" if count[frozenset(e)] == 1 else "U" for e in edges]
+        count = Counter(key(*side) for face in faces for side in _sides(face))
+        letters = ["B" if count[key(*e)] == 1 else "U" for e in edges]
         notes.append("no edges_assignment: edges of one face read as B, of two faces as U")
     _check_incidence(edges, letters, faces)
     if not flat and prefer_frame:
         raise _FoldedFormError(f"{label} are 3-D")
     file_faces = faces
+    below = flat and _check_areas(faces, xy, "file unit^2").sum() < 0  # the file's faces clockwise (by area)
+    by_side = fold_mesh.side_faces(faces)  # undirected side -> faces on it, the same after orienting
+    faces = fold_mesh.orient(faces, by_side)
     if flat:
-        for k, face in enumerate(faces):
-            _check_area(k, face, xy, "file unit^2")
-    below = flat and sum(signed_area(xy, face) for face in faces) < 0  # the file's faces clockwise (by area)
-    faces = fold_mesh.orient(faces)
-    if flat:
-        positive = [signed_area(xy, face) > 0 for face in faces]
+        positive = (fold_mesh.signed_areas(xy, faces) > 0).tolist()
         if not all(positive) and any(positive):
             f, g = positive.index(True), positive.index(False)
             raise _FoldedFormError(
@@ -552,9 +557,8 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
     turned = sum(a != b for a, b in zip(faces, file_faces, strict=True))
     if 0 < turned < len(faces):
         notes.append(f"{min(turned, len(faces) - turned)} face(s) reversed to give the sheet one normal")
-    cuts = {frozenset(edges[k]) for k, letter in enumerate(letters) if letter == "C"}
-    by_side = fold_mesh.side_faces(faces)
-    source, new_of = np.arange(n), {(f, v): v for f, face in enumerate(faces) for v in face}
+    cuts = {key(*edges[k]) for k, letter in enumerate(letters) if letter == "C"}
+    source, new_of = np.arange(n), None
     if cuts:
         faces, source, new_of = fold_mesh.split_cuts(n, faces, cuts)
         notes.append(f"{len(cuts)} cut edge(s) split the paper: {len(source) - n} vertices doubled along them")
@@ -564,26 +568,33 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
         xy, more = fold_mesh.unfold(xyz[source], faces)
         notes.extend(more)
     xy = xy * scale
+
     # Edges on the new vertices: a cut becomes one border edge per side, a join disappears.
-    new_edges, new_letters, fold_index = [], [], []
-    for k, (a, b) in enumerate(edges):
-        users = by_side.get(frozenset((a, b)), [])
-        if letters[k] == "J":
-            continue
-        pieces = [(new_of[f, a], new_of[f, b]) for f, _ in users] if letters[k] == "C" else (
-            [(new_of[users[0][0], a], new_of[users[0][0], b])] if users else [(a, b)])  # fmt: skip
-        for piece in pieces:
-            new_edges.append(piece)
-            new_letters.append("B" if letters[k] == "C" else letters[k])
-            fold_index.append(k)
-    join_faces = {k: by_side[frozenset(e)][0][0] for k, e in enumerate(edges) if letters[k] == "J"}
-    joins = [(k, (new_of[f, edges[k][0]], new_of[f, edges[k][1]])) for k, f in join_faces.items()]
+    def renamed(f: int, a: int, b: int) -> tuple[int, int]:
+        return (a, b) if new_of is None else (new_of[f, a], new_of[f, b])
+
+    new_edges, new_letters, fold_index = edges, letters, list(range(len(edges)))
+    if cuts or "J" in letters:
+        new_edges, new_letters, fold_index = [], [], []
+        for k, (a, b) in enumerate(edges):
+            users = by_side.get(key(a, b), [])
+            if letters[k] == "J":
+                continue
+            if letters[k] == "C":
+                pieces = [renamed(f, a, b) for f, _ in users]
+            else:
+                pieces = [renamed(users[0][0], a, b) if users else (a, b)]
+            for piece in pieces:
+                new_edges.append(piece)
+                new_letters.append("B" if letters[k] == "C" else letters[k])
+                fold_index.append(k)
+    joins = [(k, renamed(by_side[key(*e)][0][0], *e)) for k, e in enumerate(edges) if letters[k] == "J"]
     if joins:
         faces, _ = fold_mesh.merge_joins(faces, joins)
         notes.append(f"{len(joins)} join edge(s) merged their faces: {len(file_faces)} faces became {len(faces)}")
-    _check_incidence(new_edges, new_letters, faces)
-    for k, face in enumerate(faces):
-        _check_face(k, face, xy)
+    if cuts or joins:
+        _check_incidence(new_edges, new_letters, faces)
+    _check_faces(faces, xy)
     heights = np.zeros(len(edges))
     if HEIGHT_KEY in frame:
         heights = scale * _heights(frame[HEIGHT_KEY], letters)

@@ -9,6 +9,7 @@ Every tolerance is relative to the sheet's size (the diagonal of its bounding bo
 
 from collections import deque
 from collections.abc import Iterator
+from itertools import chain
 
 import numpy as np
 from numpy.typing import NDArray
@@ -34,6 +35,11 @@ Face = tuple[int, ...]
 def sides(face: Face) -> Iterator[tuple[int, int]]:
     """The directed sides (a, b) of a face loop."""
     return zip(face, face[1:] + face[:1], strict=True)
+
+
+def key(a: int, b: int) -> tuple[int, int]:
+    """An undirected edge's key: its two vertices, smaller first."""
+    return (a, b) if a < b else (b, a)
 
 
 def size(xyz: NDArray[np.float64]) -> float:
@@ -62,10 +68,31 @@ def develop_tolerance(xyz: NDArray[np.float64]) -> float:
     return max(DEVELOP_RTOL * scale, QUANTUM_FACTOR * q)
 
 
-def signed_area(xy: NDArray[np.float64], face: Face) -> float:
-    """Signed area of a face loop in the plane (> 0 counter-clockwise)."""
-    p = xy[list(face)]
-    return 0.5 * float(np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1]))
+def corners(faces: list[Face]) -> tuple[NDArray[np.int_], NDArray[np.int_], NDArray[np.int_], NDArray[np.int_]]:
+    """Every face corner as flat arrays: (face, vertex, next vertex, previous vertex) round its loop."""
+    lengths = np.fromiter(map(len, faces), dtype=int, count=len(faces))
+    v = np.fromiter(chain.from_iterable(faces), dtype=int, count=int(lengths.sum()))
+    group = np.repeat(np.arange(len(faces)), lengths)
+    starts = np.cumsum(lengths) - lengths
+    pos = np.arange(len(v)) - starts[group]
+    nxt = starts[group] + (pos + 1) % lengths[group]
+    prv = starts[group] + (pos - 1) % lengths[group]
+    return group, v, v[nxt], v[prv]
+
+
+def signed_areas(xy: NDArray[np.float64], faces: list[Face]) -> NDArray[np.float64]:
+    """Signed areas (n_faces,) of face loops in the plane (> 0 counter-clockwise)."""
+    f_of, v, nxt, _ = corners(faces)
+    cross = xy[v, 0] * xy[nxt, 1] - xy[nxt, 0] * xy[v, 1]
+    return 0.5 * np.bincount(f_of, weights=cross, minlength=len(faces))
+
+
+def corner_angles(xy: NDArray[np.float64], faces: list[Face]) -> tuple[NDArray[np.int_], NDArray[np.float64]]:
+    """(vertex, interior angle rad in [0, 2 pi)) of every corner of counter-clockwise face loops."""
+    _, v, nxt, prv = corners(faces)
+    to_next, to_prev = xy[nxt] - xy[v], xy[prv] - xy[v]
+    cross = to_next[:, 0] * to_prev[:, 1] - to_next[:, 1] * to_prev[:, 0]
+    return v, np.mod(np.arctan2(cross, np.sum(to_next * to_prev, axis=-1)), 2 * np.pi)
 
 
 def plane_fit(xyz: NDArray[np.float64]) -> tuple[NDArray[np.float64], float, float]:
@@ -110,17 +137,20 @@ def planar_faces(xy: NDArray[np.float64], edges: list[tuple[int, int]]) -> list[
     pos = t - first[t]
     nxt = order[first[t] + (pos - 1) % count[t]]
     seen = np.zeros(2 * m, dtype=bool)
-    faces = []
+    loops = []
+    nxt_list, src_list = nxt.tolist(), src.tolist()
     for h0 in range(2 * m):
         if seen[h0]:
             continue
         loop, h = [], h0
         while not seen[h]:
             seen[h] = True
-            loop.append(int(src[h]))
-            h = int(nxt[h])
-        face = tuple(loop)
-        if signed_area(xy, face) <= 0.0:
+            loop.append(src_list[h])
+            h = nxt_list[h]
+        loops.append(tuple(loop))
+    faces = []
+    for face, area in zip(loops, signed_areas(xy, loops), strict=True):
+        if area <= 0.0:
             continue  # an outer face (or a dangling edge's sliver)
         if len(set(face)) != len(face):
             v = next(v for v in face if face.count(v) > 1)
@@ -153,25 +183,24 @@ def faces_from_edges(faces_edges: list[tuple[int, ...]], edges: list[tuple[int, 
     return out
 
 
-def side_faces(faces: list[Face]) -> dict[frozenset, list[tuple[int, tuple[int, int]]]]:
+def side_faces(faces: list[Face]) -> dict[tuple[int, int], list[tuple[int, tuple[int, int]]]]:
     """Undirected face side -> [(face, directed side)], for every face."""
-    out: dict[frozenset, list[tuple[int, tuple[int, int]]]] = {}
+    out: dict[tuple[int, int], list[tuple[int, tuple[int, int]]]] = {}
     for f, face in enumerate(faces):
         for a, b in sides(face):
-            out.setdefault(frozenset((a, b)), []).append((f, (a, b)))
+            out.setdefault(key(a, b), []).append((f, (a, b)))
     return out
 
 
-def orient(faces: list[Face]) -> list[Face]:
+def orient(faces: list[Face], by_side: dict | None = None) -> list[Face]:
     """
     Faces reversed where needed so that each shared side runs opposite ways in its two faces (one normal for the
     whole sheet); each connected piece keeps its first face's loop. ParameterError for a side in three faces or
     a sheet that cannot be oriented.
     """
-    by_side = side_faces(faces)
-    for key, users in by_side.items():
+    by_side = side_faces(faces) if by_side is None else by_side
+    for (a, b), users in by_side.items():
         if len(users) > 2:
-            a, b = sorted(key)
             raise ParameterError(f"faces {[f for f, _ in users]} all have side {a}-{b}; a side borders 1 or 2 faces")
     flip = [None] * len(faces)
     for start in range(len(faces)):
@@ -182,7 +211,7 @@ def orient(faces: list[Face]) -> list[Face]:
         while queue:
             f = queue.popleft()
             for a, b in sides(faces[f]):
-                for g, (c, _) in by_side[frozenset((a, b))]:
+                for g, (c, _) in by_side[key(a, b)]:
                     if g == f:
                         continue
                     # g keeps its loop when it runs this side b -> a while f (as oriented) runs it a -> b
@@ -204,7 +233,7 @@ def reverse(face: Face) -> Face:
 
 
 def split_cuts(
-    n_vertices: int, faces: list[Face], cuts: set[frozenset]
+    n_vertices: int, faces: list[Face], cuts: set[tuple[int, int]]
 ) -> tuple[list[Face], NDArray[np.int_], dict[tuple[int, int], int]]:
     """
     Cuts split the paper: at each vertex the faces round it are grouped by the uncut sides they share, and each
@@ -219,10 +248,10 @@ def split_cuts(
             x = parent[x]
         return x
 
-    for key, users in side_faces(faces).items():
-        if len(users) == 2 and key not in cuts:
+    for edge, users in side_faces(faces).items():
+        if len(users) == 2 and edge not in cuts:
             (f, _), (g, _) = users
-            for v in key:
+            for v in edge:
                 parent[find((f, v))] = find((g, v))
     new_of: dict[tuple[int, int], int] = {}
     source = list(range(n_vertices))
@@ -273,15 +302,11 @@ def merge_joins(faces: list[Face], joins: list[tuple[int, tuple[int, int]]]) -> 
 
 def face_normals(xyz: NDArray[np.float64], faces: list[Face]) -> NDArray[np.float64]:
     """Newell normals (n_faces, 3) of face loops in 3-D, not normalised (length = twice the area)."""
-    f_of = np.concatenate([np.full(len(face), f) for f, face in enumerate(faces)])
-    a = np.concatenate([np.asarray(face) for face in faces])
-    b = np.concatenate([np.roll(np.asarray(face), -1) for face in faces])
-    centre = np.zeros((len(faces), 3))
-    np.add.at(centre, f_of, xyz[a])
-    centre /= np.array([len(face) for face in faces])[:, None]
-    out = np.zeros((len(faces), 3))
-    np.add.at(out, f_of, np.cross(xyz[a] - centre[f_of], xyz[b] - centre[f_of]))
-    return out
+    f_of, a, b, _ = corners(faces)
+    centre = np.stack([np.bincount(f_of, weights=xyz[a, i], minlength=len(faces)) for i in range(3)], axis=1)
+    centre /= np.bincount(f_of, minlength=len(faces))[:, None]
+    cross = np.cross(xyz[a] - centre[f_of], xyz[b] - centre[f_of])
+    return np.stack([np.bincount(f_of, weights=cross[:, i], minlength=len(faces)) for i in range(3)], axis=1)
 
 
 def dihedral_angles(
