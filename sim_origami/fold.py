@@ -132,7 +132,7 @@ def read_fold(source: str | os.PathLike | Mapping[str, Any]) -> FoldPattern:
     for k, frame in enumerate(raw):
         if not isinstance(frame, dict):
             raise ParameterError(f"file_frames[{k}] is a {type(frame).__name__}; a frame is a JSON object")
-    frames = [_resolve(raw, k, key) for k in range(1, len(raw) + 1)]
+    frames = _resolve_all(raw, key)
     crease_frame = next((k for k, f in enumerate(frames) if _is_crease_pattern(f)), None)
     if crease_frame is not None:
         other, label = frames[crease_frame], f"frame {crease_frame + 1} (frame_classes creasePattern)"
@@ -469,20 +469,30 @@ def _check_developable(pattern: CreasePattern, tol: float = DEVELOPABLE_TOL) -> 
             )
 
 
-def _resolve(frames: list[dict], k: int, key: Mapping[str, Any], seen: tuple[int, ...] = ()) -> Mapping[str, Any]:
-    """Frame k (0: the key frame, k > 0: file_frames[k - 1]) with the properties it inherits."""
-    if k == 0:
-        return key
-    frame = frames[k - 1]
-    if frame.get("frame_inherit") is not True:
-        return frame
-    parent = frame.get("frame_parent", 0)  # no frame_parent: the key frame
-    if type(parent) is not int or not 0 <= parent <= len(frames) or parent in (*seen, k):
-        raise ParameterError(
-            f"frame {k} inherits from frame_parent = {parent!r}; it must name a frame in [0, {len(frames)}] "
-            "without an inheritance cycle"
-        )
-    return {**_resolve(frames, parent, key, (*seen, k)), **frame}
+def _resolve_all(frames: list[dict], key: Mapping[str, Any]) -> list[Mapping[str, Any]]:
+    """Every file_frames entry with the properties it inherits (frame_inherit; no frame_parent: the key frame)."""
+    done: dict[int, Mapping[str, Any]] = {0: key}
+    for start in range(1, len(frames) + 1):
+        chain, k, seen = [], start, set()
+        while k not in done:
+            frame = frames[k - 1]
+            chain.append((k, frame))
+            if frame.get("frame_inherit") is not True:
+                done[k] = frame
+                chain.pop()
+                break
+            parent = frame.get("frame_parent", 0)
+            if type(parent) is not int or not 0 <= parent <= len(frames) or parent in seen or parent == k:
+                raise ParameterError(
+                    f"frame {k} inherits from frame_parent = {parent!r}; it must name a frame in [0, "
+                    f"{len(frames)}] without an inheritance cycle"
+                )
+            seen.add(k)
+            k = parent
+        for j, frame in reversed(chain):
+            done[j] = {**done[k], **frame}
+            k = j
+    return [done[k] for k in range(1, len(frames) + 1)]
 
 
 def _is_crease_pattern(frame: Mapping[str, Any]) -> bool:

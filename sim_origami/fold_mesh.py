@@ -332,7 +332,11 @@ def dihedral_angles(
     n = normals / length[:, None]
     h = np.asarray(hinges, dtype=int)
     axis = xyz[h[:, 1]] - xyz[h[:, 0]]
-    axis /= np.linalg.norm(axis, axis=1)[:, None]
+    length = np.linalg.norm(axis, axis=1)
+    short = np.flatnonzero(length <= 1e-12 * np.sqrt(scale))
+    if short.size:
+        raise ParameterError(f"{what}: crease {h[short[0], 0]}-{h[short[0], 1]} has no length in 3-D, so no axis")
+    axis /= length[:, None]
     left, right = n[h[:, 2]], n[h[:, 3]]
     rho = np.arctan2(np.einsum("ij,ij->i", np.cross(right, left), axis), np.einsum("ij,ij->i", right, left))
     near = np.pi - np.abs(rho) <= FLAT_FOLD_TOL

@@ -520,3 +520,17 @@ def test_any_field_replaced_reads_or_fails_cleanly(field, value, three_d):
         read_fold(doc)
     except ParameterError as err:
         assert "\n" not in str(err)
+
+
+def test_long_inheritance_chain_and_collapsed_frames():
+    doc = degree4()
+    doc["edges_foldAngle"] = [-30.0, 45.0, -30.0, 0.0, 0, 0, 0, 0]
+    doc["file_frames"] = [{"frame_inherit": True, "frame_parent": k} for k in range(3000)]
+    got = read_fold(doc)
+    assert got.frames.shape == (3000, 4)
+    np.testing.assert_allclose(got.frames[-1], np.deg2rad([-30.0, 45.0, -30.0, 0.0]))
+    doc = degree4()
+    doc["file_frames"] = [{"frame_inherit": True, "vertices_coords": [[0, 0, 0], [0, 0, 0], [0.2, 1, 0], [-1, 0, 0],
+                                                                      [0, -1, 0]]}]  # fmt: skip
+    with pytest.raises(ParameterError, match="frame 1 vertices_coords: face 0 has no area in 3-D"):
+        read_fold(doc)
