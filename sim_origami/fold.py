@@ -121,7 +121,7 @@ class _Sheet:
 
 
 class _FoldedFormError(Exception):
-    """The frame is a folded form that a crease-pattern frame should replace (message: why)."""
+    """The frame is a folded form that a crease-pattern frame should replace; args: (message, short reason)."""
 
 
 def read_fold(source: str | os.PathLike | Mapping[str, Any]) -> FoldPattern:
@@ -146,10 +146,10 @@ def read_fold(source: str | os.PathLike | Mapping[str, Any]) -> FoldPattern:
             geometry = key
         except _FoldedFormError as why:
             if other is None:
-                raise ParameterError(str(why)) from None
+                raise ParameterError(why.args[0]) from None
             geometry = other
             sheet = _read_sheet(geometry, label, prefer_frame=False)
-            sheet.notes.insert(0, f"the key frame is a folded form ({why}); the crease pattern is {label}")
+            sheet.notes.insert(0, f"the key frame is a folded form ({why.args[1]}); the crease pattern is {label}")
     else:
         pick = crease_frame if crease_frame is not None else next(
             (k for k, f in enumerate(frames) if "vertices_coords" in f), None)  # fmt: skip
@@ -530,9 +530,9 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
         rotation, worst, rms = fold_mesh.plane_fit(xyz)
         if worst <= fold_mesh.PLANE_RTOL * extent:
             flat, xy = True, (xyz @ rotation.T)[:, :2]
-            normal = rotation.T @ [0.0, 0.0, 1.0]
-            notes.append(f"{label} lies in the plane of normal ({normal[0]:.6g}, {normal[1]:.6g}, {normal[2]:.6g}) "
-                         f"(rms {rms / extent:.2g}, largest {worst / extent:.2g} of the sheet's size off it), "
+            normal = np.round(rotation.T @ [0.0, 0.0, 1.0], 12) + 0.0
+            notes.append(f"the sheet ({label}) lies in the plane of normal ({normal[0]:.6g}, {normal[1]:.6g}, "
+                         f"{normal[2]:.6g}) (rms {rms / extent:.2g}, largest {worst / extent:.2g} of the sheet's size off it), "
                          "turned into XY")  # fmt: skip
     if faces is None:
         if not flat:
@@ -548,7 +548,7 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
         notes.append("no edges_assignment: edges of one face read as B, of two faces as U")
     _check_incidence(edges, letters, faces)
     if not flat and prefer_frame:
-        raise _FoldedFormError(f"{label} are 3-D")
+        raise _FoldedFormError(f"{label} are 3-D", "3-D")
     file_faces = faces
     below = flat and _check_areas(faces, xy, "file unit^2").sum() < 0  # the file's faces clockwise (by area)
     by_side = fold_mesh.side_faces(faces)  # undirected side -> faces on it, the same after orienting
@@ -560,7 +560,8 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
             raise _FoldedFormError(
                 f"{label} lie in one plane but faces {f} and {g}, given one normal, face opposite ways: a flat-folded "
                 "form, whose +-180 deg folds and their order cannot be read without a crease pattern; add the crease "
-                "pattern as a file_frames entry with frame_classes creasePattern"
+                "pattern as a file_frames entry with frame_classes creasePattern",
+                "folded flat, faces overlapping",
             )
         if not positive[0]:
             faces = [reverse(face) for face in faces]
