@@ -531,9 +531,11 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
         if worst <= fold_mesh.PLANE_RTOL * extent:
             flat, xy = True, (xyz @ rotation.T)[:, :2]
             normal = np.round(rotation.T @ [0.0, 0.0, 1.0], 12) + 0.0
-            notes.append(f"the sheet ({label}) lies in the plane of normal ({normal[0]:.6g}, {normal[1]:.6g}, "
-                         f"{normal[2]:.6g}) (rms {rms / extent:.2g}, largest {worst / extent:.2g} of the sheet's size off it), "
-                         "turned into XY")  # fmt: skip
+            n0, n1, n2 = normal
+            notes.append(
+                f"the sheet ({label}) lies in the plane of normal ({n0:.6g}, {n1:.6g}, {n2:.6g}) (rms "
+                f"{rms / extent:.2g}, largest {worst / extent:.2g} of the sheet's size off it), turned into XY"
+            )
     if faces is None:
         if not flat:
             raise ParameterError(
