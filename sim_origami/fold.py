@@ -5,9 +5,10 @@ Reading (`read_fold`, table in docs/fold_files.md). A file becomes a flat `Creas
 the value and the rule. `FoldPattern.notes` says, one sentence each, what the reader did to the file.
 
 Which geometry. The key frame (top level) is the crease pattern when its vertices_coords lie in one plane with
-no face overlapping another. Otherwise the file_frames entry of frame_classes "creasePattern" is (the key frame's
-coordinates then give the fold angles), else, when the top level has no coordinates (Origami Simulator's exports),
-the first frame; a key frame in 3-D with no crease-pattern frame is a folded form and is unfolded (below).
+no face overlapping another. Otherwise the file_frames entry of frame_classes "creasePattern" is, else the key
+frame's vertices_flatUnfoldCoords (Crease Pattern Editor), and the key frame's coordinates give the fold angles;
+when the top level has no coordinates (Origami Simulator's exports) the first frame with coordinates is; a key
+frame in 3-D with neither is a folded form and is unfolded (below).
 
 Planes and sizes. Coordinates are 2-D or 3-D. A 3-D sheet is flat when no vertex lies further than
 `fold_mesh.PLANE_RTOL` of its size (bounding-box diagonal) from its best plane (SVD); it is turned into XY by the
@@ -38,7 +39,9 @@ Fold angles. `edges_foldAngle` (deg, in [-180, 180]; null on a crease = unknown,
 read). A folded form (3-D vertices_coords) gives the dihedral angles between its faces' normals; within
 `fold_mesh.FLAT_FOLD_TOL` of +-180 deg the M/V letter gives the sign. Folded forms are unfolded breadth-first over
 the faces by their own edge lengths and angles (`fold_mesh.unfold`), and refused when the faces do not fit one
-flat sheet. Flat-folded forms (faces overlapping in one plane) need a crease-pattern frame.
+flat sheet: a vertex placed twice lands more than `fold_mesh.DEVELOP_RTOL` of the size apart, or 10 print steps
+for coordinates rounded to at most 1e-5 of the size (`fold_mesh.develop_tolerance`). Flat-folded forms (faces
+overlapping in one plane) need a crease-pattern frame.
 
 Frames. Each entry of `file_frames` gives one row of fold angles: its own edges_foldAngle, else the dihedral angles
 of its own vertices_coords (Origami Simulator's exports), else what it inherits (`frame_inherit`; without
