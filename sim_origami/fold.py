@@ -23,7 +23,9 @@ Signs and sides. FOLD's counter-clockwise face order gives each face its normal 
 into each other, so for faces counter-clockwise seen from +z FOLD's M/V and fold-angle signs are those of
 `sim_origami.creases` (rho > 0 valley seen from +z). Faces are first given one orientation over the whole
 sheet (each shared side run both ways); when the file's faces run clockwise (most of the area, seen from +z)
-the paper is seen from -z, so M and V swap and fold angles change sign.
+the paper is seen from -z, so M and V swap and fold angles change sign. Angles measured from coordinates follow
+the faces' loops; when most M/V creases measured clearly folded have the other letter's sign, the file's loops run
+for the other side of the paper than its letters (the FOLD examples' box.fold), so M and V are read swapped.
 
 Faces. `faces_vertices`, else `faces_edges`, else the faces of the planar edge graph (`fold_mesh.planar_faces`).
 Faces must be simple polygons of non-zero area; they may be non-convex. Every face side must be an edge, a "B"
@@ -57,7 +59,7 @@ import json
 import os
 from collections import Counter
 from collections.abc import Iterator, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -121,6 +123,7 @@ class _Sheet:
     unit_scale: float
     folded_xyz: NDArray[np.float64] | None  # the frame's own 3-D coordinates when it was a folded form
     notes: list[str] = field(default_factory=list)
+    measured: list[NDArray[np.float64]] = field(default_factory=list)  # fold angles measured from coordinates
 
 
 class _FoldedFormError(Exception):
@@ -163,8 +166,16 @@ def read_fold(source: str | os.PathLike | Mapping[str, Any]) -> FoldPattern:
         sheet = _read_sheet(geometry, f"frame {pick + 1}", prefer_frame=False)
         why = "frame_classes creasePattern" if pick == crease_frame else "the first frame with vertices_coords"
         sheet.notes.insert(0, f"the top level has no vertices_coords; the crease pattern is frame {pick + 1} ({why})")
-    fold_angles = _key_angles(key, geometry, sheet)
-    rows, from_coords = _frame_angles(raw, frames, sheet)
+    n_notes = len(sheet.notes)
+    fold_angles, rows, from_coords = _angles(key, geometry, raw, frames, sheet)
+    agree, disagree = _letter_agreement(sheet)
+    if disagree > agree:  # the faces' loops are oriented for the other side of the paper than its letters
+        del sheet.notes[n_notes:]
+        sheet = _swap_letters(sheet)
+        sheet.notes.append(f"the M/V letters disagree with the measured fold directions at {disagree} of "
+                           f"{agree + disagree} creases: the file's faces run for the other side of the paper, "
+                           "so M and V are read swapped")  # fmt: skip
+        fold_angles, rows, from_coords = _angles(key, geometry, raw, frames, sheet)
     return FoldPattern(
         sheet.pattern, fold_angles, sheet.edge_of_crease, rows, from_coords, tuple(sheet.notes), sheet.unit_scale
     )
@@ -644,7 +655,40 @@ def _measured(sheet: _Sheet, value: Any, field: str) -> NDArray[np.float64]:
     xyz, _ = _coords(value, field)
     if len(xyz) != sheet.n_file_vertices:
         raise ParameterError(f"{field} has {len(xyz)} vertices; the crease pattern has {sheet.n_file_vertices}")
-    return fold_mesh.dihedral_angles(xyz[sheet.source], list(sheet.pattern.faces), sheet.hinges, sheet.signs, field)
+    return _dihedral(sheet, xyz, field)
+
+
+def _dihedral(sheet: _Sheet, xyz: NDArray[np.float64], field: str) -> NDArray[np.float64]:
+    rho = fold_mesh.dihedral_angles(xyz[sheet.source], list(sheet.pattern.faces), sheet.hinges, sheet.signs, field)
+    sheet.measured.append(rho)
+    return rho
+
+
+def _angles(
+    key: Mapping[str, Any], geometry: Mapping[str, Any], raw: list[dict], frames: list[Mapping[str, Any]], sheet: _Sheet
+) -> tuple[NDArray[np.float64] | None, NDArray[np.float64] | None, bool]:
+    """The key frame's fold angles, the frames' and whether some were measured from coordinates."""
+    sheet.measured.clear()
+    return (_key_angles(key, geometry, sheet), *_frame_angles(raw, frames, sheet))
+
+
+def _letter_agreement(sheet: _Sheet) -> tuple[int, int]:
+    """How many measured fold angles of M/V creases, clearly folded (neither flat nor +-pi), have their letter's
+    sign and how many the other."""
+    agree = disagree = 0
+    for rho in sheet.measured:
+        clear = (np.abs(rho) > fold_mesh.FLAT_FOLD_TOL) & (np.pi - np.abs(rho) > fold_mesh.FLAT_FOLD_TOL)
+        clear &= sheet.signs != 0
+        same = np.sign(rho[clear]) == sheet.signs[clear]
+        agree, disagree = agree + int(same.sum()), disagree + int((~same).sum())
+    return agree, disagree
+
+
+def _swap_letters(sheet: _Sheet) -> _Sheet:
+    """The sheet with M and V swapped (the paper read from the other side of its letters)."""
+    swap = {"M": "V", "V": "M"}
+    creases = tuple(replace(c, assignment=swap.get(c.assignment, c.assignment)) for c in sheet.pattern.creases)
+    return replace(sheet, pattern=replace(sheet.pattern, creases=creases), signs=-sheet.signs)
 
 
 def _key_angles(key: Mapping[str, Any], geometry: Mapping[str, Any], sheet: _Sheet) -> NDArray[np.float64] | None:
@@ -657,8 +701,7 @@ def _key_angles(key: Mapping[str, Any], geometry: Mapping[str, Any], sheet: _She
         return sheet.sign * _degrees(key["edges_foldAngle"], sheet.edge_of_crease, n_edges, "edges_foldAngle")
     if sheet.folded_xyz is not None:
         sheet.notes.append("fold angles measured as the dihedral angles of the folded form")
-        return fold_mesh.dihedral_angles(sheet.folded_xyz[sheet.source], list(sheet.pattern.faces), sheet.hinges,
-                                         sheet.signs, "vertices_coords")  # fmt: skip
+        return _dihedral(sheet, sheet.folded_xyz, "vertices_coords")
     if key is not geometry and "vertices_coords" in key:
         sheet.notes.append("fold angles measured as the dihedral angles of the key frame's vertices_coords")
         return _measured(sheet, key["vertices_coords"], "vertices_coords")
