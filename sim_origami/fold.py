@@ -126,8 +126,12 @@ class _Sheet:
     measured: list[NDArray[np.float64]] = field(default_factory=list)  # fold angles measured from coordinates
 
 
-class _FoldedFormError(Exception):
-    """The frame is a folded form that a crease-pattern frame should replace; args: (message, short reason)."""
+class _FoldedFormError(ParameterError):
+    """A folded form that a crease-pattern frame, when the file has one, replaces; `short`: why, in a few words."""
+
+    def __init__(self, message: str, short: str):
+        super().__init__(message)
+        self.short = short
 
 
 def read_fold(source: str | os.PathLike | Mapping[str, Any]) -> FoldPattern:
@@ -141,21 +145,23 @@ def read_fold(source: str | os.PathLike | Mapping[str, Any]) -> FoldPattern:
     frames = _resolve_all(raw, key)
     crease_frame = next((k for k, f in enumerate(frames) if _is_crease_pattern(f)), None)
     if crease_frame is not None:
-        other, label = frames[crease_frame], f"frame {crease_frame + 1} (frame_classes creasePattern)"
+        other, label = frames[crease_frame], f"frame {crease_frame + 1} vertices_coords"
+        where = f"frame {crease_frame + 1} (frame_classes creasePattern)"
     elif "vertices_flatUnfoldCoords" in key:  # Crease Pattern Editor's flat folds carry their unfolding
-        other, label = {**key, "vertices_coords": key["vertices_flatUnfoldCoords"]}, "vertices_flatUnfoldCoords"
+        other = {**key, "vertices_coords": key["vertices_flatUnfoldCoords"]}
+        label = where = "vertices_flatUnfoldCoords"
     else:
-        other, label = None, ""
+        other, label, where = None, "", ""
     if "vertices_coords" in key:
         try:
             sheet = _read_sheet(key, "vertices_coords", prefer_frame=other is not None)
             geometry = key
         except _FoldedFormError as why:
             if other is None:
-                raise ParameterError(why.args[0]) from None
+                raise
             geometry = other
             sheet = _read_sheet(geometry, label, prefer_frame=False)
-            sheet.notes.insert(0, f"the key frame is a folded form ({why.args[1]}); the crease pattern is {label}")
+            sheet.notes.insert(0, f"the key frame is a folded form ({why.short}); the crease pattern is {where}")
     else:
         pick = crease_frame if crease_frame is not None else next(
             (k for k, f in enumerate(frames) if "vertices_coords" in f), None)  # fmt: skip
@@ -163,7 +169,7 @@ def read_fold(source: str | os.PathLike | Mapping[str, Any]) -> FoldPattern:
             raise ParameterError("FOLD field 'vertices_coords' is missing from the key frame and every file_frames "
                                  "entry; a crease pattern needs vertex coordinates")  # fmt: skip
         geometry = frames[pick]
-        sheet = _read_sheet(geometry, f"frame {pick + 1}", prefer_frame=False)
+        sheet = _read_sheet(geometry, f"frame {pick + 1} vertices_coords", prefer_frame=False)
         why = "frame_classes creasePattern" if pick == crease_frame else "the first frame with vertices_coords"
         sheet.notes.insert(0, f"the top level has no vertices_coords; the crease pattern is frame {pick + 1} ({why})")
     n_notes = len(sheet.notes)

@@ -510,11 +510,22 @@ FIELDS = ["vertices_coords", "edges_vertices", "edges_assignment", "faces_vertic
           "edges_foldAngle", "file_frames", "frame_unit", "frame_classes", "edges_sim_origami:hingeHeight"]  # fmt: skip
 
 
-@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(st.sampled_from(FIELDS), JSON, st.booleans())
-def test_any_field_replaced_reads_or_fails_cleanly(field, value, three_d):
-    doc = copy.deepcopy(degree4(3 if three_d else 2))
-    doc[field] = value
+BASES = {
+    "degree4": degree4(),
+    "degree4-3d": degree4(3),
+    "simple-folded": simple_fold(),
+    "origami-simulator": origami_simulator_series([0.0, 90.0]),
+    "letters-only": miura_letters_only(2, 2),
+}
+
+
+@settings(max_examples=400, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.sampled_from(sorted(BASES)), st.sampled_from(FIELDS), JSON, st.integers(-1, 3))
+def test_any_field_replaced_reads_or_fails_cleanly(base, field, value, frame):
+    doc = copy.deepcopy(BASES[base])
+    frames = doc.get("file_frames", [])
+    target = frames[frame] if 0 <= frame < len(frames) else doc  # a field of one frame, or of the top level
+    target[field] = value
     json.dumps(doc)  # still a JSON document
     try:
         read_fold(doc)
@@ -569,3 +580,9 @@ def test_box_fold_letters_read_for_the_side_they_describe():
     assert len(rho) == 58 and all((r > 0) == (a == "V") for r, a in zip(rho, mv, strict=True))
     assert "disagree with the measured fold directions at 19 of 19 creases" in got.notes[1]
     np.testing.assert_allclose(np.unique(np.round(np.abs(np.rad2deg(rho)), 9)), [45.0, 90.0, 135.0, 180.0])
+
+
+def test_first_frame_folded_flat_is_refused_cleanly():
+    # An Origami Simulator series started at 100 %: its first frame is folded flat, so no crease pattern is known.
+    with pytest.raises(ParameterError, match=r"frame 1 vertices_coords lie in one plane .* a flat-folded form"):
+        read_fold(origami_simulator_series([180.0, 90.0]))
