@@ -623,7 +623,7 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
                 fold_index.append(k)
     joins = [(k, renamed(by_side[key(*e)][0][0], *e)) for k, e in enumerate(edges) if letters[k] == "J"]
     if joins:
-        faces, _ = fold_mesh.merge_joins(faces, joins)
+        faces = fold_mesh.merge_joins(faces, joins)
         notes.append(f"{len(joins)} join edge(s) merged their faces: {len(file_faces)} faces became {len(faces)}")
     if cuts or joins:
         _check_incidence(new_edges, new_letters, faces)

@@ -272,11 +272,8 @@ def split_cuts(
     return out, np.asarray(source, dtype=int), new_of
 
 
-def merge_joins(faces: list[Face], joins: list[tuple[int, tuple[int, int]]]) -> tuple[list[Face], list[int]]:
-    """
-    Joined faces become one polygon: the loops of the two faces on a join edge (k, (a, b)) spliced along it.
-    Returns the merged faces and, per merged face, the first file face it came from.
-    """
+def merge_joins(faces: list[Face], joins: list[tuple[int, tuple[int, int]]]) -> list[Face]:
+    """Joined faces become one polygon: the loops of the two faces on a join edge (k, (a, b)) spliced along it."""
     alive = dict(enumerate(faces))
     owner = {side: f for f, face in alive.items() for side in sides(face)}
     for k, (a, b) in joins:
@@ -296,8 +293,7 @@ def merge_joins(faces: list[Face], joins: list[tuple[int, tuple[int, int]]]) -> 
         alive[f] = merged
         for side in sides(merged):
             owner[side] = f
-    keys = sorted(alive)
-    return [alive[f] for f in keys], keys
+    return [alive[f] for f in sorted(alive)]
 
 
 def face_normals(xyz: NDArray[np.float64], faces: list[Face]) -> NDArray[np.float64]:
