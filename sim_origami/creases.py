@@ -25,15 +25,16 @@ from numpy.typing import NDArray
 
 from .closure import Coupling, Loop, LoopSystem
 from .errors import ParameterError
-from .geometry import frame_along, invert
+from .geometry import frame_along, frames_along, invert
 from .graph import spanning_edges
 
-ASSIGNMENTS = ("M", "V", "U")
+# M mountain, V valley, U unassigned (free), F flat (a crease present but meant to stay unfolded).
+ASSIGNMENTS = ("M", "V", "U", "F")
 
 
 @dataclass(frozen=True)
 class Crease:
-    """A hinge between two faces; `assignment` M (mountain), V (valley) or U (unassigned)."""
+    """A hinge between two faces; `assignment` M (mountain), V (valley), U (unassigned) or F (stays flat)."""
 
     name: str
     start: int
@@ -61,7 +62,7 @@ class CreasePattern:
             raise ParameterError(f"{len(self.face_names)} face names for {len(self.faces)} faces")
         for crease in self.creases:
             if crease.assignment not in ASSIGNMENTS:
-                raise ParameterError(f"crease {crease.name!r} has assignment {crease.assignment!r}; use M, V or U")
+                raise ParameterError(f"crease {crease.name!r} has assignment {crease.assignment!r}; use M, V, U or F")
             self.crease_faces(crease)
 
     @cached_property
@@ -76,11 +77,35 @@ class CreasePattern:
                 out[a, b] = f
         return out
 
+    @cached_property
+    def _by_name(self) -> dict[str, Crease]:
+        return {c.name: c for c in reversed(self.creases)}
+
+    @cached_property
+    def _crease_of_edge(self) -> dict[tuple[int, int], int]:
+        """(smaller, larger vertex) -> index of the crease along that edge."""
+        return {(min(c.start, c.end), max(c.start, c.end)): k for k, c in enumerate(self.creases)}
+
+    @cached_property
+    def _out_edges(self) -> dict[int, list[int]]:
+        """Vertex a -> the vertices b of the directed face sides a -> b (each face side indexed once)."""
+        out: dict[int, list[int]] = {}
+        for a, b in self._edge_face:
+            out.setdefault(a, []).append(b)
+        return out
+
+    @cached_property
+    def _interior(self) -> tuple[int, ...]:
+        into: dict[int, set[int]] = {}
+        for a, b in self._edge_face:
+            into.setdefault(b, set()).add(a)
+        return tuple(v for v in range(len(self.vertices))
+                     if v in self._out_edges and set(self._out_edges[v]) == into.get(v))  # fmt: skip
+
     def crease(self, name: str) -> Crease:
         """The crease called `name`; ParameterError listing the names otherwise."""
-        for crease in self.creases:
-            if crease.name == name:
-                return crease
+        if name in self._by_name:
+            return self._by_name[name]
         raise ParameterError(f"unknown crease {name!r}; creases are {[c.name for c in self.creases]}")
 
     def crease_faces(self, crease: Crease) -> tuple[str, str]:
@@ -110,10 +135,13 @@ class CreasePattern:
 
     def edge_heights(self, face: int) -> NDArray[np.float64]:
         """Hinge height (m) on each edge of face `face` (edge i from its vertex i to i+1); NaN on a free border."""
-        known = {frozenset((c.start, c.end)): c.height for c in self.creases}
-        known |= {frozenset((a, b)): h for a, b, h in self.border_heights}
         loop = self.faces[face]
-        return np.array([known.get(frozenset(e), np.nan) for e in zip(loop, loop[1:] + loop[:1], strict=True)])
+        return np.array([self._heights.get(frozenset(e), np.nan) for e in zip(loop, loop[1:] + loop[:1], strict=True)])
+
+    @cached_property
+    def _heights(self) -> dict[frozenset, float]:
+        known = {frozenset((c.start, c.end)): c.height for c in self.creases}
+        return known | {frozenset((a, b)): h for a, b, h in self.border_heights}
 
     def touching_faces(self) -> tuple[tuple[str, str], ...]:
         """Pairs of faces that share a vertex (so touch in every pose), sorted by face order."""
@@ -133,35 +161,46 @@ class CreasePattern:
 
     def interior_vertices(self) -> tuple[int, ...]:
         """Vertices that faces surround completely; each is a loop of the creases meeting there."""
-        out = []
-        for v in range(len(self.vertices)):
-            out_edges = {b for (a, b) in self._edge_face if a == v}
-            in_edges = {a for (a, b) in self._edge_face if b == v}
-            if out_edges and out_edges == in_edges:
-                out.append(v)
-        return tuple(out)
+        return self._interior
 
     def vertex_creases(self, v: int) -> list[tuple[int, NDArray[np.float64]]]:
         """(crease index, outward unit direction) of the creases at interior vertex v, counter-clockwise."""
-        by_edge = {frozenset((c.start, c.end)): k for k, c in enumerate(self.creases)}
-        out = []
-        for (a, b), _ in self._edge_face.items():
-            if a != v:
-                continue
-            k = by_edge.get(frozenset((a, b)))
-            if k is None:
-                raise ParameterError(f"edge {a}-{b} at interior vertex {v} joins two faces but is not a crease")
-            d = self.vertices[b] - self.vertices[a]
-            out.append((k, np.array([*d, 0.0]) / np.linalg.norm(d)))
-        return sorted(out, key=lambda kd: np.arctan2(kd[1][1], kd[1][0]))
+        ks, d, _ = self._around((v,))
+        return list(zip(ks.tolist(), d, strict=True))
+
+    def _around(self, vertices: tuple[int, ...]) -> tuple[NDArray[np.int_], NDArray[np.float64], NDArray[np.int_]]:
+        """
+        The creases round each of `vertices`, counter-clockwise, listed vertex after vertex: crease indices,
+        outward unit directions (n, 3) and how many round each vertex.
+        """
+        counts = np.array([len(self._out_edges.get(v, ())) for v in vertices], dtype=int)
+        at = np.repeat(np.asarray(vertices, dtype=int), counts)
+        ends = np.fromiter((b for v in vertices for b in self._out_edges.get(v, ())), dtype=int, count=len(at))
+        ks = [self._crease_of_edge.get((min(a, b), max(a, b))) for a, b in zip(at.tolist(), ends.tolist(), strict=True)]
+        if None in ks:
+            a, b = at[ks.index(None)], ends[ks.index(None)]
+            raise ParameterError(f"edge {a}-{b} at interior vertex {a} joins two faces but is not a crease")
+        d = np.zeros((len(at), 3))
+        d[:, :2] = self.vertices[ends] - self.vertices[at]
+        d /= np.sqrt(d[:, None, :] @ d[:, :, None])[:, 0]  # rounded as np.linalg.norm of each row
+        order = np.lexsort((np.arctan2(d[:, 1], d[:, 0]), np.repeat(np.arange(len(vertices)), counts)))
+        return np.asarray(ks, dtype=int)[order], d[order], counts
 
     def loop_system(self, couplings: tuple[Coupling, ...] = ()) -> LoopSystem:
         """One PoE closure per interior vertex over the crease angles (in `creases` order)."""
-        loops = []
-        for v in self.interior_vertices():
-            around = self.vertex_creases(v)
-            frames = [frame_along(d, (*self.vertices[v], self.creases[k].height)) for k, d in around]
-            n = len(frames)
-            links = np.stack([invert(frames[i]) @ frames[(i + 1) % n] for i in range(n)])
-            loops.append(Loop(tuple(k for k, _ in around), links, (1,) * n))
-        return LoopSystem(len(self.creases), tuple(loops), couplings)
+        interior = self.interior_vertices()
+        if not interior:
+            return LoopSystem(len(self.creases), (), couplings)
+        # every hinge frame and link at once (the same numbers as vertex by vertex)
+        ks, d, lengths = self._around(interior)
+        heights = np.array([c.height for c in self.creases])[ks]
+        frames = frames_along(d, np.column_stack([np.repeat(self.vertices[list(interior)], lengths, axis=0), heights]))
+        group = np.repeat(np.arange(len(interior)), lengths)
+        starts = np.cumsum(lengths) - lengths
+        nxt = starts[group] + (np.arange(len(ks)) - starts[group] + 1) % lengths[group]
+        links = invert(frames) @ frames[nxt]
+        ks_list = ks.tolist()
+        loops = tuple(
+            Loop(tuple(ks_list[s : s + n]), links[s : s + n], (1,) * n) for s, n in zip(starts, lengths, strict=True)
+        )
+        return LoopSystem(len(self.creases), loops, couplings)

@@ -1,27 +1,53 @@
-"""FOLD 1.2 import and export of flat crease patterns (https://github.com/edemaine/fold, doc/spec.md).
+"""FOLD 1.2 import and export of crease patterns (the FOLD 1.2 specification, Demaine, Ku, Lang et al.).
 
-Units. Lengths are read in the key frame's `frame_unit` and converted to metres; "unit" (or no unit)
-has no physical meaning in FOLD and is read as metres. Files are written with `frame_unit` "m".
+Reading (`read_fold`, table in docs/fold_files.md). A file becomes a flat `CreasePattern` in the XY plane
+(metres, counter-clockwise faces) with fold angles; what is refused raises one ParameterError naming the field,
+the value and the rule. `FoldPattern.notes` says, one sentence each, what the reader did to the file.
+
+Which geometry. The key frame (top level) is the crease pattern when its vertices_coords lie in one plane with
+no face overlapping another. Otherwise the file_frames entry of frame_classes "creasePattern" is, else the key
+frame's vertices_flatUnfoldCoords (Crease Pattern Editor), and the key frame's coordinates give the fold angles;
+when the top level has no coordinates (Origami Simulator's exports) the first frame with coordinates is; a key
+frame in 3-D with neither is a folded form and is unfolded (below).
+
+Planes and sizes. Coordinates are 2-D or 3-D. A 3-D sheet is flat when no vertex lies further than
+`fold_mesh.PLANE_RTOL` of its size (bounding-box diagonal) from its best plane (SVD); it is turned into XY by the
+smallest rotation carrying the plane's normal (taken with z > 0, else y > 0, else x > 0) to +z, and its offset
+dropped. Every tolerance is relative to the size, so a 1 mm and a 1000-unit sheet read alike.
+
+Units. Lengths are in the geometry frame's `frame_unit` and converted to metres (`FoldPattern.unit_scale`);
+"unit" (or none) has no physical meaning in FOLD and is read as metres. Files are written with `frame_unit` "m".
 `edges_foldAngle` is in degrees in FOLD and in radians here (rho of `sim_origami.creases`).
 
-Signs and sides. FOLD's counter-clockwise face order gives each face its normal and a valley folds
-the normals into each other, so for faces counter-clockwise seen from +z FOLD's M/V and fold-angle
-signs are those of `sim_origami.creases` (rho > 0 valley seen from +z). Clockwise faces are reversed;
-when every face is clockwise the file's paper is seen from -z, so M and V swap and fold angles change
-sign. A file mixing both orientations is read as seen from +z.
+Signs and sides. FOLD's counter-clockwise face order gives each face its normal and a valley folds the normals
+into each other, so for faces counter-clockwise seen from +z FOLD's M/V and fold-angle signs are those of
+`sim_origami.creases` (rho > 0 valley seen from +z). Faces are first given one orientation over the whole
+sheet (each shared side run both ways); when the file's faces run clockwise (most of the area, seen from +z)
+the paper is seen from -z, so M and V swap and fold angles change sign. Angles measured from coordinates follow
+the faces' loops; when most M/V creases measured clearly folded have the other letter's sign, the file's loops run
+for the other side of the paper than its letters (the FOLD examples' box.fold), so M and V are read swapped.
 
-Geometry read. vertices_coords must be flat (2-D, or 3-D with one z; the sheet is moved to z = 0).
-Faces must be simple polygons of non-zero area; they may be non-convex. Every face side must be an
-edge, a "B" edge borders one face and a crease two. Each interior vertex must be developable (sector
-angles summing to 360 deg); Kawasaki and rigid foldability are checked elsewhere.
+Faces. `faces_vertices`, else `faces_edges`, else the faces of the planar edge graph (`fold_mesh.planar_faces`).
+Faces must be simple polygons of non-zero area; they may be non-convex. Every face side must be an edge, a "B"
+edge borders one face and every other edge two. Each interior vertex must be developable (sector angles summing
+to 360 deg); Kawasaki and rigid foldability are checked elsewhere.
 
-Assignments. M, V and U edges are creases of that assignment; F (a crease present but unfolded)
-becomes a "U" crease that is expected to stay flat (not enforced); B edges are the boundary.
-FOLD 1.2 cuts "C" and joins "J" are refused. Creases are named e<FOLD edge index>.
+Assignments (any case). M, V, U and F edges are creases of that assignment (U free, F meant to stay flat); B edges
+are the boundary; a cut C splits the paper (vertices along it are doubled, each side becomes a B edge); a join J
+merges its two faces into one polygon. Without edges_assignment, edges of one face are B and of two faces U.
+Creases are named e<FOLD edge index>.
 
-Frames. The key frame (top level) is the pattern; each entry of `file_frames` gives one row of fold
-angles from its own or inherited (`frame_inherit`, `frame_parent`) `edges_foldAngle`, and must keep the
-key frame's `edges_vertices`; other frame fields are not read.
+Fold angles. `edges_foldAngle` (deg, in [-180, 180]; null on a crease = unknown, NaN; entries on B edges are not
+read). A folded form (3-D vertices_coords) gives the dihedral angles between its faces' normals; within
+`fold_mesh.FLAT_FOLD_TOL` of +-180 deg the M/V letter gives the sign. Folded forms are unfolded breadth-first over
+the faces by their own edge lengths and angles (`fold_mesh.unfold`), and refused when the faces do not fit one
+flat sheet: a vertex placed twice lands more than `fold_mesh.DEVELOP_RTOL` of the size apart, or 10 print steps
+for coordinates rounded to at most 1e-5 of the size (`fold_mesh.develop_tolerance`). Flat-folded forms (faces
+overlapping in one plane) need a crease-pattern frame.
+
+Frames. Each entry of `file_frames` gives one row of fold angles: its own edges_foldAngle, else the dihedral angles
+of its own vertices_coords (Origami Simulator's exports), else what it inherits (`frame_inherit`; without
+`frame_parent` the parent is the key frame). Frames must keep the crease pattern's edges_vertices.
 
 Thick panels. The custom per-edge field `edges_sim_origami:hingeHeight` (FOLD's `edges_<namespace>:...`
 form for custom edge data, lengths in `frame_unit`) gives Crease.height along +z; absent means 0. On border
@@ -33,75 +59,131 @@ import json
 import os
 from collections import Counter
 from collections.abc import Iterator, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from . import fold_mesh
 from .creases import Crease, CreasePattern
 from .errors import ParameterError
 from .files import write_text
+from .fold_mesh import Face, key, reverse
 
 FILE_SPEC = 1.2
 HEIGHT_KEY = "edges_sim_origami:hingeHeight"
-REQUIRED = ("vertices_coords", "edges_vertices", "edges_assignment", "faces_vertices")
 # Metres per FOLD frame_unit; "unit" (no physical meaning) is read as metres.
-UNITS = {"unit": 1.0, "m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "nm": 1e-9, "in": 0.0254, "pt": 0.0254 / 72}
+UNITS = {
+    "unit": 1.0, "km": 1e3, "m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "nm": 1e-9, "in": 0.0254, "pt": 0.0254 / 72,
+}  # fmt: skip
 # FOLD assignment -> crease assignment, seen from +z (UP) or from -z (DOWN: every face clockwise).
-UP = {"M": "M", "V": "V", "U": "U", "F": "U"}
-DOWN = {"M": "V", "V": "M", "U": "U", "F": "U"}
-REFUSED = {"C": "a cut (FOLD 1.2): split it into 'B' edges", "J": "a join (FOLD 1.2): merge the joined faces"}
+UP = {"M": "M", "V": "V", "U": "U", "F": "F"}
+DOWN = {"M": "V", "V": "M", "U": "U", "F": "F"}
+LETTERS = ("B", "M", "V", "F", "U", "C", "J")
 # Sector-angle sum at an interior vertex vs 2 pi (rad).
 DEVELOPABLE_TOL = 1e-9
-# A face is degenerate when |area| <= AREA_RTOL * (its longest side)^2.
+# A face is degenerate when |area| <= AREA_RTOL * (its longest side)^2; an edge when its length <= this * size.
 AREA_RTOL = 1e-12
-# z spread allowed in 3-D vertices_coords, relative to the sheet's extent in x and y.
-FLAT_RTOL = 1e-12
 
 
 @dataclass(frozen=True)
 class FoldPattern:
     """
-    A FOLD file read as a crease pattern. `fold_angles` (n_creases,) rad: the key frame's
-    edges_foldAngle, or None; `frames` (n_frames, n_creases) rad: one row per `file_frames` entry, or
-    None; both in `pattern.creases` order. `edge_of_crease`: the FOLD edge index of each crease.
+    A FOLD file read as a crease pattern. `fold_angles` (n_creases,) rad: the key frame's fold state (its
+    edges_foldAngle, or the dihedral angles of a folded form), NaN where unknown, or None; `frames`
+    (n_frames, n_creases) rad: one row per `file_frames` entry, or None; both in `pattern.creases` order.
+    `edge_of_crease`: the FOLD edge index of each crease. `frames_from_coords`: some frame's angles were
+    measured from its 3-D vertices_coords (whose panels may bend). `notes`: one sentence per thing the reader
+    did. `unit_scale`: metres per file unit.
     """
 
     pattern: CreasePattern
     fold_angles: NDArray[np.float64] | None
     edge_of_crease: tuple[int, ...]
     frames: NDArray[np.float64] | None
+    frames_from_coords: bool = False
+    notes: tuple[str, ...] = ()
+    unit_scale: float = 1.0
+
+
+@dataclass
+class _Sheet:
+    """A crease pattern read from one frame, with what is needed to measure other frames' fold angles."""
+
+    pattern: CreasePattern
+    edge_of_crease: tuple[int, ...]
+    source: NDArray[np.int_]  # file vertex of each pattern vertex
+    hinges: list[tuple[int, int, int, int]]  # per crease: start, end, left face, right face
+    signs: NDArray[np.float64]  # per crease: +1 V, -1 M, 0 otherwise (pattern's view)
+    sign: float  # -1 when the file is seen from -z
+    n_file_vertices: int
+    edges_vertices: Any
+    unit_scale: float
+    folded_xyz: NDArray[np.float64] | None  # the frame's own 3-D coordinates when it was a folded form
+    notes: list[str] = field(default_factory=list)
+    measured: list[NDArray[np.float64]] = field(default_factory=list)  # fold angles measured from coordinates
+
+
+class _FoldedFormError(ParameterError):
+    """A folded form that a crease-pattern frame, when the file has one, replaces; `short`: why, in a few words."""
+
+    def __init__(self, message: str, short: str):
+        super().__init__(message)
+        self.short = short
 
 
 def read_fold(source: str | os.PathLike | Mapping[str, Any]) -> FoldPattern:
     """Read a FOLD file (path) or its parsed JSON (mapping); the module docstring states the rules."""
     doc = _load(source)
-    for field in REQUIRED:
-        if field not in doc:
-            raise ParameterError(f"FOLD field {field!r} is missing; sim_origami needs {', '.join(REQUIRED)}")
-    scale = _unit_scale(doc.get("frame_unit", "unit"))
-    xy = _flat_coords(doc["vertices_coords"]) * scale
-    edges = _edges(doc["edges_vertices"], len(xy))
-    letters = _assignments(doc["edges_assignment"], len(edges))
-    faces, seen_from_below = _faces(doc["faces_vertices"], xy)
-    _check_incidence(edges, letters, faces)
-    heights = scale * _heights(doc[HEIGHT_KEY], letters) if HEIGHT_KEY in doc else np.zeros(len(edges))
-    table = DOWN if seen_from_below else UP
-    crease_edges = tuple(k for k, letter in enumerate(letters) if letter in table)
-    creases = tuple(Crease(f"e{k}", *edges[k], table[letters[k]], float(heights[k])) for k in crease_edges)
-    border = tuple((*edges[k], float(heights[k])) for k, letter in enumerate(letters)
-                   if letter == "B" and np.isfinite(heights[k]))  # fmt: skip
-    pattern = CreasePattern(xy, tuple(faces), creases, tuple(f"f{k}" for k in range(len(faces))), border)
-    _check_developable(pattern)
-    sign = -1.0 if seen_from_below else 1.0
-    angles = _degrees(doc["edges_foldAngle"], len(edges), "edges_foldAngle") if "edges_foldAngle" in doc else None
+    key = {name: value for name, value in doc.items() if not name.startswith("file_")}
+    raw = _list(doc.get("file_frames", []), "file_frames")
+    for k, frame in enumerate(raw):
+        if not isinstance(frame, dict):
+            raise ParameterError(f"file_frames[{k}] is a {type(frame).__name__}; a frame is a JSON object")
+    frames = _resolve_all(raw, key)
+    crease_frame = next((k for k, f in enumerate(frames) if _is_crease_pattern(f)), None)
+    if crease_frame is not None:
+        other, label = frames[crease_frame], f"frame {crease_frame + 1} vertices_coords"
+        where = f"frame {crease_frame + 1} (frame_classes creasePattern)"
+    elif "vertices_flatUnfoldCoords" in key:  # Crease Pattern Editor's flat folds carry their unfolding
+        other = {**key, "vertices_coords": key["vertices_flatUnfoldCoords"]}
+        label = where = "vertices_flatUnfoldCoords"
+    else:
+        other, label, where = None, "", ""
+    if "vertices_coords" in key:
+        try:
+            sheet = _read_sheet(key, "vertices_coords", prefer_frame=other is not None)
+            geometry = key
+        except _FoldedFormError as why:
+            if other is None:
+                raise
+            geometry = other
+            sheet = _read_sheet(geometry, label, prefer_frame=False)
+            sheet.notes.insert(0, f"the key frame is a folded form ({why.short}); the crease pattern is {where}")
+    else:
+        pick = crease_frame if crease_frame is not None else next(
+            (k for k, f in enumerate(frames) if "vertices_coords" in f), None)  # fmt: skip
+        if pick is None:
+            raise ParameterError("FOLD field 'vertices_coords' is missing from the key frame and every file_frames "
+                                 "entry; a crease pattern needs vertex coordinates")  # fmt: skip
+        geometry = frames[pick]
+        sheet = _read_sheet(geometry, f"frame {pick + 1} vertices_coords", prefer_frame=False)
+        why = "frame_classes creasePattern" if pick == crease_frame else "the first frame with vertices_coords"
+        sheet.notes.insert(0, f"the top level has no vertices_coords; the crease pattern is frame {pick + 1} ({why})")
+    n_notes = len(sheet.notes)
+    fold_angles, rows, from_coords = _angles(key, geometry, raw, frames, sheet)
+    agree, disagree = _letter_agreement(sheet)
+    if disagree > agree:  # the faces' loops are oriented for the other side of the paper than its letters
+        del sheet.notes[n_notes:]
+        sheet = _swap_letters(sheet)
+        sheet.notes.append(f"the M/V letters disagree with the measured fold directions at {disagree} of "
+                           f"{agree + disagree} creases: the file's faces run for the other side of the paper, "
+                           "so M and V are read swapped")  # fmt: skip
+        fold_angles, rows, from_coords = _angles(key, geometry, raw, frames, sheet)
     return FoldPattern(
-        pattern,
-        None if angles is None else sign * angles[list(crease_edges)],
-        crease_edges,
-        _frame_angles(doc, crease_edges, sign),
+        sheet.pattern, fold_angles, sheet.edge_of_crease, rows, from_coords, tuple(sheet.notes), sheet.unit_scale
     )
 
 
@@ -177,6 +259,8 @@ def _load(source: str | os.PathLike | Mapping[str, Any]) -> Mapping[str, Any]:
         raise ParameterError(f"{source} is not JSON ({err}); a FOLD file is a JSON object") from err
     except OSError as err:
         raise ParameterError(f"cannot read FOLD file {source}: {err.strerror}") from err
+    except UnicodeDecodeError as err:
+        raise ParameterError(f"{source} is not UTF-8 text ({err.reason}); a FOLD file is JSON text") from err
     if not isinstance(doc, dict):
         raise ParameterError(f"{source} holds a JSON {type(doc).__name__}; a FOLD file is a JSON object")
     return doc
@@ -184,7 +268,7 @@ def _load(source: str | os.PathLike | Mapping[str, Any]) -> Mapping[str, Any]:
 
 def _unit_scale(unit: Any) -> float:
     """Metres per FOLD frame_unit."""
-    if unit not in UNITS:
+    if not isinstance(unit, str) or unit not in UNITS:
         raise ParameterError(f"frame_unit = {unit!r}; sim_origami reads {', '.join(UNITS)}")
     return UNITS[unit]
 
@@ -202,30 +286,37 @@ def _numbers(value: Any, field: str, allow_nan: bool = False) -> NDArray[np.floa
     return out
 
 
-def _per_edge(value: Any, n_edges: int, field: str) -> NDArray[np.float64]:
-    """A per-edge number field (n_edges,)."""
-    out = _numbers(value, field)
+def _per_edge(value: Any, n_edges: int, field: str, allow_null: bool = False) -> NDArray[np.float64]:
+    """A per-edge number field (n_edges,); null entries are NaN when allowed."""
+    if allow_null and isinstance(value, list):
+        value = [np.nan if entry is None else entry for entry in value]
+    out = _numbers(value, field, allow_nan=allow_null)
     if out.shape != (n_edges,):
         raise ParameterError(f"{field} has shape {out.shape}; it needs one number per edge ({n_edges})")
     return out
 
 
 def _heights(value: Any, letters: list[str]) -> NDArray[np.float64]:
-    """The hinge-height field (n_edges,): numbers, null (NaN) allowed on border edges only."""
+    """The hinge-height field (n_edges,): numbers, null (NaN) allowed on border and cut edges only."""
     if not isinstance(value, list) or len(value) != len(letters):
         raise ParameterError(f"{HEIGHT_KEY} needs one entry per edge ({len(letters)})")
     for k, (entry, letter) in enumerate(zip(value, letters, strict=True)):
-        if entry is None and letter != "B":
+        if entry is None and letter not in ("B", "C", "J"):
             raise ParameterError(f"{HEIGHT_KEY}[{k}] is null on a {letter!r} edge; only border edges may have no hinge")
     return _numbers([np.nan if entry is None else entry for entry in value], HEIGHT_KEY, allow_nan=True)
 
 
-def _degrees(value: Any, n_edges: int, field: str) -> NDArray[np.float64]:
-    """A FOLD edges_foldAngle (deg, in [-180, 180]) as radians (n_edges,)."""
-    deg = _per_edge(value, n_edges, field)
+def _degrees(value: Any, creases: tuple[int, ...], n_edges: int, field: str) -> NDArray[np.float64]:
+    """
+    A FOLD edges_foldAngle (deg) as radians of the crease edges `creases`: null is NaN (unknown); crease entries
+    must lie in [-180, 180]; entries of other edges (borders, cuts) are not read.
+    """
+    deg = _per_edge(value, n_edges, field, allow_null=True)[list(creases)]
     bad = np.flatnonzero(np.abs(deg) > 180.0)
     if bad.size:
-        raise ParameterError(f"{field}[{bad[0]}] = {deg[bad[0]]:g} deg; FOLD fold angles lie in [-180, 180] deg")
+        raise ParameterError(
+            f"{field}[{creases[bad[0]]}] = {deg[bad[0]]:g} deg; FOLD fold angles lie in [-180, 180] deg"
+        )
     return np.deg2rad(deg)
 
 
@@ -235,24 +326,17 @@ def _list(value: Any, field: str) -> list:
     return value
 
 
-def _flat_coords(value: Any) -> NDArray[np.float64]:
-    """Vertex coordinates (n, 2) of a flat sheet: 2-D, or 3-D with every z equal (dropped)."""
-    rows = []
-    for v, c in enumerate(_list(value, "vertices_coords")):
+def _coords(value: Any, field: str) -> tuple[NDArray[np.float64], int]:
+    """Vertex coordinates as (n, 3) (2-D ones get z = 0) and their dimension (2 or 3)."""
+    rows, dim = [], 2
+    for v, c in enumerate(_list(value, field)):
         if not isinstance(c, list) or len(c) not in (2, 3):
-            raise ParameterError(f"vertices_coords[{v}] = {c!r}; a vertex has 2 or 3 coordinates")
+            raise ParameterError(f"{field}[{v}] = {c!r}; a vertex has 2 or 3 coordinates")
+        dim = max(dim, len(c))
         rows.append([*c, 0.0][:3])
-    xyz = _numbers(rows, "vertices_coords").reshape(-1, 3)
-    if len(xyz):
-        z, extent = xyz[:, 2], np.ptp(xyz[:, :2], axis=0).max()
-        off = np.flatnonzero(np.abs(z - z[0]) > FLAT_RTOL * extent)
-        if off.size:
-            v = off[0]
-            raise ParameterError(
-                f"vertex {v} has z = {z[v]:g} but vertex 0 has z = {z[0]:g}: vertices_coords must be flat "
-                "(2-D, or 3-D with all z equal)"
-            )
-    return xyz[:, :2].copy()
+    if not rows:
+        raise ParameterError(f"{field} is empty; a crease pattern needs vertices")
+    return _numbers(rows, field).reshape(-1, 3), dim
 
 
 def _vertex_lists(value: Any, field: str, n_vertices: int) -> list[tuple[int, ...]]:
@@ -269,78 +353,96 @@ def _vertex_lists(value: Any, field: str, n_vertices: int) -> list[tuple[int, ..
 def _edges(value: Any, n_vertices: int) -> list[tuple[int, int]]:
     """Edges as (u, v) of two distinct vertices; no two edges join the same pair."""
     edges = _vertex_lists(value, "edges_vertices", n_vertices)
-    first: dict[frozenset, int] = {}
+    first: dict[tuple[int, int], int] = {}
     for k, e in enumerate(edges):
         if len(e) != 2 or e[0] == e[1]:
             raise ParameterError(f"edges_vertices[{k}] = {list(e)}; an edge joins two distinct vertices")
-        other = first.setdefault(frozenset(e), k)
+        other = first.setdefault(key(*e), k)
         if other != k:
             raise ParameterError(f"edges {other} and {k} both join vertices {e[0]} and {e[1]}; edges must differ")
     return edges
 
 
-def _assignments(value: Any, n_edges: int) -> list[str]:
-    """FOLD assignment letters, one per edge: B, M, V, F or U."""
+def _assignments(value: Any, n_edges: int) -> list[str] | None:
+    """FOLD assignment letters, one per edge, in upper case: B, M, V, F, U, C or J (None when absent)."""
+    if value is None:
+        return None
     letters = _list(value, "edges_assignment")
     if len(letters) != n_edges:
         raise ParameterError(f"edges_assignment has {len(letters)} entries; it needs one per edge ({n_edges})")
+    out = []
     for k, letter in enumerate(letters):
-        if isinstance(letter, str) and letter in REFUSED:
-            raise ParameterError(f"edge {k} has assignment {letter!r}, {REFUSED[letter]}; sim_origami does not read it")
-        if letter not in ("B", *UP):
-            raise ParameterError(f"edge {k} has assignment {letter!r}; FOLD assignments are B, M, V, F, U (uppercase)")
-    return letters
+        if not isinstance(letter, str) or letter.upper() not in LETTERS:
+            raise ParameterError(
+                f"edge {k} has assignment {letter!r}; FOLD assignments are {', '.join(LETTERS)} (either case)"
+            )
+        out.append(letter.upper())
+    return out
 
 
-def _cross(a: NDArray, b: NDArray) -> NDArray:
-    """z of the cross product of 2-D vectors (..., 2)."""
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
-
-
-def _corner_angles(p: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Interior angles (rad, in [0, 2 pi)) at the corners of a counter-clockwise polygon (n, 2)."""
-    to_next, to_prev = np.roll(p, -1, axis=0) - p, np.roll(p, 1, axis=0) - p
-    return np.mod(np.arctan2(_cross(to_next, to_prev), np.sum(to_next * to_prev, axis=-1)), 2 * np.pi)
-
-
-def _segments_meet(p: NDArray, q: NDArray, r: NDArray, s: NDArray) -> bool:
-    """Whether the closed segments pq and rs share a point."""
-    d = (_cross(q - p, r - p), _cross(q - p, s - p), _cross(s - r, p - r), _cross(s - r, q - r))
-    if d[0] * d[1] < 0 and d[2] * d[3] < 0:
-        return True
-    ends = ((d[0], r, p, q), (d[1], s, p, q), (d[2], p, r, s), (d[3], q, r, s))
-    return any(o == 0 and np.all(np.minimum(a, b) <= x) and np.all(x <= np.maximum(a, b)) for o, x, a, b in ends)
-
-
-def _faces(value: Any, xy: NDArray[np.float64]) -> tuple[list[tuple[int, ...]], bool]:
-    """
-    Counter-clockwise simple faces, and whether every face was given clockwise (the file's paper
-    then seen from -z). Each clockwise face is reversed, keeping its first vertex.
-    """
-    faces = _vertex_lists(value, "faces_vertices", len(xy))
-    if not faces:
-        raise ParameterError("faces_vertices is empty; a crease pattern needs at least one face")
-    out, clockwise = [], 0
+def _file_faces(frame: Mapping[str, Any], edges: list[tuple[int, int]], n_vertices: int) -> list[Face] | None:
+    """faces_vertices, or faces_edges turned into vertex loops; None when the file has neither (or empty)."""
+    if frame.get("faces_vertices"):
+        faces = _vertex_lists(frame["faces_vertices"], "faces_vertices", n_vertices)
+    elif frame.get("faces_edges"):
+        loops = _vertex_lists(frame["faces_edges"], "faces_edges", len(edges))
+        faces = fold_mesh.faces_from_edges(loops, edges)
+    else:
+        return None
     for k, face in enumerate(faces):
         if len(face) < 3 or len(set(face)) != len(face):
             raise ParameterError(f"face {k} {list(face)} must list 3 or more distinct vertices")
-        p = xy[list(face)]
-        area = 0.5 * float(np.sum(_cross(p, np.roll(p, -1, axis=0))))
-        longest = float(np.max(np.sum((np.roll(p, -1, axis=0) - p) ** 2, axis=-1)))
-        if abs(area) <= AREA_RTOL * longest:
-            raise ParameterError(f"face {k} {list(face)} has area {area:.3g} m^2; faces must not be degenerate")
-        if area < 0:
-            face, clockwise = (face[0], *face[:0:-1]), clockwise + 1
-        _check_simple(k, face, xy[list(face)])
-        out.append(face)
-    return out, clockwise == len(faces)
+    return faces
 
 
-def _check_simple(k: int, face: tuple[int, ...], p: NDArray[np.float64]) -> None:
-    """A counter-clockwise face (vertices p) must be a simple polygon: no spike, no meeting sides."""
-    spikes = np.flatnonzero(_corner_angles(p) == 0.0)
+def _cross(a: tuple[float, float], b: tuple[float, float]) -> float:
+    """z of the cross product of 2-D vectors."""
+    return a[0] * b[1] - a[1] * b[0]
+
+
+def _segments_meet(p: tuple, q: tuple, r: tuple, s: tuple) -> bool:
+    """Whether the closed segments pq and rs (points as float pairs) share a point."""
+
+    def sub(a: tuple, b: tuple) -> tuple[float, float]:
+        return a[0] - b[0], a[1] - b[1]
+
+    d = (_cross(sub(q, p), sub(r, p)), _cross(sub(q, p), sub(s, p)), _cross(sub(s, r), sub(p, r)),
+         _cross(sub(s, r), sub(q, r)))  # fmt: skip
+    if d[0] * d[1] < 0 and d[2] * d[3] < 0:
+        return True
+    ends = ((d[0], r, p, q), (d[1], s, p, q), (d[2], p, r, s), (d[3], q, r, s))
+    return any(o == 0 and all(min(a[i], b[i]) <= x[i] <= max(a[i], b[i]) for i in (0, 1)) for o, x, a, b in ends)
+
+
+def _check_areas(faces: list[Face], xy: NDArray[np.float64], unit: str = "m^2") -> NDArray[np.float64]:
+    """Signed areas of the faces, each non-zero relative to its longest side squared."""
+    areas = fold_mesh.signed_areas(xy, faces)
+    f_of, v, nxt, _ = fold_mesh.corners(faces)
+    longest = np.zeros(len(faces))
+    np.maximum.at(longest, f_of, np.sum((xy[nxt] - xy[v]) ** 2, axis=1))
+    bad = np.flatnonzero(np.abs(areas) <= AREA_RTOL * longest)
+    if bad.size:
+        k = int(bad[0])
+        raise ParameterError(f"face {k} {list(faces[k])} has area {areas[k]:.3g} {unit}; faces must not be degenerate")
+    return areas
+
+
+def _check_faces(faces: list[Face], xy: NDArray[np.float64]) -> None:
+    """Counter-clockwise faces must have non-zero area and be simple polygons (no spike, no meeting sides)."""
+    _check_areas(faces, xy)
+    _, angles = fold_mesh.corner_angles(xy, faces)
+    spikes = np.flatnonzero(angles == 0.0)
     if spikes.size:
-        raise ParameterError(f"face {k} doubles back at vertex {face[spikes[0]]}; faces must be simple polygons")
+        f_of, v, _, _ = fold_mesh.corners(faces)
+        k = int(f_of[spikes[0]])
+        raise ParameterError(f"face {k} doubles back at vertex {v[spikes[0]]}; faces must be simple polygons")
+    for k, face in enumerate(faces):
+        if len(face) > 3:  # a triangle of non-zero area is simple
+            _check_simple(k, face, [tuple(p) for p in xy[list(face)].tolist()])
+
+
+def _check_simple(k: int, face: Face, p: list[tuple[float, float]]) -> None:
+    """A counter-clockwise face (vertices p) must not have two sides that meet."""
     n = len(face)
     for i in range(n):
         for j in range(i + 2, n - (i == 0)):
@@ -356,71 +458,289 @@ def _sides(face: tuple[int, ...]) -> Iterator[tuple[int, int]]:
     return zip(face, face[1:] + face[:1], strict=True)
 
 
-def _check_incidence(edges: list[tuple[int, int]], letters: list[str], faces: list[tuple[int, ...]]) -> None:
-    """Every face side is an edge; a boundary edge borders one face, a crease two."""
-    index = {frozenset(e) for e in edges}
-    count = Counter(frozenset(side) for face in faces for side in _sides(face))
+def _check_incidence(edges: list[tuple[int, int]], letters: list[str], faces: list[Face]) -> None:
+    """Every face side is an edge; a boundary edge borders one face, every other edge two."""
+    index = {key(*e) for e in edges}
+    count = Counter(key(*side) for face in faces for side in _sides(face))
     for f, face in enumerate(faces):
         for a, b in _sides(face):
-            if frozenset((a, b)) not in index:
+            if key(a, b) not in index:
                 raise ParameterError(f"side {a}-{b} of face {f} is not in edges_vertices; every face side is an edge")
     for k, (e, letter) in enumerate(zip(edges, letters, strict=True)):
-        n, need = count[frozenset(e)], 1 if letter == "B" else 2
+        n, need = count[key(*e)], 1 if letter == "B" else 2
         if n != need:
-            rule = "a boundary edge borders one face" if letter == "B" else "a crease joins two faces"
+            rule = {"B": "a boundary edge borders one face", "C": "a cut runs between two faces",
+                    "J": "a join merges two faces"}.get(letter, "a crease joins two faces")  # fmt: skip
             raise ParameterError(f"edge {k} ({e[0]}-{e[1]}, {letter!r}) borders {n} face(s); {rule}")
 
 
-def _check_developable(pattern: CreasePattern) -> None:
+def _check_developable(pattern: CreasePattern, tol: float = DEVELOPABLE_TOL) -> None:
     """
-    Sector angles round each interior vertex must sum to 2 pi within DEVELOPABLE_TOL. A flat fan closes
+    Sector angles round each interior vertex must sum to 2 pi within `tol` (rad). A flat fan closes
     at a multiple of 2 pi, so this catches a sheet wrapping round a vertex more than once.
     """
-    total = np.zeros(len(pattern.vertices))
-    for face in pattern.faces:
-        total[list(face)] += _corner_angles(pattern.vertices[list(face)])
+    v, angles = fold_mesh.corner_angles(pattern.vertices, list(pattern.faces))
+    total = np.bincount(v, weights=angles, minlength=len(pattern.vertices))
     for v in pattern.interior_vertices():
-        if abs(total[v] - 2 * np.pi) > DEVELOPABLE_TOL:
+        if abs(total[v] - 2 * np.pi) > tol:
             raise ParameterError(
                 f"interior vertex {v}: sector angles sum to {np.rad2deg(total[v]):.12g} deg; a developable "
-                f"vertex needs 360 deg (within {DEVELOPABLE_TOL:g} rad)"
+                f"vertex needs 360 deg (within {tol:.3g} rad)"
             )
 
 
-def _resolve(frames: list[dict], k: int, key: Mapping[str, Any], seen: tuple[int, ...] = ()) -> Mapping[str, Any]:
-    """Frame k (0: the key frame, k > 0: file_frames[k - 1]) with the properties it inherits."""
-    if k == 0:
-        return key
-    frame = frames[k - 1]
-    if frame.get("frame_inherit") is not True:
-        return frame
-    parent = frame.get("frame_parent")
-    if type(parent) is not int or not 0 <= parent <= len(frames) or parent in (*seen, k):
-        raise ParameterError(
-            f"frame {k} inherits from frame_parent = {parent!r}; it must name a frame in [0, {len(frames)}] "
-            "without an inheritance cycle"
-        )
-    return {**_resolve(frames, parent, key, (*seen, k)), **frame}
+def _resolve_all(frames: list[dict], key: Mapping[str, Any]) -> list[Mapping[str, Any]]:
+    """Every file_frames entry with the properties it inherits (frame_inherit; no frame_parent: the key frame)."""
+    done: dict[int, Mapping[str, Any]] = {0: key}
+    for start in range(1, len(frames) + 1):
+        chain, k, seen = [], start, set()
+        while k not in done:
+            frame = frames[k - 1]
+            chain.append((k, frame))
+            if frame.get("frame_inherit") is not True:
+                done[k] = frame
+                chain.pop()
+                break
+            parent = frame.get("frame_parent", 0)
+            if type(parent) is not int or not 0 <= parent <= len(frames) or parent in seen or parent == k:
+                raise ParameterError(
+                    f"frame {k} inherits from frame_parent = {parent!r}; it must name a frame in [0, "
+                    f"{len(frames)}] without an inheritance cycle"
+                )
+            seen.add(k)
+            k = parent
+        for j, frame in reversed(chain):
+            done[j] = {**done[k], **frame}
+            k = j
+    return [done[k] for k in range(1, len(frames) + 1)]
 
 
-def _frame_angles(doc: Mapping[str, Any], crease_edges: tuple[int, ...], sign: float) -> NDArray[np.float64] | None:
-    """Fold angles (n_frames, n_creases) rad of the file_frames entries, or None without file_frames."""
-    frames = _list(doc.get("file_frames", []), "file_frames")
+def _is_crease_pattern(frame: Mapping[str, Any]) -> bool:
+    classes = frame.get("frame_classes")
+    return isinstance(classes, list) and "creasePattern" in classes and "vertices_coords" in frame
+
+
+def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sheet:
+    """
+    The crease pattern of one frame (resolved). `prefer_frame`: a folded form raises _FoldedFormError (the caller
+    has a crease-pattern frame) instead of being unfolded; a flat-folded form always does.
+    """
+    notes: list[str] = []
+    scale = _unit_scale(frame.get("frame_unit", "unit"))
+    xyz, dim = _coords(frame["vertices_coords"], "vertices_coords")
+    n = len(xyz)
+    if "edges_vertices" not in frame:
+        raise ParameterError("FOLD field 'edges_vertices' is missing; a crease pattern needs its edges")
+    edges = _edges(frame["edges_vertices"], n)
+    letters = _assignments(frame.get("edges_assignment"), len(edges))
+    faces = _file_faces(frame, edges, n)
+    extent = fold_mesh.size(xyz)
+    if extent == 0.0:
+        raise ParameterError("vertices_coords are all one point; a crease pattern needs a sheet of non-zero size")
+    ends = np.asarray(edges, dtype=int).reshape(-1, 2)
+    lengths = np.linalg.norm(xyz[ends[:, 1]] - xyz[ends[:, 0]], axis=1)
+    short = np.flatnonzero(lengths <= AREA_RTOL * extent)
+    if short.size:
+        a, b = edges[short[0]]
+        raise ParameterError(f"edge {short[0]} joins vertices {a} and {b} at one point (length "
+                             f"{lengths[short[0]]:.3g}); edges must have length")  # fmt: skip
+    flat = dim == 2 or bool(np.all(xyz[:, 2] == xyz[0, 2]))
+    xy = xyz[:, :2].copy()
+    if not flat:
+        rotation, worst, rms = fold_mesh.plane_fit(xyz)
+        if worst <= fold_mesh.PLANE_RTOL * extent:
+            flat, xy = True, (xyz @ rotation.T)[:, :2]
+            normal = np.round(rotation.T @ [0.0, 0.0, 1.0], 12) + 0.0
+            n0, n1, n2 = normal
+            notes.append(
+                f"the sheet ({label}) lies in the plane of normal ({n0:.6g}, {n1:.6g}, {n2:.6g}) (rms "
+                f"{rms / extent:.2g}, largest {worst / extent:.2g} of the sheet's size off it), turned into XY"
+            )
+    if faces is None:
+        if not flat:
+            raise ParameterError(
+                f"{label} are 3-D (a folded form) and there is no faces_vertices or faces_edges; faces are found "
+                "from the edge graph of a flat pattern only: add faces_vertices"
+            )
+        faces = fold_mesh.planar_faces(xy, edges)
+        notes.append(f"{len(faces)} faces built from the planar edge graph (no faces_vertices in the file)")
+    if letters is None:
+        count = Counter(key(*side) for face in faces for side in _sides(face))
+        letters = ["B" if count[key(*e)] == 1 else "U" for e in edges]
+        notes.append("no edges_assignment: edges of one face read as B, of two faces as U")
+    _check_incidence(edges, letters, faces)
+    if not flat and prefer_frame:
+        raise _FoldedFormError(f"{label} are 3-D", "3-D")
+    file_faces = faces
+    below = flat and _check_areas(faces, xy, "file unit^2").sum() < 0  # the file's faces clockwise (by area)
+    by_side = fold_mesh.side_faces(faces)  # undirected side -> faces on it, the same after orienting
+    faces = fold_mesh.orient(faces, by_side)
+    if flat:
+        positive = (fold_mesh.signed_areas(xy, faces) > 0).tolist()
+        if not all(positive) and any(positive):
+            f, g = positive.index(True), positive.index(False)
+            raise _FoldedFormError(
+                f"{label} lie in one plane but faces {f} and {g}, given one normal, face opposite ways: a flat-folded "
+                "form, whose +-180 deg folds and their order cannot be read without a crease pattern; add the crease "
+                "pattern as a file_frames entry with frame_classes creasePattern",
+                "folded flat, faces overlapping",
+            )
+        if not positive[0]:
+            faces = [reverse(face) for face in faces]
+    turned = sum(a != b for a, b in zip(faces, file_faces, strict=True))
+    if 0 < turned < len(faces):
+        notes.append(f"{min(turned, len(faces) - turned)} face(s) reversed to give the sheet one normal")
+    cuts = {key(*edges[k]) for k, letter in enumerate(letters) if letter == "C"}
+    source, new_of = np.arange(n), None
+    if cuts:
+        faces, source, new_of = fold_mesh.split_cuts(n, faces, cuts)
+        notes.append(f"{len(cuts)} cut edge(s) split the paper: {len(source) - n} vertices doubled along them")
+    if flat:
+        xy = xy[source]
+    else:
+        xy, more = fold_mesh.unfold(xyz[source], faces)
+        notes.extend(more)
+    xy = xy * scale
+
+    # Edges on the new vertices: a cut becomes one border edge per side, a join disappears.
+    def renamed(f: int, a: int, b: int) -> tuple[int, int]:
+        return (a, b) if new_of is None else (new_of[f, a], new_of[f, b])
+
+    new_edges, new_letters, fold_index = edges, letters, list(range(len(edges)))
+    if cuts or "J" in letters:
+        new_edges, new_letters, fold_index = [], [], []
+        for k, (a, b) in enumerate(edges):
+            users = by_side.get(key(a, b), [])
+            if letters[k] == "J":
+                continue
+            if letters[k] == "C":
+                pieces = [renamed(f, a, b) for f, _ in users]
+            else:
+                pieces = [renamed(users[0][0], a, b) if users else (a, b)]
+            for piece in pieces:
+                new_edges.append(piece)
+                new_letters.append("B" if letters[k] == "C" else letters[k])
+                fold_index.append(k)
+    joins = [(k, renamed(by_side[key(*e)][0][0], *e)) for k, e in enumerate(edges) if letters[k] == "J"]
+    if joins:
+        faces = fold_mesh.merge_joins(faces, joins)
+        notes.append(f"{len(joins)} join edge(s) merged their faces: {len(file_faces)} faces became {len(faces)}")
+    if cuts or joins:
+        _check_incidence(new_edges, new_letters, faces)
+    _check_faces(faces, xy)
+    heights = np.zeros(len(edges))
+    if HEIGHT_KEY in frame:
+        heights = scale * _heights(frame[HEIGHT_KEY], letters)
+    sign = -1.0 if below else 1.0
+    if below:
+        notes.append("the faces run clockwise seen from +z: the paper is seen from -z, so M/V and angle signs swap")
+    table = DOWN if below else UP
+    crease_edges = [j for j, letter in enumerate(new_letters) if letter in table]
+    creases = tuple(
+        Crease(f"e{fold_index[j]}", *new_edges[j], table[new_letters[j]], float(heights[fold_index[j]]))
+        for j in crease_edges
+    )
+    border = tuple((*new_edges[j], float(heights[fold_index[j]])) for j, letter in enumerate(new_letters)
+                   if letter == "B" and np.isfinite(heights[fold_index[j]]))  # fmt: skip
+    pattern = CreasePattern(xy, tuple(faces), creases, tuple(f"f{k}" for k in range(len(faces))), border)
+    tol = DEVELOPABLE_TOL
+    if not flat:  # an unfolded form closes round its vertices only as well as its coordinates allow
+        tol = max(tol, fold_mesh.develop_tolerance(xyz) / float(np.min(lengths)))
+    _check_developable(pattern, tol)
+    left = {side: f for f, face in enumerate(faces) for side in _sides(face)}
+    hinges = [(c.start, c.end, left[c.start, c.end], left[c.end, c.start]) for c in creases]
+    signs = np.array([{"V": 1.0, "M": -1.0}.get(c.assignment, 0.0) for c in creases])
+    return _Sheet(
+        pattern, tuple(fold_index[j] for j in crease_edges), source, hinges, signs, sign, n,
+        frame["edges_vertices"], scale, None if flat else xyz, notes,
+    )  # fmt: skip
+
+
+def _measured(sheet: _Sheet, value: Any, field: str) -> NDArray[np.float64]:
+    """Fold angles (n_creases,) rad: the dihedral angles of a frame's vertices_coords."""
+    xyz, _ = _coords(value, field)
+    if len(xyz) != sheet.n_file_vertices:
+        raise ParameterError(f"{field} has {len(xyz)} vertices; the crease pattern has {sheet.n_file_vertices}")
+    return _dihedral(sheet, xyz, field)
+
+
+def _dihedral(sheet: _Sheet, xyz: NDArray[np.float64], field: str) -> NDArray[np.float64]:
+    rho = fold_mesh.dihedral_angles(xyz[sheet.source], list(sheet.pattern.faces), sheet.hinges, sheet.signs, field)
+    sheet.measured.append(rho)
+    return rho
+
+
+def _angles(
+    key: Mapping[str, Any], geometry: Mapping[str, Any], raw: list[dict], frames: list[Mapping[str, Any]], sheet: _Sheet
+) -> tuple[NDArray[np.float64] | None, NDArray[np.float64] | None, bool]:
+    """The key frame's fold angles, the frames' and whether some were measured from coordinates."""
+    sheet.measured.clear()
+    return (_key_angles(key, geometry, sheet), *_frame_angles(raw, frames, sheet))
+
+
+def _letter_agreement(sheet: _Sheet) -> tuple[int, int]:
+    """How many measured fold angles of M/V creases, clearly folded (neither flat nor +-pi), have their letter's
+    sign and how many the other."""
+    agree = disagree = 0
+    for rho in sheet.measured:
+        clear = (np.abs(rho) > fold_mesh.FLAT_FOLD_TOL) & (np.pi - np.abs(rho) > fold_mesh.FLAT_FOLD_TOL)
+        clear &= sheet.signs != 0
+        same = np.sign(rho[clear]) == sheet.signs[clear]
+        agree, disagree = agree + int(same.sum()), disagree + int((~same).sum())
+    return agree, disagree
+
+
+def _swap_letters(sheet: _Sheet) -> _Sheet:
+    """The sheet with M and V swapped (the paper read from the other side of its letters)."""
+    swap = {"M": "V", "V": "M"}
+    creases = tuple(replace(c, assignment=swap.get(c.assignment, c.assignment)) for c in sheet.pattern.creases)
+    return replace(sheet, pattern=replace(sheet.pattern, creases=creases), signs=-sheet.signs)
+
+
+def _key_angles(key: Mapping[str, Any], geometry: Mapping[str, Any], sheet: _Sheet) -> NDArray[np.float64] | None:
+    """The key frame's fold angles: its edges_foldAngle, else its folded form's dihedral angles, else None."""
+    n_edges = len(sheet.edges_vertices)
+    if "edges_foldAngle" in key:
+        if key.get("edges_vertices") != sheet.edges_vertices:
+            raise ParameterError("the key frame's edges_vertices differ from the crease pattern's; its "
+                                 "edges_foldAngle cannot be read on the crease pattern")  # fmt: skip
+        return sheet.sign * _degrees(key["edges_foldAngle"], sheet.edge_of_crease, n_edges, "edges_foldAngle")
+    if sheet.folded_xyz is not None:
+        sheet.notes.append("fold angles measured as the dihedral angles of the folded form")
+        return _dihedral(sheet, sheet.folded_xyz, "vertices_coords")
+    if key is not geometry and "vertices_coords" in key:
+        sheet.notes.append("fold angles measured as the dihedral angles of the key frame's vertices_coords")
+        return _measured(sheet, key["vertices_coords"], "vertices_coords")
+    return None
+
+
+def _frame_angles(
+    raw: list[dict], frames: list[Mapping[str, Any]], sheet: _Sheet
+) -> tuple[NDArray[np.float64] | None, bool]:
+    """Fold angles (n_frames, n_creases) rad of the file_frames entries (None without any), and whether some
+    were measured from vertices_coords."""
     if not frames:
-        return None
-    for k, frame in enumerate(frames):
-        if not isinstance(frame, dict):
-            raise ParameterError(f"file_frames[{k}] is a {type(frame).__name__}; a frame is a JSON object")
-    key = {name: value for name, value in doc.items() if not name.startswith("file_")}
-    rows = []
-    for k in range(1, len(frames) + 1):
-        frame = _resolve(frames, k, key)
-        if frame.get("edges_vertices") != doc["edges_vertices"]:
-            raise ParameterError(f"frame {k} changes edges_vertices; frames are read as fold angles of the key frame")
-        if "edges_foldAngle" not in frame:
-            raise ParameterError(f"frame {k} has no edges_foldAngle (own or inherited); frames are read as fold angles")
-        rows.append(_degrees(frame["edges_foldAngle"], len(doc["edges_vertices"]), f"frame {k} edges_foldAngle"))
-    return sign * np.stack(rows)[:, list(crease_edges)]
+        return None, False
+    rows, measured = [], 0
+    for k, (own, frame) in enumerate(zip(raw, frames, strict=True), start=1):
+        if frame.get("edges_vertices") != sheet.edges_vertices:
+            raise ParameterError(f"frame {k} changes edges_vertices; frames are read as fold angles of the crease "
+                                 "pattern")  # fmt: skip
+        angles_first = "edges_foldAngle" in own or ("vertices_coords" not in own and "edges_foldAngle" in frame)
+        if angles_first:
+            field = f"frame {k} edges_foldAngle"
+            n_edges = len(sheet.edges_vertices)
+            rows.append(sheet.sign * _degrees(frame["edges_foldAngle"], sheet.edge_of_crease, n_edges, field))
+        elif "vertices_coords" in frame:
+            rows.append(_measured(sheet, frame["vertices_coords"], f"frame {k} vertices_coords"))
+            measured += 1
+        else:
+            raise ParameterError(f"frame {k} has no edges_foldAngle or vertices_coords (own or inherited); "
+                                 "a frame needs one of them to give fold angles")  # fmt: skip
+    if measured:
+        sheet.notes.append(f"{measured} frame(s) without edges_foldAngle: fold angles measured as the dihedral "
+                           "angles of their vertices_coords")  # fmt: skip
+    return np.stack(rows).reshape(len(rows), len(sheet.pattern.creases)), measured > 0
 
 
 def _boundary_edges(pattern: CreasePattern) -> list[tuple[int, int]]:

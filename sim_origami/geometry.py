@@ -193,6 +193,23 @@ def common_normal_foot(p0: ArrayLike, s0: ArrayLike, p1: ArrayLike, s1: ArrayLik
     return p1 + ((s1 @ w) - b * (s0 @ w)) / (1.0 - b * b) * s1
 
 
+def frames_along(axes: ArrayLike, points: ArrayLike) -> NDArray[np.float64]:
+    """`frame_along` for many axes (n, 3) and points (n, 3) at once: frames (n, 4, 4), the same ones."""
+    z = np.asarray(axes, dtype=float)
+    z = z / np.sqrt(_dots(z, z))[:, None]
+    helper = np.where((np.abs(z[:, 2]) < 0.9)[:, None], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0])
+    x = helper - z * _dots(helper, z)[:, None]
+    x /= np.sqrt(_dots(x, x))[:, None]
+    T = np.zeros((len(z), 4, 4))
+    T[:, :3, 0], T[:, :3, 1], T[:, :3, 2], T[:, :3, 3], T[:, 3, 3] = x, np.cross(z, x), z, points, 1.0
+    return T
+
+
+def _dots(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Row dot products of (n, 3) arrays, rounded as `a[i] @ b[i]` rounds them (a batched matmul)."""
+    return (a[:, None, :] @ b[:, :, None])[:, 0, 0]
+
+
 def signed_angle(u: ArrayLike, v: ArrayLike, axis: ArrayLike) -> NDArray[np.float64]:
     """Right-handed angle (...) from vectors u to v about `axis`; all (..., 3)."""
     u, v, axis = (np.asarray(x, dtype=float) for x in (u, v, axis))

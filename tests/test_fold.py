@@ -106,7 +106,7 @@ def test_degree4_vertex():
         ("e0", 0, 1, "M"),
         ("e1", 0, 2, "V"),
         ("e2", 0, 3, "M"),
-        ("e3", 0, 4, "U"),  # F: a flat crease, read as unassigned
+        ("e3", 0, 4, "F"),  # F: a crease meant to stay flat
     ]
     assert got.edge_of_crease == (0, 1, 2, 3)
     np.testing.assert_allclose(got.fold_angles, np.deg2rad([-30.0, 45.0, -30.0, 0.0]), rtol=0, atol=1e-15)
@@ -121,7 +121,7 @@ def test_all_clockwise_file_is_seen_from_below():
     doc = degree4()
     doc["faces_vertices"] = [face[::-1] for face in [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 1]]]
     got = read_fold(doc)
-    assert [c.assignment for c in got.pattern.creases] == ["V", "M", "V", "U"]
+    assert [c.assignment for c in got.pattern.creases] == ["V", "M", "V", "F"]
     np.testing.assert_allclose(got.fold_angles, np.deg2rad([30.0, -45.0, 30.0, 0.0]), rtol=0, atol=1e-15)
 
 
@@ -156,10 +156,18 @@ def test_frame_inheritance_cycle():
 
 
 def test_frame_without_angles():
+    # Inheriting the flat key frame's coordinates and no angles: the frame is the flat sheet (measured, all 0).
     doc = degree4()
     del doc["edges_foldAngle"]
     doc["file_frames"] = [{"frame_inherit": True, "frame_parent": 0}]
-    with pytest.raises(ParameterError, match="frame 1 has no edges_foldAngle"):
+    got = read_fold(doc)
+    np.testing.assert_array_equal(got.frames, np.zeros((1, 4)))
+    assert got.frames_from_coords and got.fold_angles is None
+    doc["file_frames"] = [{"frame_title": "nothing to read"}]
+    with pytest.raises(ParameterError, match="frame 1 changes edges_vertices"):
+        read_fold(doc)
+    doc["file_frames"] = [{"edges_vertices": doc["edges_vertices"]}]
+    with pytest.raises(ParameterError, match="frame 1 has no edges_foldAngle or vertices_coords"):
         read_fold(doc)
 
 
@@ -208,35 +216,35 @@ def assigned(edge: int, letter: str) -> dict:
     [
         (
             edited(vertices_coords=[[0, 0, 0], [1, 0, 0], [0.2, 1, 0], [-1, -0.1, 0.25], [0.1, -1, 0]]),
-            "vertex 3 has z = 0.25 but vertex 0 has z = 0: vertices_coords must be flat",
+            "folded form not developable: unfolding places vertex 3 twice",
         ),
-        (edited(faces_vertices=None), "FOLD field 'faces_vertices' is missing"),
+        (edited(edges_vertices=None), "FOLD field 'edges_vertices' is missing"),
         (six_fold_fan(), "interior vertex 0: sector angles sum to 720 deg"),
         (assigned(4, "M"), r"edge 4 \(1-2, 'M'\) borders 1 face\(s\); a crease joins two faces"),
         (assigned(3, "B"), r"edge 3 \(0-4, 'B'\) borders 2 face\(s\); a boundary edge borders one face"),
-        (assigned(5, "C"), "edge 5 has assignment 'C', a cut"),
-        (assigned(0, "J"), "edge 0 has assignment 'J', a join"),
-        (assigned(1, "X"), "edge 1 has assignment 'X'; FOLD assignments are B, M, V, F, U"),
-        (assigned(1, "v"), "edge 1 has assignment 'v'; FOLD assignments are B, M, V, F, U"),
+        (assigned(5, "C"), r"edge 5 \(2-3, 'C'\) borders 1 face\(s\); a cut runs between two faces"),
+        (assigned(4, "J"), r"edge 4 \(1-2, 'J'\) borders 1 face\(s\); a join merges two faces"),
+        (assigned(1, "X"), "edge 1 has assignment 'X'; FOLD assignments are B, M, V, F, U, C, J"),
+        (assigned(1, 7), "edge 1 has assignment 7; FOLD assignments are B, M, V, F, U, C, J"),
         (edited(frame_unit="furlong"), "frame_unit = 'furlong'"),
         (
             edited(edges_vertices=[*degree4()["edges_vertices"], [1, 3]], edges_assignment=[*"MVMFBBBB", "B"]),
             r"edge 8 \(1-3, 'B'\) borders 0 face",
         ),
         (edited(faces_vertices=[[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 9]]), r"faces_vertices\[3\] = \[0, 4, 9\]"),
-        (edited(edges_foldAngle=[0, 0, 0, 0, 0, 0, 0, 181.0]), r"edges_foldAngle\[7\] = 181 deg"),
+        (edited(edges_foldAngle=[0, 181.0, 0, 0, 0, 0, 0, 999]), r"edges_foldAngle\[1\] = 181 deg"),
         (edited(edges_foldAngle=[0.0] * 7), r"edges_foldAngle has shape \(7,\); it needs one number per edge \(8\)"),
     ],
     ids=[
         "non-planar",
-        "missing-faces",
+        "missing-edges",
         "non-developable",
         "crease-one-face",
         "boundary-two-faces",
-        "cut",
-        "join",
+        "cut-on-border",
+        "join-on-border",
         "unknown-letter",
-        "lowercase",
+        "not-a-letter",
         "unit",
         "edge-no-face",
         "vertex-index",
@@ -251,7 +259,7 @@ def test_bad_input(doc, message):
 
 def test_degenerate_and_non_simple_faces():
     collinear = edited(vertices_coords=[[0, 0], [1, 0], [2, 0], [-1, -0.1], [0.1, -1]])
-    with pytest.raises(ParameterError, match=r"face 0 \[0, 1, 2\] has area 0 m\^2"):
+    with pytest.raises(ParameterError, match=r"face 0 \[0, 1, 2\] has area 0 file unit\^2"):
         read_fold(collinear)
     bow_tie = {
         "vertices_coords": [[0, 0], [3, 0], [0, 1], [1, 2]],

@@ -1,0 +1,398 @@
+"""Mesh steps behind the FOLD reader (`sim_origami.fold`), numpy only: the sheet's plane, faces from a planar
+edge graph, consistent face orientation, cuts and joins, unfolding a folded form, and dihedral fold angles.
+
+Every tolerance is relative to the sheet's size (the diagonal of its bounding box), so a 1 mm sheet and a
+1000-unit sheet are read alike. Faces are vertex loops; a face's normal follows its loop counter-clockwise
+(the FOLD 1.2 specification's orientation), and a fold angle rho > 0 folds the two normals towards each other
+(a valley, `sim_origami.creases`).
+"""
+
+from collections import deque
+from collections.abc import Iterator
+from itertools import chain
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .errors import ParameterError
+from .geometry import minimal_rotation
+
+# A sheet is flat when no vertex is further than this from its fitted plane, relative to its size.
+PLANE_RTOL = 1e-6
+# Unfolding: a vertex placed by two faces may differ by this, relative to the sheet's size.
+DEVELOP_RTOL = 1e-9
+# Coordinates printed to a decimal step q <= QUANTUM_RTOL of the size (e.g. 6 decimals) widen the unfolding
+# tolerance to QUANTUM_FACTOR * q: rounding each coordinate by q / 2 moves a vertex placed through a chain of faces
+# by about q (measured: 1.6 q on a square twist printed to 6 decimals).
+QUANTUM_RTOL = 1e-5
+QUANTUM_FACTOR = 10.0
+# A measured fold angle this close to +-pi takes its sign from the crease's M/V letter (rad).
+FLAT_FOLD_TOL = 1e-6
+
+Face = tuple[int, ...]
+
+
+def sides(face: Face) -> Iterator[tuple[int, int]]:
+    """The directed sides (a, b) of a face loop."""
+    return zip(face, face[1:] + face[:1], strict=True)
+
+
+def key(a: int, b: int) -> tuple[int, int]:
+    """An undirected edge's key: its two vertices, smaller first."""
+    return (a, b) if a < b else (b, a)
+
+
+def size(xyz: NDArray[np.float64]) -> float:
+    """The diagonal of the bounding box of points (n, d)."""
+    return float(np.linalg.norm(np.ptp(xyz, axis=0))) if len(xyz) else 0.0
+
+
+def quantum(xyz: NDArray[np.float64]) -> float:
+    """
+    The coarsest decimal step 10^-d (d <= 12) that every coordinate is a multiple of, when it is at most
+    QUANTUM_RTOL of the size (rounding); else 0 (full precision, or exact hand-typed numbers such as 0.25).
+    """
+    scale = size(xyz)
+    if scale == 0.0:
+        return 0.0
+    for d in range(int(np.floor(-np.log10(scale))), 13):
+        scaled = xyz * 10.0**d
+        if np.all(np.abs(scaled - np.round(scaled)) <= 1e-3):
+            return 10.0**-d if 10.0**-d <= QUANTUM_RTOL * scale else 0.0
+    return 0.0
+
+
+def develop_tolerance(xyz: NDArray[np.float64]) -> float:
+    """How far apart (file units) two placements of a vertex may land when unfolding `xyz`."""
+    scale, q = size(xyz), quantum(xyz)
+    return max(DEVELOP_RTOL * scale, QUANTUM_FACTOR * q)
+
+
+def corners(faces: list[Face]) -> tuple[NDArray[np.int_], NDArray[np.int_], NDArray[np.int_], NDArray[np.int_]]:
+    """Every face corner as flat arrays: (face, vertex, next vertex, previous vertex) round its loop."""
+    lengths = np.fromiter(map(len, faces), dtype=int, count=len(faces))
+    v = np.fromiter(chain.from_iterable(faces), dtype=int, count=int(lengths.sum()))
+    group = np.repeat(np.arange(len(faces)), lengths)
+    starts = np.cumsum(lengths) - lengths
+    pos = np.arange(len(v)) - starts[group]
+    nxt = starts[group] + (pos + 1) % lengths[group]
+    prv = starts[group] + (pos - 1) % lengths[group]
+    return group, v, v[nxt], v[prv]
+
+
+def signed_areas(xy: NDArray[np.float64], faces: list[Face]) -> NDArray[np.float64]:
+    """Signed areas (n_faces,) of face loops in the plane (> 0 counter-clockwise)."""
+    f_of, v, nxt, _ = corners(faces)
+    cross = xy[v, 0] * xy[nxt, 1] - xy[nxt, 0] * xy[v, 1]
+    return 0.5 * np.bincount(f_of, weights=cross, minlength=len(faces))
+
+
+def corner_angles(xy: NDArray[np.float64], faces: list[Face]) -> tuple[NDArray[np.int_], NDArray[np.float64]]:
+    """(vertex, interior angle rad in [0, 2 pi)) of every corner of counter-clockwise face loops."""
+    _, v, nxt, prv = corners(faces)
+    to_next, to_prev = xy[nxt] - xy[v], xy[prv] - xy[v]
+    cross = to_next[:, 0] * to_prev[:, 1] - to_next[:, 1] * to_prev[:, 0]
+    return v, np.mod(np.arctan2(cross, np.sum(to_next * to_prev, axis=-1)), 2 * np.pi)
+
+
+def plane_fit(xyz: NDArray[np.float64]) -> tuple[NDArray[np.float64], float, float]:
+    """
+    The points' best plane by SVD: (rotation (3, 3) carrying its normal to +z, largest and rms distance off it).
+    The normal is taken with z > 0 (else y > 0, else x > 0) and the rotation is the smallest one, so a sheet
+    near the XY plane keeps its x and y.
+    """
+    centred = xyz - xyz.mean(axis=0)
+    _, _, vt = np.linalg.svd(centred, full_matrices=False)
+    normal = vt[-1] if len(vt) == 3 else np.array([0.0, 0.0, 1.0])
+    for axis in (2, 1, 0):
+        if abs(normal[axis]) > 1e-9:
+            normal = normal * np.sign(normal[axis])
+            break
+    off = centred @ normal
+    rotation = minimal_rotation(normal, np.array([0.0, 0.0, 1.0])) if normal[2] > -1.0 + 1e-12 else -np.eye(3)
+    return rotation, float(np.max(np.abs(off))), float(np.sqrt(np.mean(off**2)))
+
+
+def planar_faces(xy: NDArray[np.float64], edges: list[tuple[int, int]]) -> list[Face]:
+    """
+    The bounded faces of a planar straight-line graph, counter-clockwise: edges sorted by angle round each vertex,
+    each face traced by turning to the next edge clockwise from the one it came in on; each component's outer
+    face (clockwise) is dropped.
+    """
+    if not edges:
+        raise ParameterError("edges_vertices is empty; faces cannot be built without edges")
+    ends = np.asarray(edges, dtype=int)
+    src = np.concatenate([ends[:, 0], ends[:, 1]])  # half-edge h < m runs a -> b, h + m runs b -> a
+    dst = np.concatenate([ends[:, 1], ends[:, 0]])
+    m = len(edges)
+    d = xy[dst] - xy[src]
+    order = np.lexsort((np.arctan2(d[:, 1], d[:, 0]), src))  # half-edges grouped by source, by angle
+    first = np.searchsorted(src[order], src[order], side="left")
+    count = np.bincount(src, minlength=len(xy))[src[order]]
+    rank = np.empty(2 * m, dtype=int)
+    rank[order] = np.arange(2 * m)
+    twin = np.concatenate([np.arange(m, 2 * m), np.arange(m)])
+    # next(u -> v) = v -> w, w the neighbour of v just clockwise of u
+    t = rank[twin]
+    pos = t - first[t]
+    nxt = order[first[t] + (pos - 1) % count[t]]
+    seen = np.zeros(2 * m, dtype=bool)
+    loops = []
+    nxt_list, src_list = nxt.tolist(), src.tolist()
+    for h0 in range(2 * m):
+        if seen[h0]:
+            continue
+        loop, h = [], h0
+        while not seen[h]:
+            seen[h] = True
+            loop.append(src_list[h])
+            h = nxt_list[h]
+        loops.append(tuple(loop))
+    faces = []
+    for face, area in zip(loops, signed_areas(xy, loops), strict=True):
+        if area <= 0.0:
+            continue  # an outer face (or a dangling edge's sliver)
+        if len(set(face)) != len(face):
+            v = next(v for v in face if face.count(v) > 1)
+            raise ParameterError(
+                f"building faces from edges_vertices: the face round vertex {v} passes it twice (a dangling edge or "
+                "an edge that crosses another without a vertex); give faces_vertices or fix the edge graph"
+            )
+        faces.append(face)
+    if not faces:
+        raise ParameterError("edges_vertices encloses no face; a crease pattern needs at least one face")
+    return faces
+
+
+def faces_from_edges(faces_edges: list[tuple[int, ...]], edges: list[tuple[int, int]]) -> list[Face]:
+    """faces_vertices from FOLD faces_edges (edge i of a face runs from its vertex i to vertex i + 1)."""
+    out = []
+    for f, loop in enumerate(faces_edges):
+        if len(loop) < 3:
+            raise ParameterError(f"faces_edges[{f}] = {list(loop)}; a face has 3 or more edges")
+        face = []
+        for i, k in enumerate(loop):
+            shared = set(edges[loop[i - 1]]) & set(edges[k])
+            if len(shared) != 1:
+                raise ParameterError(
+                    f"faces_edges[{f}]: edges {loop[i - 1]} and {k} share {len(shared)} vertices; consecutive "
+                    "edges of a face share one"
+                )
+            face.append(shared.pop())
+        out.append(tuple(face))
+    return out
+
+
+def side_faces(faces: list[Face]) -> dict[tuple[int, int], list[tuple[int, tuple[int, int]]]]:
+    """Undirected face side -> [(face, directed side)], for every face."""
+    out: dict[tuple[int, int], list[tuple[int, tuple[int, int]]]] = {}
+    for f, face in enumerate(faces):
+        for a, b in sides(face):
+            out.setdefault(key(a, b), []).append((f, (a, b)))
+    return out
+
+
+def orient(faces: list[Face], by_side: dict | None = None) -> list[Face]:
+    """
+    Faces reversed where needed so that each shared side runs opposite ways in its two faces (one normal for the
+    whole sheet); each connected piece keeps its first face's loop. ParameterError for a side in three faces or
+    a sheet that cannot be oriented.
+    """
+    by_side = side_faces(faces) if by_side is None else by_side
+    for (a, b), users in by_side.items():
+        if len(users) > 2:
+            raise ParameterError(f"faces {[f for f, _ in users]} all have side {a}-{b}; a side borders 1 or 2 faces")
+    flip = [None] * len(faces)
+    for start in range(len(faces)):
+        if flip[start] is not None:
+            continue
+        flip[start] = False
+        queue = deque([start])
+        while queue:
+            f = queue.popleft()
+            for a, b in sides(faces[f]):
+                for g, (c, _) in by_side[key(a, b)]:
+                    if g == f:
+                        continue
+                    # g keeps its loop when it runs this side b -> a while f (as oriented) runs it a -> b
+                    want = (c == a) != flip[f]
+                    if flip[g] is None:
+                        flip[g] = want
+                        queue.append(g)
+                    elif flip[g] != want:
+                        raise ParameterError(
+                            f"faces {f} and {g} cannot be given one normal (the sheet is not orientable round side "
+                            f"{a}-{b}); FOLD faces must form an orientable surface"
+                        )
+    return [reverse(face) if flipped else face for face, flipped in zip(faces, flip, strict=True)]
+
+
+def reverse(face: Face) -> Face:
+    """The loop run the other way, keeping its first vertex."""
+    return (face[0], *face[:0:-1])
+
+
+def split_cuts(
+    n_vertices: int, faces: list[Face], cuts: set[tuple[int, int]]
+) -> tuple[list[Face], NDArray[np.int_], dict[tuple[int, int], int]]:
+    """
+    Cuts split the paper: at each vertex the faces round it are grouped by the uncut sides they share, and each
+    group after the first gets its own copy of the vertex. Returns the faces on the new vertices, the file vertex
+    of each new vertex, and the map (face, file vertex) -> new vertex.
+    """
+    parent: dict[tuple[int, int], tuple[int, int]] = {}
+
+    def find(x: tuple[int, int]) -> tuple[int, int]:
+        while parent.setdefault(x, x) != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+
+    for edge, users in side_faces(faces).items():
+        if len(users) == 2 and edge not in cuts:
+            (f, _), (g, _) = users
+            for v in edge:
+                parent[find((f, v))] = find((g, v))
+    new_of: dict[tuple[int, int], int] = {}
+    source = list(range(n_vertices))
+    root_id: dict[tuple[int, int], int] = {}
+    used: set[int] = set()
+    for f, face in enumerate(faces):
+        for v in face:
+            root = find((f, v))
+            if root not in root_id:
+                if v in used:
+                    root_id[root] = len(source)
+                    source.append(v)
+                else:
+                    root_id[root] = v
+                    used.add(v)
+            new_of[f, v] = root_id[root]
+    out = [tuple(new_of[f, v] for v in face) for f, face in enumerate(faces)]
+    return out, np.asarray(source, dtype=int), new_of
+
+
+def merge_joins(faces: list[Face], joins: list[tuple[int, tuple[int, int]]]) -> list[Face]:
+    """Joined faces become one polygon: the loops of the two faces on a join edge (k, (a, b)) spliced along it."""
+    alive = dict(enumerate(faces))
+    owner = {side: f for f, face in alive.items() for side in sides(face)}
+    for k, (a, b) in joins:
+        f, g = owner.get((a, b)), owner.get((b, a))
+        if f is None or g is None:
+            raise ParameterError(f"join edge {k} ({a}-{b}) does not have a face on each side; a join merges two faces")
+        if f == g:
+            raise ParameterError(f"join edge {k} ({a}-{b}) has the same merged face on both sides; joins must not "
+                                 "close round a loop or end inside a face")  # fmt: skip
+        lf, lg = alive[f], alive[g]
+        i, j = lf.index(b), lg.index(a)
+        merged = lf[i:] + lf[:i] + (lg[j:] + lg[:j])[1:-1]  # b ... a, then a's successors in g up to before b
+        if len(set(merged)) != len(merged):
+            raise ParameterError(f"joining along edge {k} ({a}-{b}) makes a face that passes a vertex twice; "
+                                 "joins must leave simple polygons")  # fmt: skip
+        del alive[g]
+        alive[f] = merged
+        for side in sides(merged):
+            owner[side] = f
+    return [alive[f] for f in sorted(alive)]
+
+
+def face_normals(xyz: NDArray[np.float64], faces: list[Face]) -> NDArray[np.float64]:
+    """Newell normals (n_faces, 3) of face loops in 3-D, not normalised (length = twice the area)."""
+    f_of, a, b, _ = corners(faces)
+    centre = np.stack([np.bincount(f_of, weights=xyz[a, i], minlength=len(faces)) for i in range(3)], axis=1)
+    centre /= np.bincount(f_of, minlength=len(faces))[:, None]
+    cross = np.cross(xyz[a] - centre[f_of], xyz[b] - centre[f_of])
+    return np.stack([np.bincount(f_of, weights=cross[:, i], minlength=len(faces)) for i in range(3)], axis=1)
+
+
+def dihedral_angles(
+    xyz: NDArray[np.float64],
+    faces: list[Face],
+    hinges: list[tuple[int, int, int, int]],
+    signs: NDArray[np.float64],
+    what: str,
+) -> NDArray[np.float64]:
+    """
+    Fold angles (n,) rad of hinges (start, end, left face, right face) in 3-D coordinates `xyz`: the rotation
+    about start -> end of the left face's normal from the right face's; faces are loops whose normals are the
+    sheet's +z. Angles within FLAT_FOLD_TOL of +-pi take the sign of `signs` (+1 valley, -1 mountain, 0 free).
+    """
+    if not hinges:
+        return np.zeros(0)
+    normals = face_normals(xyz, faces)
+    scale = size(xyz) ** 2
+    length = np.linalg.norm(normals, axis=1)
+    flat = np.flatnonzero(length <= 1e-12 * scale)
+    if flat.size:
+        raise ParameterError(f"{what}: face {flat[0]} has no area in 3-D, so it has no normal to measure folds by")
+    n = normals / length[:, None]
+    h = np.asarray(hinges, dtype=int)
+    axis = xyz[h[:, 1]] - xyz[h[:, 0]]
+    length = np.linalg.norm(axis, axis=1)
+    short = np.flatnonzero(length <= 1e-12 * np.sqrt(scale))
+    if short.size:
+        raise ParameterError(f"{what}: crease {h[short[0], 0]}-{h[short[0], 1]} has no length in 3-D, so no axis")
+    axis /= length[:, None]
+    left, right = n[h[:, 2]], n[h[:, 3]]
+    rho = np.arctan2(np.einsum("ij,ij->i", np.cross(right, left), axis), np.einsum("ij,ij->i", right, left))
+    near = np.pi - np.abs(rho) <= FLAT_FOLD_TOL
+    return np.where(near & (signs != 0), np.pi * np.sign(signs), rho)
+
+
+def unfold(xyz: NDArray[np.float64], faces: list[Face]) -> tuple[NDArray[np.float64], list[str]]:
+    """
+    The flat sheet (n, 2) of a folded form: faces (oriented) placed breadth-first across shared sides, each by its
+    own edge lengths and angles, counter-clockwise; separate pieces are laid side by side. ParameterError when a
+    vertex placed by two faces lands at two points more than DEVELOP_RTOL of the size apart (not developable).
+    """
+    scale, tol = size(xyz), develop_tolerance(xyz)
+    xy = np.full((len(xyz), 2), np.nan)
+    by_side = {side: f for f, face in enumerate(faces) for side in sides(face)}
+    normals = face_normals(xyz, faces)
+    done = np.zeros(len(faces), dtype=bool)
+    worst, notes, pieces = 0.0, [], 0
+    for start in range(len(faces)):
+        if done[start]:
+            continue
+        pieces += 1
+        a, b = faces[start][0], faces[start][1]
+        offset = 0.0 if pieces == 1 else float(np.nanmax(xy[:, 0])) + 0.1 * scale
+        base = np.array([offset, 0.0])
+        anchor = (a, b, base, base + np.array([np.linalg.norm(xyz[b] - xyz[a]), 0.0]))
+        queue = deque([(start, anchor)])
+        done[start] = True
+        while queue:
+            f, (a, b, pa, pb) = queue.popleft()
+            n = normals[f]
+            if np.linalg.norm(n) <= 1e-12 * scale**2:
+                raise ParameterError(f"vertices_coords: face {f} has no area in 3-D; faces must not be degenerate")
+            e1 = xyz[b] - xyz[a]
+            e1 /= np.linalg.norm(e1)
+            e2 = np.cross(n / np.linalg.norm(n), e1)
+            u = (pb - pa) / np.linalg.norm(pb - pa)
+            v = np.array([-u[1], u[0]])
+            for w in faces[f]:
+                local = xyz[w] - xyz[a]
+                p = pa + (local @ e1) * u + (local @ e2) * v
+                if np.isnan(xy[w, 0]):
+                    xy[w] = p
+                else:
+                    gap = float(np.linalg.norm(p - xy[w]))
+                    if gap > tol:
+                        raise ParameterError(
+                            f"folded form not developable: unfolding places vertex {w} twice, {gap:.3g} apart "
+                            f"({gap / scale:.3g} of the sheet's size, more than {tol / scale:.3g}); the faces' edge "
+                            "lengths and angles do not fit one flat sheet (panels bent or stretched)"
+                        )
+                    worst = max(worst, gap)
+            for c, d in sides(faces[f]):
+                g = by_side.get((d, c))
+                if g is not None and not done[g]:
+                    done[g] = True
+                    queue.append((g, (d, c, xy[d].copy(), xy[c].copy())))
+    notes.append(
+        f"unfolded the 3-D folded form into the plane across {len(faces)} faces ({pieces} piece(s)); vertices "
+        f"placed twice agree to {worst / scale:.2g} of the sheet's size (allowed {tol / scale:.2g}"
+        + (f", coordinates printed to steps of {quantum(xyz):g})" if tol > DEVELOP_RTOL * scale else ")")
+    )
+    return xy, notes
