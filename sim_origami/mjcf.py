@@ -179,6 +179,33 @@ def _add_bodies(
     return elements
 
 
+def _add_paper(root: ET.Element, mechanism: Mechanism, elements: dict[str, ET.Element], creases: frozenset[str]):
+    """
+    Render models: each panel joined by a crease shows a front (+z of the flat sheet, every panel's frame) and a
+    back colour: its solid split by face normal into `<body>_front` / `<body>_back` surfaces (massless, shell
+    inertia), the solid itself moved to hidden group 3.
+    """
+    panels = {name for j in mechanism.joints if j.name in creases for name in (j.parent, j.child)}
+    asset = _section(root, "asset")
+    for body in mechanism.bodies:
+        if body.name not in panels or body.spacer:
+            continue
+        nz = np.asarray(body.solid.face_normals)[:, 2]
+        # the thin sides go with both surfaces: MuJoCo needs 4 vertices a mesh, and they are seen edge-on
+        sides = {"front": body.solid.faces[nz > -0.5], "back": body.solid.faces[nz < 0.5]}
+        if min(len(np.unique(faces)) for faces in sides.values()) < 4:
+            continue
+        elements[body.name].find(f"geom[@name='{body.name}_solid']").set("group", "3")
+        for side, faces in sides.items():
+            used, index = np.unique(faces, return_inverse=True)
+            ET.SubElement(asset, "mesh", name=f"{body.name}_{side}", inertia="shell",
+                          vertex=_fmt(body.solid.vertices[used]),
+                          face=" ".join(str(int(i)) for i in index.ravel()))  # fmt: skip
+            ET.SubElement(elements[body.name], "geom", name=f"{body.name}_{side}", mesh=f"{body.name}_{side}").set(
+                "class", f"paper_{side}"
+            )
+
+
 def _add_self_contact(root: ET.Element, scene: Scene) -> None:
     """Collision solids collide by contype/conaffinity; bodies that share a vertex are excluded."""
     for geom in root.iter("geom"):
@@ -358,6 +385,8 @@ def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarr
     _note_preset(root, options.preset)
     _add_meshes(_section(root, "asset"), mechanism)
     elements = _add_bodies(_section(root, "worldbody"), mechanism, contact, crease_names(scene))
+    if options.render:
+        _add_paper(root, mechanism, elements, crease_names(scene))
 
     equality = _section(root, "equality")
     if mechanism.cut_joints:

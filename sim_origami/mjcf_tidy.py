@@ -28,11 +28,16 @@ def short(value: float, tol: float) -> str:
     value = float(value)
     if abs(value) <= tol:
         return "0"
-    for digits in range(1, 18):
-        rounded = float(f"{value:.{digits}g}")
-        if abs(rounded - value) <= tol:
-            break
-    text = repr(rounded)  # 100.0, 0.375, 1e-05
+    if value.is_integer() and abs(value) < 1e15:
+        return str(int(value))
+    lo, hi = 1, 17  # fewest digits within tol: more digits are never further away, so bisect
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if abs(float(f"{value:.{mid}g}") - value) <= tol:
+            hi = mid
+        else:
+            lo = mid + 1
+    text = repr(float(f"{value:.{lo}g}"))  # 100.0, 0.375, 1e-05
     if text.endswith(".0"):
         text = text[:-2]
     if "e" in text:
