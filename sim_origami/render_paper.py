@@ -20,6 +20,8 @@ VALLEY = (0.10, 0.30, 0.85, 1.0)
 UNFOLDED = (0.45, 0.45, 0.45, 1.0)
 # |fold angle| (rad) below which a crease is drawn as unfolded.
 FLAT = 1e-3
+# Room around the motion in the frame (x its projected half size).
+MARGIN = 1.08
 
 
 @dataclass(frozen=True)
@@ -74,18 +76,25 @@ def add_crease_lines(scn: mujoco.MjvScene, lines: CreaseLines, poses: dict, q: N
         scn.ngeom += 1
 
 
-def side_azimuth(points: NDArray[np.float64], default: float = -55.0, oblique: float = 20.0) -> float:
+def side_azimuth(points: NDArray[np.float64], elevation: float, default: float = -55.0) -> float:
     """
-    Camera azimuth (deg) for points (n, 3): `oblique` deg off square to their longest horizontal axis when they are
-    elongated (principal spreads differ by more than 1.5x: a tube, a strip), so that it lies across the frame;
-    `default` otherwise.
+    Camera azimuth (deg) for points (n, 3) seen at `elevation` (deg): when they are elongated (principal spreads
+    differ by more than 1.5x: a tube, a strip), the azimuth nearest `default` that looks square to their long axis,
+    so that it lies in the picture at full length; `default` otherwise or when no azimuth is square to it.
     """
-    xy = points[:, :2] - points[:, :2].mean(axis=0)
-    values, vectors = np.linalg.eigh(xy.T @ xy)
-    if values[1] <= 2.25 * max(values[0], 1e-30):
+    centred = points - points.mean(axis=0)
+    values, vectors = np.linalg.eigh(centred.T @ centred)
+    if values[2] <= 2.25 * max(values[1], 1e-30):
         return default
-    long = np.degrees(np.arctan2(vectors[1, 1], vectors[0, 1]))
-    return float((long - 90.0 + oblique + 180.0) % 360.0 - 180.0)
+    a = vectors[:, 2]
+    # forward (cos el cos az, cos el sin az, sin el) . a = 0  <=>  |a_xy| cos(az - phi) = -tan(el) a_z
+    horizontal, phi = float(np.hypot(a[0], a[1])), float(np.arctan2(a[1], a[0]))
+    ratio = -np.tan(np.radians(elevation)) * a[2] / max(horizontal, 1e-30)
+    if abs(ratio) > 1:
+        return default
+    turns = np.degrees(phi + np.array([1.0, -1.0]) * np.arccos(ratio))
+    wrapped = (turns - default + 180.0) % 360.0 - 180.0 + default
+    return float(wrapped[np.argmin(np.abs(wrapped - default))])
 
 
 def fit_camera(
@@ -94,8 +103,7 @@ def fit_camera(
     """
     A free camera at `elevation` (deg) and the azimuth of `side_azimuth`, whose view holds every body vertex over
     all poses q (n, n_joints): centred on the projected bounding box, backed off until its half height and half
-    width fit the field of view (vertical `fovy_deg`, width/height `aspect`) with 12 % margin, counting the depth
-    of the nearest points.
+    width fit the field of view (vertical `fovy_deg`, width/height `aspect`) with MARGIN, in perspective.
     """
     poses = scene.mechanism.body_poses(q)
     points = []
@@ -105,7 +113,7 @@ def fit_camera(
         v = np.c_[body.solid.vertices, np.ones(len(body.solid.vertices))]
         points.append((poses[body.name] @ v.T)[..., :3, :].transpose(0, 2, 1).reshape(-1, 3))
     P = np.concatenate(points)
-    azimuth = side_azimuth(P)
+    azimuth = side_azimuth(P, elevation)
     az, el = np.radians(azimuth), np.radians(elevation)
     forward = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])  # camera looks along this
     right = np.cross(forward, [0.0, 0.0, 1.0])
@@ -113,9 +121,11 @@ def fit_camera(
     up = np.cross(right, forward)
     x, y, z = P @ right, P @ up, P @ forward
     centre = ((x.max() + x.min()) / 2) * right + ((y.max() + y.min()) / 2) * up + ((z.max() + z.min()) / 2) * forward
-    half_h, half_w, half_d = (y.max() - y.min()) / 2, (x.max() - x.min()) / 2, (z.max() - z.min()) / 2
     tan = np.tan(np.radians(fovy_deg) / 2)
-    distance = 1.12 * max(half_h / tan, half_w / (tan * aspect)) + half_d
+    # a point at (x, y) off the view axis and z beyond the centre is in view when |y| <= tan (D + z) (and x with
+    # the aspect): the nearest distance D that holds every point, with MARGIN
+    x, y, z = x - (x.max() + x.min()) / 2, y - (y.max() + y.min()) / 2, z - (z.max() + z.min()) / 2
+    distance = float(np.max(MARGIN * np.maximum(np.abs(y) / tan, np.abs(x) / (tan * aspect)) - z))
     camera = mujoco.MjvCamera()
     camera.type = mujoco.mjtCamera.mjCAMERA_FREE
     camera.lookat[:] = centre
