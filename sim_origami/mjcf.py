@@ -182,8 +182,8 @@ def _add_bodies(
 def _add_paper(root: ET.Element, mechanism: Mechanism, elements: dict[str, ET.Element], creases: frozenset[str]):
     """
     Render models: each panel joined by a crease shows a front (+z of the flat sheet, every panel's frame) and a
-    back colour: its solid split by face normal into `<body>_front` / `<body>_back` surfaces (massless, shell
-    inertia), the solid itself moved to hidden group 3.
+    back colour: its solid split by face normal into `<body>_front` (top and sides) / `<body>_back` (bottom)
+    surfaces (massless, shell inertia), the solid itself moved to hidden group 3.
     """
     panels = {name for j in mechanism.joints if j.name in creases for name in (j.parent, j.child)}
     asset = _section(root, "asset")
@@ -191,15 +191,14 @@ def _add_paper(root: ET.Element, mechanism: Mechanism, elements: dict[str, ET.El
         if body.name not in panels or body.spacer:
             continue
         nz = np.asarray(body.solid.face_normals)[:, 2]
-        # the thin sides go with both surfaces: MuJoCo needs 4 vertices a mesh, and they are seen edge-on
-        sides = {"front": body.solid.faces[nz > -0.5], "back": body.solid.faces[nz < 0.5]}
-        if min(len(np.unique(faces)) for faces in sides.values()) < 4:
-            continue
         elements[body.name].find(f"geom[@name='{body.name}_solid']").set("group", "3")
-        for side, faces in sides.items():
+        # faces that look up or sideways (the paper's edge) are the front, faces that look down the back
+        for side, faces in (("front", body.solid.faces[nz >= -1e-9]), ("back", body.solid.faces[nz < -1e-9])):
             used, index = np.unique(faces, return_inverse=True)
-            ET.SubElement(asset, "mesh", name=f"{body.name}_{side}", inertia="shell",
-                          vertex=_fmt(body.solid.vertices[used]),
+            vertices = body.solid.vertices[used]
+            if len(vertices) < 4:  # MuJoCo needs 4 vertices a mesh: add the centre of a lone triangle, unused
+                vertices = np.vstack([vertices, vertices.mean(axis=0)])
+            ET.SubElement(asset, "mesh", name=f"{body.name}_{side}", inertia="shell", vertex=_fmt(vertices),
                           face=" ".join(str(int(i)) for i in index.ravel()))  # fmt: skip
             ET.SubElement(elements[body.name], "geom", name=f"{body.name}_{side}", mesh=f"{body.name}_{side}").set(
                 "class", f"paper_{side}"
