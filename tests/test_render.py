@@ -95,3 +95,12 @@ def test_render_model_has_a_front_and_a_back_surface_per_panel():
         assert front.rgba[0] - front.rgba[2] > 0.5 and abs(back.rgba[0] - back.rgba[2]) < 0.05  # yellow, white
         assert model.geom(f"{body.name}_solid").group[0] == 3  # the massive solid is hidden behind them
         assert front.contype[0] == back.contype[0] == 0 and model.geom_bodyid[front.id] == model.geom_bodyid[back.id]
+
+
+@pytest.mark.parametrize("size", ["10x10", "640", "wide"])
+def test_validate_refuses_a_bad_frame_size_before_any_work(size, capsys):
+    from sim_origami.cli import main
+
+    assert main(["validate", "bennett", "--render", "--size", size]) == 2
+    err = capsys.readouterr().err
+    assert f"--size {size!r}" in err and err.count("\n") == 1
