@@ -25,12 +25,12 @@ LAYERS = (
      ("kinematics", "closure", "creases", "fold", "fold_mesh")),
     ("mechanism", "bodies, joints, spanning trees, panel and link solids",
      ("mechanism", "origami", "linkage", "linkage_forms", "solids")),
-    ("mjcf", "MJCF text from a mechanism and options", ("mjcf",)),
+    ("mjcf", "MJCF text from a mechanism and options", ("mjcf", "mjcf_tidy")),
     ("scenes", "a kinematics model wired to a mechanism and a drive; the registry", ("scenes",)),
     ("simulation", "MuJoCo runs; the truss method", ("simulate", "truss")),
     ("checks", "path errors, branch classification, blockage verdicts", ("checks",)),
     ("validation", "the three-way cross-check; sweeps", ("validation", "sweep")),
-    ("outputs", "reports, plots, frames; studies built on the harness", ("report", "plots", "render", "studies")),
+    ("outputs", "reports, plots, frames; studies built on the harness", ("report", "report_page", "plots", "render", "render_paper", "studies")),
     ("cli", "the sim-origami commands", ("cli",)),
 )  # fmt: skip
 

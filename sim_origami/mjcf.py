@@ -23,7 +23,8 @@ from numpy.typing import NDArray
 from . import __version__
 from .errors import ParameterError
 from .geometry import invert, quaternion, quaternion_matrix, xyz_angles, xyz_rotation
-from .mechanism import Mechanism
+from .mechanism import Body, Mechanism
+from .mjcf_tidy import attach_comments, box_of, tidy
 from .scenes.base import Scene
 
 ORDER = (
@@ -74,7 +75,12 @@ def _section(root: ET.Element, tag: str) -> ET.Element:
 
 
 def _merge(root: ET.Element, fragment: ET.Element) -> None:
-    """Append the children of each top-level section of `fragment` into `root`."""
+    """
+    Append the children of each top-level section of `fragment` into `root`. Comments of one line come along;
+    longer ones (the templates' measurement notes) stay in the template files.
+    """
+    for child in [c for c in fragment.iter() if c.tag is ET.Comment and "\n" in (c.text or "")]:
+        _drop(fragment, child)
     for child in fragment:
         if child.tag is ET.Comment:
             root.append(child)
@@ -83,6 +89,14 @@ def _merge(root: ET.Element, fragment: ET.Element) -> None:
             root.append(child)
             continue
         _section(root, child.tag).extend(list(child))
+
+
+def _drop(tree: ET.Element, comment: ET.Element) -> None:
+    """Remove `comment` from wherever it sits in `tree`."""
+    for parent in tree.iter():
+        if comment in list(parent):
+            parent.remove(comment)
+            return
 
 
 def _scale_step(root: ET.Element, scale: float) -> None:
@@ -98,7 +112,7 @@ def _scale_step(root: ET.Element, scale: float) -> None:
 def _add_meshes(asset: ET.Element, mechanism: Mechanism) -> None:
     for body in mechanism.bodies:
         for suffix, mesh in (("solid", body.solid), ("collision", body.collision)):
-            if mesh is None or body.spacer:
+            if mesh is None or body.spacer or (suffix == "solid" and box_of(mesh) is not None):
                 continue
             ET.SubElement(
                 asset, "mesh", name=f"{body.name}_{suffix}",
@@ -106,16 +120,32 @@ def _add_meshes(asset: ET.Element, mechanism: Mechanism) -> None:
             )  # fmt: skip
 
 
-def _add_bodies(world: ET.Element, mechanism: Mechanism, contact: bool) -> dict[str, ET.Element]:
-    """Nested bodies along the spanning tree; a spherical joint's spacers are skipped (its hinges become one ball)."""
+def _solid_geom(parent: ET.Element, body: Body) -> None:
+    """The body's visual solid (it carries the mass): a box primitive when it is a box, else its mesh."""
+    box = box_of(body.solid)
+    if box is None:
+        ET.SubElement(parent, "geom", name=f"{body.name}_solid", mesh=f"{body.name}_solid", rgba=_fmt(body.rgba))
+    else:
+        centre, quat, half = box
+        ET.SubElement(parent, "geom", name=f"{body.name}_solid", type="box", pos=_fmt(centre), quat=_fmt(quat),
+                      size=_fmt(half), rgba=_fmt(body.rgba))  # fmt: skip
+    parent[-1].set("class", "panel")
+
+
+def _add_bodies(
+    world: ET.Element, mechanism: Mechanism, contact: bool, creases: frozenset[str] = frozenset()
+) -> dict[str, ET.Element]:
+    """
+    Nested bodies along the spanning tree; a spherical joint's spacers are skipped (its hinges become one ball).
+    Hinges named in `creases` are in class `crease` (origami), the others in class `revolute` (linkages).
+    """
     ref = mechanism.reference_poses()
     elements = {mechanism.root: world}
     by_name = {b.name: b for b in mechanism.bodies}
 
     def add_geoms(parent: ET.Element, name: str) -> None:
         body = by_name[name]
-        ET.SubElement(parent, "geom", name=f"{name}_solid", mesh=f"{name}_solid", rgba=_fmt(body.rgba))
-        parent[-1].set("class", "panel")
+        _solid_geom(parent, body)
         if contact and body.collision is not None:
             ET.SubElement(parent, "geom", name=f"{name}_collision", mesh=f"{name}_collision")
             parent[-1].set("class", "collision")
@@ -143,10 +173,36 @@ def _add_bodies(world: ET.Element, mechanism: Mechanism, contact: bool) -> dict[
             frame = joint.frame_child if edge.sign > 0 else joint.frame_parent
             axis = frame[:3, 2] * edge.sign
             hinge = ET.SubElement(body, "joint", name=joint.name, pos=_fmt(frame[:3, 3]), axis=_fmt(axis))
-            hinge.set("class", "crease")
+            hinge.set("class", "crease" if joint.name in creases else "revolute")
         add_geoms(body, edge.child)
         elements[edge.child] = body
     return elements
+
+
+def _add_paper(root: ET.Element, mechanism: Mechanism, elements: dict[str, ET.Element], creases: frozenset[str]):
+    """
+    Render models: each panel joined by a crease shows a front (+z of the flat sheet, every panel's frame) and a
+    back colour: its solid split by face normal into `<body>_front` (top and sides) / `<body>_back` (bottom)
+    surfaces (massless, shell inertia), the solid itself moved to hidden group 3.
+    """
+    panels = {name for j in mechanism.joints if j.name in creases for name in (j.parent, j.child)}
+    asset = _section(root, "asset")
+    for body in mechanism.bodies:
+        if body.name not in panels or body.spacer:
+            continue
+        nz = np.asarray(body.solid.face_normals)[:, 2]
+        elements[body.name].find(f"geom[@name='{body.name}_solid']").set("group", "3")
+        # faces that look up or sideways (the paper's edge) are the front, faces that look down the back
+        for side, faces in (("front", body.solid.faces[nz >= -1e-9]), ("back", body.solid.faces[nz < -1e-9])):
+            used, index = np.unique(faces, return_inverse=True)
+            vertices = body.solid.vertices[used]
+            if len(vertices) < 4:  # MuJoCo needs 4 vertices a mesh: add the centre of a lone triangle, unused
+                vertices = np.vstack([vertices, vertices.mean(axis=0)])
+            ET.SubElement(asset, "mesh", name=f"{body.name}_{side}", inertia="shell", vertex=_fmt(vertices),
+                          face=" ".join(str(int(i)) for i in index.ravel()))  # fmt: skip
+            ET.SubElement(elements[body.name], "geom", name=f"{body.name}_{side}", mesh=f"{body.name}_{side}").set(
+                "class", f"paper_{side}"
+            )
 
 
 def _add_self_contact(root: ET.Element, scene: Scene) -> None:
@@ -265,6 +321,35 @@ def keyframe_qpos(mechanism: Mechanism, q: NDArray[np.float64]) -> NDArray[np.fl
     return np.concatenate([j.qpos(np.asarray(q, dtype=float)) for j in mujoco_joints(mechanism)])
 
 
+def crease_names(scene: Scene) -> frozenset[str]:
+    """Hinges that are creases of paper: a crease pattern's creases and an origami vertex's `crease_*` hinges."""
+    names = {j.name for j in scene.mechanism.joints if j.name.startswith("crease_")}
+    if scene.pattern is not None:
+        names |= {c.name for c in scene.pattern.creases}
+    return frozenset(names)
+
+
+def model_size(mechanism: Mechanism) -> float:
+    """Largest coordinate (m) of any body's solid or joint frame, in its own body frame: the scale of float noise."""
+    extents = [np.max(np.abs(b.solid.vertices)) for b in mechanism.bodies if len(b.solid.vertices)]
+    extents += [np.max(np.abs(j.frame_parent[:3, 3])) for j in mechanism.joints]
+    return float(max(extents, default=1.0))
+
+
+def _note_preset(root: ET.Element, preset: str) -> None:
+    """One-line comments on the preset's option and the regulariser scale a plain MuJoCo load must apply."""
+    option = root.find("option")
+    root.insert(list(root).index(option), ET.Comment(
+        f" preset {preset}: constraints at MuJoCo's largest impedance (solimp 0.9999); measured in "
+        "docs/performance.md "))  # fmt: skip
+    custom = root.find("custom")
+    scale = next(i for i, e in enumerate(custom) if e.get("name") == "regularization_scale")
+    custom.insert(scale, ET.Comment(
+        " regularization_scale: multiply model.body_invweight0 and model.dof_invweight0 by it after loading "
+        "(simulate.scale_regularization); no MJCF attribute sets it (impedance is capped at 0.9999) "
+    ))  # fmt: skip
+
+
 def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarray] | None = None) -> str:
     """
     MJCF text of a scene.
@@ -296,8 +381,11 @@ def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarr
         root.find("option").set("gravity", _fmt(scene.gravity))
         root.find("option/flag").set("gravity", "enable")
         root.find("option/flag").set("energy", "enable")
+    _note_preset(root, options.preset)
     _add_meshes(_section(root, "asset"), mechanism)
-    elements = _add_bodies(_section(root, "worldbody"), mechanism, contact)
+    elements = _add_bodies(_section(root, "worldbody"), mechanism, contact, crease_names(scene))
+    if options.render:
+        _add_paper(root, mechanism, elements, crease_names(scene))
 
     equality = _section(root, "equality")
     if mechanism.cut_joints:
@@ -350,6 +438,8 @@ def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarr
         for name, q in keyframes.items():
             ET.SubElement(frames, "key", name=f"start_{name}", qpos=_fmt(keyframe_qpos(mechanism, q)))
 
-    root[:] = sorted(root, key=lambda e: ORDER.index(e.tag) if e.tag in ORDER else -1)
+    groups = sorted(attach_comments(root), key=lambda g: ORDER.index(g[-1].tag) if g[-1].tag in ORDER else -1)
+    root[:] = [e for g in groups for e in g]
+    tidy(root, model_size(mechanism))
     ET.indent(root, space="  ")
     return ET.tostring(root, encoding="unicode")

@@ -18,6 +18,7 @@ import numpy as np
 from .errors import RenderError
 from .files import atomic_path
 from .mjcf import ModelOptions
+from .render_paper import add_crease_lines, crease_lines, fit_camera
 from .scenes.base import Scene
 from .simulate import Bindings, compile_model
 
@@ -50,25 +51,29 @@ def render_frames(
     q: np.ndarray,
     out: str | Path,
     *,
-    width: int = 320,
-    height: int = 240,
+    width: int = 640,
+    height: int = 480,
     fps: int = 20,
     gif: bool = True,
     mp4: bool = True,
 ) -> Frames:
-    """Render mechanism angles q (n, n_joints), one frame each, into `out` (frames/, fold.gif, fold.mp4)."""
+    """
+    Render mechanism angles q (n, n_joints), one frame each, into `out` (frames/, fold.gif, fold.mp4): paper
+    front and back in two colours, creases as mountain (red) and valley (blue) lines (`render_paper`), one
+    camera that holds every frame.
+    """
     out = Path(out)
     model, data = compile_model(scene, ModelOptions(render=True))
     binds = Bindings(scene, model)
-    center, radius = framing(scene, q)
-    camera = mujoco.MjvCamera()
-    camera.type = mujoco.mjtCamera.mjCAMERA_FREE
-    camera.lookat[:] = center
-    camera.distance = 2.2 * max(radius, 1e-3)
-    camera.azimuth, camera.elevation = -55.0, -30.0
+    model.vis.global_.offwidth = max(model.vis.global_.offwidth, width)  # the offscreen buffer holds the frame
+    model.vis.global_.offheight = max(model.vis.global_.offheight, height)
+    _, radius = framing(scene, q)
+    camera = fit_camera(scene, q, model.vis.global_.fovy, width / height)
+    lines = crease_lines(scene, 0.006 * radius)
+    poses = scene.mechanism.body_poses(q) if len(lines.joints) else None
     images = []
     try:
-        renderer = mujoco.Renderer(model, height=height, width=width)
+        renderer = mujoco.Renderer(model, height=height, width=width, max_geom=model.ngeom + len(lines.joints) + 100)
     except Exception as exc:  # the GL stack reports many exception types
         raise RenderError(f"no headless OpenGL context ({exc}); install libegl1 or libosmesa6") from exc
     with renderer:
@@ -77,10 +82,12 @@ def render_frames(
         gl_name = GL.glGetString(GL.GL_RENDERER)
         gl_name = gl_name.decode() if gl_name else "unknown"
         t0 = time.perf_counter()
-        for row in q:
+        for k, row in enumerate(q):
             binds.set_pose(data, row)
             mujoco.mj_forward(model, data)
             renderer.update_scene(data, camera=camera)
+            if poses is not None:
+                add_crease_lines(renderer.scene, lines, {name: T[k] for name, T in poses.items()}, row)
             images.append(renderer.render().copy())
         per_frame = (time.perf_counter() - t0) / max(len(q), 1)
     pngs = []

@@ -1,4 +1,4 @@
-"""Report -> report.json and curves.csv (radians; field names carry their units)."""
+"""Report -> report.json, curves.csv (radians; field names carry their units) and model.xml."""
 
 import csv
 import io
@@ -12,6 +12,8 @@ from . import __version__
 from .files import write_text
 from .fold import write_fold
 from .geometry import wrap
+from .mjcf import ModelOptions, build_xml
+from .simulate import start_input
 from .validation import Report
 
 # Frames of the simulated motion written to motion.fold (evenly spaced over the first run).
@@ -123,13 +125,26 @@ def motion_fold(report: Report, out: Path) -> Path:
     return write_fold(out, scene.pattern, wrap(run.dynamic.q[np.ix_(rows, columns)]), title=title)
 
 
+def model_xml(report: Report) -> str:
+    """
+    The MJCF the dynamic runs stepped (preset, joint-equality drive, no contact), with each branch's start pose as
+    keyframe `start_<branch>`. Load it with `mujoco.MjModel.from_xml_path`, multiply `body_invweight0` and
+    `dof_invweight0` by its numeric `regularization_scale`, reset to the keyframe and write the drive's targets
+    (`simulate.drive_targets`) into eq_data of `drive_<joint>`: the run is repeated bitwise.
+    """
+    scene = report.scene
+    starts = {r.requested: scene.pose(r.requested, start_input(scene, r.requested, report.seed)) for r in report.runs}
+    return build_xml(scene, ModelOptions(preset=report.preset), keyframes=starts) + "\n"
+
+
 def write(report: Report, out: str | Path) -> dict[str, Path]:
-    """Write report.json, curves.csv and, for crease-pattern scenes, motion.fold, with reference curves
+    """Write report.json, curves.csv, model.xml and, for crease-pattern scenes, motion.fold, with reference curves
     reference.csv, into `out` (atomically)."""
     out = Path(out)
     paths = {
         "report": write_text(out / "report.json", json.dumps(as_dict(report), indent=2, default=plain) + "\n"),
         "curves": write_text(out / "curves.csv", curves_csv(report)),
+        "model": write_text(out / "model.xml", model_xml(report)),
     }
     if report.scene.pattern is not None:
         paths["fold"] = motion_fold(report, out / "motion.fold")

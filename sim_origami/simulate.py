@@ -158,6 +158,23 @@ def start_pose(scene: Scene, branch: str, start: float) -> NDArray[np.float64]:
     return scene.pose(branch, start)
 
 
+def start_input(
+    scene: Scene, branch: str, seed: str = "closed", bias: float = 1e-4, stop: float | None = None
+) -> float:
+    """
+    The input (rad) a run on `branch` starts from: the start of its path (seed 'closed'), or a signed `bias`
+    from the flat state towards `stop` (default the path's end) (seed 'flat': every branch meets there, so the
+    engine is told the branch by a closed pose rather than left to choose).
+    """
+    start, end = scene.branch_path(branch)
+    stop = end if stop is None else stop
+    if seed == "flat":
+        return float(np.copysign(bias, stop))
+    if seed != "closed":
+        raise DomainError(f"unknown seed {seed!r}; use 'closed' or 'flat'")
+    return start
+
+
 def ramp(phase: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """
     Minimum-jerk ramp s(p) = 10 p^3 - 15 p^4 + 6 p^5 and ds/dp, for phase p in [0, 1].
@@ -256,15 +273,9 @@ def simulate(
       its angle there.
     """
     preset = preset or scene.preset
-    default_start, default_stop = scene.branch_path(branch)
-    start = default_start if start is None else start
-    stop = default_stop if stop is None else stop
-    if seed == "flat":
-        # At the flat state every branch meets: start a signed `bias` (rad) from it, on the branch,
-        # so the engine is told the branch by a closed pose rather than left to choose.
-        start = float(np.copysign(bias, stop))
-    elif seed != "closed":
-        raise DomainError(f"unknown seed {seed!r}; use 'closed' or 'flat'")
+    stop = scene.branch_path(branch)[1] if stop is None else stop
+    if seed != "closed" or start is None:
+        start = start_input(scene, branch, seed, bias, stop)
     if drive not in ("equality", "servo"):
         raise DomainError(f"unknown drive {drive!r}; use 'equality' or 'servo'")
     model, data = compile_model(scene, ModelOptions(preset=preset, drive=drive, contact=contact))

@@ -7,10 +7,12 @@ full `validate` are left out so that thousands of points stay cheap. A point tha
 linkage that cannot be assembled, a MuJoCo warning) is recorded with its error message, never fatal.
 
 Execution: local processes by default (`concurrent.futures`), or a Dask distributed cluster given its
-scheduler address; both run the same picklable `run_point`.
+scheduler address; both run the same picklable `run_point`. Dask and pyarrow come with the `cluster` extra
+(`pip install -e '.[cluster]'`): without dask `--scheduler` is refused, without pyarrow only sweep.csv is written.
 """
 
 import csv
+import importlib.util
 import io
 import itertools
 import os
@@ -137,6 +139,8 @@ def sweep(
         if axis.name not in known:
             raise ParameterError(f"unknown parameter {axis.name!r} for scene {scene_name!r}; parameters are "
                                  f"{', '.join(sorted(known))}")  # fmt: skip
+    if scheduler and importlib.util.find_spec("distributed") is None:
+        raise ParameterError(f"--scheduler {scheduler} needs Dask distributed: pip install -e '.[cluster]'")
     points = grid_points(axes)
     tasks = [(scene_name, p, preset) for p in points]
     stream = _dask(tasks, scheduler) if scheduler else _local(tasks, workers or os.cpu_count() or 1)
@@ -146,16 +150,18 @@ def sweep(
 
 
 def write_tables(rows: list[dict], out: Path) -> dict[str, Path]:
-    """sweep.csv and sweep.parquet in `out`, each written atomically."""
-    import pyarrow as pa
-    import pyarrow.parquet as pq
-
+    """sweep.csv and, when pyarrow is installed (the `cluster` extra), sweep.parquet in `out`, each atomically."""
     columns = list(rows[0])
     buf = io.StringIO()
     writer = csv.DictWriter(buf, fieldnames=columns)
     writer.writeheader()
     writer.writerows(rows)
     paths = {"csv": write_text(out / "sweep.csv", buf.getvalue())}
+    if importlib.util.find_spec("pyarrow") is None:
+        return paths
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
     with atomic_path(out / "sweep.parquet") as tmp:
         pq.write_table(pa.Table.from_pylist(rows), tmp)
     paths["parquet"] = out / "sweep.parquet"

@@ -41,8 +41,9 @@ def run(args: argparse.Namespace) -> int:
     paths = write_tables(rows, out)
     plot_sweep(rows, [a.name for a in axes], out / "sweep.png")
     failed = [r for r in rows if not r["passed"]]
+    parquet = paths.get("parquet", "no sweep.parquet (pip install -e '.[cluster]' for pyarrow)")
     print(f"{len(rows)} points, {len(rows) - len(failed)} passed, {len(failed)} failed; "
-          f"{paths['csv']}, {paths['parquet']}, {out / 'sweep.png'}")  # fmt: skip
+          f"{paths['csv']}, {parquet}, {out / 'sweep.png'}")  # fmt: skip
     for r in failed[:5]:
         where = ", ".join(f"{a.name}={r[a.name]:g}" for a in axes)
         print(f"  failed at {where}: {r['error'] or format(r['angle_error_max_rad'], '.3g') + ' rad off'}")

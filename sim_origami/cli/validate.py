@@ -14,6 +14,7 @@ from ..conventions import deg_to_rad
 from ..errors import ParameterError
 from ..files import write_text
 from ..report import as_dict, plain, write
+from ..report_page import write_index, write_page
 from ..scenes.fold_file import fold_scene
 from ..validation import validate
 from .options import add_params, parse_params
@@ -46,7 +47,20 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                         help="one tolerance (deg) for every reference value (default: its printed precision)")
     parser.add_argument("--out", type=Path, help="output folder (default runs/<scene>)")
     parser.add_argument("--render", action="store_true", help="also write frames/, fold.gif and fold.mp4")
+    parser.add_argument("--size", type=frame_size, default=(640, 480), metavar="WxH",
+                        help="frame size in pixels with --render (default 640x480)")  # fmt: skip
     parser.add_argument("--json", action="store_true", help="print report.json to stdout")
+
+
+def frame_size(text: str) -> tuple[int, int]:
+    """'WxH' -> (W, H) pixels, each 16 .. 4096."""
+    try:
+        width, height = (int(v) for v in text.lower().split("x"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--size {text!r}: give WIDTHxHEIGHT in pixels, e.g. 640x480") from None
+    if not (16 <= width <= 4096 and 16 <= height <= 4096):
+        raise argparse.ArgumentTypeError(f"--size {text!r}: width and height must be 16 .. 4096 pixels")
+    return width, height
 
 
 def run_one(scene, args, out: Path, reference=None) -> dict:
@@ -61,10 +75,13 @@ def run_one(scene, args, out: Path, reference=None) -> dict:
         from ..render import render_frames
 
         q = report.runs[0].dynamic.q
-        frames = render_frames(scene, q[np.linspace(0, len(q) - 1, FRAMES).astype(int)], out)
+        width, height = args.size
+        frames = render_frames(scene, q[np.linspace(0, len(q) - 1, FRAMES).astype(int)], out, width=width,
+                               height=height)  # fmt: skip
         doc["render"] = {"gl_renderer": frames.gl_renderer, "seconds_per_frame": frames.seconds_per_frame,
                          "frames": len(frames.pngs)}  # fmt: skip
         write_text(out / "report.json", json.dumps(doc, indent=2, default=plain) + "\n")
+    write_page(doc, out)
     return doc
 
 
@@ -99,6 +116,7 @@ def run(args: argparse.Namespace) -> int:
         table = "\n".join([HEADER, *map(summary_line, docs)])
         write_text(out / "summary.md", f"# sim_origami validation\n\n{table}\n")
         write_text(out / "summary.json", json.dumps(docs, indent=2, default=plain) + "\n")
+        write_index(docs, out)
         print(table)
         return 0 if all(d["passed"] for d in docs) else 1
     if args.fold is not None:

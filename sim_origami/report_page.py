@@ -1,0 +1,153 @@
+"""report.html per run and index.html for `validate --all`: self-contained pages that open from disk.
+
+Everything a page shows is inside it (the curves plot and the animation as base64 data URIs, styles inline): no
+network resource, no script. The model download links to `model.xml` beside the page.
+"""
+
+import base64
+import html
+import math
+from pathlib import Path
+
+from .files import write_text
+
+STYLE = """
+body { font-family: system-ui, sans-serif; margin: 2em auto; max-width: 64em; color: #222; padding: 0 1em; }
+h1 { font-size: 1.5em; } h2 { font-size: 1.15em; margin-top: 1.6em; }
+table { border-collapse: collapse; margin: 0.5em 0; }
+th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: left; vertical-align: top; }
+th { background: #f2f2f2; } td.num { text-align: right; font-variant-numeric: tabular-nums; }
+.pass { color: #11702d; font-weight: 600; } .fail { color: #b3131b; font-weight: 600; }
+.verdict { font-size: 1.3em; padding: 0.3em 0.8em; border-radius: 4px; display: inline-block; }
+.verdict.pass { background: #e3f4e8; } .verdict.fail { background: #fbe4e5; }
+img { max-width: 100%; border: 1px solid #ddd; }
+"""
+
+
+def _e(value) -> str:
+    return html.escape(str(value))
+
+
+def _num(value) -> str:
+    """A number as text: 3 significant digits, '-' for none or NaN."""
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "-"
+    if isinstance(value, bool | str):
+        return _e(value)
+    return f"{value:.3g}"
+
+
+def _status(passed: bool) -> str:
+    return f'<span class="{"pass" if passed else "fail"}">{"PASS" if passed else "FAIL"}</span>'
+
+
+def _data_uri(path: Path, mime: str) -> str | None:
+    """The file as a base64 data URI, or None if it does not exist."""
+    if not path.is_file():
+        return None
+    return f"data:{mime};base64,{base64.b64encode(path.read_bytes()).decode('ascii')}"
+
+
+def _verdict_rows(verdicts: list[dict]) -> str:
+    rows = []
+    for v in verdicts:
+        rows.append(f"<tr><td>{_status(v['passed'])}</td><td>{_e(v['name'])}</td>"
+                    f"<td class=num>{_num(v['measured'])}</td><td class=num>{_num(v['tolerance'])}</td>"
+                    f"<td>{_e(v.get('detail', ''))}</td></tr>")  # fmt: skip
+    return "\n".join(rows)
+
+
+def page(doc: dict, out: Path) -> str:
+    """The HTML of one run's report (`doc` as in report.json), embedding out/curves.png and out/fold.gif if present."""
+    scene, passed = doc["scene"], doc["passed"]
+    verdicts = doc["verdicts"] + [v for b in doc["branches"] for v in b["verdicts"]]
+    key = [
+        ("preset", doc["preset"]),
+        ("seed", doc["seed"]),
+        ("input", f"{doc['input']['name']} (drives {doc['input']['drive_joint']})"),
+        ("max path error (rad)", _num(doc["angle_error_max_rad"])),
+        ("max closure residual (m)", _num(doc["closure_residual_max_m"])),
+        ("MuJoCo step CPU (s)", _num(doc["timings_s"].get("mujoco_step_cpu_s"))),
+    ]
+    if "render" in doc:
+        render = doc["render"]
+        key.append(("seconds per frame", f"{_num(render['seconds_per_frame'])} ({render['gl_renderer']})"))
+    branches = "\n".join(
+        f"<tr><td>{_e(b['branch_requested'])}</td><td>{_e(b['branch_followed'] or '-')}</td>"
+        f"<td class=num>{_num(b['input_range_rad'][0])} .. {_num(b['input_range_rad'][1])}</td>"
+        f"<td class=num>{_num(b['angle_error_max_rad'])}</td><td class=num>{_num(b['closure_residual_max_m'])}</td>"
+        f"<td class=num>{b['steps']}</td></tr>"
+        for b in doc["branches"]
+    )
+    params = "".join(f"<tr><td>{_e(k)}</td><td class=num>{_num(v)}</td></tr>" for k, v in doc["params"].items())
+    figures = []
+    curves = _data_uri(out / "curves.png", "image/png")
+    if curves:
+        figures.append(f'<h2>Closed form against MuJoCo</h2>\n<img alt="curves of {_e(scene)}" src="{curves}">')
+    gif = _data_uri(out / "fold.gif", "image/gif")
+    if gif:
+        figures.append(f'<h2>Motion</h2>\n<img alt="{_e(scene)} folding" src="{gif}">')
+    downloads = ['<a href="model.xml" download>model.xml</a> (the MJCF that was stepped)',
+                 '<a href="report.json">report.json</a>', '<a href="curves.csv">curves.csv</a>']  # fmt: skip
+    if (out / "motion.fold").is_file():
+        downloads.append('<a href="motion.fold" download>motion.fold</a>')
+    return f"""<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>{_e(scene)}: {"PASS" if passed else "FAIL"}</title>
+<style>{STYLE}</style></head>
+<body>
+<h1>sim_origami: {_e(scene)}</h1>
+<p id="verdict" class="verdict {"pass" if passed else "fail"}">{"PASS" if passed else "FAIL"}:
+{sum(v["passed"] for v in verdicts)} of {len(verdicts)} checks passed</p>
+<h2>Key numbers</h2>
+<table>{"".join(f"<tr><th>{_e(k)}</th><td>{_e(v)}</td></tr>" for k, v in key)}</table>
+<h2>Checks</h2>
+<table id="checks"><tr><th>result</th><th>check</th><th>measured</th><th>tolerance</th><th>how</th></tr>
+{_verdict_rows(verdicts)}
+</table>
+<h2>Branches</h2>
+<table><tr><th>requested</th><th>followed</th><th>input (rad)</th><th>max path error (rad)</th>
+<th>max closure residual (m)</th><th>steps</th></tr>
+{branches}
+</table>
+<h2>Parameters (radians, metres)</h2>
+<table>{params or "<tr><td>none</td></tr>"}</table>
+{chr(10).join(figures)}
+<h2>Files</h2>
+<p>{" &middot; ".join(downloads)}</p>
+<p><small>sim_origami {_e(doc["sim_origami"])}</small></p>
+</body></html>
+"""
+
+
+def write_page(doc: dict, out: str | Path) -> Path:
+    """Write out/report.html (atomically)."""
+    out = Path(out)
+    return write_text(out / "report.html", page(doc, out))
+
+
+def index(docs: list[dict]) -> str:
+    """The HTML of `validate --all`'s index: one row per scene, linking its report.html (in <scene>/)."""
+    passed = sum(d["passed"] for d in docs)
+    rows = "\n".join(
+        f'<tr><td><a href="{_e(d["scene"])}/report.html">{_e(d["scene"])}</a></td><td>{_status(d["passed"])}</td>'
+        f"<td>{_e(d['preset'])}</td><td class=num>{_num(d['angle_error_max_rad'])}</td>"
+        f"<td class=num>{_num(d['closure_residual_max_m'])}</td></tr>"
+        for d in docs
+    )
+    return f"""<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>sim_origami: {passed} of {len(docs)} scenes pass</title>
+<style>{STYLE}</style></head>
+<body>
+<h1>sim_origami validation</h1>
+<p id="verdict" class="verdict {"pass" if passed == len(docs) else "fail"}">{passed} of {len(docs)} scenes pass</p>
+<table id="scenes"><tr><th>scene</th><th>result</th><th>preset</th><th>max path error (rad)</th>
+<th>max closure residual (m)</th></tr>
+{rows}
+</table>
+</body></html>
+"""
+
+
+def write_index(docs: list[dict], out: str | Path) -> Path:
+    """Write out/index.html (atomically)."""
+    return write_text(Path(out) / "index.html", index(docs))

@@ -1,0 +1,84 @@
+"""report.html and index.html in a real browser: headless Chromium opens them from disk (no network)."""
+
+import json
+
+import imageio.v3 as iio
+import numpy as np
+import pytest
+from chromium import INSTALL, Chromium, executable  # tests/chromium.py (pytest puts tests/ on sys.path)
+
+from sim_origami.cli import main
+from sim_origami.report_page import write_index
+
+pytestmark = pytest.mark.skipif(executable() is None, reason=INSTALL)
+
+# Evaluated in the page: the verdict text, the images and whether each decoded, and every resource reference.
+PROBE = """({
+  verdict: document.getElementById('verdict').textContent,
+  checks: document.querySelectorAll('#checks tr').length - 1,
+  images: Array.from(document.images).map(i => [i.src.slice(0, 15), i.complete && i.naturalWidth > 0]),
+  external: Array.from(document.querySelectorAll('[src], link[href]')).map(e => e.src || e.href)
+             .filter(u => !u.startsWith('data:')),
+  model: document.querySelector('a[href="model.xml"]') !== null,
+  links: Array.from(document.querySelectorAll('#scenes a')).map(a => a.getAttribute('href')),
+})"""
+
+
+@pytest.fixture(scope="module")
+def browser():
+    chromium = Chromium()
+    yield chromium
+    chromium.close()
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("runs")
+    status = main(["validate", "bennett", "--render", "--size", "320x240", "--out", str(out / "bennett")])
+    return status, out
+
+
+def not_blank(png: bytes) -> float:
+    """Pixel standard deviation of a screenshot (a blank page gives 0)."""
+    return float(np.asarray(iio.imread(png), dtype=float)[..., :3].std())
+
+
+def test_report_page_renders_with_its_verdict_plot_and_animation(run, browser):
+    status, out = run
+    doc = json.loads((out / "bennett" / "report.json").read_text())
+    page = browser.load(out / "bennett" / "report.html", PROBE)
+    assert page.errors == []
+    assert not_blank(page.screenshot) > 20.0  # measured about 70 (text, tables and the plot on white)
+    seen = page.value
+    assert seen["verdict"].startswith("PASS" if doc["passed"] else "FAIL") and status == (0 if doc["passed"] else 1)
+    verdicts = len(doc["verdicts"]) + sum(len(b["verdicts"]) for b in doc["branches"])
+    assert seen["checks"] == verdicts and f"{verdicts} of {verdicts}" in seen["verdict"]
+    assert [s for s, _ in seen["images"]] == ["data:image/png;", "data:image/gif;"]  # curves, then the motion
+    assert all(decoded for _, decoded in seen["images"])
+    assert seen["external"] == [] and seen["model"]
+    assert (out / "bennett" / "model.xml").is_file()
+
+
+def test_index_links_each_scene_page_with_its_verdict(run, browser):
+    _, out = run
+    doc = json.loads((out / "bennett" / "report.json").read_text())
+    failed = dict(doc, scene="bennett-copy", passed=False)
+    write_index([doc, failed], out)
+    page = browser.load(out / "index.html", PROBE)
+    assert page.errors == []
+    assert not_blank(page.screenshot) > 5.0
+    assert page.value["verdict"] == "1 of 2 scenes pass"
+    assert page.value["links"] == ["bennett/report.html", "bennett-copy/report.html"]
+
+
+def test_the_browser_check_sees_errors_and_blank_pages(tmp_path, browser):
+    # the checks above can fail: a script error, a console error and a missing file are all reported
+    bad = tmp_path / "bad.html"
+    bad.write_text('<!DOCTYPE html><p id="verdict">PASS</p><img src="missing.png">'
+                   '<script>console.error("broken"); undefinedFunction();</script>')  # fmt: skip
+    page = browser.load(bad, "document.getElementById('verdict').textContent")
+    assert page.value == "PASS"
+    assert len(page.errors) == 3 and "broken" in page.errors
+    blank = tmp_path / "blank.html"
+    blank.write_text("<!DOCTYPE html><title>blank</title>")
+    assert not_blank(browser.load(blank, "1").screenshot) == 0.0
