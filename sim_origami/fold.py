@@ -23,6 +23,13 @@ Frames. The key frame (top level) is the pattern; each entry of `file_frames` gi
 angles from its own or inherited (`frame_inherit`, `frame_parent`) `edges_foldAngle`, and must keep the
 key frame's `edges_vertices`; other frame fields are not read.
 
+Writing (`fold_dict`). Creases first (FOLD edge k = crease k), then the boundary as "B"; angles in degrees as
+given (continuous along the frames, in [-180, 180]). With fold angles, the letters come from the motion, never
+"U" with an angle (FOLD's unassigned creases are unfolded by viewers): "F" at 0 deg for a crease within
+`flat_tol` of flat in every state, else V/M by the sign of its largest excursion, a state where it has the
+other sign carrying its own edges_assignment; `frame_description` names those and any declared M/V the
+motion contradicts. docs/fold_motion.md.
+
 Thick panels. The custom per-edge field `edges_sim_origami:hingeHeight` (FOLD's `edges_<namespace>:...`
 form for custom edge data, lengths in `frame_unit`) gives Crease.height along +z; absent means 0. On border
 ("B") edges it is the height of a neighbouring cell's hinge there (`CreasePattern.border_heights`, which shape

@@ -1,6 +1,7 @@
 """Writing FOLD files (`fold.fold_dict`, `report.motion_fold`): assignment rules, angle continuity, round trip
 through `validate --fold`, and the written motions folded by an independent FOLD reader (Rabbit Ear, npm)."""
 
+import dataclasses
 import json
 import shutil
 import subprocess
@@ -18,7 +19,7 @@ from sim_origami.origami import pattern_mechanism
 from sim_origami.report import motion_fold
 from sim_origami.scenes.fold_file import fold_scene
 from sim_origami.tolerances import TOLERANCES
-from sim_origami.validation import validate
+from sim_origami.validation import Report, validate
 
 JS = Path(__file__).parent / "js"
 ALPHA, BETA, T = 0.7, 0.6, 0.5
@@ -119,23 +120,46 @@ def test_full_fold_is_plus_180_and_beyond_is_refused():
 
 
 @pytest.fixture(scope="module")
-def motions(tmp_path_factory) -> dict[str, Path]:
-    """motion.fold of each MOTIONS scene's branch, written by report.motion_fold from a real MuJoCo run."""
+def reports() -> dict[str, Report]:
+    """A real MuJoCo run of each MOTIONS scene's branch."""
+    out = {key: validate(scenes.get(name).build(**params), branch=branch) for key, (name, params, branch) in
+           MOTIONS.items()}  # fmt: skip
+    assert all(report.passed for report in out.values())
+    return out
+
+
+@pytest.fixture(scope="module")
+def motions(reports, tmp_path_factory) -> dict[str, Path]:
+    """motion.fold of each MOTIONS run, written by report.motion_fold."""
     out = tmp_path_factory.mktemp("motions")
-    paths = {}
-    for key, (name, params, branch) in MOTIONS.items():
-        report = validate(scenes.get(name).build(**params), branch=branch)
-        assert report.passed
-        paths[key] = motion_fold(report, out / f"{key}.fold")
-    return paths
+    return {key: motion_fold(report, out / f"{key}.fold") for key, report in reports.items()}
+
+
+def test_a_crease_folded_past_180_is_written_at_180_not_wrapped(reports, tmp_path):
+    """A hinge angle past -pi (a contact overshoot) is written at -180, never wrapped to +180 (nor +pi to -180)."""
+    report = reports["waterbomb-vertex"]
+    run = report.runs[0]
+    crease = report.scene.pattern.creases[7]  # folded most (-164 deg at the end): pushed to -pi and beyond
+    j = report.scene.mechanism.joint_index(crease.name)
+    q = run.dynamic.q.copy()
+    q[:, j] = np.linspace(-0.5, -np.pi - 2e-3, len(q))
+    dynamic = dataclasses.replace(run.dynamic, q=q)
+    pushed = dataclasses.replace(report, runs=(dataclasses.replace(run, dynamic=dynamic),))
+    doc = json.loads(motion_fold(pushed, tmp_path / "pushed.fold").read_text())
+    k = report.scene.pattern.creases.index(crease)
+    deg = np.array([a[k] for _, a in frames_of(doc)])
+    assert deg[-1] == -180.0 and np.all(deg[1:] <= 0) and np.all(np.diff(deg[1:]) <= 0)
+    assert doc["edges_assignment"][k] == "M"
+    assert f"{crease.name} overshoots -180 deg by 0.002 rad" in doc["frame_description"]
 
 
 def test_motion_files_follow_the_rules(motions):
     for path in motions.values():
         doc = json.loads(path.read_text())
         assert_letters_match_signs(doc)
-        deg = np.array([a for _, a in frames_of(doc)[1:]])  # the frames (the key frame is the flat sheet)
-        assert np.max(np.abs(np.diff(deg, axis=0))) < 30.0  # continuous: no 360 deg jump between frames
+        deg = np.array([a for _, a in frames_of(doc)])
+        np.testing.assert_array_equal(deg[0], deg[-1])  # the key frame is the motion's end state
+        assert np.max(np.abs(np.diff(deg[1:], axis=0))) < 30.0  # continuous: no 360 deg jump between frames
 
 
 @pytest.mark.slow
