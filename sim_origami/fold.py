@@ -66,7 +66,7 @@ DEVELOPABLE_TOL = 1e-9
 AREA_RTOL = 1e-12
 # z spread allowed in 3-D vertices_coords, relative to the sheet's extent in x and y.
 FLAT_RTOL = 1e-12
-# Written crease whose |rho| (rad) never exceeds this is F (flat). Exact states (closed form, numeric closure)
+# A written crease whose |rho| (rad) never exceeds this is F (flat). Exact states (closed form, numeric closure)
 # hold to 1e-12 rad (tolerances.closed_form_rad), so 1e-9 stays 1000x above their noise and far below any
 # visible fold; simulated motions pass their own preset's angle tolerance instead (report.motion_fold).
 FLAT_TOL = 1e-9
