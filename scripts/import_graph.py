@@ -30,7 +30,8 @@ LAYERS = (
     ("simulation", "MuJoCo runs; the truss method", ("simulate", "truss")),
     ("checks", "path errors, branch classification, blockage verdicts", ("checks",)),
     ("validation", "the three-way cross-check; sweeps", ("validation", "sweep")),
-    ("outputs", "reports, plots, frames; studies built on the harness", ("report", "report_page", "plots", "render", "render_paper", "studies")),
+    ("outputs", "reports, plots, frames; studies built on the harness",
+     ("report", "report_page", "plots", "render", "render_paper", "studies")),
     ("cli", "the sim-origami commands", ("cli",)),
 )  # fmt: skip
 

@@ -49,6 +49,13 @@ Frames. Each entry of `file_frames` gives one row of fold angles: its own edges_
 of its own vertices_coords (Origami Simulator's exports), else what it inherits (`frame_inherit`; without
 `frame_parent` the parent is the key frame). Frames must keep the crease pattern's edges_vertices.
 
+Writing (`fold_dict`). Creases first (FOLD edge k = crease k), then the boundary as "B"; angles in degrees as
+given (continuous along the frames, in [-180, 180]). With fold angles, the letters come from the motion, never
+"U" with an angle (FOLD's unassigned creases are unfolded by viewers): "F" at 0 deg for a crease within
+`flat_tol` of flat in every state, else V/M by the sign of its largest excursion, a state where it has the
+other sign carrying its own edges_assignment; `frame_description` names those and any declared M/V the
+motion contradicts. docs/fold_motion.md.
+
 Thick panels. The custom per-edge field `edges_sim_origami:hingeHeight` (FOLD's `edges_<namespace>:...`
 form for custom edge data, lengths in `frame_unit`) gives Crease.height along +z; absent means 0. On border
 ("B") edges it is the height of a neighbouring cell's hinge there (`CreasePattern.border_heights`, which shape
@@ -86,6 +93,10 @@ LETTERS = ("B", "M", "V", "F", "U", "C", "J")
 DEVELOPABLE_TOL = 1e-9
 # A face is degenerate when |area| <= AREA_RTOL * (its longest side)^2; an edge when its length <= this * size.
 AREA_RTOL = 1e-12
+# A written crease whose |rho| (rad) never exceeds this is F (flat). Exact states (closed form, numeric closure)
+# hold to 1e-12 rad (tolerances.closed_form_rad), so 1e-9 stays 1000x above their noise and far below any
+# visible fold; simulated motions pass their own preset's angle tolerance instead (report.motion_fold).
+FLAT_TOL = 1e-9
 
 
 @dataclass(frozen=True)
@@ -194,17 +205,33 @@ def fold_dict(
     *,
     title: str = "sim_origami crease pattern",
     creator: str = "sim_origami",
+    flat_tol: float = FLAT_TOL,
+    notes: tuple[str, ...] = (),
 ) -> dict[str, Any]:
     """
     FOLD 1.2 data of a pattern: edges are its creases (in order, FOLD edge k = crease k) then the
     boundary. The key frame holds `fold_angles` (n_creases,) rad, or 0; each row of `frames`
     (n_frames, n_creases) rad becomes a `file_frames` entry inheriting from the key frame. Fold angles
-    are written in degrees and must lie in [-pi, pi].
+    are written in degrees, as given (continuous along the frames), and must lie in [-pi, pi].
+
+    Assignments (`assign_creases`): without any fold angle given, each crease keeps the pattern's M/V/U.
+    With angles, they come from the motion: `F` (written as 0 deg) for a crease whose |rho| stays within
+    `flat_tol` rad in every state, otherwise V or M by the sign of its largest excursion. A state (key frame
+    or frame) in which a crease has the other sign carries its own edges_assignment, so that every written
+    angle has the sign of its letter and no crease is `U` with an angle. `frame_description` lists such
+    sign changes, any declared M/V that the motion contradicts, and `notes`.
     """
     boundary = _boundary_edges(pattern)
     n, pad = len(pattern.creases), [0.0] * len(boundary)
     rows = np.empty((0, n)) if frames is None else _frame_rows(frames, n)
-    key = np.zeros(n) if fold_angles is None else fold_angles
+    key = np.zeros(n) if fold_angles is None else np.asarray(fold_angles, dtype=float)
+    states = np.vstack([_fold_radians(key, n, "fold_angles"), *(_fold_radians(r, n, f"frames[{k}]")
+                        for k, r in enumerate(rows))])  # fmt: skip
+    if fold_angles is None and not len(rows):
+        letters, said = np.array([[c.assignment for c in pattern.creases]]), []
+    else:
+        letters, said = assign_creases(pattern, states, flat_tol)
+        states = np.where(letters == "F", 0.0, states)
     doc = {
         "file_spec": FILE_SPEC,
         "file_creator": creator,
@@ -215,24 +242,59 @@ def fold_dict(
         "frame_unit": "m",
         "vertices_coords": np.asarray(pattern.vertices, dtype=float).tolist(),
         "edges_vertices": [[int(c.start), int(c.end)] for c in pattern.creases] + [list(e) for e in boundary],
-        "edges_assignment": [c.assignment for c in pattern.creases] + ["B"] * len(boundary),
-        "edges_foldAngle": _fold_degrees(key, n, "fold_angles") + pad,
+        "edges_assignment": letters[0].tolist() + ["B"] * len(boundary),
+        "edges_foldAngle": np.rad2deg(states[0]).tolist() + pad,
         "faces_vertices": [[int(v) for v in face] for face in pattern.faces],
     }
+    if said or notes:
+        doc["frame_description"] = " ".join([*said, *notes])
     if any(c.height != 0.0 for c in pattern.creases) or any(h != 0.0 for *_, h in pattern.border_heights):
         known = {frozenset((a, b)): float(h) for a, b, h in pattern.border_heights}
         doc[HEIGHT_KEY] = [float(c.height) for c in pattern.creases] + [known.get(frozenset(e)) for e in boundary]
     if len(rows):
-        doc["file_frames"] = [
-            {
-                "frame_inherit": True,
-                "frame_parent": 0,
-                "frame_classes": ["creasePattern"],
-                "edges_foldAngle": _fold_degrees(row, n, f"frames[{k}]") + pad,
-            }
-            for k, row in enumerate(rows)
-        ]
+        doc["file_frames"] = []
+        for rho, own in zip(states[1:], letters[1:], strict=True):
+            frame = {"frame_inherit": True, "frame_parent": 0, "frame_classes": ["creasePattern"],
+                     "edges_foldAngle": np.rad2deg(rho).tolist() + pad}  # fmt: skip
+            if np.any(own != letters[0]):
+                frame["edges_assignment"] = own.tolist() + ["B"] * len(boundary)
+            doc["file_frames"].append(frame)
     return doc
+
+
+def assign_creases(
+    pattern: CreasePattern, states: ArrayLike, flat_tol: float = FLAT_TOL
+) -> tuple[NDArray[np.str_], list[str]]:
+    """
+    FOLD letters (n_states, n_creases) for fold angles `states` (n_states, n_creases) rad, and sentences
+    saying where they depart from one letter per crease or from the pattern's declared M/V.
+
+    A crease is `F` in every state when max |rho| <= flat_tol; otherwise its letter is V (rho > 0, valley
+    seen from +z) or M by the sign of its largest |rho|, and a state where rho has the other sign gets the
+    letter of that sign (rho = 0 keeps the crease's letter).
+    """
+    rho = np.asarray(states, dtype=float)
+    names = [c.name for c in pattern.creases]
+    peak = rho[np.argmax(np.abs(rho), axis=0), np.arange(rho.shape[1])]
+    flat = np.abs(peak) <= flat_tol
+    overall = np.where(flat, "F", np.where(peak > 0, "V", "M"))
+    letters = np.where(rho > 0, "V", np.where(rho < 0, "M", overall))
+    letters = np.where(flat, "F", letters)
+    said = []
+    flips = [k for k in range(len(names)) if np.any(letters[:, k] != overall[k])]
+    if flips:
+        said.append(
+            f"Creases {', '.join(names[k] for k in flips)} change sign along the motion: each is assigned by its "
+            "largest excursion, and the frames where it has the other sign carry their own edges_assignment."
+        )
+    contradicted = [
+        f"{c.name} ({c.assignment} declared, {overall[k]} in the motion)"
+        for k, c in enumerate(pattern.creases)
+        if c.assignment in ("M", "V") and overall[k] != c.assignment
+    ]
+    if contradicted:
+        said.append(f"The motion contradicts the pattern's declared assignment at {', '.join(contradicted)}.")
+    return letters, said
 
 
 def write_fold(
@@ -243,9 +305,11 @@ def write_fold(
     fold_angles: ArrayLike | None = None,
     title: str = "sim_origami crease pattern",
     creator: str = "sim_origami",
+    flat_tol: float = FLAT_TOL,
+    notes: tuple[str, ...] = (),
 ) -> Path:
-    """Write `fold_dict(pattern, fold_angles, frames)` as a .fold JSON file, atomically; returns the path."""
-    doc = fold_dict(pattern, fold_angles, frames, title=title, creator=creator)
+    """Write `fold_dict(pattern, fold_angles, frames, ...)` as a .fold JSON file, atomically; returns the path."""
+    doc = fold_dict(pattern, fold_angles, frames, title=title, creator=creator, flat_tol=flat_tol, notes=notes)
     return write_text(path, json.dumps(doc, indent=1) + "\n")
 
 
@@ -766,12 +830,12 @@ def _frame_rows(frames: ArrayLike, n_creases: int) -> NDArray[np.float64]:
     return rows
 
 
-def _fold_degrees(angles: ArrayLike, n_creases: int, what: str) -> list[float]:
-    """Fold angles (n_creases,) rad, each in [-pi, pi], as FOLD degrees."""
+def _fold_radians(angles: ArrayLike, n_creases: int, what: str) -> NDArray[np.float64]:
+    """Fold angles (n_creases,) rad, checked to lie in [-pi, pi]."""
     rho = np.asarray(angles, dtype=float)
     if rho.shape != (n_creases,):
         raise ParameterError(f"{what} has shape {rho.shape}; it needs one fold angle per crease ({n_creases})")
     bad = np.flatnonzero(~(np.abs(rho) <= np.pi))
     if bad.size:
         raise ParameterError(f"{what}[{bad[0]}] = {rho[bad[0]]:g} rad; FOLD fold angles lie in [-pi, pi]")
-    return np.rad2deg(rho).tolist()
+    return rho

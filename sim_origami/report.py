@@ -11,9 +11,9 @@ import numpy as np
 from . import __version__
 from .files import write_text
 from .fold import write_fold
-from .geometry import wrap
 from .mjcf import ModelOptions, build_xml
 from .simulate import start_input
+from .tolerances import TOLERANCES
 from .validation import Report
 
 # Frames of the simulated motion written to motion.fold (evenly spaced over the first run).
@@ -117,12 +117,30 @@ def plain(value):
 
 
 def motion_fold(report: Report, out: Path) -> Path:
-    """The first run's simulated fold angles as a multi-frame FOLD file (at most FOLD_FRAMES frames)."""
+    """
+    The first run's simulated fold angles as a multi-frame FOLD file (at most FOLD_FRAMES frames; `fold_dict`
+    for the assignments). The key frame holds the last frame's angles, the motion's end state: viewers that
+    read only the key frame (Origami Simulator takes its edges_foldAngle as the target) fold to it. MuJoCo's
+    hinge angles are continuous and written unwrapped, so a crease folded flat stays at +180 (or -180) deg;
+    one that overshoots +-pi by contact is written at +-pi, and the file's description says by how much when
+    that exceeds the preset's angle tolerance. A crease that stays within that tolerance of flat (the
+    simulation's accepted error) is F.
+    """
     scene, run = report.scene, report.runs[0]
     rows = np.unique(np.linspace(0, len(run.dynamic.q) - 1, FOLD_FRAMES).astype(int))
     columns = [scene.mechanism.joint_index(c.name) for c in scene.pattern.creases]
+    rho = run.dynamic.q[np.ix_(rows, columns)]
+    tol = TOLERANCES.angle(report.preset)
+    over = np.max(np.abs(rho), axis=0) - np.pi
+    side = np.where(np.max(rho, axis=0) > -np.min(rho, axis=0), "+", "-")
+    notes = tuple(
+        f"{c.name} overshoots {side[k]}180 deg by {over[k]:.3g} rad in the simulation and is written at {side[k]}180."
+        for k, c in enumerate(scene.pattern.creases)
+        if over[k] > tol
+    )
     title = f"{scene.name}: MuJoCo {report.preset}, branch {run.requested}"
-    return write_fold(out, scene.pattern, wrap(run.dynamic.q[np.ix_(rows, columns)]), title=title)
+    rho = np.clip(rho, -np.pi, np.pi)
+    return write_fold(out, scene.pattern, rho, fold_angles=rho[-1], title=title, flat_tol=tol, notes=notes)
 
 
 def model_xml(report: Report) -> str:
