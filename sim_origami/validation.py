@@ -78,8 +78,8 @@ def closed_form_verdicts(scene: Scene, branch: str, x: np.ndarray) -> tuple[Verd
     loops = kin.loop_system()
     values = kin.joint_angles(branch, x)
     q = kin.loop_angles(values)
-    joint, scale = kin.loop_input()
-    numeric = loops.follow(q[0], joint, scale * x)
+    joints, held = kin.loop_inputs(x)
+    numeric = loops.follow(q[0], joints[0], held[:, 0]) if len(joints) == 1 else loops.follow(q[0], joints, held)
     return (
         Verdict(
             f"{branch}: closed-form closure residual",
