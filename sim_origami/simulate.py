@@ -34,6 +34,8 @@ STALL_TOL = 1e-13
 # Projection stops when MuJoCo's equality residual (m) falls below this (1e-14 left up to 1.8e-13 rad of angle
 # error on ill-conditioned loops; 1e-15 at most 2.3e-14, still within 20 Gauss-Newton steps).
 PROJECTION_TOL = 1e-15
+# A quasi-static sweep moves no joint by this much (rad) in one step: a larger jump marks a divergence.
+JUMP_RAD = 0.5
 
 
 @dataclass(frozen=True)
@@ -146,6 +148,16 @@ def _check(data: mujoco.MjData, messages: list[str], context: str) -> None:
         names = ", ".join(bad) or "non-finite qpos"
         detail = f": {messages[0].strip()}" if messages else ""
         raise SimulationError(f"{context}: MuJoCo warning {names}{detail}")
+
+
+def _first_bad(qpos_log: NDArray, x: NDArray) -> str:
+    """Where a run first went wrong: the first step whose qpos is not finite or jumps by more than JUMP_RAD from the
+    step before (a divergence, or MuJoCo's reset after one), with its input (rad); '' when there is none."""
+    finite = np.all(np.isfinite(qpos_log), axis=1)
+    jump = np.r_[False, np.max(np.abs(np.diff(np.where(np.isfinite(qpos_log), qpos_log, 0.0), axis=0)), axis=1,
+                               initial=0.0) > JUMP_RAD]  # fmt: skip
+    bad = np.flatnonzero(~finite | jump)
+    return f"; first went wrong at step {bad[0] + 1} of {len(x)} (input {x[bad[0]]:.6g} rad)" if len(bad) else ""
 
 
 def _context(scene: Scene, branch: str, preset: str, how: str) -> str:
@@ -321,9 +333,8 @@ def simulate(
                 contacts[k] = data.ncon
                 force[k] = data.actuator_force[act]
             cpu = time.thread_time() - cpu
-        _check(
-            data, messages, _context(scene, branch, preset, f"{drive} drive {start:.6g} -> {stop:.6g} rad in {T:g} s")
-        )
+        how = f"{drive} drive {start:.6g} -> {stop:.6g} rad in {T:g} s"
+        _check(data, messages, _context(scene, branch, preset, how) + _first_bad(qpos_log, x))
     index, residual = _residuals(scene, model, data, binds, qpos_log)
     return Trajectory(
         scene=scene.name, branch=branch, mode=f"dynamic/{drive}", preset=preset, time=t, target=x,

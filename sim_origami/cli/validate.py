@@ -9,7 +9,7 @@ import numpy as np
 from tqdm import tqdm
 
 from .. import scenes
-from ..errors import ParameterError
+from ..errors import ParameterError, SimulationError
 from ..files import write_text
 from ..report import as_dict, plain, write
 from ..scenes.fold_file import fold_scene
@@ -26,7 +26,8 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("scene", nargs="?", help="scene name (see list); omit with --all or --fold")
     parser.add_argument("--all", action="store_true", help="every scene with its defaults, plus a summary")
     parser.add_argument("--fold", type=Path, help="a FOLD 1.2 file with a folded state: numeric reference")
-    parser.add_argument("--input", help="with --fold: the driven crease, e<edge index> (default: the most folded)")
+    parser.add_argument("--input", help="with --fold: the driven crease(s), e<edge index>[,e<edge index>...] "
+                        "(default: as many as the pattern has freedoms, picked by rank, the most folded first)")
     add_params(parser)
     parser.add_argument("--branch", help="one branch (default: every branch)")
     parser.add_argument(
@@ -59,6 +60,15 @@ def run_one(scene, args, out: Path) -> dict:
         doc["render"] = {"gl_renderer": frames.gl_renderer, "seconds_per_frame": frames.seconds_per_frame,
                          "frames": len(frames.pngs)}  # fmt: skip
         write_text(out / "report.json", json.dumps(doc, indent=2, default=plain) + "\n")
+    return doc
+
+
+def failed_run(scene, args, out: Path, err: SimulationError) -> dict:
+    """report.json for a run MuJoCo could not finish: the failing check and the configuration where it happened."""
+    doc = {"scene": scene.name, "params": scene.params, "preset": args.preset or scene.preset, "passed": False,
+           "notes": scene.notes, "verdicts": [{"name": "MuJoCo run finished without a warning", "measured": 1.0,
+                                               "tolerance": 0.0, "passed": False, "detail": str(err)}]}  # fmt: skip
+    write_text(out / "report.json", json.dumps(doc, indent=2, default=plain) + "\n")
     return doc
 
 
@@ -98,7 +108,12 @@ def run(args: argparse.Namespace) -> int:
     else:
         scene = scenes.get(args.scene).build_from_user(parse_params(args.param))
     out = args.out or Path("runs") / scene.name
-    doc = run_one(scene, args, out)
+    try:
+        doc = run_one(scene, args, out)
+    except SimulationError as err:  # MuJoCo diverged: a failed check on this pattern, not bad input
+        doc = failed_run(scene, args, out, err)
+        print(f"FAIL {scene.name}: {err}\noutputs in {out}/")
+        return 1
     if args.json:
         print(json.dumps(doc, indent=2, default=plain))
     else:
