@@ -107,11 +107,16 @@ def run(args: argparse.Namespace) -> int:
         scene = fold_scene(args.fold, args.input)
     else:
         scene = scenes.get(args.scene).build_from_user(parse_params(args.param))
+    return validate_scene(scene, args)
+
+
+def validate_scene(scene, args: argparse.Namespace) -> int:
+    """Validate one built scene, print the verdicts, return the exit status (a MuJoCo divergence is a failure)."""
     out = args.out or Path("runs") / scene.name
     try:
         doc = run_one(scene, args, out)
     except SimulationError as err:  # MuJoCo diverged: a failed check on this pattern, not bad input
-        doc = failed_run(scene, args, out, err)
+        failed_run(scene, args, out, err)
         print(f"FAIL {scene.name}: {err}\noutputs in {out}/")
         return 1
     if args.json:

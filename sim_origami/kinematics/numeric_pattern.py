@@ -119,7 +119,8 @@ class PatternPath(JointSpaceKinematics):
         self.upper = np.where(self.signs < 0, SIGN_SLACK, np.pi - LOCK_MARGIN)
         self.target = None if target is None else np.asarray(target, dtype=float)
         self.frames = None if frames is None else np.atleast_2d(np.asarray(frames, dtype=float))
-        if self.target is None and self.frames is None:
+        self.letters_only = self.target is None and self.frames is None
+        if self.letters_only:
             if signs is None:
                 raise ParameterError("a pattern path needs a target state, frames or M/V signs")
             self.target = np.where(self.signs != 0, self.signs * np.pi, np.nan)
@@ -197,7 +198,8 @@ class PatternPath(JointSpaceKinematics):
         """A configuration near the closed one at s1, a little way from flat along the path (flat is a branch point:
         the guess picks the branch heading for the folded state, or the M/V signs)."""
         n = len(self.joint_names)
-        if np.all(self.signs[[k for k, c in enumerate(self.pattern.creases) if c.assignment != "F"]] != 0):
+        lettered = self.signs[[k for k, c in enumerate(self.pattern.creases) if c.assignment != "F"]] != 0
+        if self.letters_only and np.all(lettered):
             x = float(path.at(s1)[0])
             q, _ = self._loops.solve_signed(np.where(self.signs == 0, 1.0, self.signs), self.input_index, x,
                                             tol=CLOSE_TOL)  # fmt: skip
@@ -207,6 +209,14 @@ class PatternPath(JointSpaceKinematics):
         first = np.nan_to_num(states[0])
         lead = np.max(np.abs(path.points[1]))
         q = first * (np.max(np.abs(path.at(s1))) / lead) if lead > 0 else np.zeros(n)
+        q[self.driven] = path.at(s1)
+        # nearest to that guess of the states that close to first order at flat (J0 q = 0, inputs held): from a
+        # guess off that plane the corrector can stall at flat's saddle (a degree-5 vertex did at 4.6e-5)
+        J0 = self._loops.jacobian(np.zeros(n))
+        free = np.ones(n, dtype=bool)
+        free[self.driven] = False
+        if J0.size:
+            q[free] -= np.linalg.lstsq(J0[:, free], J0 @ q, rcond=None)[0]
         return q
 
     def _trace_directed(self) -> None:
