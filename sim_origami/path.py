@@ -225,7 +225,8 @@ def trace(
     h, failures, stop = first_step, 0, None
     behind = None if previous is None else (float(previous[0]), np.asarray(previous[1], dtype=float))
     if r0 > 100 * tol:
-        stop = PathStop("stall", s, None, f"no rigid configuration beyond: the start does not close (residual {r0:.3g})")
+        why = f"no rigid configuration beyond: the start does not close (residual {r0:.3g})"
+        stop = PathStop("stall", s, None, why)
     while stop is None:
         if (end - s) * direction <= 1e-15:
             stop = PathStop("end", s, None, "the path's end")
