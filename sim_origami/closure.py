@@ -16,6 +16,8 @@ from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from scipy import sparse as sp
+from scipy.sparse.linalg import spsolve
 
 from .errors import ConvergenceError
 from .geometry import left_jacobian_inverse, rotation_vector, transform_z, wrap
@@ -50,8 +52,13 @@ def _levenberg_marquardt(residual, jacobian, u: NDArray[np.float64], tol: float,
         if np.max(np.abs(r), initial=0.0) < tol:  # an open chain (no residual) is closed
             break
         J = jacobian(u)
-        JtJ = J.T @ J
-        trial = u + np.linalg.solve(JtJ + damping * np.diag(np.diag(JtJ) + 1e-12), -J.T @ r)
+        if sp.issparse(J):  # large patterns: a few nonzeros per row, so the normal equations stay sparse
+            JtJ = (J.T @ J).tocsc()
+            step = spsolve(JtJ + damping * sp.diags(JtJ.diagonal() + 1e-12, format="csc"), -(J.T @ r))
+            trial = u + np.atleast_1d(step)
+        else:
+            JtJ = J.T @ J
+            trial = u + np.linalg.solve(JtJ + damping * np.diag(np.diag(JtJ) + 1e-12), -J.T @ r)
         r_trial = residual(trial)
         if np.sum(r_trial**2) < np.sum(r**2):
             u, r = trial, r_trial
@@ -79,6 +86,8 @@ class LoopSystem:
     n_joints: int
     loops: tuple[Loop, ...]
     couplings: tuple[Coupling, ...] = ()
+    # Solve with sparse normal equations (patterns of hundreds of creases; same results to the tolerance).
+    sparse: bool = False
 
     @cached_property
     def _batches(self) -> tuple[tuple[NDArray, NDArray, NDArray, NDArray], ...]:
@@ -131,8 +140,20 @@ class LoopSystem:
         through the joint's origin p_k. The end's translation t changes by w x (t - p_k) and its rotation
         vector phi by Jl^-1(phi) w (inverse left Jacobian of SO(3); the identity once the loop is closed).
         """
-        q = np.asarray(q, dtype=float)
         J = np.zeros((self.n_residuals, self.n_joints))
+        rows, cols, values = self.jacobian_entries(q)
+        np.add.at(J, (rows, cols), values)  # a joint may appear in several loops, and twice in one
+        return J
+
+    def jacobian_sparse(self, q: ArrayLike) -> sp.csc_matrix:
+        """`jacobian` as a sparse matrix (a loop touches only its own joints): for patterns of many creases."""
+        rows, cols, values = self.jacobian_entries(q)
+        return sp.csc_matrix((values.ravel(), (rows.ravel(), cols.ravel())), shape=(self.n_residuals, self.n_joints))
+
+    def jacobian_entries(self, q: ArrayLike) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.float64]]:
+        """The Jacobian's entries as (rows, columns, values), repeated positions to be summed."""
+        q = np.asarray(q, dtype=float)
+        rows_out, cols_out, vals_out = [], [], []
         for ms, joints, signs, links in self._batches:
             g, n = joints.shape
             T = np.broadcast_to(np.eye(4), (g, 4, 4))
@@ -145,13 +166,17 @@ class LoopSystem:
             rot = left_jacobian_inverse(rotation_vector(T[:, :3, :3])) @ np.swapaxes(axes, 1, 2)  # (g, 3, n)
             move = np.swapaxes(np.cross(axes, T[:, None, :3, 3] - points), 1, 2)
             rows = 6 * ms[:, None, None] + np.arange(6)[None, :, None]
-            # a joint may appear in several loops, and twice in one
-            np.add.at(J, (np.broadcast_to(rows, (g, 6, n)), np.broadcast_to(joints[:, None, :], (g, 6, n))),
-                      np.concatenate([rot, move], axis=1))  # fmt: skip
+            rows_out.append(np.broadcast_to(rows, (g, 6, n)).ravel())
+            cols_out.append(np.broadcast_to(joints[:, None, :], (g, 6, n)).ravel())
+            vals_out.append(np.concatenate([rot, move], axis=1).ravel())
+        base = 6 * len(self.loops)
         for c, coupling in enumerate(self.couplings):
-            J[6 * len(self.loops) + c, coupling.joint] += 1.0
-            J[6 * len(self.loops) + c, coupling.other] -= coupling.scale
-        return J
+            rows_out.append(np.array([base + c, base + c]))
+            cols_out.append(np.array([coupling.joint, coupling.other]))
+            vals_out.append(np.array([1.0, -coupling.scale]))
+        if not rows_out:
+            return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64), np.zeros(0)
+        return np.concatenate(rows_out), np.concatenate(cols_out), np.concatenate(vals_out)
 
     def solve(
         self,
@@ -186,8 +211,9 @@ class LoopSystem:
             out[free] = u
             return out
 
+        jacobian = self.jacobian_sparse if self.sparse else self.jacobian
         u, r = _levenberg_marquardt(
-            lambda u: self.residual(q_of(u)), lambda u: self.jacobian(q_of(u))[:, free], q[free], tol, max_iter
+            lambda u: self.residual(q_of(u)), lambda u: jacobian(q_of(u))[:, free], q[free], tol, max_iter
         )
         q = q_of(u)
         worst = float(np.max(np.abs(r), initial=0.0))

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from scipy import sparse as sp
 
 from .closure import LoopSystem, _levenberg_marquardt
 from .errors import ParameterError
@@ -36,6 +37,9 @@ STALL_CONFIRM = 3
 JUMP = 0.2
 # Numerical rank: singular values above this times the largest (at least 1) count (as `LoopSystem.mobility`).
 RANK_RTOL = 1e-6
+# Sparse (large) systems rank every this many nodes and the last (480 creases: one rank 0.1-1 s, a corrector step
+# a few ms); a mobility change is then placed between two ranked nodes.
+SPARSE_RANK_STRIDE = 10
 
 
 @dataclass(frozen=True)
@@ -108,17 +112,27 @@ class TracedPath:
     events: tuple[PathStop, ...]
 
 
-def rank(J: NDArray[np.float64], rtol: float = RANK_RTOL) -> int:
-    """Numerical rank of a Jacobian (rows may be empty)."""
-    if not J.size:
+def rank(J, rtol: float = RANK_RTOL) -> int:
+    """Numerical rank of a Jacobian, dense or sparse (rows may be empty). A sparse one is ranked by the eigenvalues
+    of its Gram matrix J^T J (n_joints square, far smaller than J for big patterns; eigenvalue errors of
+    1e-16 |J|^2 leave singular values near rtol = 1e-6 resolved)."""
+    if not J.shape[0] or not J.shape[1]:
         return 0
-    sv = np.linalg.svd(J, compute_uv=False)
+    if sp.issparse(J):
+        sv = np.sqrt(np.clip(np.linalg.eigvalsh((J.T @ J).toarray()), 0.0, None))
+    else:
+        sv = np.linalg.svd(J, compute_uv=False)
     return int(np.sum(sv > rtol * max(sv.max(initial=0.0), 1.0)))
+
+
+def jacobian(loops: LoopSystem, q: ArrayLike):
+    """The closure Jacobian, sparse when the loop system solves sparse."""
+    return loops.jacobian_sparse(q) if loops.sparse else loops.jacobian(q)
 
 
 def mobility(loops: LoopSystem, q: ArrayLike) -> int:
     """Instantaneous mobility at q: joints minus the closure Jacobian's numerical rank."""
-    return loops.n_joints - rank(loops.jacobian(q))
+    return loops.n_joints - rank(jacobian(loops, q))
 
 
 def independent_joints(loops: LoopSystem, q: ArrayLike, k: int | None = None, among: ArrayLike | None = None,
@@ -167,15 +181,16 @@ def correct(loops: LoopSystem, guess: NDArray[np.float64], fixed: NDArray[np.boo
         out[free] = u
         return out
 
-    u, r = _levenberg_marquardt(lambda u: loops.residual(q_of(u)), lambda u: loops.jacobian(q_of(u))[:, free],
+    u, r = _levenberg_marquardt(lambda u: loops.residual(q_of(u)), lambda u: jacobian(loops, q_of(u))[:, free],
                                 guess[free], tol, max_iter)  # fmt: skip
     q = q_of(u)
     worst = float(np.max(np.abs(r), initial=0.0))
     if worst <= tol:
         return q, worst, False
-    J = loops.jacobian(q)[:, free]
+    J = jacobian(loops, q)[:, free]
+    size = sp.linalg.norm(J) if sp.issparse(J) else np.linalg.norm(J)
     gradient = float(np.linalg.norm(J.T @ r))
-    return q, worst, gradient <= STATIONARY * max(np.linalg.norm(J), 1.0) * float(np.linalg.norm(r))
+    return q, worst, gradient <= STATIONARY * max(size, 1.0) * float(np.linalg.norm(r))
 
 
 def trace(
@@ -258,7 +273,8 @@ def trace(
                 stop = PathStop("bound", s, j, f"{names[j]} reaches its bound {bound:.6g} rad")
             continue
         failures = 0
-        m = mobility(loops, q_new)
+        ranked = not loops.sparse or len(nodes_s) % SPARSE_RANK_STRIDE == 0 or abs(end - s_new) <= 1e-15
+        m = mobility(loops, q_new) if ranked else mob[-1]
         if m != mob[-1]:
             kind = "bifurcation" if m > mob[-1] else "rank"
             events.append(PathStop(kind, s_new, None, f"mobility {mob[-1]} -> {m}"))
