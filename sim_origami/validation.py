@@ -30,7 +30,7 @@ ANALYTIC_SAMPLES = 200
 MIN_SWEEP_RAD = 1e-3
 # Events of a numerically traced reference (`kinematics.numeric_pattern`): where and why its trace ended, its
 # mobility changes, an open chain. Reported with every run, inside the sweep or not.
-REFERENCE_EVENTS = ("stall", "lock", "branch-point", "mobility-change", "open-chain", "off-target")
+REFERENCE_EVENTS = ("stall", "lock", "branch-point", "mobility-change", "open-chain", "off-target", "frame")
 # Free runs (scenes with gravity) last this long (s), as the IFToMM A04 benchmark; OpenSim's time for it.
 FREE_DURATION = 10.0
 OPENSIM_A04_S = 0.258
@@ -254,11 +254,20 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
 
 def _input_count_verdict(scene: Scene, branch: str, mobility: dict) -> tuple[Verdict, ...]:
     """A numerically traced reference must be driven in every freedom it has: more freedoms than inputs leave the
-    motion undetermined (MuJoCo and the reference may then part along the free directions)."""
+    motion undetermined (MuJoCo and the reference may then part along the free directions). With a frames'
+    tolerance (exact frame angles, or asked for), each frame's distance from the rigid motion is checked too."""
     along = mobility.get("along_path")
     if along is None:
         return ()
-    return (Verdict(f"{branch}: freedoms not driven (mobility along the path - inputs)",
+    kin = scene.kinematics
+    frames = ()
+    tolerance = getattr(kin, "frames_tolerance", None)
+    if tolerance is not None and getattr(kin, "frame_distances", None):
+        far = [d["distance_rad"] for d in kin.frame_distances]
+        worst = float("inf") if any(d is None for d in far) else max(far)
+        frames = (Verdict(f"{branch}: frames' distance from the rigid motion (rad)", worst, tolerance,
+                          f"{len(far)} frames; beyond the traced motion counts as infinite"),)  # fmt: skip
+    return (*frames, Verdict(f"{branch}: freedoms not driven (mobility along the path - inputs)",
                     float(max(along["typical"] - mobility["inputs"], 0)), 0.0,
                     f"mobility {along['typical']} along the traced path (min {along['min']}, max {along['max']}), "
                     f"{mobility['inputs']} input(s) "

@@ -186,3 +186,18 @@ def test_independent_joints_respects_the_first_pick():
     loops = vertex([70.0, 80.0, 60.0, 75.0, 75.0], "MVMVV").loop_system()
     q = loops.solve(np.array([0.6, -0.2, 0.5, 0.2, 0.0]), [True, False, True, False, False])
     assert independent_joints(loops, q, first=(3,))[0] == 3 and len(independent_joints(loops, q)) == 2
+
+
+def test_frames_are_compared_with_the_rigid_motion_through_them(tmp_path):
+    pattern = vertex([60.0, 100.0, 90.0, 110.0], "MVMV")
+    frames = Vertex4(np.deg2rad([60.0, 100.0, 90.0, 110.0])).joint_angles("odd2", [0.4, 0.8, 1.2])
+    kin = fold_scene(write_fold(tmp_path / "f.fold", pattern, frames)).kinematics
+    assert kin.frames_tolerance == pytest.approx(1e-2) and len(kin.frame_distances) == 3
+    assert max(d["distance_rad"] for d in kin.frame_distances) <= 1e-12  # exact frames: on the motion
+    bent = frames.copy()
+    bent[1, 2] += 0.1  # a frame off the rigid motion (as a simulator with bending panels writes)
+    scene = fold_scene(write_fold(tmp_path / "b.fold", pattern, bent))
+    assert scene.kinematics.frame_distances[1]["distance_rad"] > 0.05
+    report = validate(scene)
+    failed = [v.name for r in report.runs for v in r.verdicts if not v.passed]
+    assert failed == ["through-target: frames' distance from the rigid motion (rad)"]

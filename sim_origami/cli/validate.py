@@ -28,6 +28,9 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--fold", type=Path, help="a FOLD 1.2 file with a folded state: numeric reference")
     parser.add_argument("--input", help="with --fold: the driven crease(s), e<edge index>[,e<edge index>...] "
                         "(default: as many as the pattern has freedoms, picked by rank, the most folded first)")
+    parser.add_argument("--frames-tolerance", type=float, metavar="DEG",
+                        help="with --fold: fail frames farther than this from the rigid motion (default 0.573 deg "
+                        "for exact angles; frames measured from 3-D coordinates are reported only)")
     add_params(parser)
     parser.add_argument("--branch", help="one branch (default: every branch)")
     parser.add_argument(
@@ -104,7 +107,8 @@ def run(args: argparse.Namespace) -> int:
     if args.fold is not None:
         if args.param:
             raise ParameterError("-p sets a registered scene's parameters; a --fold pattern has none")
-        scene = fold_scene(args.fold, args.input)
+        tolerance = None if args.frames_tolerance is None else np.deg2rad(args.frames_tolerance)
+        scene = fold_scene(args.fold, args.input, tolerance)
     else:
         scene = scenes.get(args.scene).build_from_user(parse_params(args.param))
     return validate_scene(scene, args)

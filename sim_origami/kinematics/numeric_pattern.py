@@ -136,6 +136,9 @@ class PatternPath(JointSpaceKinematics):
         self.stops: list[PathStop] = []
         self.rank_events: list[PathStop] = []
         self.path: Polyline | None = None
+        self.frame_distances: list[dict] = []
+        # rad: frames farther than this from the rigid motion fail validation; None = reported only
+        self.frames_tolerance: float | None = None
         anchor = self._anchor()
         if anchor is not None:
             self._trace_anchored(anchor)
@@ -242,9 +245,30 @@ class PatternPath(JointSpaceKinematics):
         order = np.argsort(traced.s)
         self.s_nodes, self.nodes, self.mobility = traced.s[order], traced.q[order], traced.mobility[order]
         self.target_gap = np.nan
+        self.frame_distances = self._frame_distances() if self.frames is not None else []
         if self.target is not None and traced.stop.kind == "end":
             known = np.isfinite(self.target)
             self.target_gap = float(np.max(np.abs(traced.q[-1][known] - self.target[known]), initial=0.0))
+
+    def _frame_distances(self) -> list[dict]:
+        """Each frame against the rigid motion through the frames' inputs: its closure residual (its free entries
+        taken from the motion) and its largest distance (rad) from the closed configuration at its inputs; None
+        where the trace ended before the frame."""
+        out = []
+        knots = self._knots()
+        lo, hi = self.s_nodes[0], self.s_nodes[-1]
+        for f, frame in enumerate(self.frames):
+            s = float(self.path.parameter_of(frame[self.driven][None])[0]) if np.all(np.isfinite(frame[self.driven])) \
+                else np.nan  # fmt: skip
+            entry = {"frame": f, "input": s, "closure_residual": None, "distance_rad": None}
+            if np.isfinite(s) and lo - 1e-12 <= s <= hi + 1e-12 and len(knots):
+                closed = self.evaluate(BRANCH, [min(max(s, lo), hi)])[0][0]
+                known = np.isfinite(frame)
+                filled = np.where(known, frame, closed)
+                entry["closure_residual"] = float(self._loops.residual_norm(filled))
+                entry["distance_rad"] = float(np.max(np.abs(frame[known] - closed[known]), initial=0.0))
+            out.append(entry)
+        return out
 
     # -- Kinematics -------------------------------------------------------------------------------------------
 
@@ -311,6 +335,14 @@ class PatternPath(JointSpaceKinematics):
             out.append(Event(what, float(stop.s), (BRANCH,), detail))
         for e in self.rank_events:
             out.append(Event("mobility-change", float(e.s), (BRANCH,), e.detail))
+        for d in self.frame_distances:
+            if d["distance_rad"] is None:
+                detail = f"frame {d['frame']}: beyond the traced motion"
+            else:
+                detail = (f"frame {d['frame']}: {d['distance_rad']:.3g} rad from the rigid motion, closure residual "
+                          f"{d['closure_residual']:.3g}")
+            out.append(Event("frame", float(d["input"]) if np.isfinite(d["input"]) else float("nan"), (BRANCH,),
+                             detail))  # fmt: skip
         if self.target_gap > TARGET_TOL:
             out.append(Event("off-target", float(self.s_nodes[-1]), (BRANCH,),
                              f"the target state is off the rigid motion: at the inputs' end the traced state differs "

@@ -24,13 +24,16 @@ import numpy as np
 from ..creases import CreasePattern
 from ..errors import ParameterError
 from ..fold import read_fold
-from ..kinematics.numeric_pattern import PatternPath, assignment_signs, lock_flat
+from ..kinematics.numeric_pattern import TARGET_TOL, PatternPath, assignment_signs, lock_flat
 from ..origami import pattern_mechanism
 from ..path import independent_joints
 from .base import Scene
 
 # The default sweep runs from this fraction of the motion's end to the end.
 SWEEP_FROM = 0.3
+# Exact frame angles may be this far (rad) from the rigid motion through them: FOLD writers round angles (the
+# same allowance as `numeric_pattern.TARGET_TOL`).
+FRAMES_TOL = TARGET_TOL
 
 
 def longest_edge(pattern: CreasePattern) -> float:
@@ -62,9 +65,11 @@ def parse_inputs(text: str | None, pattern: CreasePattern) -> tuple[str, ...] | 
     return names
 
 
-def fold_scene(path: str | Path, input_crease: str | None = None) -> Scene:
+def fold_scene(path: str | Path, input_crease: str | None = None, frames_tolerance: float | None = None) -> Scene:
     """
-    Build a scene from a FOLD file; `input_crease` is one crease name or a comma list.
+    Build a scene from a FOLD file; `input_crease` is one crease name or a comma list. Frames farther than
+    `frames_tolerance` (rad) from the rigid motion fail; by default FRAMES_TOL when the frames' angles are exact,
+    and none (reported only) when they were measured from 3-D coordinates (panels that bend).
 
     Raises
     ------
@@ -96,6 +101,11 @@ def fold_scene(path: str | Path, input_crease: str | None = None) -> Scene:
     if inputs is None:
         inputs = _choose_inputs(pattern, reference, several, signs if letters_only else None)
     kinematics = PatternPath(pattern, inputs, None if several is not None else target, **kwargs)
+    if frames_tolerance is not None and frames_tolerance < 0:
+        raise ParameterError(f"frames tolerance {frames_tolerance:g} rad: it must be >= 0")
+    from_coords = getattr(fold, "frames_from_coords", False)
+    kinematics.frames_tolerance = frames_tolerance if frames_tolerance is not None else None if from_coords \
+        else FRAMES_TOL  # fmt: skip
     mechanism = pattern_mechanism(pattern, root=pattern.crease_faces(pattern.crease(inputs[0]))[0], keep=inputs,
                                   couplings=tuple((names[c.joint], names[c.joint], 0.0) for c in lock_flat(pattern)))
     lo, hi = kinematics.branches()[0].domain
