@@ -28,7 +28,7 @@ from .errors import ParameterError
 from .geometry import frame_along, invert
 from .graph import spanning_edges
 
-ASSIGNMENTS = ("M", "V", "U")
+ASSIGNMENTS = ("M", "V", "U", "F")
 
 
 @dataclass(frozen=True)
@@ -61,7 +61,7 @@ class CreasePattern:
             raise ParameterError(f"{len(self.face_names)} face names for {len(self.faces)} faces")
         for crease in self.creases:
             if crease.assignment not in ASSIGNMENTS:
-                raise ParameterError(f"crease {crease.name!r} has assignment {crease.assignment!r}; use M, V or U")
+                raise ParameterError(f"crease {crease.name!r} has assignment {crease.assignment!r}; use M, V, U or F")
             self.crease_faces(crease)
 
     @cached_property

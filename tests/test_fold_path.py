@@ -201,3 +201,28 @@ def test_frames_are_compared_with_the_rigid_motion_through_them(tmp_path):
     report = validate(scene)
     failed = [v.name for r in report.runs for v in r.verdicts if not v.passed]
     assert failed == ["through-target: frames' distance from the rigid motion (rad)"]
+
+
+def test_f_creases_stay_flat_and_a_vertex_needing_them_stalls():
+    strip_f = strip(3, "MFV")
+    path = PatternPath(strip_f, ("c1", "c3"), np.array([-1.0, np.nan, 1.0]))
+    assert path.stops[0].kind == "end" and np.all(path.nodes[:, 1] == 0.0)
+    # a degree-4 vertex cannot fold with one crease held flat (its other three would have to fold alone)
+    locked = vertex([60.0, 100.0, 90.0, 110.0], "MVMF")
+    stuck = PatternPath(locked, "c1", np.array([-1.0, 1.5, -1.0, np.nan]))
+    assert [e.kind for e in stuck.events() if e.kind in ("stall", "lock")] == ["stall"]
+
+
+def test_the_square_base_has_five_freedoms_and_validates_with_five_inputs(tmp_path, capsys):
+    """The square (preliminary) base: one degree-8 vertex, mobility 8 - 3 = 5 along its motion."""
+    pattern = vertex([45.0] * 8, "VMVMVMVM")
+    guess = np.array([0.6, -0.4, 0.6, -0.4, 0.6, -0.4, 0.6, -0.4])
+    q = pattern.loop_system().solve(guess, [True, False, True, False, True, False, False, False])
+    fold = write_fold(tmp_path / "base.fold", pattern, fold_angles=q)
+    scene = fold_scene(fold)
+    assert len(scene.drives) == 5 and scene.drive_path is not None
+    report = validate(scene)
+    assert report.passed, [(v.name, v.measured) for r in report.runs for v in r.verdicts if not v.passed]
+    assert report.runs[0].mobility["along_path"]["typical"] == 5
+    code, text = run_validate(capsys, "--fold", str(fold), "--input", "e0", "--out", str(tmp_path / "one"))
+    assert code == 1 and "FAIL through-target: freedoms not driven" in text
