@@ -22,7 +22,7 @@ LAYERS = (
     ("base", "errors, units, atomic files, geometry, graphs, tolerances, GL backend",
      ("__init__", "errors", "conventions", "files", "geometry", "graph", "tolerances", "gl")),
     ("kinematics", "closed forms (numpy only), the numeric loop closure, crease patterns, FOLD files",
-     ("kinematics", "closure", "creases", "fold", "fold_mesh")),
+     ("kinematics", "closure", "path", "creases", "fold", "fold_mesh")),
     ("mechanism", "bodies, joints, spanning trees, panel and link solids",
      ("mechanism", "origami", "linkage", "linkage_forms", "solids")),
     ("mjcf", "MJCF text from a mechanism and options", ("mjcf", "mjcf_tidy")),

@@ -12,9 +12,12 @@ tolerates the rank-deficient Jacobians of overconstrained loops) with continuati
 """
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from scipy import sparse as sp
+from scipy.sparse.linalg import spsolve
 
 from .errors import ConvergenceError
 from .geometry import left_jacobian_inverse, rotation_vector, transform_z, wrap
@@ -46,11 +49,16 @@ def _levenberg_marquardt(residual, jacobian, u: NDArray[np.float64], tol: float,
     damping = 1e-6
     r = residual(u)
     for _ in range(max_iter):
-        if np.max(np.abs(r)) < tol:
+        if np.max(np.abs(r), initial=0.0) < tol:  # an open chain (no residual) is closed
             break
         J = jacobian(u)
-        JtJ = J.T @ J
-        trial = u + np.linalg.solve(JtJ + damping * np.diag(np.diag(JtJ) + 1e-12), -J.T @ r)
+        if sp.issparse(J):  # large patterns: a few nonzeros per row, so the normal equations stay sparse
+            JtJ = (J.T @ J).tocsc()
+            step = spsolve(JtJ + damping * sp.diags(JtJ.diagonal() + 1e-12, format="csc"), -(J.T @ r))
+            trial = u + np.atleast_1d(step)
+        else:
+            JtJ = J.T @ J
+            trial = u + np.linalg.solve(JtJ + damping * np.diag(np.diag(JtJ) + 1e-12), -J.T @ r)
         r_trial = residual(trial)
         if np.sum(r_trial**2) < np.sum(r**2):
             u, r = trial, r_trial
@@ -78,23 +86,51 @@ class LoopSystem:
     n_joints: int
     loops: tuple[Loop, ...]
     couplings: tuple[Coupling, ...] = ()
+    # Solve with sparse normal equations (patterns of hundreds of creases; same results to the tolerance).
+    sparse: bool = False
+
+    @cached_property
+    def _batches(self) -> tuple[tuple[NDArray, NDArray, NDArray, NDArray], ...]:
+        """
+        The loops grouped by length, so products run over a group at once (a Python step per joint of the
+        loop, not per loop): (loop indices (G,), joints (G, n), signs (G, n), links (G, n, 4, 4)) per group.
+        """
+        groups: dict[int, list[int]] = {}
+        for m, loop in enumerate(self.loops):
+            groups.setdefault(len(loop.joints), []).append(m)
+        return tuple(
+            (np.array(ms), np.array([self.loops[m].joints for m in ms]),
+             np.array([self.loops[m].signs for m in ms], dtype=float), np.stack([self.loops[m].links for m in ms]))
+            for ms in groups.values()
+        )  # fmt: skip
+
+    @property
+    def n_residuals(self) -> int:
+        """Rows of the residual: 6 per loop, one per coupling."""
+        return 6 * len(self.loops) + len(self.couplings)
 
     def residual(self, q: ArrayLike) -> NDArray[np.float64]:
         """
         Closure residual (..., 6 * n_loops + n_couplings): per loop, rotation vector then translation;
-        then q[joint] - scale * q[other] (rad) per coupling.
+        then q[joint] - scale * q[other] (rad) per coupling. Empty (..., 0) for an open chain.
         """
         q = np.asarray(q, dtype=float)
-        parts = []
-        for loop in self.loops:
-            T = loop.product(q)
-            parts += [rotation_vector(T[..., :3, :3]), T[..., :3, 3]]
-        parts += [(q[..., c.joint] - c.scale * q[..., c.other])[..., None] for c in self.couplings]
-        return np.concatenate(parts, axis=-1)
+        out = np.empty((*q.shape[:-1], self.n_residuals))
+        per_loop = out[..., : 6 * len(self.loops)].reshape(*q.shape[:-1], len(self.loops), 6)
+        for ms, joints, signs, links in self._batches:
+            T = np.broadcast_to(np.eye(4), (*q.shape[:-1], len(ms), 4, 4))
+            angles = signs * q[..., joints]
+            for k in range(joints.shape[1]):
+                T = T @ transform_z(angles[..., k]) @ links[:, k]
+            per_loop[..., ms, :3] = rotation_vector(T[..., :3, :3])
+            per_loop[..., ms, 3:] = T[..., :3, 3]
+        for c, coupling in enumerate(self.couplings):
+            out[..., 6 * len(self.loops) + c] = q[..., coupling.joint] - coupling.scale * q[..., coupling.other]
+        return out
 
     def residual_norm(self, q: ArrayLike) -> NDArray[np.float64]:
-        """Largest absolute closure residual component, (...)."""
-        return np.max(np.abs(self.residual(q)), axis=-1)
+        """Largest absolute closure residual component, (...); 0 for an open chain."""
+        return np.max(np.abs(self.residual(q)), axis=-1, initial=0.0)
 
     def jacobian(self, q: ArrayLike) -> NDArray[np.float64]:
         """
@@ -104,22 +140,43 @@ class LoopSystem:
         through the joint's origin p_k. The end's translation t changes by w x (t - p_k) and its rotation
         vector phi by Jl^-1(phi) w (inverse left Jacobian of SO(3); the identity once the loop is closed).
         """
-        q = np.asarray(q, dtype=float)
-        J = np.zeros((6 * len(self.loops) + len(self.couplings), self.n_joints))
-        for m, loop in enumerate(self.loops):
-            T = np.eye(4)
-            axes, points = np.zeros((len(loop.joints), 3)), np.zeros((len(loop.joints), 3))
-            for k, (s, L) in enumerate(zip(loop.signs, loop.links, strict=True)):
-                T = T @ transform_z(s * q[loop.joints[k]])
-                axes[k], points[k] = s * T[:3, 2], T[:3, 3]
-                T = T @ L
-            rows = np.vstack([(left_jacobian_inverse(rotation_vector(T[:3, :3])) @ axes.T),
-                              np.cross(axes, T[:3, 3] - points).T])  # fmt: skip
-            np.add.at(J[6 * m : 6 * m + 6].T, list(loop.joints), rows.T)  # a joint may be in several loops
-        for c, coupling in enumerate(self.couplings):
-            J[6 * len(self.loops) + c, coupling.joint] += 1.0
-            J[6 * len(self.loops) + c, coupling.other] -= coupling.scale
+        J = np.zeros((self.n_residuals, self.n_joints))
+        rows, cols, values = self.jacobian_entries(q)
+        np.add.at(J, (rows, cols), values)  # a joint may appear in several loops, and twice in one
         return J
+
+    def jacobian_sparse(self, q: ArrayLike) -> sp.csc_matrix:
+        """`jacobian` as a sparse matrix (a loop touches only its own joints): for patterns of many creases."""
+        rows, cols, values = self.jacobian_entries(q)
+        return sp.csc_matrix((values.ravel(), (rows.ravel(), cols.ravel())), shape=(self.n_residuals, self.n_joints))
+
+    def jacobian_entries(self, q: ArrayLike) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.float64]]:
+        """The Jacobian's entries as (rows, columns, values), repeated positions to be summed."""
+        q = np.asarray(q, dtype=float)
+        rows_out, cols_out, vals_out = [], [], []
+        for ms, joints, signs, links in self._batches:
+            g, n = joints.shape
+            T = np.broadcast_to(np.eye(4), (g, 4, 4))
+            axes, points = np.zeros((g, n, 3)), np.zeros((g, n, 3))
+            angles = signs * q[joints]
+            for k in range(n):
+                T = T @ transform_z(angles[:, k])
+                axes[:, k], points[:, k] = signs[:, k, None] * T[:, :3, 2], T[:, :3, 3]
+                T = T @ links[:, k]
+            rot = left_jacobian_inverse(rotation_vector(T[:, :3, :3])) @ np.swapaxes(axes, 1, 2)  # (g, 3, n)
+            move = np.swapaxes(np.cross(axes, T[:, None, :3, 3] - points), 1, 2)
+            rows = 6 * ms[:, None, None] + np.arange(6)[None, :, None]
+            rows_out.append(np.broadcast_to(rows, (g, 6, n)).ravel())
+            cols_out.append(np.broadcast_to(joints[:, None, :], (g, 6, n)).ravel())
+            vals_out.append(np.concatenate([rot, move], axis=1).ravel())
+        base = 6 * len(self.loops)
+        for c, coupling in enumerate(self.couplings):
+            rows_out.append(np.array([base + c, base + c]))
+            cols_out.append(np.array([coupling.joint, coupling.other]))
+            vals_out.append(np.array([1.0, -coupling.scale]))
+        if not rows_out:
+            return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64), np.zeros(0)
+        return np.concatenate(rows_out), np.concatenate(cols_out), np.concatenate(vals_out)
 
     def solve(
         self,
@@ -154,13 +211,15 @@ class LoopSystem:
             out[free] = u
             return out
 
+        jacobian = self.jacobian_sparse if self.sparse else self.jacobian
         u, r = _levenberg_marquardt(
-            lambda u: self.residual(q_of(u)), lambda u: self.jacobian(q_of(u))[:, free], q[free], tol, max_iter
+            lambda u: self.residual(q_of(u)), lambda u: jacobian(q_of(u))[:, free], q[free], tol, max_iter
         )
         q = q_of(u)
-        if np.max(np.abs(r)) < 100 * tol:
+        worst = float(np.max(np.abs(r), initial=0.0))
+        if worst < 100 * tol:
             return q
-        raise ConvergenceError(f"loop closure did not converge: residual {np.max(np.abs(r)):.3g} > tolerance {tol:g}")
+        raise ConvergenceError(f"loop closure did not converge: residual {worst:.3g} > tolerance {tol:g}")
 
     def solve_signed(
         self, signs: ArrayLike, input_joint: int, x: float, *, tol: float = 1e-14, max_iter: int = 200
@@ -188,16 +247,17 @@ class LoopSystem:
 
         u0 = np.full(int(np.sum(free)), np.log(abs(x) / (np.pi - abs(x))))
         u, r = _levenberg_marquardt(lambda u: self.residual(q_of(u)), jacobian, u0, tol, max_iter)
-        return q_of(u), float(np.max(np.abs(r)))
+        return q_of(u), float(np.max(np.abs(r), initial=0.0))
 
     def follow(
-        self, q_start: ArrayLike, input_joint: int, values: ArrayLike, *, tol: float = 1e-14
+        self, q_start: ArrayLike, input_joint: int | tuple[int, ...], values: ArrayLike, *, tol: float = 1e-14
     ) -> NDArray[np.float64]:
         """
         Follow one branch by continuity: solve at each input value in turn.
 
         Each solve starts from a secant prediction through the two previous solutions, so the
-        branch is kept through crossings. `q_start` must be closed (or nearly) at `values[0]`.
+        branch is kept through crossings. `q_start` must be closed (or nearly) at `values[0]`. Several
+        input joints (a tuple) take rows of `values` (n, k).
 
         Returns
         -------
@@ -205,15 +265,18 @@ class LoopSystem:
         """
         values = np.asarray(values, dtype=float)
         fixed = np.zeros(self.n_joints, dtype=bool)
-        fixed[input_joint] = True
+        fixed[np.atleast_1d(input_joint)] = True
         out = np.empty((len(values), self.n_joints))
         q = np.array(q_start, dtype=float)
         for k, x in enumerate(values):
             guess = q.copy()
-            if k >= 2 and values[k - 1] != values[k - 2]:
+            if values.ndim == 1 and k >= 2 and values[k - 1] != values[k - 2]:
                 rate = (out[k - 1] - out[k - 2]) / (values[k - 1] - values[k - 2])
                 guess = out[k - 1] + rate * (x - values[k - 1])
-            guess[input_joint] = x
+            elif values.ndim == 2 and k >= 2 and np.any(values[k - 1] != values[k - 2]):
+                ratio = np.linalg.norm(x - values[k - 1]) / np.linalg.norm(values[k - 1] - values[k - 2])
+                guess = out[k - 1] + (out[k - 1] - out[k - 2]) * ratio
+            guess[np.atleast_1d(input_joint)] = x
             q = self.solve(guess, fixed, tol=tol)
             out[k] = q
         return out

@@ -124,15 +124,20 @@ def rotation_vector(R: ArrayLike) -> NDArray[np.float64]:
 
 def left_jacobian_inverse(phi: ArrayLike) -> NDArray[np.float64]:
     """
-    Inverse left Jacobian (3, 3) of SO(3) at rotation vector phi (3,): d phi = Jl^-1(phi) w when the rotation
-    exp(phi) is turned by the small spatial rotation w. I - [phi]/2 + (1/t^2 - (1 + cos t)/(2 t sin t)) [phi]^2,
-    t = |phi|; the last coefficient tends to 1/12 as t -> 0.
+    Inverse left Jacobian (..., 3, 3) of SO(3) at rotation vectors phi (..., 3): d phi = Jl^-1(phi) w when the
+    rotation exp(phi) is turned by the small spatial rotation w. I - [phi]/2 + (1/t^2 - (1 + cos t)/(2 t sin t))
+    [phi]^2, t = |phi|; the last coefficient tends to 1/12 as t -> 0.
     """
     phi = np.asarray(phi, dtype=float)
-    t = float(np.linalg.norm(phi))
-    P = np.array([[0.0, -phi[2], phi[1]], [phi[2], 0.0, -phi[0]], [-phi[1], phi[0], 0.0]])
-    coef = 1.0 / 12.0 + t**2 / 720.0 if t < 1e-4 else 1.0 / t**2 - (1.0 + np.cos(t)) / (2.0 * t * np.sin(t))
-    return np.eye(3) - 0.5 * P + coef * P @ P
+    t = np.linalg.norm(phi, axis=-1)
+    zero = np.zeros_like(t)
+    P = np.stack([np.stack([zero, -phi[..., 2], phi[..., 1]], -1), np.stack([phi[..., 2], zero, -phi[..., 0]], -1),
+                  np.stack([-phi[..., 1], phi[..., 0], zero], -1)], -2)  # fmt: skip
+    small = t < 1e-4
+    safe = np.where(small, 1.0, t)
+    exact = 1.0 / safe**2 - (1.0 + np.cos(safe)) / (2.0 * safe * np.sin(safe))
+    coef = np.where(small, 1.0 / 12.0 + t**2 / 720.0, exact)
+    return np.eye(3) - 0.5 * P + coef[..., None, None] * P @ P
 
 
 def transform(R: ArrayLike | None = None, p: ArrayLike | None = None) -> NDArray[np.float64]:

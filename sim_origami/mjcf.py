@@ -409,21 +409,27 @@ def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarr
     if mechanism.couplings:
         equality.append(ET.Comment(" couplings q1 = c q2: symmetry the model assumes, or periodic copies of creases "))
     for joint, other, scale in mechanism.couplings:
+        if joint == other:  # a lock q = scale q, i.e. q = 0 (a crease kept flat)
+            ET.SubElement(equality, "joint", name=f"lock_{joint}", joint1=joint, polycoef="0 0 0 0 0").set(
+                "class", "closure"
+            )
+            continue
         ET.SubElement(
             equality, "joint", name=f"couple_{joint}_{other}", joint1=joint, joint2=other,
             polycoef=_fmt([0.0, scale, 0.0, 0.0, 0.0]),
         ).set("class", "closure")  # fmt: skip
 
-    drive = f"drive_{scene.drive_joint}"
     if options.drive == "equality":
         equality.append(ET.Comment(" input: the harness writes the target angle into eq_data[drive, 0] each step "))
-        ET.SubElement(equality, "joint", name=drive, joint1=scene.drive_joint, polycoef="0 0 0 0 0").set(
-            "class", "drive"
-        )
+        for joint in scene.drives:
+            ET.SubElement(equality, "joint", name=f"drive_{joint}", joint1=joint, polycoef="0 0 0 0 0").set(
+                "class", "drive"
+            )
     elif options.drive == "servo":
         actuator = _section(root, "actuator")
         actuator.append(ET.Comment(" input: force-limited servo, so that contact can stop the motion "))
-        ET.SubElement(actuator, "position", name=drive, joint=scene.drive_joint).set("class", "servo")
+        for joint in scene.drives:
+            ET.SubElement(actuator, "position", name=f"drive_{joint}", joint=joint).set("class", "servo")
 
     if contact and scene.self_contact:
         _add_self_contact(root, scene)

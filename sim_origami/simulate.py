@@ -34,6 +34,8 @@ STALL_TOL = 1e-13
 # Projection stops when MuJoCo's equality residual (m) falls below this (1e-14 left up to 1.8e-13 rad of angle
 # error on ill-conditioned loops; 1e-15 at most 2.3e-14, still within 20 Gauss-Newton steps).
 PROJECTION_TOL = 1e-15
+# A quasi-static sweep moves no joint by this much (rad) in one step: a larger jump marks a divergence.
+JUMP_RAD = 0.5
 
 
 @dataclass(frozen=True)
@@ -110,6 +112,7 @@ class Bindings:
         self.hinge_qpos = np.array([adr for j, adr in joints if j.triad is None], dtype=int)
         self.balls = [(j, adr) for j, adr in joints if j.triad is not None]
         self.drive_qpos = model.jnt_qposadr[model.joint(scene.drive_joint).id]
+        self.drives_qpos = np.array([model.jnt_qposadr[model.joint(n).id] for n in scene.drives], dtype=int)
         pairs = [(model.site(f"{c.joint}_parent_{c.k}").id, model.site(f"{c.joint}_child_{c.k}").id)
                  for c in closures(mech)]  # fmt: skip
         self.site_pairs = np.array(pairs, dtype=int).reshape(-1, 2)
@@ -145,6 +148,16 @@ def _check(data: mujoco.MjData, messages: list[str], context: str) -> None:
         names = ", ".join(bad) or "non-finite qpos"
         detail = f": {messages[0].strip()}" if messages else ""
         raise SimulationError(f"{context}: MuJoCo warning {names}{detail}")
+
+
+def _first_bad(qpos_log: NDArray, x: NDArray) -> str:
+    """Where a run first went wrong: the first step whose qpos is not finite or jumps by more than JUMP_RAD from the
+    step before (a divergence, or MuJoCo's reset after one), with its input (rad); '' when there is none."""
+    finite = np.all(np.isfinite(qpos_log), axis=1)
+    jump = np.r_[False, np.max(np.abs(np.diff(np.where(np.isfinite(qpos_log), qpos_log, 0.0), axis=0)), axis=1,
+                               initial=0.0) > JUMP_RAD]  # fmt: skip
+    bad = np.flatnonzero(~finite | jump)
+    return f"; first went wrong at step {bad[0] + 1} of {len(x)} (input {x[bad[0]]:.6g} rad)" if len(bad) else ""
 
 
 def _context(scene: Scene, branch: str, preset: str, how: str) -> str:
@@ -224,17 +237,35 @@ def drive_targets(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """
     The input x (n,) (rad) of a minimum-jerk sweep start -> stop over `duration` (s) in n steps of the model's
-    timestep, and the setpoints (n,) the drive is given: drive_scale * x for the servo; for the joint-equality
-    drive, x led by its lag 2 tau zeta xdot (tau clamped to refsafe's 2 h), so the joint tracks x.
+    timestep, and the setpoints the drive is given: drive_scale * x for the servo; for the joint-equality
+    drive, x led by its lag 2 tau zeta xdot (tau clamped to refsafe's 2 h), so the joint tracks x. One drive:
+    setpoints (n,); a scene with `drive_path`: (n, k), the path's joint values at the (led) input.
     """
     h = model.opt.timestep
     shape, rate = ramp(np.clip(h * np.arange(1, n + 1) / duration, 0.0, 1.0))
     x = start + (stop - start) * shape
+    if scene.drive_path is not None:
+        if drive == "equality":
+            eq = model.equality(f"drive_{scene.drive_joint}").id
+            tau = max(model.eq_solref[eq, 0], 2 * h)
+            return x, scene.drive_values(x + 2 * tau * model.eq_solref[eq, 1] * (stop - start) * rate / duration)
+        return x, scene.drive_values(x)
     if drive != "equality":
         return x, scene.drive_scale * x
     eq = model.equality(f"drive_{scene.drive_joint}").id
     tau = max(model.eq_solref[eq, 0], 2 * h)
     return x, scene.drive_scale * (x + 2 * tau * model.eq_solref[eq, 1] * (stop - start) * rate / duration)
+
+
+def track_path(model: mujoco.MjModel, data: mujoco.MjData, rows: NDArray, targets: NDArray, qpos_log: NDArray) -> float:
+    """`track` for several joint-equality drives (eq ids `rows`): targets (n, k) written each step."""
+    qpos, step, eq_data = data.qpos, mujoco.mj_step, model.eq_data
+    cpu = time.thread_time()
+    for value, row in zip(targets, qpos_log, strict=True):
+        eq_data[rows, 0] = value
+        step(model, data)
+        row[:] = qpos
+    return time.thread_time() - cpu
 
 
 def simulate(
@@ -296,22 +327,25 @@ def simulate(
     contacts = np.zeros(n if drive == "servo" else 0, dtype=np.int64)
     force = np.zeros(n if drive == "servo" else 0)
     with captured_warnings() as messages:
-        if drive == "equality":
+        if drive == "equality" and scene.drive_path is not None:
+            rows = np.array([model.equality(f"drive_{j}").id for j in scene.drives])
+            cpu = track_path(model, data, rows, setpoints, qpos_log)
+        elif drive == "equality":
             eq = model.equality(f"drive_{scene.drive_joint}").id
             cpu = track(model, data, model.eq_data[eq], 0, setpoints, qpos_log)
         else:
             act = model.actuator(f"drive_{scene.drive_joint}").id
+            acts = np.array([model.actuator(f"drive_{j}").id for j in scene.drives])
             cpu = time.thread_time()
             for k in range(n):
-                data.ctrl[act] = setpoints[k]
+                data.ctrl[acts if scene.drive_path is not None else act] = setpoints[k]
                 mujoco.mj_step(model, data)
                 qpos_log[k] = data.qpos
                 contacts[k] = data.ncon
                 force[k] = data.actuator_force[act]
             cpu = time.thread_time() - cpu
-        _check(
-            data, messages, _context(scene, branch, preset, f"{drive} drive {start:.6g} -> {stop:.6g} rad in {T:g} s")
-        )
+        how = f"{drive} drive {start:.6g} -> {stop:.6g} rad in {T:g} s"
+        _check(data, messages, _context(scene, branch, preset, how) + _first_bad(qpos_log, x))
     index, residual = _residuals(scene, model, data, binds, qpos_log)
     return Trajectory(
         scene=scene.name, branch=branch, mode=f"dynamic/{drive}", preset=preset, time=t, target=x,
@@ -328,16 +362,20 @@ def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: s
     preset = preset or scene.preset
     model, data = compile_model(scene, ModelOptions(preset=preset))
     binds = Bindings(scene, model)
-    drive_eq = model.equality(f"drive_{scene.drive_joint}").id
-    data.eq_active[drive_eq] = 0
-    free = np.array([a for a in range(model.nv) if a != model.jnt_dofadr[model.joint(scene.drive_joint).id]])
+    for name in scene.drives:
+        data.eq_active[model.equality(f"drive_{name}").id] = 0
+    held = {model.jnt_dofadr[model.joint(name).id] for name in scene.drives}
+    free = np.array([a for a in range(model.nv) if a not in held])
     inputs = np.asarray(inputs, dtype=float)
     binds.set_pose(data, scene.pose(branch, float(inputs[0])))
     qpos_log, step = np.empty((len(inputs), model.nq)), np.zeros(model.nv)
     cpu = time.thread_time()
     with captured_warnings() as messages:
         for k, value in enumerate(inputs):
-            data.qpos[binds.drive_qpos] = scene.drive_scale * value
+            if scene.drive_path is None:
+                data.qpos[binds.drive_qpos] = scene.drive_scale * value
+            else:
+                data.qpos[binds.drives_qpos] = scene.drive_values(value)[0]
             previous = np.inf
             for _ in range(20):
                 mujoco.mj_fwdPosition(model, data)
@@ -421,7 +459,8 @@ def mujoco_mobility(scene: Scene, q: NDArray[np.float64], rtol: float = 1e-6) ->
     the closure rows of efc_J (the drive disabled). Redundant connect rows only lower the rank.
     """
     model, data = compile_model(scene, ModelOptions())
-    data.eq_active[model.equality(f"drive_{scene.drive_joint}").id] = 0
+    for name in scene.drives:
+        data.eq_active[model.equality(f"drive_{name}").id] = 0
     Bindings(scene, model).set_pose(data, q)
     mujoco.mj_fwdPosition(model, data)
     rows = data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY

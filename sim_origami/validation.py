@@ -25,6 +25,13 @@ from .truss import truss_mobility
 
 # Samples of the closed form and of the numeric solve along each path.
 ANALYTIC_SAMPLES = 200
+# A run must sweep its input over at least this much (rad) to pass: below it the path's shape cannot show (the
+# fast preset's angle tolerance is 1e-6 rad, three orders smaller; a frozen input gives error 0 on nothing). The
+# shortest default sweep of a registered scene is far longer (every one spans at least a quarter of its domain).
+MIN_SWEEP_RAD = 1e-3
+# Events of a numerically traced reference (`kinematics.numeric_pattern`): where and why its trace ended, its
+# mobility changes, an open chain. Reported with every run, inside the sweep or not.
+REFERENCE_EVENTS = ("stall", "lock", "branch-point", "mobility-change", "open-chain", "off-target", "frame")
 # Free runs (scenes with gravity) last this long (s), as the IFToMM A04 benchmark; OpenSim's time for it.
 FREE_DURATION = 10.0
 OPENSIM_A04_S = 0.258
@@ -80,8 +87,8 @@ def closed_form_verdicts(scene: Scene, branch: str, x: np.ndarray) -> tuple[Verd
     loops = kin.loop_system()
     values = kin.joint_angles(branch, x)
     q = kin.loop_angles(values)
-    joint, scale = kin.loop_input()
-    numeric = loops.follow(q[0], joint, scale * x)
+    joints, held = kin.loop_inputs(x)
+    numeric = loops.follow(q[0], joints[0], held[:, 0]) if len(joints) == 1 else loops.follow(q[0], joints, held)
     return (
         Verdict(
             f"{branch}: closed-form closure residual",
@@ -110,7 +117,10 @@ def path_events(
         lo, hi = min(lo, 0.0), max(hi, 0.0)
     out = []
     for e in scene.kinematics.events():
-        if branch in e.branches and lo - 1e-9 <= e.input <= hi + 1e-9:
+        if e.kind in REFERENCE_EVENTS and branch in e.branches:
+            out.append({"kind": e.kind, "input_rad": e.input, "branches": list(e.branches), "detail": e.detail,
+                        "branch_after": ""})  # fmt: skip
+        elif branch in e.branches and lo - 1e-9 <= e.input <= hi + 1e-9:
             past = [lab for xi, lab in zip(x, labels, strict=True) if lab and abs(xi - e.input) > 1e-6]
             after = max(set(past), key=past.count) if past else ""  # the branch held after it
             out.append({"kind": e.kind, "input_rad": e.input, "branches": list(e.branches), "detail": e.detail,
@@ -138,7 +148,14 @@ def mobility_report(scene: Scene, branch: str, start: float) -> dict:
                 "truss": truss.mobility, "truss_self_stress": truss.self_stress}  # fmt: skip
 
     points = [e.input for e in kin.events() if e.kind == "bifurcation" and branch in e.branches]
-    return {"gruebler": kin.gruebler(), "start": at(start), "bifurcations": [at(x) for x in points]}
+    out = {"gruebler": kin.gruebler(), "inputs": len(scene.drives), "start": at(start),
+           "bifurcations": [at(x) for x in points]}  # fmt: skip
+    along = getattr(kin, "mobility", None)  # a traced reference's mobility at each of its nodes
+    if along is not None and not callable(along):
+        values, counts = np.unique(along, return_counts=True)
+        out["along_path"] = {"min": int(np.min(along)), "max": int(np.max(along)),
+                             "typical": int(values[np.argmax(counts)])}  # fmt: skip
+    return out
 
 
 def _followed(scene: Scene, branch: str, run: Trajectory) -> str:
@@ -210,7 +227,11 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
     disagree = sum(
         len({p["numeric"], p["mujoco"], p["truss"]}) > 1 for p in [mobility["start"], *mobility["bifurcations"]]
     )
+    swept = float(np.max(dyn.input) - np.min(dyn.input))
     verdicts = (
+        Verdict(f"{branch}: swept range ({MIN_SWEEP_RAD:g} rad / input range swept)",
+                MIN_SWEEP_RAD / swept if swept > 0 else float("inf"), 1.0,
+                f"the input moved over {swept:.3g} rad; a run that sweeps less than {MIN_SWEEP_RAD:g} rad cannot pass"),
         *_point_verdicts(scene, branch, preset, dynamic.q, dyn.input),
         Verdict(f"{branch}: MuJoCo {preset} path error (rad)", dyn.max_error(),
                 TOLERANCES.angle(preset),
@@ -223,6 +244,7 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
                 f"followed {labels.followed or 'none'}, {labels.flips} flips"),
         Verdict(f"{branch}: mobility, numeric rank vs MuJoCo rank vs truss (poses that differ)", float(disagree), 0.0,
                 f"Kutzbach {mobility['gruebler']}, instantaneous {mobility['start']['numeric']} at the start"),
+        *_input_count_verdict(scene, branch, mobility),
     )  # fmt: skip
     return BranchRun(
         requested=branch, followed=labels.followed, flips=labels.flips, dynamic=dynamic, dynamic_path=dyn,
@@ -230,6 +252,28 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
         events=path_events(scene, branch, dyn.input, labels.labels, from_flat=seed == "flat"), mobility=mobility,
         verdicts=verdicts,
     )  # fmt: skip
+
+
+def _input_count_verdict(scene: Scene, branch: str, mobility: dict) -> tuple[Verdict, ...]:
+    """A numerically traced reference must be driven in every freedom it has: more freedoms than inputs leave the
+    motion undetermined (MuJoCo and the reference may then part along the free directions). With a frames'
+    tolerance (exact frame angles, or asked for), each frame's distance from the rigid motion is checked too."""
+    along = mobility.get("along_path")
+    if along is None:
+        return ()
+    kin = scene.kinematics
+    frames = ()
+    tolerance = getattr(kin, "frames_tolerance", None)
+    if tolerance is not None and getattr(kin, "frame_distances", None):
+        far = [d["distance_rad"] for d in kin.frame_distances]
+        worst = float("inf") if any(d is None for d in far) else max(far)
+        frames = (Verdict(f"{branch}: frames' distance from the rigid motion (rad)", worst, tolerance,
+                          f"{len(far)} frames; beyond the traced motion counts as infinite"),)  # fmt: skip
+    return (*frames, Verdict(f"{branch}: freedoms not driven (mobility along the path - inputs)",
+                    float(max(along["typical"] - mobility["inputs"], 0)), 0.0,
+                    f"mobility {along['typical']} along the traced path (min {along['min']}, max {along['max']}), "
+                    f"{mobility['inputs']} input(s) "
+                    f"{', '.join(scene.drives)}"),)  # fmt: skip
 
 
 def run_blockage(scene: Scene, branch: str) -> tuple[Blockage, float]:

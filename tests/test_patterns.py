@@ -1,6 +1,8 @@
 """Crease patterns without a closed form (`kinematics.numeric_pattern`, `validate --fold`) and the Miura-ori sheet
 (`kinematics.miura_sheet`, scene `miura-sheet`): numeric reference, closed form and MuJoCo."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -8,7 +10,7 @@ from sim_origami import scenes
 from sim_origami.checks.paths import compare
 from sim_origami.cli import main
 from sim_origami.creases import Crease, CreasePattern
-from sim_origami.errors import AssemblyError, ParameterError
+from sim_origami.errors import ParameterError
 from sim_origami.fold import read_fold, write_fold
 from sim_origami.kinematics.miura_sheet import MiuraSheet
 from sim_origami.kinematics.numeric_pattern import BRANCH, PatternPath
@@ -42,10 +44,13 @@ def test_numeric_trace_of_a_vertex_matches_its_closed_form(branch, end):
     assert path.gruebler() == 1 and path.stalled_at == ()
 
 
-def test_a_state_the_pattern_cannot_reach_is_refused_with_its_residual():
+def test_a_state_the_pattern_cannot_reach_is_a_direction_and_its_distance_is_reported():
     target = np.array([1.0, 1.0, 1.0, 1.0])  # all valleys: no degree-4 vertex folds so (Maekawa)
-    with pytest.raises(AssemblyError, match="does not close with c1 = 1 rad"):
-        PatternPath(vertex_pattern(ALPHA), "c1", target)
+    path = PatternPath(vertex_pattern(ALPHA), "c1", target)
+    off = [e for e in path.events() if e.kind == "off-target"]
+    # traced from flat to c1 = 1 on a rigid branch; that branch's state is 1.19 rad from the target (measured)
+    assert path.branch(BRANCH).domain[1] == 1.0 and len(off) == 1 and path.target_gap > 0.5
+    assert np.max(path.loop_system().residual_norm(path.joint_angles(BRANCH, [0.5, 1.0]))) <= 1e-14
 
 
 def test_bad_input_crease():
@@ -70,8 +75,10 @@ def test_fold_file_scene_validates_against_the_numeric_reference(tmp_path):
     assert np.max(np.abs(got - closed)) <= TOLERANCES.fast_rad
 
 
-def test_fold_scene_without_a_folded_state_is_refused(tmp_path):
-    path = write_fold(tmp_path / "flat.fold", vertex_pattern(ALPHA))
+def test_fold_scene_without_a_folded_state_or_letters_is_refused(tmp_path):
+    pattern = vertex_pattern(ALPHA)
+    unassigned = replace(pattern, creases=tuple(replace(c, assignment="U") for c in pattern.creases))
+    path = write_fold(tmp_path / "flat.fold", unassigned)
     with pytest.raises(ParameterError, match="no folded state"):
         fold_scene(path)
 

@@ -35,9 +35,9 @@ def test_validate_vertex4_passes_every_verdict_on_every_branch():
     assert report.passed
     assert report.blockage is None  # zero thickness: nothing to block
     # Two closed-form verdicts per branch plus one per bifurcation point (the flat state);
-    # five verdicts per run (path, residual, projection, branch followed, mobility ranks).
+    # six verdicts per run (swept range, path, residual, projection, branch followed, mobility ranks).
     assert len(report.verdicts) == 2 * len(branches) + len(report.bifurcations) == 2 * len(branches) + 1
-    assert all(len(run.verdicts) == 5 for run in report.runs)
+    assert all(len(run.verdicts) == 6 for run in report.runs)
     point = report.bifurcations[0]
     assert point["input_rad"] == 0.0 and set(point["seed_offset_followed_rad"]) == set(branches)
 

@@ -31,6 +31,6 @@ class PathComparison:
 
 def compare(scene: Scene, branch: str, q: NDArray[np.float64]) -> PathComparison:
     """Outputs measured from mechanism angles q (n, n_joints) against `branch`."""
-    x = q[:, scene.mechanism.joint_index(scene.drive_joint)] / scene.drive_scale
+    x = scene.input_of(q)
     analytic, _ = scene.kinematics.evaluate(branch, x)
     return PathComparison(x, scene.outputs(q), analytic)

@@ -11,7 +11,7 @@ from tqdm import tqdm
 from .. import scenes
 from ..checks.reference import read_reference, summary_lines
 from ..conventions import deg_to_rad
-from ..errors import ParameterError
+from ..errors import ParameterError, SimulationError
 from ..files import write_text
 from ..report import as_dict, plain, write
 from ..report_page import write_index, write_page
@@ -29,7 +29,11 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("scene", nargs="?", help="scene name (see list); omit with --all or --fold")
     parser.add_argument("--all", action="store_true", help="every scene with its defaults, plus a summary")
     parser.add_argument("--fold", type=Path, help="a FOLD 1.2 file with a folded state: numeric reference")
-    parser.add_argument("--input", help="with --fold: the driven crease, e<edge index> (default: the most folded)")
+    parser.add_argument("--input", help="with --fold: the driven crease(s), e<edge index>[,e<edge index>...] "
+                        "(default: as many as the pattern has freedoms, picked by rank, the most folded first)")
+    parser.add_argument("--frames-tolerance", type=float, metavar="DEG",
+                        help="with --fold: fail frames farther than this from the rigid motion (default 0.573 deg "
+                        "for exact angles; frames measured from 3-D coordinates are reported only)")
     add_params(parser)
     parser.add_argument("--branch", help="one branch (default: every branch)")
     parser.add_argument(
@@ -85,6 +89,15 @@ def run_one(scene, args, out: Path, reference=None) -> dict:
     return doc
 
 
+def failed_run(scene, args, out: Path, err: SimulationError) -> dict:
+    """report.json for a run MuJoCo could not finish: the failing check and the configuration where it happened."""
+    doc = {"scene": scene.name, "params": scene.params, "preset": args.preset or scene.preset, "passed": False,
+           "notes": scene.notes, "verdicts": [{"name": "MuJoCo run finished without a warning", "measured": 1.0,
+                                               "tolerance": 0.0, "passed": False, "detail": str(err)}]}  # fmt: skip
+    write_text(out / "report.json", json.dumps(doc, indent=2, default=plain) + "\n")
+    return doc
+
+
 def summary_line(doc: dict) -> str:
     status = "PASS" if doc["passed"] else "FAIL"
     return (f"| {doc['scene']} | {status} | {doc['preset']} | "
@@ -122,15 +135,26 @@ def run(args: argparse.Namespace) -> int:
     if args.fold is not None:
         if args.param:
             raise ParameterError("-p sets a registered scene's parameters; a --fold pattern has none")
-        scene = fold_scene(args.fold, args.input)
+        tolerance = None if args.frames_tolerance is None else np.deg2rad(args.frames_tolerance)
+        scene = fold_scene(args.fold, args.input, tolerance)
     else:
         scene = scenes.get(args.scene).build_from_user(parse_params(args.param))
+    return validate_scene(scene, args)
+
+
+def validate_scene(scene, args: argparse.Namespace) -> int:
+    """Validate one built scene, print the verdicts, return the exit status (a MuJoCo divergence is a failure)."""
     reference = None
     if args.reference is not None:  # read and checked before anything is simulated
         tol = None if args.reference_tol is None else float(deg_to_rad(args.reference_tol))
         reference = read_reference(args.reference, scene.kinematics, units=args.reference_units, tol=tol)
     out = args.out or Path("runs") / scene.name
-    doc = run_one(scene, args, out, reference)
+    try:
+        doc = run_one(scene, args, out, reference)
+    except SimulationError as err:  # MuJoCo diverged: a failed check on this pattern, not bad input
+        failed_run(scene, args, out, err)
+        print(f"FAIL {scene.name}: {err}\noutputs in {out}/")
+        return 1
     if args.json:
         print(json.dumps(doc, indent=2, default=plain))
     else:

@@ -91,6 +91,11 @@ class Kinematics(ABC):
     def loop_input(self) -> tuple[int, float]:
         """(loop joint index, scale): that loop joint equals scale * input."""
 
+    def loop_inputs(self, x: ArrayLike) -> tuple[tuple[int, ...], NDArray[np.float64]]:
+        """(loop joints, their values (n, k)) that inputs x (n,) hold: `loop_input`'s one joint by default."""
+        joint, scale = self.loop_input()
+        return (joint,), scale * np.atleast_1d(np.asarray(x, dtype=float))[:, None]
+
     @abstractmethod
     def observe(self, q_loop: ArrayLike) -> NDArray[np.float64]:
         """Output joints (n, k) measured from loop joint angles (n, n_loop_joints)."""

@@ -16,6 +16,7 @@ from ..creases import CreasePattern
 from ..errors import ParameterError
 from ..kinematics.base import Kinematics
 from ..mechanism import Mechanism
+from ..path import Polyline
 
 UNITS = {"deg": np.pi / 180.0, "m": 1.0, "": 1.0}
 # Closed-form poses per branch, evenly across its domain with both ends, at which `without_implied_closures` finds
@@ -61,6 +62,9 @@ class Scene:
       explicit pairs would number in the tens of thousands); needs the bodies' collision solids.
     pattern : the crease pattern the mechanism was built from (its crease names are the joints), if any;
       reports then export the simulated motion as a multi-frame FOLD file.
+    drive_joints, drive_path : several driven joints moved together along `drive_path` (`path.Polyline` in their
+      space, its parameter is the input, rad); `drive_joint` is then the first of them and `drive_scale` 1. Empty
+      and None for the single drive (`drive_joint` = `drive_scale` * input).
     """
 
     name: str
@@ -89,6 +93,26 @@ class Scene:
     notes: str = ""
     pattern: CreasePattern | None = None
     self_contact: bool = False
+    drive_joints: tuple[str, ...] = ()
+    drive_path: Polyline | None = None
+
+    @property
+    def drives(self) -> tuple[str, ...]:
+        """Every driven mechanism joint."""
+        return self.drive_joints or (self.drive_joint,)
+
+    def input_of(self, q: ArrayLike) -> NDArray[np.float64]:
+        """The input (n,) measured from mechanism angles q (n, n_joints): the drive joint over its scale, or the
+        parameter of the drive path's point nearest the driven joints."""
+        q = np.atleast_2d(np.asarray(q, dtype=float))
+        if self.drive_path is None:
+            return q[:, self.mechanism.joint_index(self.drive_joint)] / self.drive_scale
+        return self.drive_path.parameter_of(q[:, [self.mechanism.joint_index(n) for n in self.drives]])
+
+    def drive_values(self, x: ArrayLike) -> NDArray[np.float64]:
+        """Driven joint angles (n, len(drives)) at inputs x (n,)."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        return self.drive_scale * x[:, None] if self.drive_path is None else self.drive_path.at(x)
 
     @property
     def colliding_pairs(self) -> tuple[tuple[str, str], ...]:
