@@ -12,6 +12,7 @@ from . import __version__
 from .files import write_text
 from .fold import write_fold
 from .geometry import wrap
+from .stabilize import preset_mode
 from .validation import Report
 
 # Frames of the simulated motion written to motion.fold (evenly spaced over the first run).
@@ -60,6 +61,8 @@ def as_dict(report: Report) -> dict:
         "scene": scene.name,
         "params": scene.params,
         "preset": report.preset,
+        # "none" for plain MuJoCo; "position" when the preset projects qpos onto the closures after each step
+        "stabilize": preset_mode(report.preset),
         "seed": report.seed,
         "input": {"name": scene.kinematics.input_name, "drive_joint": scene.drive_joint},
         "joints": list(scene.kinematics.joint_names),

@@ -11,6 +11,7 @@ from tqdm import tqdm
 from .. import scenes
 from ..errors import ParameterError
 from ..files import write_text
+from ..mjcf import PRESETS
 from ..report import as_dict, plain, write
 from ..scenes.fold_file import fold_scene
 from ..validation import validate
@@ -30,7 +31,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     add_params(parser)
     parser.add_argument("--branch", help="one branch (default: every branch)")
     parser.add_argument(
-        "--preset", choices=("fast", "stiff", "accurate"), help="default: the scene's own (describe shows it)"
+        "--preset", choices=PRESETS, help="default: the scene's own (describe shows it)"
     )
     parser.add_argument(
         "--seed",
