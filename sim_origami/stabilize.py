@@ -41,18 +41,21 @@ def preset_mode(preset: str) -> str:
     return MODES[int(code)]
 
 
-def run_step(model: mujoco.MjModel, data: mujoco.MjData, preset: str, drive_joint: str | None = None) -> StepFunction:
+def run_step(
+    model: mujoco.MjModel, data: mujoco.MjData, preset: str, drive_joint: str | None = None, iterations: int = 1
+) -> StepFunction:
     """
     The step function of a run with `preset`: `mujoco.mj_step` itself for a preset without stabilisation, else
-    `step_function` with the drive's equality row left out and its joint held (the input stays the drive's own).
+    `step_function` (`iterations` projection steps) with the drive's equality row left out and its joint held
+    (the input stays the drive's own).
     """
     mode = preset_mode(preset)
     if mode == "none" or drive_joint is None:
-        return step_function(model, data, mode)
+        return step_function(model, data, mode, iterations=iterations)
     names = [model.equality(i).name for i in range(model.neq)]
     skip = tuple(i for i, name in enumerate(names) if name == f"drive_{drive_joint}")
     frozen = (int(model.jnt_dofadr[model.joint(drive_joint).id]),)
-    return step_function(model, data, mode, skip=skip, frozen=frozen)
+    return step_function(model, data, mode, skip=skip, frozen=frozen, iterations=iterations)
 
 
 def closure_rows(model: mujoco.MjModel, data: mujoco.MjData, skip: tuple[int, ...] = ()) -> np.ndarray:
