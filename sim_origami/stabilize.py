@@ -49,7 +49,13 @@ def run_step(
     `step_function` (`iterations` projection steps) with the drive's equality row left out and its joint held
     (the input stays the drive's own).
     """
-    mode = preset_mode(preset)
+    return drive_step(model, data, preset_mode(preset), drive_joint, iterations)
+
+
+def drive_step(
+    model: mujoco.MjModel, data: mujoco.MjData, mode: str, drive_joint: str | None = None, iterations: int = 1
+) -> StepFunction:
+    """`step_function` for `mode` with `drive_joint`'s equality row (if any) left out and its dof held."""
     if mode == "none" or drive_joint is None:
         return step_function(model, data, mode, iterations=iterations)
     names = [model.equality(i).name for i in range(model.neq)]
