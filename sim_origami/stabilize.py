@@ -24,6 +24,11 @@ MODES = ("none", "position", "position-velocity")
 # The custom numeric a preset states its mode with: 0 none, 1 position, 2 position-velocity.
 PRESET_NUMERIC = "stabilize"
 
+# Weight of the kinetic metric against the rows in `step_function`'s solve: small enough that the step is the
+# least-metric solution (a larger weight leaves the rows that part open), large enough to keep the solve regular
+# along the closures' free motion.
+METRIC_WEIGHT = 1e-10
+
 StepFunction = Callable[[mujoco.MjModel, mujoco.MjData], None]
 
 
@@ -64,13 +69,6 @@ def drive_step(
     return step_function(model, data, mode, skip=skip, frozen=frozen, iterations=iterations)
 
 
-def closure_rows(model: mujoco.MjModel, data: mujoco.MjData, skip: tuple[int, ...] = ()) -> np.ndarray:
-    """Indices of the equality rows of efc (closures and couplings) whose equality is not in `skip` (eq ids)."""
-    _make_constraint(model, data)
-    rows = np.flatnonzero(data.efc_type[: data.nefc] == mujoco.mjtConstraint.mjCNSTR_EQUALITY)
-    return rows[~np.isin(data.efc_id[rows], skip)]
-
-
 def _make_constraint(model: mujoco.MjModel, data: mujoco.MjData) -> None:
     """efc_J and efc_pos at the current qpos: the part of mj_fwdPosition the rows need (no inertia, no collision)."""
     mujoco.mj_kinematics(model, data)
@@ -102,33 +100,58 @@ def step_function(model: mujoco.MjModel, data: mujoco.MjData, mode: str, skip: t
         raise ParameterError(f"unknown stabilize mode {mode!r}; modes are {', '.join(MODES)}")
     if mode == "none":
         return mujoco.mj_step
-    rows = closure_rows(model, data, skip)
-    nv, n_rows = model.nv, len(rows)
-    # frozen dofs enter as extra rows that hold them: the projection is then over the other dofs alone
-    J = np.zeros((n_rows + len(frozen), nv))
-    J[n_rows + np.arange(len(frozen)), list(frozen)] = 1.0
-    W, residual = np.empty_like(J), np.zeros(len(J))
+    held = list(frozen)
+    skipped = np.zeros(model.neq, dtype=bool)
+    skipped[list(skip)] = True
+    M, A, b, dq = np.zeros((model.nv, model.nv)), np.zeros((model.nv, model.nv)), np.zeros(model.nv), np.zeros(model.nv)
     velocity = mode == "position-velocity"
     qpos, qvel = data.qpos, data.qvel
     jacobian = _sparse_jacobian if mujoco.mj_isSparse(model) else _dense_jacobian
-    step, integrate, lstsq, solve_m = mujoco.mj_step, mujoco.mj_integratePos, np.linalg.lstsq, mujoco.mj_solveM
+    step, integrate, full_m = mujoco.mj_step, mujoco.mj_integratePos, mujoco.mj_fullM
 
-    def correction(m: mujoco.MjModel, d: mujoco.MjData, gap: np.ndarray) -> np.ndarray:
-        """The least-kinetic-metric change dq with J dq = gap: M^-1 J^T (J M^-1 J^T)^+ gap (redundant rows)."""
-        solve_m(m, d, W, J)  # rows of J M^-1, with M factorised at the current qpos
-        return W.T @ lstsq(J @ W.T, gap, rcond=None)[0]
+    def rows(m: mujoco.MjModel, d: mujoco.MjData) -> tuple[np.ndarray, np.ndarray | slice]:
+        """The closure rows' Jacobian (k, nv) and their place in efc, taken afresh: MuJoCo leaves a connect out of
+        efc at poses where it is degenerate (the 4 x 4 Miura sheet lost one after its first step). Equality rows
+        come first in efc, d.ne of them."""
+        equality = slice(0, d.ne)
+        if not skip:
+            return jacobian(m, d)[equality], equality
+        index = np.flatnonzero(~skipped[d.efc_id[equality]])
+        return jacobian(m, d)[index], index
+
+    def correction(J: np.ndarray, gap: np.ndarray) -> np.ndarray:
+        """
+        The change dq (held dofs 0) of least kinetic metric with J dq = gap (rows may be redundant), as the limit of
+        (J^T J + mu M) dq = J^T gap for small mu: an nv x nv solve, whatever the number of rows (the waterbomb tube
+        has 639 for nv 179). mu is METRIC_WEIGHT of J^T J's scale over M's. MuJoCo's own single-threaded products
+        and Cholesky: numpy's BLAS threads the larger ones, which on a busy machine took 0.24 s for one 107 x 107
+        solve (and hid their CPU from the stepping thread's clock).
+        """
+        mujoco.mju_mulMatTMat(A, J, J)
+        mujoco.mju_mulMatTVec(b, J, gap)
+        A[:] += METRIC_WEIGHT * np.trace(A) / np.trace(M) * M
+        if held:  # the held dofs' rows and columns become identity: they stay, the rest solve exactly as without them
+            A[held, :], A[:, held], b[held] = 0.0, 0.0, 0.0
+            A[held, held] = 1.0
+        mujoco.mju_cholFactor(A, 0.0)
+        mujoco.mju_cholSolve(dq, A, b)
+        return dq
 
     def stabilized(m: mujoco.MjModel, d: mujoco.MjData) -> None:
         step(m, d)
         for k in range(iterations):
-            (mujoco.mj_fwdPosition if k == 0 else _make_constraint)(m, d)  # M once per step: it moves O(gap)
-            J[:n_rows] = jacobian(m, d)[rows]
-            residual[:n_rows] = d.efc_pos[rows]
-            integrate(m, qpos, correction(m, d, residual), -1.0)  # hinges add, balls turn their quaternion
+            if k == 0:
+                mujoco.mj_fwdPosition(m, d)
+                full_m(m, d, M)  # once per step: it moves O(gap)
+            else:
+                _make_constraint(m, d)
+            J, index = rows(m, d)
+            integrate(
+                m, qpos, correction(J, np.ascontiguousarray(d.efc_pos[index])), -1.0
+            )  # hinges add, balls turn their quaternion
         if velocity:
             _make_constraint(m, d)
-            J[:n_rows] = jacobian(m, d)[rows]
-            residual[:n_rows] = J[:n_rows] @ qvel
-            qvel[:] -= correction(m, d, residual)
+            J, _ = rows(m, d)
+            qvel[:] -= correction(J, J @ qvel)  # J (k, nv) times a vector: below BLAS's threading sizes
 
     return stabilized
