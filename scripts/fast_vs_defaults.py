@@ -37,7 +37,8 @@ def main(names: list[str]) -> None:
 
 def _gain(default: pareto.Point, point: pareto.Point) -> str:
     """How many times more accurate than MuJoCo's defaults, and the CPU ratio to them."""
-    gain = f"{default.error / point.error:.0f}x" if default.error < float("inf") else "defaults diverge"
+    ratio = default.error / point.error
+    gain = (f"{ratio:.0f}x" if ratio < 1e6 else f"{ratio:.1e}x") if default.error < float("inf") else "defaults diverge"
     return f"{gain}, {point.cpu / default.cpu:.2f}x"
 
 
