@@ -27,7 +27,7 @@ LAYERS = (
      ("mechanism", "origami", "linkage", "linkage_forms", "solids")),
     ("mjcf", "MJCF text from a mechanism and options", ("mjcf", "mjcf_tidy")),
     ("scenes", "a kinematics model wired to a mechanism and a drive; the registry", ("scenes",)),
-    ("simulation", "MuJoCo runs; the truss method", ("simulate", "truss")),
+    ("simulation", "MuJoCo runs and their stabilised steps; the truss method", ("stabilize", "simulate", "truss")),
     ("checks", "path errors, branch classification, blockage verdicts", ("checks",)),
     ("validation", "the three-way cross-check; sweeps", ("validation", "sweep")),
     ("outputs", "reports, plots, frames; studies built on the harness",

@@ -31,7 +31,8 @@ ORDER = (
     "compiler", "option", "size", "custom", "visual", "default", "asset", "worldbody",
     "contact", "equality", "actuator", "sensor", "keyframe",
 )  # fmt: skip
-PRESETS = ("fast", "stiff", "accurate")
+# fast-projected: fast plus a projection onto the closures after each step (`stabilize`), not plain MuJoCo
+PRESETS = ("fast", "stiff", "accurate", "fast-projected")
 
 
 @dataclass(frozen=True)

@@ -13,6 +13,7 @@ from .files import write_text
 from .fold import write_fold
 from .mjcf import ModelOptions, build_xml
 from .simulate import start_input
+from .stabilize import preset_mode
 from .tolerances import TOLERANCES
 from .validation import Report
 
@@ -62,6 +63,8 @@ def as_dict(report: Report) -> dict:
         "scene": scene.name,
         "params": scene.params,
         "preset": report.preset,
+        # "none" for plain MuJoCo; "position" when the preset projects qpos onto the closures after each step
+        "stabilize": preset_mode(report.preset),
         "seed": report.seed,
         "input": {"name": scene.kinematics.input_name, "drive_joint": scene.drive_joint},
         "joints": list(scene.kinematics.joint_names),

@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 from .errors import DomainError, ParameterError, SimulationError
 from .mjcf import ModelOptions, build_xml, closures, mujoco_joints, preset_duration, preset_number
 from .scenes.base import Scene
+from .stabilize import StepFunction, run_step
 
 # Closure residual is measured on at most this many samples of a run (after mj_kinematics each).
 RESIDUAL_SAMPLES = 400
@@ -216,14 +217,21 @@ def _residuals(scene, model, data, binds, qpos_log):
 
 
 def track(
-    model: mujoco.MjModel, data: mujoco.MjData, setpoint: NDArray, index: int, target: NDArray, qpos_log: NDArray
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    setpoint: NDArray,
+    index: int,
+    target: NDArray,
+    qpos_log: NDArray,
+    step: StepFunction = mujoco.mj_step,
 ) -> float:
     """
-    The stepping loop: write target[k] into setpoint[index] (an eq_data row or ctrl), mj_step, log qpos into
-    qpos_log[k]. Returns the CPU time (s) of the loop. Hoisted views and Python floats: the loop costs what a
-    bare mj_step loop does (numpy scalar indexing per step added about 25 %, measured by `sim-origami bench`).
+    The stepping loop: write target[k] into setpoint[index] (an eq_data row or ctrl), `step` (mj_step, or a preset's
+    stabilised step: `stabilize.run_step`), log qpos into qpos_log[k]. Returns the CPU time (s) of the loop.
+    Hoisted views and Python floats: the loop costs what a bare mj_step loop does (numpy scalar indexing per step
+    added about 25 %, measured by `sim-origami bench`).
     """
-    qpos, step = data.qpos, mujoco.mj_step
+    qpos = data.qpos
     cpu = time.thread_time()
     for value, row in zip(target.tolist(), qpos_log, strict=True):
         setpoint[index] = value
@@ -257,9 +265,16 @@ def drive_targets(
     return x, scene.drive_scale * (x + 2 * tau * model.eq_solref[eq, 1] * (stop - start) * rate / duration)
 
 
-def track_path(model: mujoco.MjModel, data: mujoco.MjData, rows: NDArray, targets: NDArray, qpos_log: NDArray) -> float:
+def track_path(
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    rows: NDArray,
+    targets: NDArray,
+    qpos_log: NDArray,
+    step: StepFunction = mujoco.mj_step,
+) -> float:
     """`track` for several joint-equality drives (eq ids `rows`): targets (n, k) written each step."""
-    qpos, step, eq_data = data.qpos, mujoco.mj_step, model.eq_data
+    qpos, eq_data = data.qpos, model.eq_data
     cpu = time.thread_time()
     for value, row in zip(targets, qpos_log, strict=True):
         eq_data[rows, 0] = value
@@ -326,20 +341,21 @@ def simulate(
     qpos_log = np.empty((n, model.nq))
     contacts = np.zeros(n if drive == "servo" else 0, dtype=np.int64)
     force = np.zeros(n if drive == "servo" else 0)
+    step = run_step(model, data, preset, scene.drives)
     with captured_warnings() as messages:
         if drive == "equality" and scene.drive_path is not None:
             rows = np.array([model.equality(f"drive_{j}").id for j in scene.drives])
-            cpu = track_path(model, data, rows, setpoints, qpos_log)
+            cpu = track_path(model, data, rows, setpoints, qpos_log, step)
         elif drive == "equality":
             eq = model.equality(f"drive_{scene.drive_joint}").id
-            cpu = track(model, data, model.eq_data[eq], 0, setpoints, qpos_log)
+            cpu = track(model, data, model.eq_data[eq], 0, setpoints, qpos_log, step)
         else:
             act = model.actuator(f"drive_{scene.drive_joint}").id
             acts = np.array([model.actuator(f"drive_{j}").id for j in scene.drives])
             cpu = time.thread_time()
             for k in range(n):
                 data.ctrl[acts if scene.drive_path is not None else act] = setpoints[k]
-                mujoco.mj_step(model, data)
+                step(model, data)
                 qpos_log[k] = data.qpos
                 contacts[k] = data.ncon
                 force[k] = data.actuator_force[act]
@@ -493,8 +509,9 @@ def simulate_free(scene: Scene, branch: str, start: float, duration: float, *, p
     n = round(duration / model.opt.timestep)
     qpos_log, energy = np.empty((n, model.nq)), np.empty(n + 1)
     energy[0] = data.energy.sum()
+    step = run_step(model, data, preset)
     with captured_warnings() as messages:
-        qpos, step = data.qpos, mujoco.mj_step
+        qpos = data.qpos
         cpu = time.thread_time()
         for k in range(n):
             step(model, data)

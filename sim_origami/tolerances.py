@@ -34,6 +34,14 @@ class Tolerances:
     # Closure-site gap (m, 1 m links): fast worst 1.7e-7 (IFToMM A04), accurate 4.6e-13 (A04; 2.5e-11 before the
     # regulariser scale). Projection stops once
     # every equality row is below 1e-14 m, so a gap can reach sqrt(3) 1e-14 (measured 1.2e-14).
+    # Preset fast-projected (fast plus one Gauss-Newton step onto the closures per step, `stabilize`): default
+    # sweeps <= 1.5e-14 rad (bricard-plane; bennett 2.2e-15, A04 driven 2.7e-15, free 8.9e-16), closure gaps
+    # <= 9e-15 m; the A04 free run's energy drift 1.3e-5 J (fast: 5.2e-5).
+    # On 2 s sweeps (scripts/fast_vs_defaults.py) worst 9.7e-13 rad (waterbomb-sheet), 4.6e-13 (truncated
+    # tetrahedron I); closure gaps <= 1.9e-14 m where measured (tube), the angle error's size or less.
+    projected_rad: float = 1e-11
+    projected_residual_m: float = 1e-11
+    projected_energy: float = 1.5e-4
     fast_residual_m: float = 2e-6
     accurate_residual_m: float = 5e-12
     projection_residual_m: float = 1e-13
@@ -49,12 +57,14 @@ class Tolerances:
 
     def energy(self, preset: str) -> float:
         """Energy-drift tolerance (J) of a free run with this preset."""
-        return {"fast": self.fast_energy, "stiff": self.fast_energy, "accurate": self.accurate_energy}[preset]
+        return {"fast": self.fast_energy, "stiff": self.fast_energy, "accurate": self.accurate_energy,
+                "fast-projected": self.projected_energy}[preset]  # fmt: skip
 
     def angle(self, mode: str) -> float:
-        """Path-error tolerance (rad) for a run mode: 'fast' or 'stiff' (held to the same), 'accurate', 'projection'."""
+        """Path-error tolerance (rad) for a run mode: 'fast' or 'stiff' (held to the same), 'accurate', 'projection',
+        'fast-projected'."""
         return {"fast": self.fast_rad, "stiff": self.fast_rad, "accurate": self.accurate_rad,
-                "projection": self.projection_rad}[mode]  # fmt: skip
+                "projection": self.projection_rad, "fast-projected": self.projected_rad}[mode]  # fmt: skip
 
     def residual(self, mode: str) -> float:
         """Closure-residual tolerance (m) for a run mode."""
@@ -63,6 +73,7 @@ class Tolerances:
             "stiff": self.fast_residual_m,
             "accurate": self.accurate_residual_m,
             "projection": self.projection_residual_m,
+            "fast-projected": self.projected_residual_m,
         }[mode]
 
 

@@ -11,6 +11,7 @@ from pathlib import Path
 
 from tqdm import tqdm
 
+from ..mjcf import PRESETS
 from ..sweep import parse_axis, sweep, write_tables
 
 NAME = "sweep"
@@ -21,7 +22,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("scene", help="scene name (see list)")
     parser.add_argument("--grid", action="append", required=True, metavar="NAME=START:STOP:STEP",
                         help="a swept parameter in degrees or metres (repeat for a product grid)")  # fmt: skip
-    parser.add_argument("--preset", choices=("fast", "stiff", "accurate"), help="default: the scene's own")
+    parser.add_argument("--preset", choices=PRESETS, help="default: the scene's own")
     parser.add_argument("--workers", type=int, help="local processes (default: every core)")
     parser.add_argument("--scheduler", help="Dask distributed scheduler address, e.g. tcp://10.0.0.5:8786")
     parser.add_argument("--out", type=Path, help="output folder (default runs/sweep-<scene>)")

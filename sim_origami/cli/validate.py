@@ -13,6 +13,7 @@ from ..checks.reference import read_reference, summary_lines
 from ..conventions import deg_to_rad
 from ..errors import ParameterError, SimulationError
 from ..files import write_text
+from ..mjcf import PRESETS
 from ..report import as_dict, plain, write
 from ..report_page import write_index, write_page
 from ..scenes.fold_file import fold_scene
@@ -37,7 +38,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     add_params(parser)
     parser.add_argument("--branch", help="one branch (default: every branch)")
     parser.add_argument(
-        "--preset", choices=("fast", "stiff", "accurate"), help="default: the scene's own (describe shows it)"
+        "--preset", choices=PRESETS, help="default: the scene's own (describe shows it)"
     )
     parser.add_argument(
         "--seed",

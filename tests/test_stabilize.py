@@ -1,0 +1,124 @@
+"""Preset fast-projected (`sim_origami.stabilize`): its accuracy on Bennett and A04, and the plain presets untouched."""
+
+import functools
+
+import mujoco
+import numpy as np
+import pytest
+
+from sim_origami import scenes
+from sim_origami.checks.paths import compare
+from sim_origami.errors import ParameterError
+from sim_origami.mjcf import ModelOptions
+from sim_origami.report import as_dict
+from sim_origami.simulate import Bindings, compile_model, drive_targets, simulate, simulate_free, start_pose
+from sim_origami.stabilize import preset_mode, run_step, step_function
+from sim_origami.studies.peer_model import body_poses, potential_energy, rigid_model
+from sim_origami.tolerances import TOLERANCES
+from sim_origami.validation import validate
+
+FREE_S = 10.0
+
+
+@functools.cache
+def scene_of(name: str):
+    return scenes.get(name).build()
+
+
+def test_fast_projected_closes_the_bennett_sweep():
+    """Measured 2.2e-15 rad and 2.4e-15 m over the 6 s sweep (fast: 6.7e-8 rad, 1.0e-7 m)."""
+    scene = scene_of("bennett")
+    run = simulate(scene, "bennett", preset="fast-projected")
+    assert run.steps == 750  # the fast preset's samples: 8 ms over 2 s x sweep_time_scale 3
+    assert compare(scene, "bennett", run.q).max_error() < TOLERANCES.angle("fast-projected")
+    assert np.max(run.closure_residual) < TOLERANCES.residual("fast-projected")
+    # the drive is left to its equality: the input sweeps the whole path (measured 7.0e-6 rad past its end)
+    x = run.q[:, scene.mechanism.joint_index(scene.drive_joint)]
+    assert x[0] == pytest.approx(0.6, abs=1e-4) and x[-1] == pytest.approx(2.4, abs=1e-4)
+
+
+def test_fast_projected_a04_free_run_keeps_energy():
+    """A04, 10 s free: measured 8.9e-16 rad off the closed form and 1.3e-5 J of energy drift (fast: 4.4e-7, 5.2e-5)."""
+    scene = scene_of("iftomm-a04")
+    run = simulate_free(scene, scene.free_branch, scene.free_start, FREE_S, preset="fast-projected")
+    path = compare(scene, scene.free_branch, run.q)
+    assert run.steps == 1250
+    assert path.max_error() < TOLERANCES.angle("fast-projected")
+    assert np.max(np.abs(run.energy - run.energy[0])) < TOLERANCES.energy("fast-projected")
+    assert np.ptp(path.input) > 0.5  # it fell: the input swept more than half a radian
+
+
+@pytest.mark.parametrize("preset", ["fast", "stiff"])
+def test_plain_presets_step_bit_for_bit_as_mj_step(preset):
+    """The plain presets run mj_step itself: the harness's Bennett sweep equals a bare mj_step loop bit for bit."""
+    scene = scene_of("bennett")
+    run = simulate(scene, "bennett", preset=preset)
+    model, data = compile_model(scene, ModelOptions(preset=preset))
+    assert run_step(model, data, preset, scene.drives) is mujoco.mj_step
+    binds = Bindings(scene, model)
+    start, stop = scene.branch_path("bennett")
+    binds.set_pose(data, start_pose(scene, "bennett", start))
+    mujoco.mj_forward(model, data)
+    _, setpoints = drive_targets(scene, model, "equality", start, stop, run.steps * model.opt.timestep, run.steps)
+    eq = model.equality(f"drive_{scene.drive_joint}").id
+    log = np.empty((run.steps, model.nq))
+    for value, row in zip(setpoints, log, strict=True):
+        model.eq_data[eq][0] = value
+        mujoco.mj_step(model, data)
+        row[:] = data.qpos
+    np.testing.assert_array_equal(binds.angles(scene, log), run.q)
+
+
+def test_plain_free_run_is_mj_step():
+    """A04's fast free run equals a bare mj_step loop bit for bit, and differs from fast-projected's."""
+    scene = scene_of("iftomm-a04")
+    run = simulate_free(scene, scene.free_branch, scene.free_start, 1.0, preset="fast")
+    model, data = compile_model(scene, ModelOptions(preset="fast", drive="none", gravity=True))
+    binds = Bindings(scene, model)
+    binds.set_pose(data, start_pose(scene, scene.free_branch, scene.free_start))
+    mujoco.mj_forward(model, data)
+    log = np.empty((run.steps, model.nq))
+    for row in log:
+        mujoco.mj_step(model, data)
+        row[:] = data.qpos
+    np.testing.assert_array_equal(binds.angles(scene, log), run.q)
+    projected = simulate_free(scene, scene.free_branch, scene.free_start, 1.0, preset="fast-projected")
+    assert not np.array_equal(projected.q, run.q)
+
+
+def test_preset_modes_and_bad_mode():
+    assert [preset_mode(p) for p in ("fast", "stiff", "accurate", "fast-projected")] == ["none"] * 3 + ["position"]
+    model, data = compile_model(scene_of("bennett"), ModelOptions())
+    with pytest.raises(ParameterError, match="'velocity'"):
+        step_function(model, data, "velocity")
+
+
+def test_report_states_the_stabilisation():
+    """validate --preset fast-projected passes on Bennett and report.json names the preset and its stabilisation."""
+    report = validate(scene_of("bennett"), preset="fast-projected", branch="bennett")
+    doc = as_dict(report)
+    assert report.passed and doc["preset"] == "fast-projected" and doc["stabilize"] == "position"
+    assert as_dict(validate(scene_of("bennett"), branch="bennett"))["stabilize"] == "none"
+
+
+def test_peer_model_is_the_mechanism():
+    """The rigid bodies and hinges other codes are built from: A04's five 1 kg rods, six hinges along the
+    benchmark's axes, one cut, joint 1 driven; principal frames map back to the mechanism's angles exactly."""
+    scene = scene_of("iftomm-a04")
+    q = start_pose(scene, scene.free_branch, scene.free_start)
+    rigid = rigid_model(scene, q)
+    assert [b.mass for b in rigid.bodies] == pytest.approx([1.0] * 5, rel=1e-7)
+    assert sum(h.cut for h in rigid.hinges) == 1 and [h.name for h in rigid.hinges if h.driven] == ["joint_1"]
+    for b in rigid.bodies:
+        # 1 x 0.1 x 0.1 m rod, 1 kg; principal axes in MuJoCo's order (a box geom lists the long axis last)
+        assert sorted(b.inertia) == pytest.approx([0.02 / 12, 1.01 / 12, 1.01 / 12], rel=1e-6)
+    poses = body_poses(rigid, {b.name: b.pose[None] for b in rigid.bodies})
+    np.testing.assert_allclose(scene.mechanism.angles_from_poses(poses)[0], q, atol=1e-14)
+    # the energy MuJoCo reports at the start: E0 = -29.43 J
+    assert potential_energy(rigid, {b.name: b.pose[None, :3, 3] for b in rigid.bodies})[0] == pytest.approx(
+        -29.43, abs=1e-6
+    )
+    balls = scene_of("cuboctahedron")
+    branch = balls.kinematics.branches()[0].name
+    with pytest.raises(ParameterError, match="hinges only"):
+        rigid_model(balls, start_pose(balls, branch, balls.branch_path(branch)[0]))
