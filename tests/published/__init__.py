@@ -1,0 +1,98 @@
+"""The published numbers the tests check, one module per source document, and the corrections of printed equations.
+
+Each `Number` holds one value as the document prints it (its precision visible in the text), the function that
+computes ours from the package, the tolerance the test applies (the printed precision) and the test that checks
+it. Each `Correction` holds a printed equation the code corrects, with the function that measures the residual of
+the corrected and of the printed form. The tests read these entries (there is one copy of each published number)
+and `scripts/results_doc.py` writes `docs/results.md` from them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+
+@dataclass(frozen=True)
+class Number:
+    """One published value (scalar or a row of values) and how the tests reproduce it.
+
+    where: the figure, table or equation ("Table 4-1, case 10"); quantity: what it is, in words, with the input;
+    printed: the values as printed, comma separated; ours: computes our values (same shape, same unit);
+    tol: the largest difference the test accepts (half a unit of the printed last place, unless stated);
+    test: the test function that checks it; unit: of printed and ours; angle: differences wrapped to one turn;
+    strict: the test requires difference < tol rather than <= tol.
+    """
+
+    where: str
+    quantity: str
+    printed: str
+    ours: Callable[[], ArrayLike]
+    tol: float
+    test: str
+    unit: str = ""
+    angle: bool = False
+    strict: bool = False
+
+    @property
+    def value(self) -> np.ndarray:
+        """The printed values as floats."""
+        return np.array([float(v) for v in self.printed.split(",")])
+
+    def difference(self, ours: ArrayLike | None = None) -> float:
+        """Largest |ours - printed| over the values, wrapped to one turn for angles."""
+        got = np.atleast_1d(np.asarray(self.ours() if ours is None else ours, dtype=float))
+        if got.shape != self.value.shape:
+            raise ValueError(f"{self.where}: ours has shape {got.shape}, printed {self.value.shape}")
+        d = got - self.value
+        if self.angle:
+            turn = 360.0 if self.unit == "deg" else 2 * np.pi
+            d = (d + turn / 2) % turn - turn / 2
+        return float(np.max(np.abs(d)))
+
+    def check(self) -> float:
+        """Assert that ours matches the printed values within tol; return the difference."""
+        d = self.difference()
+        ok = d < self.tol if self.strict else d <= self.tol
+        assert ok, f"{self.where}, {self.quantity}: ours differs from {self.printed} by {d:.3g} > {self.tol:g}"
+        return d
+
+    def __str__(self) -> str:
+        return f"{self.where}: {self.quantity}"
+
+
+@dataclass(frozen=True)
+class Correction:
+    """A printed equation the code corrects, with the residuals that prove it.
+
+    where: the equation; printed / corrected: the two forms in words; measure: what the residual is (and where
+    it is evaluated); residuals: computes (residual of the corrected form, residual of the printed form);
+    test: the test function that checks both.
+    """
+
+    where: str
+    printed: str
+    corrected: str
+    measure: str
+    residuals: Callable[[], tuple[float, float]]
+    test: str
+
+    def __str__(self) -> str:
+        return f"{self.where}: {self.corrected}"
+
+
+def checked_by(entries: tuple[Number | Correction, ...], test: str) -> list[Number | Correction]:
+    """The entries whose test is `test` (a function name); never empty, so a renamed test cannot check nothing."""
+    found = [e for e in entries if e.test.split("::")[-1] == test]
+    if not found:
+        raise LookupError(f"no published entry names the test {test}")
+    return found
+
+
+def check_every(entries: tuple[Number, ...], test: str) -> None:
+    """Check every number whose test is `test` (for tests that check them among other things)."""
+    for entry in checked_by(entries, test):
+        entry.check()

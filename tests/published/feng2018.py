@@ -1,0 +1,125 @@
+"""Feng 2018 (PhD thesis: waterbomb, Bricard linkages, triangle twist): the published numbers the tests check."""
+
+from functools import cache
+
+import numpy as np
+
+from published import Correction, Number
+from sim_origami.geometry import wrap
+from sim_origami.kinematics.bricard_plane import FIG_4_5, TABLE_4_1, Geometry, PlaneSymmetricBricard
+
+DOCUMENT = "Feng 2018"
+
+# Validation case 15 of chapter 4: offsets that expose the sign of eqn 4-6c.
+OFFSETS = Geometry(1.3, 0.7, 1.1, 0.9, 0.4, 1.2, 0.3, -0.5)
+# Chapter 4 prints angles to 4 decimals (degrees): half a unit of the last place, plus rounding of the printed
+# inputs (e.g. 158.5428 deg); the largest difference measured is 5.0e-5 deg.
+BRICARD_DEG = 6e-5
+
+
+def bricard_model(g: Geometry, **options) -> PlaneSymmetricBricard:
+    """The plane-symmetric Bricard 6R of a chapter 4 geometry."""
+    return PlaneSymmetricBricard(g.a, g.b, g.c, g.alpha, g.beta, g.gamma, g.R2, g.R3, **options)
+
+
+@cache
+def _bricard(name: str | int) -> PlaneSymmetricBricard:
+    return bricard_model({"fig": FIG_4_5, "offsets": OFFSETS}.get(name) or TABLE_4_1[name])
+
+
+def bricard_angles_deg(kin: PlaneSymmetricBricard, branch: str, theta2_deg: float) -> np.ndarray:
+    """theta1..theta6 (deg, wrapped) on a branch at theta2 (deg)."""
+    return np.rad2deg(wrap(kin.joint_angles(branch, np.deg2rad(theta2_deg))[0]))
+
+
+def case_9_bennett_theta3(theta1: np.ndarray) -> np.ndarray:
+    """theta3 of case 9's Bennett branch theta2 = theta6 = pi (Fig 4-4): tan(theta3/2) = -tan(theta1/2) / sqrt 2."""
+    return 2 * np.arctan(-np.tan(theta1 / 2) / np.sqrt(2))
+
+
+PATH_WORDS = {
+    "theta1_eq_theta4": "path I (theta1 = theta4)",
+    "theta1_plus_theta4_eq_2theta2": "path II (theta1 + theta4 = 2 theta2)",
+    "all_joints_move": "all joints move",
+    "theta3_180_at_theta2_180": "the half where theta3 = 180 at theta2 = 180 (deg)",
+    "theta3_0_at_theta2_180": "the half where theta3 = 0 at theta2 = 180 (deg)",
+    "bennett_theta3_pi": "the Bennett branch theta3 = theta5 = 180",
+    "theta3_m63_at_theta2_m80": "first root",
+    "theta3_m124_at_theta2_m80": "second root",
+}
+
+
+def _bricard_row(where: str, geometry, branch: str, theta2: float, printed: str, test: str, label: str = "") -> Number:
+    shown = label or f"{theta2:.10g} deg"
+    return Number(
+        where,
+        f"theta1..theta6 at theta2 = {shown} on {PATH_WORDS[branch]}",
+        printed,
+        lambda: bricard_angles_deg(_bricard(geometry), branch, theta2),
+        BRICARD_DEG,
+        f"test_bricard_plane.py::{test}",
+        unit="deg",
+        angle=True,
+    )
+
+
+_T41 = "test_published_configurations_of_table_4_1"
+_F45 = "test_published_configurations_of_the_fig_4_5_geometry_and_the_offset_case"
+_BEN = "test_fig_4_5_bennett_branch_published_values"
+_BIF = "test_case_10_bifurcations_are_the_two_collinear_configurations_on_both_paths"
+_C9 = "test_case_9_bennett_branch_closes_and_meets_both_halves_at_the_published_configurations"
+
+BRICARD = (
+    _bricard_row("Table 4-1, case 10", 10, "theta1_eq_theta4", 60,
+                 "-147.7958, 60, 143.1301, -147.7958, 143.1301, 60", _T41),
+    _bricard_row("Table 4-1, case 10", 10, "theta1_plus_theta4_eq_2theta2", 60,
+                 "-133.1736, 60, 126.8699, -106.8264, 126.8699, 60", _T41),
+    _bricard_row("Table 4-1, case 10", 10, "theta1_eq_theta4", 120, "-98.2132, 120, 90, -98.2132, 90, 120", _T41),
+    _bricard_row("Table 4-1, case 10", 10, "theta1_plus_theta4_eq_2theta2", 120,
+                 "-75.1782, 120, 67.3801, -44.8218, 67.3801, 120", _T41),
+    _bricard_row("Table 4-1, case 5", 5, "all_joints_move", 60, "144.8396, 60, 16.2602, -177.6924, 16.2602, 60", _T41),
+    _bricard_row("Table 4-1, case 5", 5, "all_joints_move", 120,
+                 "80.5145, 120, 46.3972, -174.1674, 46.3972, 120", _T41),
+    _bricard_row("Table 4-1, case 6", 6, "all_joints_move", 60, "-46.8264, 60, 101.5370, 46.8264, 101.5370, 60", _T41),
+    _bricard_row("Table 4-1, case 6", 6, "all_joints_move", 120, "0, 120, 0, 120, 0, 120", _T41),
+    # case 8's inputs are 0.5 and 2 rad (printed as 28.6479 and 114.5916 deg)
+    _bricard_row("Table 4-1, case 8", 8, "theta1_eq_theta4", np.rad2deg(0.5),
+                 "-165.4487, 28.6479, 163.2275, -165.4487, 163.2275, 28.6479", _T41, "0.5 rad"),
+    _bricard_row("Table 4-1, case 8", 8, "theta1_eq_theta4", np.rad2deg(2.0),
+                 "-104.1839, 114.5916, 96.0782, -104.1839, 96.0782, 114.5916", _T41, "2 rad"),
+    _bricard_row("Table 4-1, case 9", 9, "theta3_180_at_theta2_180", 90,
+                 "140.7460, 90, 150.3342, 71.4318, 150.3342, 90", _T41),
+    _bricard_row("Table 4-1, case 9", 9, "theta3_0_at_theta2_180", 90,
+                 "101.5496, 90, 69.0589, -132.7723, 69.0589, 90", _T41),
+    _bricard_row("Table 4-1, case 9", 9, "theta3_180_at_theta2_180", 150,
+                 "157.9355, 150, 173.0647, -90.2700, 173.0647, 150", _T41),
+    _bricard_row("Table 4-1, case 9", 9, "theta3_0_at_theta2_180", 150,
+                 "33.2749, 150, 17.8935, -40.4613, 17.8935, 150", _T41),
+    _bricard_row("Fig 4-5", "fig", "all_joints_move", 60, "113.7818, 60, -136.7224, 170.0617, -136.7224, 60", _F45),
+    _bricard_row("Fig 4-5", "fig", "all_joints_move", 120, "138.8478, 120, 146.9081, 37.1804, 146.9081, 120", _F45),
+    _bricard_row("§4.3, offsets case", "offsets", "theta3_m63_at_theta2_m80", -110,
+                 "-80.8970, -110, -49.5009, 96.0363, -49.5009, -110", _F45),
+    _bricard_row("§4.3, offsets case", "offsets", "theta3_m124_at_theta2_m80", -110,
+                 "97.6558, -110, -97.2543, -29.8270, -97.2543, -110", _F45),
+    _bricard_row("Fig 4-5", "fig", "bennett_theta3_pi", 158.5428, "30, 158.5428, 180, 30, 180, 158.5428", _BEN),
+    _bricard_row("Fig 4-5", "fig", "bennett_theta3_pi", 109.4712, "90, 109.4712, 180, 90, 180, 109.4712", _BEN),
+    _bricard_row("Fig 4-5", "fig", "bennett_theta3_pi", 41.5071, "150, 41.5071, 180, 150, 180, 41.5071", _BEN),
+    Number("Fig 4-4, case 9", "theta3 on the Bennett branch (theta2 = 180) at theta1 = 30, 60, 90, 120, 150, 170 deg",
+           "-21.4572, -44.4153, -70.5288, -101.5370, -138.4929, -165.8935",
+           lambda: np.rad2deg(case_9_bennett_theta3(np.deg2rad([30.0, 60.0, 90.0, 120.0, 150.0, 170.0]))),
+           BRICARD_DEG, f"test_bricard_plane.py::{_C9}", unit="deg"),
+    _bricard_row("Table 4-1, case 9", 9, "theta3_0_at_theta2_180", 180, "0, 180, 0, 0, 0, 180", _C9),
+    _bricard_row("Table 4-1, case 9", 9, "theta3_180_at_theta2_180", 180, "180, 180, 180, 180, 180, 180", _C9),
+    _bricard_row("Table 4-1, case 10 (bifurcation)", 10, "theta1_eq_theta4", 0, "180, 0, 180, 180, 180, 0", _BIF),
+    _bricard_row("Table 4-1, case 10 (bifurcation)", 10, "theta1_plus_theta4_eq_2theta2", 0,
+                 "180, 0, 180, 180, 180, 0", _BIF),
+    _bricard_row("Table 4-1, case 10 (bifurcation)", 10, "theta1_eq_theta4", 180, "0, 180, 0, 0, 0, 180", _BIF),
+    _bricard_row("Table 4-1, case 10 (bifurcation)", 10, "theta1_plus_theta4_eq_2theta2", 180,
+                 "0, 180, 0, 0, 0, 180", _BIF),
+    Number("Table 4-1, case 9", "lower end of theta2's domain (Delta >= 0 iff |theta2| >= 71.67 deg)", "71.6692",
+           lambda: np.rad2deg(_bricard(9).branches()[0].domain[0]), 1e-4,
+           "test_bricard_plane.py::test_case_9_theta2_covers_only_part_of_the_circle_and_turns_back", unit="deg"),
+)  # fmt: skip
+
+NUMBERS: tuple[Number, ...] = BRICARD
+CORRECTIONS: tuple[Correction, ...] = ()
