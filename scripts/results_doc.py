@@ -77,14 +77,14 @@ def numbers_table(entries) -> str:
 
 def corrections_table(entries) -> str:
     rows = [
-        "| equation | as printed | what closes | residual measured | corrected | printed | test |",
-        "|---" * 7 + "|",
+        "| equation | as printed | what closes | residual measured | corrected | printed | test requires | test |",
+        "|---" * 8 + "|",
     ]
     for c in entries:
         fixed, printed = c.residuals()
         rows.append(
             f"| {_cell(c.where)} | {_cell(c.printed)} | {_cell(c.corrected)} | {_cell(c.measure)} | {_sci(fixed)} "
-            f"| {_sci(printed)} | `{c.test}` |"
+            f"| {_sci(printed)} | <= {c.closes:g} and > {c.fails:g} | `{c.test}` |"
         )
     return "\n".join(rows)
 

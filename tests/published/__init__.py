@@ -24,7 +24,9 @@ class Number:
     printed: the values as printed, comma separated; ours: computes our values (same shape, same unit);
     tol: the largest difference the test accepts (half a unit of the printed last place, unless stated);
     test: the test function that checks it; unit: of printed and ours; angle: differences wrapped to one turn;
-    strict: the test requires difference < tol rather than <= tol.
+    strict: the test requires difference < tol rather than <= tol; in_text: the document prints this value
+    (False: a worked value, the document's equations evaluated at its own geometry and rounded to the places
+    shown, where the document gives the configuration only as a figure or a table of cases).
     """
 
     where: str
@@ -36,6 +38,7 @@ class Number:
     unit: str = ""
     angle: bool = False
     strict: bool = False
+    in_text: bool = True
 
     @property
     def value(self) -> np.ndarray:
@@ -70,7 +73,8 @@ class Correction:
 
     where: the equation; printed / corrected: the two forms in words; measure: what the residual is (and where
     it is evaluated); residuals: computes (residual of the corrected form, residual of the printed form);
-    test: the test function that checks both.
+    test: the test function that checks both; closes: the corrected residual stays at or below it; fails: the
+    printed residual exceeds it.
     """
 
     where: str
@@ -79,6 +83,15 @@ class Correction:
     measure: str
     residuals: Callable[[], tuple[float, float]]
     test: str
+    closes: float
+    fails: float
+
+    def check(self) -> tuple[float, float]:
+        """Assert that the corrected form closes and the printed one does not; return both residuals."""
+        fixed, printed = self.residuals()
+        assert fixed <= self.closes, f"{self.where}: the corrected form leaves {fixed:.3g} > {self.closes:g}"
+        assert printed > self.fails, f"{self.where}: the printed form leaves only {printed:.3g} <= {self.fails:g}"
+        return fixed, printed
 
     def __str__(self) -> str:
         return f"{self.where}: {self.corrected}"
@@ -92,7 +105,7 @@ def checked_by(entries: tuple[Number | Correction, ...], test: str) -> list[Numb
     return found
 
 
-def check_every(entries: tuple[Number, ...], test: str) -> None:
-    """Check every number whose test is `test` (for tests that check them among other things)."""
+def check_every(entries: tuple[Number | Correction, ...], test: str) -> None:
+    """Check every entry whose test is `test` (for tests that check them among other things)."""
     for entry in checked_by(entries, test):
         entry.check()

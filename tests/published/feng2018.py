@@ -60,6 +60,7 @@ def _bricard_row(where: str, geometry, branch: str, theta2: float, printed: str,
         f"test_bricard_plane.py::{test}",
         unit="deg",
         angle=True,
+        in_text=False,
     )
 
 
@@ -107,7 +108,7 @@ BRICARD = (
     Number("Fig 4-4, case 9", "theta3 on the Bennett branch (theta2 = 180) at theta1 = 30, 60, 90, 120, 150, 170 deg",
            "-21.4572, -44.4153, -70.5288, -101.5370, -138.4929, -165.8935",
            lambda: np.rad2deg(case_9_bennett_theta3(np.deg2rad([30.0, 60.0, 90.0, 120.0, 150.0, 170.0]))),
-           BRICARD_DEG, f"test_bricard_plane.py::{_C9}", unit="deg"),
+           BRICARD_DEG, f"test_bricard_plane.py::{_C9}", unit="deg", in_text=False),
     _bricard_row("Table 4-1, case 9", 9, "theta3_0_at_theta2_180", 180, "0, 180, 0, 0, 0, 180", _C9),
     _bricard_row("Table 4-1, case 9", 9, "theta3_180_at_theta2_180", 180, "180, 180, 180, 180, 180, 180", _C9),
     _bricard_row("Table 4-1, case 10 (bifurcation)", 10, "theta1_eq_theta4", 0, "180, 0, 180, 180, 180, 0", _BIF),
@@ -118,7 +119,8 @@ BRICARD = (
                  "0, 180, 0, 0, 0, 180", _BIF),
     Number("Table 4-1, case 9", "lower end of theta2's domain (Delta >= 0 iff |theta2| >= 71.67 deg)", "71.6692",
            lambda: np.rad2deg(_bricard(9).branches()[0].domain[0]), 1e-4,
-           "test_bricard_plane.py::test_case_9_theta2_covers_only_part_of_the_circle_and_turns_back", unit="deg"),
+           "test_bricard_plane.py::test_case_9_theta2_covers_only_part_of_the_circle_and_turns_back", unit="deg",
+           in_text=False),
 )  # fmt: skip
 
 NUMBERS: tuple[Number, ...] = BRICARD
