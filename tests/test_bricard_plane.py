@@ -15,11 +15,8 @@ from sim_origami.kinematics.bricard_plane import (
     TABLE_4_1,
     Geometry,
     PlaneSymmetricBricard,
-    closure_coefficients,
     path_one,
     path_two,
-    theta1_fractions,
-    theta4_fraction,
 )
 from sim_origami.kinematics.dh import dh_loop
 from sim_origami.tolerances import TOLERANCES
@@ -61,38 +58,19 @@ def closure_over_domains(kin: PlaneSymmetricBricard, samples: int = 2001) -> flo
 # ---------------------------------------------------------------------------------------------
 
 
-def textbook_configurations(g: Geometry, theta2: np.ndarray, printed_c: bool) -> np.ndarray:
-    """Both roots by eqn 4-15 with n = tan(theta3/2), theta1 by eqn 4-7, theta4 by appendix (3,1)."""
-    A, B, C = closure_coefficients(g, theta2, printed_c=printed_c)
-    with np.errstate(invalid="ignore"):  # the printed C leaves Delta < 0 at some inputs
-        root = np.sqrt(B * B - 4 * A * C)
-    out = []
-    for sign in (1.0, -1.0):
-        t3 = 2 * np.arctan((-B + sign * root) / (2 * A))
-        Y13, X13, _, _ = theta1_fractions(g, theta2, t3)
-        Y31, X31 = theta4_fraction(g, theta2, t3)
-        t1, t4 = 2 * np.arctan2(Y13, X13), 2 * np.arctan2(Y31, X31)
-        out.append(np.stack([t1, theta2, t3, t4, t3, theta2], -1))
-    return np.concatenate(out)
-
-
 def test_corrected_c_closes_with_offsets_and_the_printed_c_does_not():
-    theta2 = np.deg2rad(np.linspace(-120.0, -30.0, 91))  # inside both of OFFSETS' domains
-    loops = model(OFFSETS).loop_system()
-    corrected = textbook_configurations(OFFSETS, theta2, printed_c=False)
-    # Measured 7.6e-14 (the model's half-angle pair form: 8.5e-15 on the same inputs).
-    assert np.max(loops.residual_norm(corrected)) <= TOLERANCES.closed_form_residual
-    printed = textbook_configurations(OFFSETS, theta2, printed_c=True)
-    ok = np.all(np.isfinite(printed), axis=1)
-    # Measured 1.69 (seed000 reports up to 0.23 over 72 random offset cases): far above 0.01.
-    assert np.max(loops.residual_norm(printed[ok])) > 0.01
+    # Corrected: measured 7.6e-14 (the model's half-angle pair form: 8.5e-15 on the same inputs), within
+    # TOLERANCES.closed_form_residual; printed: measured 1.69, far above 0.01.
+    [correction] = checked_by(feng2018.CORRECTIONS, "test_corrected_c_closes_with_offsets_and_the_printed_c_does_not")
+    assert correction.closes == TOLERANCES.closed_form_residual
+    correction.check()
     # The same on random offset geometries, over their first branch's domain: measured 0.055 to 7.4
     # (the model closes them to 5.6e-14, test below).
     for g in random_offset_geometries(6, seed=7):
         kin = model(g)
         lo, hi = kin.branches()[0].domain
         x = wrap(np.linspace(lo, hi, 101)[1:-1])
-        printed = textbook_configurations(g, x, printed_c=True)
+        printed = feng2018.textbook_configurations(g, x, printed_c=True)
         ok = np.all(np.isfinite(printed), axis=1)
         assert np.max(kin.loop_system().residual_norm(printed[ok])) > 0.01
 

@@ -6,7 +6,15 @@ import numpy as np
 
 from published import Correction, Number
 from sim_origami.geometry import wrap
-from sim_origami.kinematics.bricard_plane import FIG_4_5, TABLE_4_1, Geometry, PlaneSymmetricBricard
+from sim_origami.kinematics.bricard_plane import (
+    FIG_4_5,
+    TABLE_4_1,
+    Geometry,
+    PlaneSymmetricBricard,
+    closure_coefficients,
+    theta1_fractions,
+    theta4_fraction,
+)
 
 DOCUMENT = "Feng 2018"
 
@@ -123,5 +131,38 @@ BRICARD = (
            in_text=False),
 )  # fmt: skip
 
+
+def textbook_configurations(g: Geometry, theta2: np.ndarray, printed_c: bool) -> np.ndarray:
+    """Both roots by eqn 4-15 with n = tan(theta3/2), theta1 by eqn 4-7, theta4 by appendix (3,1)."""
+    A, B, C = closure_coefficients(g, theta2, printed_c=printed_c)
+    with np.errstate(invalid="ignore"):  # the printed C leaves Delta < 0 at some inputs
+        root = np.sqrt(B * B - 4 * A * C)
+    out = []
+    for sign in (1.0, -1.0):
+        t3 = 2 * np.arctan((-B + sign * root) / (2 * A))
+        Y13, X13, _, _ = theta1_fractions(g, theta2, t3)
+        Y31, X31 = theta4_fraction(g, theta2, t3)
+        t1, t4 = 2 * np.arctan2(Y13, X13), 2 * np.arctan2(Y31, X31)
+        out.append(np.stack([t1, theta2, t3, t4, t3, theta2], -1))
+    return np.concatenate(out)
+
+
+def eqn_4_6c_residuals() -> tuple[float, float]:
+    """Largest loop closure residual of eqns 4-15, 4-7 and appendix (3,1) on the offsets case, theta2 from -120 to
+    -30 deg (inside both its domains), with C's linear term corrected and as printed (finite roots only)."""
+    theta2 = np.deg2rad(np.linspace(-120.0, -30.0, 91))
+    loops = _bricard("offsets").loop_system()
+    out = []
+    for printed_c in (False, True):
+        q = textbook_configurations(OFFSETS, theta2, printed_c)
+        out.append(float(np.max(loops.residual_norm(q[np.all(np.isfinite(q), axis=1)]))))
+    return out[0], out[1]
+
+
 NUMBERS: tuple[Number, ...] = BRICARD
-CORRECTIONS: tuple[Correction, ...] = ()
+CORRECTIONS: tuple[Correction, ...] = (
+    Correction("eqn 4-6c", "C's linear term +2 sin(alpha) (R3 sin(gamma) + R2 sin(beta + gamma)) m",
+               "the same term with -2 sin(alpha)", "loop closure residual (m and rad) of both roots, offsets case "
+               "(R2 = 0.3, R3 = -0.5), theta2 from -120 to -30 deg", eqn_4_6c_residuals,
+               "test_bricard_plane.py::test_corrected_c_closes_with_offsets_and_the_printed_c_does_not", 1e-12, 0.01),
+)  # fmt: skip
