@@ -15,8 +15,12 @@ from sim_origami.kinematics.bricard_plane import (
     theta1_fractions,
     theta4_fraction,
 )
+from sim_origami.kinematics.triangle_twist import epsilon_formula
+from sim_origami.kinematics.twist_6r import TwistSixR, compatible_angles
+from sim_origami.kinematics.vertex4 import Vertex4
 
 DOCUMENT = "Feng 2018"
+DEG = np.pi / 180
 
 # Validation case 15 of chapter 4: offsets that expose the sign of eqn 4-6c.
 OFFSETS = Geometry(1.3, 0.7, 1.1, 0.9, 0.4, 1.2, 0.3, -0.5)
@@ -159,10 +163,132 @@ def eqn_4_6c_residuals() -> tuple[float, float]:
     return out[0], out[1]
 
 
-NUMBERS: tuple[Number, ...] = BRICARD
+# --- chapter 3: the triangle twist and its 6R linkages ---------------------------------------------------------
+
+FIG_3_5 = (55.0, 50.0, 50.0, 45.0)  # alpha, beta, gamma, delta (deg)
+_TT = "test_triangle_twist.py::"
+
+
+@cache
+def twist_6r(alpha: float, beta: float, gamma: float, delta: float) -> TwistSixR:
+    """The 6R derived from the triangle twist with these angles (deg) and its compatible epsilon."""
+    return TwistSixR(compatible_angles(*(v * DEG for v in (alpha, beta, gamma, delta))))
+
+
+def held_joint_pose(joint: int) -> np.ndarray:
+    """The one configuration (deg) the Fig 3-5 6R closes with joint `joint` held at 0.3 rad (numeric solve)."""
+    found = twist_6r(*FIG_3_5).loop_system().assemblies(joint, 0.3, starts=32, seed=1)
+    return np.rad2deg(found[0])
+
+
+def _tt(where, quantity, printed, ours, tol, test, unit="deg") -> Number:
+    return Number(where, quantity, printed, ours, tol, _TT + test, unit=unit, in_text=False)
+
+
+_VERTEX = "test_case1_2_spherical_4r_vertex_families"
+_EPS = "test_case3_compatible_epsilon_against_the_seed"
+_C5 = "test_case5_dh_data_and_motion_against_the_seed"
+_C6 = "test_case6_parallel_pleats_the_new_6r"
+_HELD = "test_case5_one_held_joint_admits_one_configuration"
+_C5_PATH = (
+    (30, "-66.0696, -47.4736"),
+    (60, "-108.9688, -86.9116"),
+    (90, "-135.2111, -117.2886"),
+    (120, "-153.2360, -141.2359"),
+    (150, "-167.3989, -161.4540"),
+)
+_C5_HELD = (
+    (0, "17.19, -40.28, -27.86, 17.19, -40.28, 27.86"),
+    (1, "-7.13, 17.19, 11.67, -7.13, 17.19, -11.67"),
+    (2, "-10.52, 25.20, 17.19, -10.52, 25.20, -17.19"),
+    (5, "10.52, -25.20, -17.19, 10.52, -25.20, 17.19"),
+)
+
+
+def _c5_row(t1: int, t2_t3: str) -> Number:
+    t2, t3 = t2_t3.split(", ")
+    return _tt(
+        "Fig 3-14, case 5",
+        f"theta1..theta6 at theta1 = {t1} deg (theta4 = theta1, theta5 = theta2, theta6 = -theta3)",
+        f"{t1}, {t2}, {t3}, {t1}, {t2}, {-float(t3):.4f}",
+        lambda: np.rad2deg(twist_6r(*FIG_3_5).joint_angles("SSP", t1 * DEG)[0]),
+        5e-5,
+        _C5,
+    )
+
+
+TRIANGLE_TWIST = (
+    *(_tt("eqn 3-3, case 1-2", f"mode {mode} vertex (twists 0.6, 1.2 rad) rho1..rho4 at rho1 = 0.3 rad", printed,
+          lambda mode=mode: Vertex4([0.6, 1.2, np.pi - 0.6, np.pi - 1.2]).joint_angles(mode, 0.3)[0], 5e-5, _VERTEX,
+          unit="rad") for mode, printed in (("S", "0.3, -0.7621, -0.3, -0.7621"), ("C", "0.3, -0.1960, 0.3, 0.1960"))),
+    *(_tt(f"eqn 3-12, {scheme} {angles}", "compatible epsilon", printed,
+          lambda scheme=scheme, angles=angles: epsilon_formula(scheme, *(v * DEG for v in angles)) / DEG, 5e-5, _EPS)
+      for scheme, angles, printed in (("SSP", (55, 50, 50, 45), "35.4368"), ("SSP", (55, 50, 45, 45), "33.5166"),
+                                      ("PSR", (30, 80, 90, 45), "7.0355"), ("PSR", (60, 60, 90, 45), "-25.5288"))),
+    _tt("eqn 3-38, case 5", "D-H twists alpha12..alpha61", "-5, 130, -9.5632, 105, 14.5632, 125",
+        lambda: np.rad2deg(wrap([r.alpha for r in twist_6r(*FIG_3_5).rows])), 5e-5, _C5),
+    _tt("eqn 3-38, case 5", "D-H offsets R1..R6 (d = 1)",
+        "8.11314, -8.789374, 2.959639, -3.609461, -2.416104, 1.828703",
+        lambda: [r.R for r in twist_6r(*FIG_3_5).rows], 5e-6, _C5, unit=""),
+    _tt("eqn 3-39, case 5", "Ka, Kb", "1.641116, 1.478778", lambda: [twist_6r(*FIG_3_5).ka, twist_6r(*FIG_3_5).kb],
+        5e-7, _C5, unit=""),
+    _tt("eqn 3-39, case 5", "Ka Kb", "2.4268", lambda: twist_6r(*FIG_3_5).ka * twist_6r(*FIG_3_5).kb, 5e-5, _C5,
+        unit=""),
+    *(_c5_row(t1, t2_t3) for t1, t2_t3 in _C5_PATH),
+    *(_tt("case 5", f"the only configuration with joint {j + 1} held at 0.3 rad (numeric solve, 2 decimals)",
+          printed, lambda j=j: held_joint_pose(j), 0.005, _HELD) for j, printed in _C5_HELD),
+    _tt("Fig 3-14, case 6", "compatible epsilon of the 6R with gamma = delta = 45", "33.5166",
+        lambda: twist_6r(55, 50, 45, 45).angles.epsilon / DEG, 5e-5, _C6),
+    _tt("case 6", "D-H twists alpha12..alpha61", "0, 130, -11.4834, 105, 11.4834, 125",
+        lambda: np.rad2deg(wrap([r.alpha for r in twist_6r(55, 50, 45, 45).rows])), 5e-5, _C6),
+    _tt("case 6", "D-H offsets R1..R6 (d = 1)", "0, -0.707107, 2.352154, -3.012110, -2.816828, 2.199659",
+        lambda: [r.R for r in twist_6r(55, 50, 45, 45).rows], 5e-7, _C6, unit=""),
+    _tt("case 6", "D-H length a12", "0.707107", lambda: twist_6r(55, 50, 45, 45).rows[0].a, 5e-7, _C6, unit=""),
+    _tt("case 6", "eqn 2-14's sum with R1 = 0", "4.685016", lambda: twist_6r(55, 50, 45, 45).bricard_sum(), 5e-7, _C6,
+        unit=""),
+    _tt("case 6", "Ka, Ka Kb", "1.5498, 2.2918",
+        lambda: [twist_6r(55, 50, 45, 45).ka, twist_6r(55, 50, 45, 45).ka * twist_6r(55, 50, 45, 45).kb], 5e-5, _C6,
+        unit=""),
+    _tt("case 6", "theta1..theta6 at theta1 = 0.5 rad", "28.648, -60.977, -138.111, 118.648, -150.977, 138.111",
+        lambda: np.rad2deg(twist_6r(55, 50, 45, 45).joint_angles("SSP", 0.5)[0]), 5e-4, _C6),
+)  # fmt: skip
+
+
+def eqn_3_39_residuals() -> tuple[float, float]:
+    """Largest loop closure residual of the Fig 3-5 6R over theta1 from -3 to 3 rad: the corrected closed form and
+    eqn 3-39 as printed (tan(theta2/2) = +Ka Kb tan(theta1/2), tan(theta3/2) = Ka tan(theta1/2), theta4 = -theta1)."""
+    model = twist_6r(*FIG_3_5)
+    loops, x = model.loop_system(), np.linspace(-3, 3, 61)
+    t2, t3 = 2 * np.arctan(model.ka * model.kb * np.tan(x / 2)), 2 * np.arctan(model.ka * np.tan(x / 2))
+    printed = np.stack([x, t2, t3, -x, t2, t3], -1)
+    return float(np.max(loops.residual_norm(model.joint_angles("SSP", x)))), float(np.max(loops.residual_norm(printed)))
+
+
+def eqn_3_4a_residuals() -> tuple[float, float]:
+    """|tan(phi4/2) / tan(phi1/2) - ratio| of the mode S vertex (twists 0.6, 1.2 rad) at rho1 = 0.3 rad, phi =
+    pi - |rho|: the corrected ratio s-/s+ = sin((a23 - a12)/2) / sin((a23 + a12)/2) and the printed s-/s- = 1."""
+    a12, a23 = 0.6, 1.2
+    got = Vertex4([a12, a23, np.pi - a12, np.pi - a23]).joint_angles("S", 0.3)[0]
+    ratio = np.tan((np.pi - abs(got[3])) / 2) / np.tan((np.pi - abs(got[0])) / 2)
+    return float(abs(ratio - np.sin((a23 - a12) / 2) / np.sin((a23 + a12) / 2))), float(abs(ratio - 1.0))
+
+
+CORRECTIONS_3 = (
+    Correction("eqn 3-4a", "fourth ratio tan(phi4/2) / tan(phi1/2) = s-/s- (= 1)", "s-/s+",
+               "the ratio's error, mode S vertex with twists 0.6, 1.2 rad at rho1 = 0.3 rad", eqn_3_4a_residuals,
+               _TT + _VERTEX, 3e-14, 0.5),
+    Correction("eqn 3-39", "tan(theta2/2) = +Ka Kb tan(theta1/2), theta4 = -theta1, theta5 = theta2, theta6 = theta3",
+               "the closed form of kinematics/twist_6r.py (theta4 = theta1, theta6 = -theta3)",
+               "loop closure residual (m and rad), Fig 3-5 6R, theta1 from -3 to 3 rad", eqn_3_39_residuals,
+               _TT + _C5, 1e-12, 1.0),
+)  # fmt: skip
+
+
+NUMBERS: tuple[Number, ...] = (*BRICARD, *TRIANGLE_TWIST)
 CORRECTIONS: tuple[Correction, ...] = (
     Correction("eqn 4-6c", "C's linear term +2 sin(alpha) (R3 sin(gamma) + R2 sin(beta + gamma)) m",
                "the same term with -2 sin(alpha)", "loop closure residual (m and rad) of both roots, offsets case "
                "(R2 = 0.3, R3 = -0.5), theta2 from -120 to -30 deg", eqn_4_6c_residuals,
                "test_bricard_plane.py::test_corrected_c_closes_with_offsets_and_the_printed_c_does_not", 1e-12, 0.01),
+    *CORRECTIONS_3,
 )  # fmt: skip
