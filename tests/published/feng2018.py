@@ -18,6 +18,10 @@ from sim_origami.kinematics.bricard_plane import (
 from sim_origami.kinematics.triangle_twist import epsilon_formula
 from sim_origami.kinematics.twist_6r import TwistSixR, compatible_angles
 from sim_origami.kinematics.vertex4 import Vertex4
+from sim_origami.kinematics.waterbomb import CREASES as WATERBOMB_CREASES
+from sim_origami.kinematics.waterbomb import LINE as WATERBOMB_LINE
+from sim_origami.kinematics.waterbomb import PLANE as WATERBOMB_PLANE
+from sim_origami.kinematics.waterbomb import Waterbomb, plane_blockage
 
 DOCUMENT = "Feng 2018"
 DEG = np.pi / 180
@@ -284,7 +288,77 @@ CORRECTIONS_3 = (
 )  # fmt: skip
 
 
-NUMBERS: tuple[Number, ...] = (*BRICARD, *TRIANGLE_TWIST)
+# --- chapter 5: the symmetric waterbomb cell -------------------------------------------------------------------
+
+B_ORDER = ("B1", "B2", "A2", "B4", "B5", "B6")  # B's creases 1..6 (B3 is A2)
+_WB = "test_waterbomb.py::"
+# Four decimals (deg): half a unit of the last digit.
+WATERBOMB_DEG = 5e-5
+
+
+@cache
+def waterbomb(alpha: float, beta: float, *thick: float) -> Waterbomb:
+    """The cell with sectors alpha, beta (deg), a = 0.5 and optionally (mu, thickness)."""
+    return Waterbomb(alpha * DEG, beta * DEG, 0.5, *thick)
+
+
+def dihedrals(model: Waterbomb, branch: str, phi1_deg: float, order=B_ORDER) -> np.ndarray:
+    """Dihedrals phi = pi - |rho| (deg) of the creases in `order` at phi1 (deg)."""
+    q = dict(zip(WATERBOMB_CREASES, model.joint_angles(branch, -(np.pi - phi1_deg * DEG))[0], strict=True))
+    return np.rad2deg([np.pi - abs(q[c]) for c in order])
+
+
+def case_18b_row(alpha: float, beta: float, phi1: float) -> np.ndarray:
+    """(phi3, path I phi2, path II phi2, path II phi4) in degrees at phi1 (deg); phi4 < 0 is crease B4 folded past
+    flat (rho_B4 beyond -pi, wrapped to (0, pi])."""
+    model = waterbomb(alpha, beta)
+    line = dihedrals(model, WATERBOMB_LINE, phi1)
+    q = dict(zip(WATERBOMB_CREASES, model.joint_angles(WATERBOMB_PLANE, -(np.pi - phi1 * DEG))[0], strict=True))
+    phi4 = np.rad2deg(np.pi + q["B4"]) if q["B4"] < 0 else np.rad2deg(q["B4"] - np.pi)
+    return np.array([line[2], line[1], dihedrals(model, WATERBOMB_PLANE, phi1)[1], phi4])
+
+
+def case_20_omega() -> np.ndarray:
+    """Vertex B's D-H angles omega1..omega6 (deg, modulo 360) of the thick cell 35/45, mu = 0.5, t = 0.05 at
+    phi1 = 90 deg (eqn 5-12)."""
+    fb = dihedrals(waterbomb(35, 45, 0.5, 0.05), WATERBOMB_LINE, 90)
+    return np.array([360 - fb[0], 180 - fb[1], fb[2], 360 - fb[3], fb[4], 180 - fb[5]]) % 360
+
+
+def _wb(where, quantity, printed, ours, tol, test, **kw) -> Number:
+    return Number(where, quantity, printed, ours, tol, _WB + test, unit="deg", in_text=False, **kw)
+
+
+_B18 = "test_case18_vertex_b_dihedrals"
+WATERBOMB = (
+    *(_wb(f"case 18, alpha/beta = {a}/{b}", f"vertex B dihedrals phi1..phi6 on path {p} at phi1 = 90 deg", printed,
+          lambda a=a, b=b, branch=branch: dihedrals(waterbomb(a, b), branch, 90), WATERBOMB_DEG, _B18)
+      for a, b, p, branch, printed in (
+          (40, 40, "I", WATERBOMB_LINE, "90, 19.7022, 74.9074, 90, 74.9074, 19.7022"),
+          (40, 40, "II", WATERBOMB_PLANE, "90, 60.8109, 74.9074, 31.6217, 74.9074, 60.8109"),
+          (35, 45, "I", WATERBOMB_LINE, "90, 19.7022, 78.6454, 90, 78.6454, 19.7022"),
+          (35, 45, "II", WATERBOMB_PLANE, "90, 83.2113, 78.6454, 1.2332, 78.6454, 83.2113"))),
+    *(_wb("case 17, alpha = beta = 40", f"vertex A's phi2 at phi1 = {phi1} deg (path I)", printed,
+          lambda phi1=phi1: dihedrals(waterbomb(40, 40), WATERBOMB_LINE, phi1, order=("A2",)), WATERBOMB_DEG,
+          "test_case17_vertex_a") for phi1, printed in ((90, "74.9074"), (150, "141.4421"), (30, "23.1990"))),
+    *(_wb(f"case 18b, alpha/beta = {a}/{b}", f"phi3, path I phi2, path II phi2, path II phi4 at phi1 = {phi1} deg "
+          "(3 decimals)", printed, lambda a=a, b=b, phi1=phi1: case_18b_row(a, b, phi1), 5e-4,
+          "test_case18b_sweeps_including_blocked_phi4")
+      for a, b, phi1, printed in ((40, 40, 150, "141.442, 65.892, 130.916, 111.833"),
+                                  (40, 40, 60, "47.717, 11.450, 37.433, 14.866"),
+                                  (35, 45, 120, "109.647, 33.479, 105.903, 48.135"),
+                                  (35, 45, 60, "50.622, 11.450, 71.965, -44.050"))),
+    *(_wb(f"case 19, alpha/beta = {a}/{b}", "phi1 where path II blocks (pi + x*)", printed,
+          lambda a=a, b=b: 180 + np.rad2deg(plane_blockage(a * DEG, b * DEG)), 5e-4,
+          "test_case19_blockage_onsets_of_path_two")
+      for a, b, printed in ((35, 45, "89.148"), (50, 50, "90.488"), (40, 55, "109.972"))),
+    _wb("case 20, eqn 5-12", "thick vertex B's D-H angles omega1..omega6 (35/45, mu = 0.5, t = 0.05, phi1 = 90 deg)",
+        "-90, 160.2978, 78.6454, -90, 78.6454, 160.2978", case_20_omega, WATERBOMB_DEG, "test_case20_thick_b_dh_angles",
+        angle=True),
+)  # fmt: skip
+
+
+NUMBERS: tuple[Number, ...] = (*BRICARD, *TRIANGLE_TWIST, *WATERBOMB)
 CORRECTIONS: tuple[Correction, ...] = (
     Correction("eqn 4-6c", "C's linear term +2 sin(alpha) (R3 sin(gamma) + R2 sin(beta + gamma)) m",
                "the same term with -2 sin(alpha)", "loop closure residual (m and rad) of both roots, offsets case "
