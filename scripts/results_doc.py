@@ -59,6 +59,13 @@ def _sci(x: float) -> str:
     return "< 1e-12" if x < 1e-12 else f"{x:.1e}"
 
 
+def _bound(e) -> str:
+    """The test's acceptance as written in the table."""
+    if e.truncated:
+        return f"0 <= ours - printed < {e.tol:g} (truncated)"
+    return f"{'< ' if e.strict else ''}{e.tol:g}"
+
+
 def _cell(text: str) -> str:
     return text.replace("|", "\\|")
 
@@ -69,8 +76,8 @@ def numbers_table(entries) -> str:
         values = np.atleast_1d(np.asarray(e.ours(), dtype=float))
         diff = e.difference(values)
         rows.append(
-            f"| {_cell(e.where)} | {_cell(e.quantity)} | {e.unit} | {e.printed} | {_ours(e, values)} | {_sci(diff)} "
-            f"| {'< ' if e.strict else ''}{e.tol:g} | `{e.test}` |"
+            f"| {_cell(e.where)} | {_cell(e.quantity)} | {e.unit} | {e.printed}{'' if e.in_text else ' (w)'} "
+            f"| {_ours(e, values)} | {_sci(abs(diff))} | {_bound(e)} | `{e.test}` |"
         )
     return "\n".join(rows)
 

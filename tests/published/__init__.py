@@ -24,7 +24,9 @@ class Number:
     printed: the values as printed, comma separated; ours: computes our values (same shape, same unit);
     tol: the largest difference the test accepts (half a unit of the printed last place, unless stated);
     test: the test function that checks it; unit: of printed and ours; angle: differences wrapped to one turn;
-    strict: the test requires difference < tol rather than <= tol; in_text: the document prints this value
+    strict: the test requires difference < tol rather than <= tol; truncated: the document truncates (does not
+    round), so ours - printed must lie in [0, tol) and the difference is signed; a single printed value stands
+    for every value of ours (e.g. every row of a tube); in_text: the document prints this value
     (False: a worked value, the document's equations evaluated at its own geometry and rounded to the places
     shown, where the document gives the configuration only as a figure or a table of cases).
     """
@@ -38,6 +40,7 @@ class Number:
     unit: str = ""
     angle: bool = False
     strict: bool = False
+    truncated: bool = False
     in_text: bool = True
 
     @property
@@ -48,18 +51,23 @@ class Number:
     def difference(self, ours: ArrayLike | None = None) -> float:
         """Largest |ours - printed| over the values, wrapped to one turn for angles."""
         got = np.atleast_1d(np.asarray(self.ours() if ours is None else ours, dtype=float))
-        if got.shape != self.value.shape:
+        if self.value.size > 1 and got.shape != self.value.shape:
             raise ValueError(f"{self.where}: ours has shape {got.shape}, printed {self.value.shape}")
         d = got - self.value
         if self.angle:
             turn = 360.0 if self.unit == "deg" else 2 * np.pi
             d = (d + turn / 2) % turn - turn / 2
+        if self.truncated:  # signed: a negative difference fails
+            return float(np.min(d)) if np.min(d) < 0 else float(np.max(d))
         return float(np.max(np.abs(d)))
 
     def check(self) -> float:
         """Assert that ours matches the printed values within tol; return the difference."""
         d = self.difference()
-        ok = d < self.tol if self.strict else d <= self.tol
+        if self.truncated:
+            ok = 0 <= d < self.tol
+        else:
+            ok = d < self.tol if self.strict else d <= self.tol
         assert ok, f"{self.where}, {self.quantity}: ours differs from {self.printed} by {d:.3g} > {self.tol:g}"
         return d
 

@@ -5,6 +5,7 @@ from functools import cache
 import numpy as np
 
 from published import Correction, Number
+from published.feng_ma_chen2020 import tube
 from sim_origami.geometry import wrap
 from sim_origami.kinematics.bricard_plane import (
     FIG_4_5,
@@ -22,6 +23,7 @@ from sim_origami.kinematics.waterbomb import CREASES as WATERBOMB_CREASES
 from sim_origami.kinematics.waterbomb import LINE as WATERBOMB_LINE
 from sim_origami.kinematics.waterbomb import PLANE as WATERBOMB_PLANE
 from sim_origami.kinematics.waterbomb import Waterbomb, plane_blockage
+from sim_origami.kinematics.waterbomb_tube import alpha_limit, alpha_min, row_coordinates
 
 DOCUMENT = "Feng 2018"
 DEG = np.pi / 180
@@ -358,7 +360,56 @@ WATERBOMB = (
 )  # fmt: skip
 
 
-NUMBERS: tuple[Number, ...] = (*BRICARD, *TRIANGLE_TWIST, *WATERBOMB)
+# --- chapter 6: the generalized waterbomb tube ------------------------------------------------------------------
+
+_TUBE = "test_waterbomb_tube.py::"
+
+
+def m7_events(kind: str) -> np.ndarray:
+    """theta (deg) of the n6 m7 45/45 tube's events of one kind."""
+    return np.array([180 + e.input / DEG for e in tube(6, 7, 45, 45).events() if e.kind == kind])
+
+
+def m7_state(theta: float) -> np.ndarray:
+    """r_A, r_B and z_A (a = 1) of rows 0..3 from the equator outward, n6 m7 45/45 at theta (deg), flattened."""
+    rows = row_coordinates(6, 7, 45 * DEG, 45 * DEG, 1.0, theta * DEG)
+    return np.array([[rows[kind, i][c][0] for i in range(4)] for kind, c in (("A", 0), ("B", 0), ("A", 1))]).ravel()
+
+
+_M7 = "test_seed000_m7_events_against_the_thesis"
+_LIMITS = "test_twist_limits_and_thresholds_closed_forms"
+TUBE = (
+    Number("§6.2, eqn 6-18", "corner-to-corner length (eqn 6-18), n6 m3 45/45 at theta = 60, 100 deg",
+           "4.28477, 4.78041", lambda: tube(6, 3, 45, 45).length(np.array([60, 100]) * DEG - np.pi, corners=True),
+           5e-6, _TUBE + "test_case12_and_case14_radii_and_uniform_states", unit="m", in_text=False),
+    *(Number("§6.2, n6 m7 45/45", f"r_A, r_B, z_A of rows 0..3 from the equator outward at theta = {t} deg", printed,
+             lambda t=t: m7_state(t), 5e-6, _TUBE + "test_seed000_case23_m7_tube_states", unit="m", in_text=False)
+      for t, printed in (
+          (60, "0, 0.01361, 0.05118, 0.10327, 1.0, 1.0333, 1.08128, 1.13116, 0, 1.1644, 2.33061, 3.50043"),
+          (100, "0.68404, 0.5642, 0.27854, -0.05363, 1.53209, 1.27821, 0.94061, 0.64657, "
+                "0, 1.25137, 2.41594, 3.53001"),
+          (140, "1.28558, 1.2151, 0.9167, 0.43918, 1.87939, 1.79301, 1.43821, 0.83989, "
+                "0, 1.74748, 3.26954, 4.39813"))),
+    Number("eqn 6-47", "alpha limit of the twist for n = 5, 6, 8, 12", "51.0266, 49.1066, 47.2658, 45.9930",
+           lambda: [alpha_limit(n) / DEG for n in (5, 6, 8, 12)], 5e-5, _TUBE + _LIMITS, unit="deg", in_text=False),
+    Number("eqn 6-33", "alpha_min for n = 5, 6, 8, 12", "44.1788, 44.6530, 44.9024, 44.9822",
+           lambda: [alpha_min(n) / DEG for n in (5, 6, 8, 12)], 5e-5, _TUBE + _LIMITS, unit="deg", in_text=False),
+    Number("§6.2, n6 m7 45/45", "uniform-radius states (the thesis samples theta on a 0.06-0.12 deg grid)",
+           "65.88, 144.0", lambda: m7_events("uniform_radius"), 0.12, _TUBE + _M7, unit="deg"),
+    Number("§6.2, n6 m7 45/45", "locks: fully folded, interference begins and ends (0.12 deg grid)",
+           "60, 90.72, 128.52", lambda: m7_events("lock"), 0.12, _TUBE + _M7, unit="deg"),
+    Number("§6.2, n6 m7 45/45", "theta_max, the turning point (0.12 deg grid)", "144.24",
+           lambda: m7_events("turning_point"), 0.12, _TUBE + _M7, unit="deg"),
+    Number("§6.2, n6 m7 45/45", "uniform-radius states and interference limits, exact (3 decimals)",
+           "65.937, 144.063, 90.751, 128.475",
+           lambda: np.concatenate([m7_events("uniform_radius"), m7_events("lock")[1:]]), 5e-4, _TUBE + _M7,
+           unit="deg", in_text=False),
+    Number("§6.2, n6 m7 45/45", "top row's r_A at theta = 100 deg", "-0.05363",
+           lambda: tube(6, 7, 45, 45).radii(100 * DEG - np.pi)[0, -1], 5e-6, _TUBE + _M7, unit="m", in_text=False),
+)  # fmt: skip
+
+
+NUMBERS: tuple[Number, ...] = (*BRICARD, *TRIANGLE_TWIST, *WATERBOMB, *TUBE)
 CORRECTIONS: tuple[Correction, ...] = (
     Correction("eqn 4-6c", "C's linear term +2 sin(alpha) (R3 sin(gamma) + R2 sin(beta + gamma)) m",
                "the same term with -2 sin(alpha)", "loop closure residual (m and rad) of both roots, offsets case "
