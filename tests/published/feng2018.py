@@ -5,7 +5,7 @@ from functools import cache
 import numpy as np
 
 from published import Correction, Number
-from published.feng_ma_chen2020 import tube
+from published.feng_ma_chen2020 import tube, twist, twist_angles
 from sim_origami.geometry import wrap
 from sim_origami.kinematics.bricard_plane import (
     FIG_4_5,
@@ -24,6 +24,8 @@ from sim_origami.kinematics.waterbomb import LINE as WATERBOMB_LINE
 from sim_origami.kinematics.waterbomb import PLANE as WATERBOMB_PLANE
 from sim_origami.kinematics.waterbomb import Waterbomb, plane_blockage
 from sim_origami.kinematics.waterbomb_tube import alpha_limit, alpha_min, row_coordinates
+from sim_origami.kinematics.waterbomb_twist import CCW as TWIST_CCW
+from sim_origami.kinematics.waterbomb_twist import middle_input
 
 DOCUMENT = "Feng 2018"
 DEG = np.pi / 180
@@ -409,7 +411,31 @@ TUBE = (
 )  # fmt: skip
 
 
-NUMBERS: tuple[Number, ...] = (*BRICARD, *TRIANGLE_TWIST, *WATERBOMB, *TUBE)
+def _square_twist_end(names: list[str]) -> np.ndarray:
+    """Dihedrals (deg) of the n6 m3 45/45 twist at its eta02 = 0 end (counter-clockwise)."""
+    model = twist(6, 3, 45, 45)
+    return twist_angles(model, TWIST_CCW, np.rad2deg(np.pi - model.domain[1]), names)
+
+
+def _square_twist_at_tilt(zeta: float, names: list[str]) -> np.ndarray:
+    """Dihedrals (deg) of the n6 m3 45/45 twist where the side edge tilts to zeta (deg)."""
+    x = middle_input(6, 45 * DEG, 45 * DEG, 1.0, np.array([zeta * DEG]))
+    return twist_angles(twist(6, 3, 45, 45), TWIST_CCW, np.rad2deg(np.pi - x[0]), names)
+
+
+_TW = "test_waterbomb_twist.py::test_seed000_square_tube_twist"
+SQUARE_TWIST = (
+    Number("§6.4, n6 m3 45/45", "eta02 where the tube is untwisted (3 decimals)", "44.415",
+           lambda: 180 - twist(6, 3, 45, 45).start / DEG, 5e-4, _TW, unit="deg", in_text=False),
+    Number("§6.4, n6 m3 45/45", "eta03, eta06, eta01 at eta02 = 0 (3 decimals)", "90, 90, 70.529",
+           lambda: _square_twist_end(["A1_0_3", "A1_0_6", "A1_0_1"]), 5e-4, _TW, unit="deg", in_text=False),
+    Number("§6.4, n6 m3 45/45", "eta01, eta02, eta03 where the side edge tilts to zeta = 80 deg (3 decimals)",
+           "60.993, 30.510, 58.514", lambda: _square_twist_at_tilt(80, ["A1_0_1", "A1_0_2", "A1_0_3"]), 5e-4, _TW,
+           unit="deg", in_text=False),
+)  # fmt: skip
+
+
+NUMBERS: tuple[Number, ...] = (*BRICARD, *TRIANGLE_TWIST, *WATERBOMB, *TUBE, *SQUARE_TWIST)
 CORRECTIONS: tuple[Correction, ...] = (
     Correction("eqn 4-6c", "C's linear term +2 sin(alpha) (R3 sin(gamma) + R2 sin(beta + gamma)) m",
                "the same term with -2 sin(alpha)", "loop closure residual (m and rad) of both roots, offsets case "

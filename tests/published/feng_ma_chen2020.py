@@ -19,6 +19,7 @@ from sim_origami.kinematics.waterbomb_tube import (
     row_coordinates,
     tube_layout,
 )
+from sim_origami.kinematics.waterbomb_twist import CCW, CW, WaterbombTwist
 
 DOCUMENT = "Feng, Ma and Chen 2020"
 DEG = np.pi / 180
@@ -67,8 +68,8 @@ def contraction_end(m: int, alpha: float, beta: float) -> float:
     return motion_range(tube_layout(6, m, alpha * DEG, beta * DEG, 1.0))[1] / DEG
 
 
-def _w(where, quantity, printed, ours, tol, test, unit="deg", **kw) -> Number:
-    return Number(where, quantity, printed, ours, tol, _TUBE + test, unit=unit, in_text=False, **kw)
+def _w(where, quantity, printed, ours, tol, test, unit="deg", test_file=_TUBE, **kw) -> Number:
+    return Number(where, quantity, printed, ours, tol, test_file + test, unit=unit, in_text=False, **kw)
 
 
 _B0 = ["A2_0_4", "T1_0_r", "A1_0_2", "V1_0", "A1_1_6", "T1_1_l"]
@@ -153,3 +154,86 @@ CHECKED_ELSEWHERE = (
         _TUBE + "test_seed004_fig8_thresholds_within_printed_precision",
     ),
 )
+
+
+# --- §3: the twist from the fully folded middle row ------------------------------------------------------------
+
+_TWIST = "test_waterbomb_twist.py::"
+# m = 5: rows 0..4 from the bottom are the paper's rows -2..2; the middle row (its row 0) is row 2. eta06 = A2_0_6,
+# eta01 = A2_0_1, eta04 = A2_0_4; at B_0 (slot 1): kappa_1 = A3_0_4 (the down midline of row 3's unit 0),
+# kappa_2 = T2_0_r, kappa_4 = V2_0; kappa_C0,4 = V3_0 (row 3's vertical edge).
+CASE17 = ["A2_0_6", "A2_0_1", "A2_0_4", "A3_0_4", "T2_0_r", "V3_0"]
+
+
+@cache
+def twist(n: int, m: int, alpha: float, beta: float) -> WaterbombTwist:
+    return WaterbombTwist(n, m, alpha * DEG, beta * DEG)
+
+
+def twist_angles(model: WaterbombTwist, branch: str, eta02: float, names: list[str]) -> np.ndarray:
+    """Dihedrals (deg) of the named creases at eta02 (deg) on `branch`."""
+    q = model.joint_angles(branch, np.pi - eta02 * DEG)
+    phi = dihedrals(model.layout, q)[0] / DEG
+    return np.array([phi[model.layout.index(name)] for name in names])
+
+
+def _limit_angles(branch: str, names: list[str]) -> np.ndarray:
+    """Dihedrals (deg) of the n6 m5 40/40 twist at its limit on `branch` (cw: eta02 largest; ccw: eta02 = 0)."""
+    model = twist(6, 5, 40, 40)
+    x = model.domain[0] if branch == CW else model.domain[1]
+    return twist_angles(model, branch, np.rad2deg(np.pi - x), names)
+
+
+_C17, _C18 = "test_case17_twist_states", "test_case17_start_and_case18_limits"
+_CASE17 = (
+    (60, "35.7835, 60.8729, 60.8729, 57.9237, 45.7725, 4.3649", "18.493"),
+    (70, "26.5514, 62.8522, 62.8522, 58.3068, 46.1970, 6.7363", "32.944"),
+    (80, "17.6997, 65.9920, 65.9920, 58.8755, 46.8342, 10.5694", "46.689"),
+    (90, "9.1382, 70.3573, 70.3573, 59.5810, 47.6364, 16.0552", "59.577"),
+    (100, "0.6819, 76.0328, 76.0328, 60.3295, 48.5024, 23.4977", "71.448"),
+)
+_N5 = "n6 m5 40/40"
+
+TWISTS = (
+    *(_w(_N5, f"eta06, eta01, eta04, kappa_B0,1, kappa_B0,2, kappa_C0,4 at eta02 = {e} deg (clockwise twist)",
+         printed, lambda e=e: twist_angles(twist(6, 5, 40, 40), CW, e, CASE17), TUBE_DEG, _C17, test_file=_TWIST)
+      for e, printed, _ in _CASE17),
+    *(_w(_N5, f"end twist, clockwise (3 decimals) at eta02 = {e} deg", end,
+         lambda e=e: -twist(6, 5, 40, 40).end_twist(CW, np.pi - e * DEG)[0] / DEG, 5e-4, _C17, test_file=_TWIST)
+      for e, _, end in _CASE17),
+    _w(_N5, "start of the twist, eta02 = eta06 at eta01 = 60 deg (eqn 39a)", "47.7173",
+       lambda: 180 - twist(6, 5, 40, 40).start / DEG, TUBE_DEG, _C18, test_file=_TWIST),
+    _w(_N5, "limit of the clockwise twist, eta02", "100.8002", lambda: 180 - twist(6, 5, 40, 40).domain[0] / DEG,
+       TUBE_DEG, _C18, test_file=_TWIST),
+    _w(_N5, "eta01 at the limit", "76.5459", lambda: _limit_angles(CW, ["A2_0_1"]), TUBE_DEG, _C18, test_file=_TWIST),
+    _w(_N5, "eta_2,1 at the limit (3 decimals)", "149.522", lambda: _limit_angles(CW, ["A4_0_1"]), 5e-4, _C18,
+       test_file=_TWIST),
+    _w(_N5, "end twist at the limit, clockwise (2 decimals)", "72.35",
+       lambda: -twist(6, 5, 40, 40).end_twist(CW, twist(6, 5, 40, 40).domain[0])[0] / DEG, 5e-3, _C18,
+       test_file=_TWIST),
+    _w(_N5, "r_A1, r_A2 at the limit (4 decimals)", "0.4191, 0.9194",
+       lambda: twist(6, 5, 40, 40).radii(CW, twist(6, 5, 40, 40).domain[0])[0, 3:], 5e-5, _C18, unit="m",
+       test_file=_TWIST),
+    _w(_N5, "eta02, eta06, eta01 at the mirror end (counter-clockwise)", "0, 100.8002, 76.5459",
+       lambda: _limit_angles(CCW, ["A2_0_2", "A2_0_6", "A2_0_1"]), TUBE_DEG, _C18, test_file=_TWIST),
+    *(_w(f"eqn 41 (W corrected), n{n} m1 {a}/40", "the middle row's limit, eta02", printed,
+         lambda n=n, a=a: np.rad2deg(np.pi - twist(n, 1, a, 40).domain[0]), TUBE_DEG, "test_middle_row_limits",
+         test_file=_TWIST)
+      for n, a, printed in ((6, 45, "90.0"), (5, 40, "130.9559"), (7, 40, "83.7207"), (8, 40, "72.0213"))),
+    _w(_N5, "the contraction's uniform states seen from eta02 (eqn 9)", "98.7248, 111.2752",
+       lambda: sorted(twist(6, 5, 40, 40).contraction_theta(
+           np.array([e.input for e in twist(6, 5, 40, 40).events() if e.kind == "uniform_radius"])) / DEG),
+       TUBE_DEG, "test_events", test_file=_TWIST),
+)  # fmt: skip
+
+NUMBERS: tuple[Number, ...] = (*TUBES, *TWISTS)
+CORRECTIONS: tuple[Correction, ...] = ()
+
+CHECKED_ELSEWHERE = (
+    ("Fig 8c, 8d", "six thresholds in alpha or beta (1 decimal): the property switches within the printed precision",
+     _TUBE + "test_seed004_fig8_thresholds_within_printed_precision"),
+    ("Figs 14a, 14b", "twist ranges of n6 m7, m9, m11 and n5 m5 (2 decimals): ours contain them, within 0.11 deg",
+     _TWIST + "test_fig14_twist_ranges_where_the_top_row_deploys"),
+    ("Fig 14", "no twist for m = 13 or n = 4; the n6 m5 beta = 40 tube twists from alpha = 26.85 deg (worked)",
+     _TWIST + "test_fig14_no_twist_and_alpha_threshold"),
+)  # fmt: skip
