@@ -118,9 +118,9 @@ BRICARD = (
                  "33.2749, 150, 17.8935, -40.4613, 17.8935, 150", _T41),
     _bricard_row("Fig 4-5", "fig", "all_joints_move", 60, "113.7818, 60, -136.7224, 170.0617, -136.7224, 60", _F45),
     _bricard_row("Fig 4-5", "fig", "all_joints_move", 120, "138.8478, 120, 146.9081, 37.1804, 146.9081, 120", _F45),
-    _bricard_row("§4.3, offsets case", "offsets", "theta3_m63_at_theta2_m80", -110,
+    _bricard_row("ch. 4, offsets case", "offsets", "theta3_m63_at_theta2_m80", -110,
                  "-80.8970, -110, -49.5009, 96.0363, -49.5009, -110", _F45),
-    _bricard_row("§4.3, offsets case", "offsets", "theta3_m124_at_theta2_m80", -110,
+    _bricard_row("ch. 4, offsets case", "offsets", "theta3_m124_at_theta2_m80", -110,
                  "97.6558, -110, -97.2543, -29.8270, -97.2543, -110", _F45),
     _bricard_row("Fig 4-5", "fig", "bennett_theta3_pi", 158.5428, "30, 158.5428, 180, 30, 180, 158.5428", _BEN),
     _bricard_row("Fig 4-5", "fig", "bennett_theta3_pi", 109.4712, "90, 109.4712, 180, 90, 180, 109.4712", _BEN),
@@ -381,10 +381,10 @@ def m7_state(theta: float) -> np.ndarray:
 _M7 = "test_seed000_m7_events_against_the_thesis"
 _LIMITS = "test_twist_limits_and_thresholds_closed_forms"
 TUBE = (
-    Number("§6.2, eqn 6-18", "corner-to-corner length (eqn 6-18), n6 m3 45/45 at theta = 60, 100 deg",
+    Number("ch. 6, eqn 6-18", "corner-to-corner length (eqn 6-18), n6 m3 45/45 at theta = 60, 100 deg",
            "4.28477, 4.78041", lambda: tube(6, 3, 45, 45).length(np.array([60, 100]) * DEG - np.pi, corners=True),
            5e-6, _TUBE + "test_case12_and_case14_radii_and_uniform_states", unit="m", in_text=False),
-    *(Number("§6.2, n6 m7 45/45", f"r_A, r_B, z_A of rows 0..3 from the equator outward at theta = {t} deg", printed,
+    *(Number("ch. 6, n6 m7 45/45", f"r_A, r_B, z_A of rows 0..3 from the equator outward at theta = {t} deg", printed,
              lambda t=t: m7_state(t), 5e-6, _TUBE + "test_seed000_case23_m7_tube_states", unit="m", in_text=False)
       for t, printed in (
           (60, "0, 0.01361, 0.05118, 0.10327, 1.0, 1.0333, 1.08128, 1.13116, 0, 1.1644, 2.33061, 3.50043"),
@@ -396,17 +396,17 @@ TUBE = (
            lambda: [alpha_limit(n) / DEG for n in (5, 6, 8, 12)], 5e-5, _TUBE + _LIMITS, unit="deg", in_text=False),
     Number("eqn 6-33", "alpha_min for n = 5, 6, 8, 12", "44.1788, 44.6530, 44.9024, 44.9822",
            lambda: [alpha_min(n) / DEG for n in (5, 6, 8, 12)], 5e-5, _TUBE + _LIMITS, unit="deg", in_text=False),
-    Number("§6.2, n6 m7 45/45", "uniform-radius states (the thesis samples theta on a 0.06-0.12 deg grid)",
+    Number("ch. 6, n6 m7 45/45", "uniform-radius states (the thesis samples theta on a 0.06-0.12 deg grid)",
            "65.88, 144.0", lambda: m7_events("uniform_radius"), 0.12, _TUBE + _M7, unit="deg"),
-    Number("§6.2, n6 m7 45/45", "locks: fully folded, interference begins and ends (0.12 deg grid)",
+    Number("ch. 6, n6 m7 45/45", "locks: fully folded, interference begins and ends (0.12 deg grid)",
            "60, 90.72, 128.52", lambda: m7_events("lock"), 0.12, _TUBE + _M7, unit="deg"),
-    Number("§6.2, n6 m7 45/45", "theta_max, the turning point (0.12 deg grid)", "144.24",
+    Number("ch. 6, n6 m7 45/45", "theta_max, the turning point (0.12 deg grid)", "144.24",
            lambda: m7_events("turning_point"), 0.12, _TUBE + _M7, unit="deg"),
-    Number("§6.2, n6 m7 45/45", "uniform-radius states and interference limits, exact (3 decimals)",
+    Number("ch. 6, n6 m7 45/45", "uniform-radius states and interference limits, exact (3 decimals)",
            "65.937, 144.063, 90.751, 128.475",
            lambda: np.concatenate([m7_events("uniform_radius"), m7_events("lock")[1:]]), 5e-4, _TUBE + _M7,
            unit="deg", in_text=False),
-    Number("§6.2, n6 m7 45/45", "top row's r_A at theta = 100 deg", "-0.05363",
+    Number("ch. 6, n6 m7 45/45", "top row's r_A at theta = 100 deg", "-0.05363",
            lambda: tube(6, 7, 45, 45).radii(100 * DEG - np.pi)[0, -1], 5e-6, _TUBE + _M7, unit="m", in_text=False),
 )  # fmt: skip
 
@@ -425,11 +425,11 @@ def _square_twist_at_tilt(zeta: float, names: list[str]) -> np.ndarray:
 
 _TW = "test_waterbomb_twist.py::test_seed000_square_tube_twist"
 SQUARE_TWIST = (
-    Number("§6.4, n6 m3 45/45", "eta02 where the tube is untwisted (3 decimals)", "44.415",
+    Number("ch. 6, n6 m3 45/45", "eta02 where the tube is untwisted (3 decimals)", "44.415",
            lambda: 180 - twist(6, 3, 45, 45).start / DEG, 5e-4, _TW, unit="deg", in_text=False),
-    Number("§6.4, n6 m3 45/45", "eta03, eta06, eta01 at eta02 = 0 (3 decimals)", "90, 90, 70.529",
+    Number("ch. 6, n6 m3 45/45", "eta03, eta06, eta01 at eta02 = 0 (3 decimals)", "90, 90, 70.529",
            lambda: _square_twist_end(["A1_0_3", "A1_0_6", "A1_0_1"]), 5e-4, _TW, unit="deg", in_text=False),
-    Number("§6.4, n6 m3 45/45", "eta01, eta02, eta03 where the side edge tilts to zeta = 80 deg (3 decimals)",
+    Number("ch. 6, n6 m3 45/45", "eta01, eta02, eta03 where the side edge tilts to zeta = 80 deg (3 decimals)",
            "60.993, 30.510, 58.514", lambda: _square_twist_at_tilt(80, ["A1_0_1", "A1_0_2", "A1_0_3"]), 5e-4, _TW,
            unit="deg", in_text=False),
 )  # fmt: skip

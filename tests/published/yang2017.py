@@ -1,8 +1,312 @@
-"""Yang 2017 (PhD thesis: truss method, transformable polyhedra): the published numbers the tests check."""
+"""Yang 2017 (PhD thesis: truss method, transformable polyhedra): the numbers the tests check.
+
+Where the thesis prints a value (marked without (w)) the test holds ours to its printed places; the rest are worked
+values of its equations at its own examples, to the places shown.
+"""
+
+from functools import cache
+
+import numpy as np
 
 from published import Correction, Number
+from sim_origami.geometry import transform_z, unit
+from sim_origami.kinematics.bricard_threefold import AGAINST, ALONG, BricardThreefold
+from sim_origami.kinematics.cuboctahedron import AXES, VERTICES, CuboctahedronOctahedron
+from sim_origami.kinematics.myard import BRANCH as MYARD_BRANCH
+from sim_origami.kinematics.myard import Myard
+from sim_origami.studies.fabrication import (
+    FINE_LENGTH,
+    NOMINAL,
+    RSSR,
+    VERY_COARSE,
+    FabricationError,
+    max_waggle,
+    output_error,
+    study,
+)
 
 DOCUMENT = "Yang 2017"
+DEG = np.pi / 180
+# Four decimals (deg): half a unit of the last place.
+FOUR_DECIMALS_DEG = 5e-5
+_B3 = "test_bricard_threefold.py::"
 
-NUMBERS: tuple[Number, ...] = ()
-CORRECTIONS: tuple[Correction, ...] = ()
+
+# --- §2.5 and §6 case 8: the threefold-symmetric Bricard linkage -------------------------------------------------
+
+
+@cache
+def threefold(alpha_deg: float) -> BricardThreefold:
+    return BricardThreefold(1.0, alpha_deg * DEG)
+
+
+def threefold_phi(alpha_deg: float, theta_deg: float) -> np.ndarray:
+    """phi (deg) on the branches along and against at theta (deg)."""
+    m = threefold(alpha_deg)
+    return np.array([m.joint_angles(b, theta_deg * DEG)[0, 1] / DEG for b in (ALONG, AGAINST)])
+
+
+def joint_frames(m: BricardThreefold, q: np.ndarray) -> np.ndarray:
+    """World frames (6, 4, 4) of joints 1..6 from the D-H product (frame 1 = world), no closed form."""
+    loop = m.loop_system().loops[0]
+    out, T = [], np.eye(4)
+    for k in range(6):
+        out.append(T)
+        T = T @ transform_z(q[k]) @ loop.links[k]
+    return np.array(out)
+
+
+CH2_POINTS = (
+    "0, 1.1372, 0.1569, -0.4280, 0.2471, 0, -0.9848, -0.5686, 0.1569, 0, -0.4943, 0, 0.9848, -0.5686, 0.1569, "
+    "0.4281, 0.2471, 0, 0, 1.1198, 0.2554, -0.3498, 0.2019, 0.0428, -0.9698, -0.5599, 0.2554, 0, -0.4039, 0.0428, "
+    "0.9698, -0.5599, 0.2554, 0.3498, 0.2019, 0.0428"
+)
+
+
+def ch2_fitted_points() -> tuple[np.ndarray, float]:
+    """Our joints A..F and second axis points X + 0.1 s_X at theta = 129.31 deg (twists 300/60), moved onto the
+    printed points (2-10, 2-11) by the best proper rotation and translation (Kabsch), flattened; and the
+    determinant's sign d of the best rotation (+1: the printed linkage is ours, not its mirror image)."""
+    printed = np.array([float(v) for v in CH2_POINTS.split(",")]).reshape(12, 3)
+    m = threefold(300.0)
+    F = joint_frames(m, m.joint_angles(ALONG, 129.31 * DEG)[0])
+    ours = np.concatenate([F[:, :3, 3], F[:, :3, 3] + 0.1 * F[:, :3, 2]])
+    a, b = ours - ours.mean(0), printed - printed.mean(0)
+    U, _, Vt = np.linalg.svd(a.T @ b)
+    d = float(np.sign(np.linalg.det(Vt.T @ U.T)))
+    fitted = a @ (Vt.T @ np.diag([1.0, 1.0, d]) @ U.T).T + printed.mean(0)
+    return fitted.ravel(), d
+
+
+_CASE8 = (
+    (0.0, "120.0, -120.0"),
+    (30.0, "103.0036, -133.5265"),
+    (60.0, "80.4156, -144.8241"),
+    (90.0, "48.4069, -154.6671"),
+    (129.31, "-19.9903, -166.2084"),
+    (150.0, "-75.3342, -171.9186"),
+    (170.0, "-142.9811, -177.3189"),
+    (179.0, "-176.2683, -179.7320"),
+)
+
+THREEFOLD = (
+    *(Number("ch. 2 example (twists 300/60)", f"phi on the branches along and against at theta = {t:g} deg", printed,
+             lambda t=t: threefold_phi(300.0, t), FOUR_DECIMALS_DEG, _B3 + "test_case8_phi_roots", unit="deg",
+             angle=True, in_text=False) for t, printed in _CASE8),
+    Number("eqn 2-9 (axes at B, D, F reversed: twists 120/240)",
+           "phi on the branches against and along at theta = 129.31 deg", "19.9903, 166.2084",
+           lambda: threefold_phi(120.0, 129.31)[::-1], FOUR_DECIMALS_DEG,
+           _B3 + "test_ch2_example_with_even_axes_reversed_has_phi_negated", unit="deg", in_text=False),
+    Number("eqns 2-10, 2-11", "joints A..F and the points X + 0.1 s_X at theta = 129.31 deg, after the best "
+           "rigid motion (4 decimals, and theta's 2)", CH2_POINTS, lambda: ch2_fitted_points()[0], 1e-4,
+           _B3 + "test_ch2_joint_coordinates_are_reproduced_up_to_a_rigid_motion", unit="m", strict=True),
+    *(Number("ch. 2, Myard example", f"Myard theta1..theta5 at theta3 = 40 deg, alpha12 = {a:g} deg", printed,
+             lambda a=a: np.rad2deg(Myard(1.0, a * DEG).joint_angles(MYARD_BRANCH, 40 * DEG)[0]), FOUR_DECIMALS_DEG,
+             "test_myard.py::test_seed001_example_theta3_40_deg", unit="deg", angle=True, in_text=False)
+      for a, printed in ((50.0, "100, 90, 40, 220, 270"), (30.0, "100, 64.4559, 40, 220, 295.5441"),
+                         (70.0, "100, 128.3039, 40, 220, 231.6961"))),
+)  # fmt: skip
+
+
+# --- chapter 4: the cuboctahedron -------------------------------------------------------------------------------
+
+_CO = "test_cuboctahedron.py::"
+
+
+@cache
+def cuboctahedron() -> CuboctahedronOctahedron:
+    return CuboctahedronOctahedron()
+
+
+def theta_at_bd(bd: float) -> float:
+    """Input at which the diagonal BD (m) is reached (BD grows monotonically with theta), by bisection."""
+    model = cuboctahedron()
+    lo, hi = model.domain
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if model.diagonals(mid)["BD"][0] < bd:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def path_row(bd: float) -> np.ndarray:
+    """BD, AI, EF, AC, EH, BJ (m) where BD reaches bd."""
+    d = cuboctahedron().diagonals(theta_at_bd(bd))
+    return np.array([d[k][0] for k in ("BD", "AI", "EF", "AC", "EH", "BJ")])
+
+
+def path_maximum(key: str) -> np.ndarray:
+    """(largest diagonal `key`, BD there) on 20001 samples of the path."""
+    d = cuboctahedron().diagonals(np.linspace(*cuboctahedron().domain, 20001))
+    k = int(np.argmax(d[key]))
+    return np.array([d[key][k], d["BD"][k]])
+
+
+def axis_angles_at_c() -> np.ndarray:
+    """gamma1 = angle(s_C, CB) and gamma2 = angle(s_C, CF) (deg) of the printed axes (4-7, 4-8)."""
+    s_c = unit(AXES["C"])
+    return np.array([np.arccos(s_c @ unit(VERTICES[v] - VERTICES["C"])) / DEG for v in "BF"])
+
+
+def design_terms() -> np.ndarray:
+    """tan(theta3), tan(theta4) of (4-30) corrected and the terms A, B, C of (4-33), from theta_d, phi_d."""
+    model = cuboctahedron()
+    ct, cp = np.cos(model.theta_d), np.cos(model.phi_d)
+    cos_2g1, cos_2g2 = (cp + 1) / (ct - 1), (ct + 1) / (cp - 1)
+    cg1, cg2, ca = np.sqrt((1 + cos_2g1) / 2), np.sqrt((1 + cos_2g2) / 2), 0.4
+    t3 = np.sqrt((1 + cp) * (1 - ct) / (-2 * (ct + cp)))
+    t4 = np.sqrt((1 + ct) * (1 - cp) / (-2 * (ct + cp)))
+    term_a = 1 + t3**2 + t4**2 + 2 * t3 * t4 * ca
+    term_b = -t3 / cg1 + t4 / cg2 + (t3 / cg2) * ca - (t4 / cg1) * ca
+    term_c = 1 / (4 * cg1**2) + 1 / (4 * cg2**2) - ca / (2 * cg1 * cg2) - 1
+    return np.array([t3, t4, term_a, term_b, term_c])
+
+
+_PATH = (
+    "1.2000, 1.2280, 1.0261, 1.5316, 1.4955, 1.6911",
+    "1.0002, 1.0011, 0.7484, 1.5490, 1.5352, 1.7759",
+    "0.7994, 0.7733, 0.5338, 1.5350, 1.5490, 1.7757",
+    "0.5996, 0.5591, 0.3644, 1.5094, 1.5416, 1.7262",
+    "0.4993, 0.4569, 0.2912, 1.4945, 1.5308, 1.6885",
+    "0.3006, 0.2650, 0.1634, 1.4634, 1.4966, 1.5947",
+    "0.0995, 0.0845, 0.0510, 1.4307, 1.4454, 1.4785",
+    "0.0100, 0.0084, 0.0050, 1.4159, 1.4175, 1.4209",
+    "0.0010, 0.0008, 0.0005, 1.4144, 1.4145, 1.4149",
+)
+_BEN = _CO + "test_bennett_parameters_match_case_10"
+_PT = "ch. 4, path by the truss method"
+_MAXIMA = (("AC", "1.5492", "1.02"), ("EH", "1.5492", "0.78"), ("BJ", "1.7836", "0.90"))
+
+CUBOCTAHEDRON = (
+    Number("eqn 4-7", "gamma1 = angle(s_C, CB), gamma2 = angle(s_C, CF)", "71.57, 50.77", axis_angles_at_c, 5e-3,
+           _BEN, unit="deg"),
+    Number("eqn 4-29 (with the printed axes: the thesis's -154.79, -58.41 negated)", "theta_d, phi_d (3 decimals)",
+           "154.791, 58.412", lambda: np.array([cuboctahedron().theta_d, cuboctahedron().phi_d]) / DEG, 1e-3, _BEN,
+           unit="deg", in_text=False),
+    Number("eqns 4-30 (corrected), 4-33", "tan(theta3), tan(theta4), and A, B, C of (4-33)",
+           "1.951800, 0.243975, 5.25, -4.860556, 1.125", design_terms, 1e-6,
+           _CO + "test_deployed_design_equations", in_text=False),
+    *(Number("ch. 4 example", f"phi at theta = {t} deg (3 decimals)", phi,
+             lambda t=t: cuboctahedron().phi(t * DEG) / DEG, 5e-4, _CO + "test_bennett_samples_case_10", unit="deg",
+             in_text=False) for t, phi in ((120, "110.570"), (90, "136.397"))),
+    *(Number("ch. 4 example", f"diagonals AC, BD at theta = {t} deg (tolerance 1e-5)", d,
+             lambda t=t: [cuboctahedron().diagonals(t * DEG)[k][0] for k in ("AC", "BD")], 1e-5,
+             _CO + "test_bennett_samples_case_10", unit="m", in_text=False)
+      for t, d in ((120, "1.54826, 0.97136"), (90, "1.49712, 0.51643"))),
+    Number("eqns 4-41 (corrected), 4-42", "theta_f and phi at the fold (B = D)", "58.4119, 154.7912",
+           lambda: np.array([cuboctahedron().domain[0], cuboctahedron().phi(cuboctahedron().domain[0])]) / DEG, 1e-4,
+           _CO + "test_fold_case_10", unit="deg", in_text=False),
+    *(Number(_PT + " (4 decimals)", f"BD, AI, EF, AC, EH, BJ where BD = {row[:6]} (truss tolerance)", row,
+             lambda row=row: path_row(float(row.split(",")[0])), 3e-4, _CO + "test_path_matches_seed_table",
+             unit="m", strict=True, in_text=False) for row in _PATH),
+    *(Number(_PT, f"largest {key} on 20001 samples", peak, lambda key=key: path_maximum(key)[0], 1e-4,
+             _CO + "test_path_maxima", unit="m", in_text=False)
+      for key, peak, _ in _MAXIMA),
+    *(Number(_PT, f"BD where {key} is largest (2 decimals)", at, lambda key=key: path_maximum(key)[1],
+             0.01, _CO + "test_path_maxima", unit="m", in_text=False)
+      for key, _, at in _MAXIMA),
+)  # fmt: skip
+
+
+# --- chapter 3: fabrication errors of the RSSR -------------------------------------------------------------------
+
+_FAB = "test_fabrication.py::"
+D_ALPHA, D_L = VERY_COARSE
+FABRICATION_ERRORS = {
+    "d_alpha = 1 deg, k = +1": FabricationError(D_ALPHA, 0.0, 1),
+    "d_l = 1.5 mm, k = +1": FabricationError(0.0, D_L, 1),
+    "d_l = 1.5 mm, k = -1": FabricationError(0.0, D_L, -1),
+    "d_l = 0.15 mm, k = +1": FabricationError(0.0, FINE_LENGTH, 1),
+    "d_l = 0.15 mm, k = -1": FabricationError(0.0, FINE_LENGTH, -1),
+}
+
+
+@cache
+def nominal_rssr() -> RSSR:
+    return RSSR(*NOMINAL)
+
+
+def rssr_from(a1: float, a2: float, alpha_deg: float, root: int = 1) -> RSSR:
+    return RSSR(a1, a2, alpha_deg * DEG, root=root)
+
+
+@cache
+def fabrication_study(name: str):
+    return study(nominal_rssr(), FABRICATION_ERRORS[name])
+
+
+def _peaks(name: str) -> np.ndarray:
+    s = fabrication_study(name)
+    return np.array([s.exact.value, s.linearised.value]) / DEG
+
+
+_STUDY = _FAB + "test_seed_output_errors"
+_RSSR = (
+    ((100, 70.72, 45), "30.0044", "-4.665482, 1.249732"),
+    ((101.5, 69.22, 45), "28.8309", "-4.270901, 1.238316"),
+    ((100, 70.72, 46), "30.5784", "-4.618156, 1.262539"),
+)
+_KEY = _FAB + "test_key_identity_rssr_is_the_bennett_with_implied_beta"
+
+FABRICATION = (
+    *(Number(f"ch. 3, eqns 3-3 to 3-6, RSSR a1, a2, alpha = {g}", "implied Bennett twist beta", beta,
+             lambda g=g: rssr_from(*g).beta / DEG, 5e-5, _KEY, unit="deg", in_text=False) for g, beta, _ in _RSSR),
+    *(Number(f"ch. 3, eqns 3-3 to 3-6, RSSR a1, a2, alpha = {g}", "K on both roots (6 decimals)", k,
+             lambda g=g: [rssr_from(*g).K, rssr_from(*g, root=-1).K], 5e-7, _KEY, in_text=False)
+      for g, _, k in _RSSR),
+    *(Number("§3.5, eqns 3-5, 3-42", f"largest output error, exact and linearised, {name} (3 decimals)", printed,
+             lambda name=name: _peaks(name), 5e-4, _STUDY, unit="deg", in_text=False)
+      for name, printed in (("d_alpha = 1 deg, k = +1", "0.584, 0.577"), ("d_l = 1.5 mm, k = +1", "5.061, 5.447"),
+                            ("d_l = 1.5 mm, k = -1", "5.639, 5.221"), ("d_l = 0.15 mm, k = +1", "0.530, 0.534"),
+                            ("d_l = 0.15 mm, k = -1", "0.536, 0.532"))),
+    *(Number("§3.5, eqn 3-5", f"theta1 of the largest exact output error, {name} (0.1 deg)", printed,
+             lambda name=name: fabrication_study(name).exact.theta1 / DEG, 0.05, _STUDY, unit="deg", in_text=False)
+      for name, printed in (("d_alpha = 1 deg, k = +1", "155.7"), ("d_l = 1.5 mm, k = +1", "154.7"),
+                            ("d_l = 1.5 mm, k = -1", "156.9"), ("d_l = 0.15 mm, k = +1", "155.7"),
+                            ("d_l = 0.15 mm, k = -1", "155.9"))),
+    Number("§3.5, eqn 3-5", "output error at theta1 = 170, 179 deg, d_l = 1.5 mm, k = +1 (3 decimals)", "3.431, 0.394",
+           lambda: output_error(nominal_rssr(), FABRICATION_ERRORS["d_l = 1.5 mm, k = +1"].built(nominal_rssr()),
+                                np.array([170.0, 179.0]) * DEG) / DEG, 5e-4,
+           _FAB + "test_output_error_near_half_turn_matches_digest", unit="deg", in_text=False),
+    *(Number("eqn 3-50 (corrected)", f"largest ball waggle, {name} (3 decimals; the thesis prints {thesis})",
+             printed, lambda err=err: max_waggle(nominal_rssr(), err.built(nominal_rssr())).value / DEG, 5e-4,
+             _FAB + "test_waggle_corrected_3_50", unit="deg", in_text=False)
+      for name, err, printed, thesis in (("d_alpha = -1 deg", FabricationError(-D_ALPHA, 0.0, 1), "0.581", "0.58"),
+                                         ("d_l = 1.5 mm, k = -1", FabricationError(0.0, D_L, -1), "1.224", "1.22"))),
+)  # fmt: skip
+
+
+def eqn_3_49_residuals() -> tuple[float, float]:
+    """Largest | |CD| - L | (mm) over theta1 of the RSSR built with d_l = 1.5 mm, k = -1, CD of eqn 3-48: L = a1R
+    (corrected) and L = a2R (as printed)."""
+    built = FabricationError(0.0, D_L, -1).built(nominal_rssr())
+    t1, b = np.linspace(-np.pi, np.pi, 2001), nominal_rssr().beta
+    T_AD = np.array([[1, 0, 0, built.a2], [0, np.cos(b), -np.sin(b), 0], [0, np.sin(b), np.cos(b), 0], [0, 0, 0, 1]])
+    t2 = built.theta2(t1)
+    C_B = np.stack([built.a2 * np.cos(t2), built.a2 * np.sin(t2), 0 * t2, 1 + 0 * t2], -1)
+    C_D = np.einsum("ij,njk,nk->ni", T_AD, transform_z(t1) @ built.bennett_rows()[0].link(), C_B)[:, :3]
+    length = np.linalg.norm(C_D, axis=1)
+    return float(np.max(np.abs(length - built.a1))), float(np.max(np.abs(length - built.a2)))
+
+
+CORRECTIONS_3 = (
+    Correction("eqns 3-49, 3-50", "|CD| = a2R (the waggle normalised by a2R: 0.821 / 1.669 deg)",
+               "|CD| = a1R (0.581 / 1.224 deg)", "largest | abs(CD) - L | (mm) over theta1, RSSR built with "
+               "d_l = 1.5 mm, k = -1", eqn_3_49_residuals, _FAB + "test_waggle_corrected_3_50", 1e-11, 1.0),
+)  # fmt: skip
+
+NUMBERS: tuple[Number, ...] = (*THREEFOLD, *CUBOCTAHEDRON, *FABRICATION)
+CORRECTIONS: tuple[Correction, ...] = CORRECTIONS_3
+
+CHECKED_ELSEWHERE = (
+    ("ch. 2 example", "the closed path sampled by the truss continuation (2 decimals, tolerance scaled by the slope)",
+     _B3 + "test_sampled_closed_path_crosses_to_the_other_branch_at_each_bundle"),
+    *(("ch. 1-2", f"truss counts j, b, r, m, s of the {what}", f"test_truss.py::{test}")
+      for what, test in (("Bennett linkage, and with a tilted axis", "test_seed001_bennett_counts_tilt_and_release"),
+                         ("RSSR", "test_seed001_rssr_truss"),
+                         ("Myard linkage and its non-overconstrained forms",
+                          "test_seed001_myard_counts_and_non_overconstrained_forms"),
+                         ("threefold-symmetric Bricard linkage", "test_seed001_threefold_bricard_counts"))),
+)  # fmt: skip
