@@ -50,6 +50,11 @@ def _decimals(token: str) -> int:
 
 def _ours(entry, values: np.ndarray) -> str:
     """Our values with two more decimals than the document prints."""
+    if entry.relative:  # printed to significant digits: two more
+        digits = max(
+            len(t.strip().lower().split("e")[0].replace("-", "").replace(".", "")) for t in entry.printed.split(",")
+        )
+        return ", ".join(f"{v:.{digits + 1}e}" for v in values)
     places = min(max(_decimals(t) for t in entry.printed.split(",")) + 2, 12)
     return ", ".join(f"{round(v, places) + 0.0:.{places}f}" for v in values)  # + 0.0: no "-0.00"
 
@@ -63,6 +68,8 @@ def _bound(e) -> str:
     """The test's acceptance as written in the table."""
     if e.truncated:
         return f"0 <= ours - printed < {e.tol:g} (truncated)"
+    if e.relative:
+        return f"{e.tol:g} relative"
     return f"{'< ' if e.strict else ''}{e.tol:g}"
 
 

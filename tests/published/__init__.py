@@ -26,7 +26,8 @@ class Number:
     test: the test function that checks it; unit: of printed and ours; angle: differences wrapped to one turn;
     strict: the test requires difference < tol rather than <= tol; truncated: the document truncates (does not
     round), so ours - printed must lie in [0, tol) and the difference is signed; a single printed value stands
-    for every value of ours (e.g. every row of a tube); in_text: the document prints this value
+    for every value of ours (e.g. every row of a tube); relative: the difference is |ours / printed - 1| (values
+    printed to significant digits); in_text: the document prints this value
     (False: a worked value, the document's equations evaluated at its own geometry and rounded to the places
     shown, where the document gives the configuration only as a figure or a table of cases).
     """
@@ -41,6 +42,7 @@ class Number:
     angle: bool = False
     strict: bool = False
     truncated: bool = False
+    relative: bool = False
     in_text: bool = True
 
     @property
@@ -53,7 +55,7 @@ class Number:
         got = np.atleast_1d(np.asarray(self.ours() if ours is None else ours, dtype=float))
         if self.value.size > 1 and got.shape != self.value.shape:
             raise ValueError(f"{self.where}: ours has shape {got.shape}, printed {self.value.shape}")
-        d = got - self.value
+        d = got / self.value - 1 if self.relative else got - self.value
         if self.angle:
             turn = 360.0 if self.unit == "deg" else 2 * np.pi
             d = (d + turn / 2) % turn - turn / 2
