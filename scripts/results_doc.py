@@ -62,8 +62,13 @@ def _ours(entry, values: np.ndarray) -> str:
 
 
 def _sci(x: float) -> str:
-    """One significant digit; float noise (below 1e-12) shown as a bound, so the page is the same on any machine."""
-    return "< 1e-12" if x < 1e-12 else f"{x:.1e}"
+    """One significant digit; below 1e-9 (float noise that differs between machines) the next power of ten as a
+    bound, so that the page is the same on any machine."""
+    if x == 0:
+        return "0"
+    if x < 1e-9:
+        return f"< 1e{int(np.floor(np.log10(x))) + 1}"
+    return f"{x:.1e}"
 
 
 def _bound(e) -> str:
