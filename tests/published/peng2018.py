@@ -9,11 +9,13 @@ from functools import cache
 import numpy as np
 
 from published import Correction, Number
+from sim_origami.kinematics.square_twist import edge_multipliers, metamaterial_unit
 from sim_origami.kinematics.thick_diamond import COUNTER, DIAMOND, ThickDiamond, diamond_folds, hinge_heights
 from sim_origami.kinematics.thick_diamond import sectors as diamond_sectors
 from sim_origami.kinematics.thick_vertex5 import BRANCH as VERTEX5_BRANCH
 from sim_origami.kinematics.thick_vertex5 import ThickVertex5, lifted_loop
 from sim_origami.kinematics.vertex4 import Vertex4, flat_foldable_multipliers
+from sim_origami.studies.metamaterial import element_formulas
 
 DOCUMENT = "Peng 2018"
 DEG = np.pi / 180
@@ -162,5 +164,70 @@ CORRECTIONS_4 = (
                1e-12, 0.5),
 )  # fmt: skip
 
-NUMBERS: tuple[Number, ...] = (*VERTEX4, *THICK)
+# --- chapter 3: square twist and double-corrugated metamaterials ------------------------------------------------
+
+_SQ = "test_square_twist.py::"
+_CASE11 = (
+    (150, 30, "0.869038, 1.566987, 1.456756, 0.631854, -0.398480, 9.186190"),
+    (150, 60, "1.570796, 1.383975, 1.133975, 0.933013, -0.614521, 0.856406"),
+    (150, 90, "2.094395, 1.133975, 0.883975, 0.933013, -1.039382, -0.526279"),
+    (150, 120, "2.498092, 0.883975, 0.733975, 0.733013, -1.729816, -1.468060"),
+    (150, 150, "2.834625, 0.700962, 0.657347, 0.401085, -2.567671, -5.040666"),
+    (135, 30, "1.148367, 1.905266, 1.582791, 0.998502, -0.249648, 6.159052"),
+    (135, 60, "1.896924, 1.646447, 1.066352, 1.282208, -0.541313, 0.221755"),
+    (135, 90, "2.356194, 1.292893, 0.792893, 1.207107, -1.226541, -0.535534"),
+    (135, 120, "2.672117, 0.939340, 0.662291, 0.932281, -2.583492, -1.123755"),
+    (135, 150, "2.920521, 0.680521, 0.602995, 0.508604, -4.607159, -3.462525"),
+    (120, 30, "1.570796, 2.250000, 1.500000, 1.299038, -0.166667, 3.000000"),
+    (120, 60, "2.272555, 1.933013, 0.940927, 1.411390, -0.625933, -0.109581"),
+    (120, 90, "2.617994, 1.500000, 0.750000, 1.299038, -2.000000, -0.500000"),
+    (120, 120, "2.834625, 1.066987, 0.674458, 1.011686, -5.192249, -1.013962"),
+    (120, 150, "2.998245, 0.750000, 0.642857, 0.556731, -10.500000, -3.095238"),
+)
+_ELEMENTS = (
+    (1, 60, "0.824937, 0.705701, 1.325076"),
+    (1, 90, "1.137055, 0.654654, 1.467314"),
+    (1, 120, "1.380314, 0.530926, 1.668058"),
+    (2, 60, "0.824937, 1.411402, 2.650152"),
+    (2, 90, "1.137055, 1.309307, 2.934628"),
+    (2, 120, "1.380314, 1.061852, 3.336116"),
+)
+# the sample sectors of the corrugated elements (Fig 3-2)
+CORRUGATED_ALPHA, CORRUGATED_BETA = 3 * np.pi / 4, np.pi / 3
+
+
+def square_twist_unit(alpha_deg: float, theta_deg: float) -> np.ndarray:
+    """phi, L, S, H, nu_SL, nu_HL of the square-twist unit (eqns 3-30 to 3-32, a = b = c = 1) at theta."""
+    u = metamaterial_unit(alpha_deg * DEG, np.array([theta_deg * DEG]))
+    return np.array([u.phi, u.L, u.S, u.H, u.nu_sl, u.nu_hl])[:, 0]
+
+
+def element_row(element: int, phi_deg: float) -> np.ndarray:
+    """W, H, L of metamaterial element 1 or 2 (eqns 3-24 to 3-28) at phi, sectors of Fig 3-2."""
+    d = element_formulas(np.array([phi_deg * DEG]), CORRUGATED_ALPHA, CORRUGATED_BETA, element)
+    return np.array([d.W[0], d.H[0], d.L[0]])
+
+
+CHAPTER_3 = (
+    *(_w("Fig 3-15, alpha = 150 deg", f"edge multiplier of mode {mode}", printed,
+         lambda mode=mode: edge_multipliers(5 * np.pi / 6)[mode], SIX_DECIMALS,
+         _SQ + "test_case10_multipliers_against_the_digest", unit="") for mode, printed in (("C", "1.732051"),
+                                                                                            ("S", "-0.577350"))),
+    *(_w(f"eqns 3-30 to 3-32, alpha = {a} deg", f"phi, L, S, H, nu_SL, nu_HL at theta = {t} deg (a = b = c = 1)",
+         printed, lambda a=a, t=t: square_twist_unit(a, t), SIX_DECIMALS, _SQ + "test_case11_metamaterial_tables",
+         unit="") for a, t, printed in _CASE11),
+    *(_w(f"eqns 3-24 to 3-28, element {e}", f"W, H, L at phi = {p} deg (sectors 135/60 deg)", printed,
+         lambda e=e, p=p: element_row(e, p), SIX_DECIMALS,
+         "test_metamaterial.py::test_formulas_reproduce_the_digest_table", unit="m") for e, p, printed in _ELEMENTS),
+)  # fmt: skip
+
+NUMBERS: tuple[Number, ...] = (*VERTEX4, *THICK, *CHAPTER_3)
 CORRECTIONS: tuple[Correction, ...] = CORRECTIONS_4
+
+CHECKED_ELSEWHERE = (
+    ("eqns 3-30 to 3-32", "L, S, H of the square twist at alpha = 150, 135, 120 deg measured on its vertices, "
+     "and the Poisson's ratios as differences of the measured geometry (rows as above)",
+     "test_poisson.py::test_closed_form_geometry_reproduces_the_digest_tables"),
+    ("eqn 3-26", "element 3's theta as printed (-0.189408, -0.326128, -0.555214) and the gain 0.614014 of the reading "
+     "with gamma for alpha", "test_metamaterial.py::test_element_3_theta_is_the_printed_3_26_with_gamma_for_alpha"),
+)  # fmt: skip
