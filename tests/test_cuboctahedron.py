@@ -173,7 +173,9 @@ def test_volume_ratio(model):
     assert np.all(np.diff(v) > 0)
 
 
-@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_path_matches_seed_table"), ids=str)
+@pytest.mark.parametrize(
+    "entry", checked_by(yang2017.NUMBERS, "test_cuboctahedron.py::test_path_matches_seed_table"), ids=str
+)
 def test_path_matches_seed_table(model, entry):
     entry.check()  # < 3e-4: measured 1.5e-4 (4 decimals, truss tolerance; case 11's tolerance is 2e-3)
     theta = yang2017.theta_at_bd(entry.value[0])

@@ -108,10 +108,14 @@ class Correction:
 
 
 def checked_by(entries: tuple[Number | Correction, ...], test: str) -> list[Number | Correction]:
-    """The entries whose test is `test` (a function name); never empty, so a renamed test cannot check nothing."""
-    found = [e for e in entries if e.test.split("::")[-1] == test]
+    """The entries whose test is `test`: a function name, or "file::function" where two test files share the name.
+    Never empty and never from two files, so a renamed test cannot check nothing or someone else's numbers."""
+    found = [e for e in entries if e.test == test or ("::" not in test and e.test.split("::")[-1] == test)]
     if not found:
         raise LookupError(f"no published entry names the test {test}")
+    files = {e.test.split("::")[0] for e in found}
+    if len(files) > 1:
+        raise LookupError(f"{test} is a test in {sorted(files)}: name it as file::function")
     return found
 
 

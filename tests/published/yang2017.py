@@ -14,6 +14,7 @@ from sim_origami.kinematics.bricard_threefold import AGAINST, ALONG, BricardThre
 from sim_origami.kinematics.cuboctahedron import AXES, VERTICES, CuboctahedronOctahedron
 from sim_origami.kinematics.myard import BRANCH as MYARD_BRANCH
 from sim_origami.kinematics.myard import Myard
+from sim_origami.kinematics.truncated_octahedron import TruncatedOctahedronCube, volume
 from sim_origami.studies.fabrication import (
     FINE_LENGTH,
     NOMINAL,
@@ -297,7 +298,76 @@ CORRECTIONS_3 = (
                "d_l = 1.5 mm, k = -1", eqn_3_49_residuals, _FAB + "test_waggle_corrected_3_50", 1e-11, 1.0),
 )  # fmt: skip
 
-NUMBERS: tuple[Number, ...] = (*THREEFOLD, *CUBOCTAHEDRON, *FABRICATION)
+# --- chapter 5: the truncated octahedron -------------------------------------------------------------------------
+
+_TO = "test_truncated_octahedron.py::"
+
+
+@cache
+def truncated_octahedron() -> TruncatedOctahedronCube:
+    return TruncatedOctahedronCube()
+
+
+def theta_at_rho1(rho1: float) -> float:
+    """Input at which Bricard 1's fold angle rho1 (rad) is reached (rho1 falls monotonically), by bisection."""
+    model = truncated_octahedron()
+
+    def rho(theta: float) -> float:  # angle B1 C2 C1 from Bricard 1 alone
+        p = model.bricard_points(np.array([theta]))
+        u, w = p["B1"][0] - p["C2"][0], p["C1"][0] - p["C2"][0]
+        return float(np.arctan2(np.linalg.norm(np.cross(u, w)), u @ w))
+
+    lo, hi = model.domain
+    for _ in range(50):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if rho(mid) > rho1 else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+def octahedron_path_row(rho1_deg: float) -> np.ndarray:
+    """rho1, rho2, delta_A, delta_D and the odd joint angles of Bricard 1 and 2 (deg) where rho1 is reached."""
+    model = truncated_octahedron()
+    theta = theta_at_rho1(rho1_deg * DEG)
+    return np.concatenate([model.fold_angles(theta)[0], [theta, model.state(theta)[0, 0]]]) / DEG
+
+
+def _octahedron_ends() -> np.ndarray:
+    model = truncated_octahedron()
+    lo, hi = model.domain
+    return np.array([lo, model.phi(lo)[0], hi, model.phi(hi)[0] % (2 * np.pi)]) / DEG
+
+
+def _octahedron_volume_ratio() -> float:
+    deployed, cube = volume(truncated_octahedron().vertices(np.array(truncated_octahedron().domain)))
+    return deployed / cube
+
+
+_TO_PATH = (
+    "109.98, 106.43, 129.39, 132.34, 47.21, 51.76",
+    "95.90, 95.87, 139.35, 139.37, 65.09, 65.14",
+    "90.03, 93.03, 141.82, 140.71, 72.41, 68.68",
+    "60.01, 84.62, 135.59, 142.97, 107.71, 79.04",
+    "30.01, 68.06, 113.55, 139.87, 138.78, 98.63",
+    "9.97, 37.09, 97.75, 119.12, 157.38, 131.83",
+)
+_TO_CASE = _TO + "test_bricard_parameters_match_case_12"
+
+TRUNCATED_OCTAHEDRON = (
+    Number("ch. 5, Bricard linkage", "link length a (6 decimals)", "0.713234", lambda: truncated_octahedron().bricard.a,
+           5e-7, _TO_CASE, unit="m", in_text=False),
+    Number("ch. 5, Bricard linkage", "twist alpha (the example's tolerance 1e-3 deg)", "214.7865",
+           lambda: truncated_octahedron().bricard.alpha / DEG, 1e-3, _TO_CASE, unit="deg", in_text=False),
+    Number("ch. 5, Bricard linkage", "theta_d, phi_d (deployed) and theta_f, phi_f (cube), tolerance 1e-3 deg",
+           "34.3147, 147.4964, 166.1251, 268.4470", _octahedron_ends, 1e-3, _TO_CASE, unit="deg", in_text=False),
+    Number("ch. 5 abstract", "volume ratio of the truncated octahedron to the cube (1 decimal)", "11.3",
+           _octahedron_volume_ratio, 0.05, _TO + "test_volume_ratio", strict=True),
+    *(Number("ch. 5, path by the truss method (+/-0.1 deg)",
+             f"rho1, rho2, delta_A, delta_D, Bricard 1 and 2's odd joint angles where rho1 = {row.split(',')[0]}",
+             row, lambda row=row: octahedron_path_row(float(row.split(",")[0])), 0.1,
+             _TO + "test_path_matches_seed_table", unit="deg", in_text=False) for row in _TO_PATH),
+)  # fmt: skip
+
+NUMBERS: tuple[Number, ...] = (*THREEFOLD, *CUBOCTAHEDRON, *FABRICATION, *TRUNCATED_OCTAHEDRON)
 CORRECTIONS: tuple[Correction, ...] = CORRECTIONS_3
 
 CHECKED_ELSEWHERE = (
