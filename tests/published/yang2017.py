@@ -9,12 +9,14 @@ from functools import cache
 import numpy as np
 
 from published import Correction, Number
-from sim_origami.geometry import transform_z, unit
+from sim_origami.geometry import invert, transform_z, unit
 from sim_origami.kinematics.bricard_threefold import AGAINST, ALONG, BricardThreefold
 from sim_origami.kinematics.cuboctahedron import AXES, VERTICES, CuboctahedronOctahedron
 from sim_origami.kinematics.myard import BRANCH as MYARD_BRANCH
 from sim_origami.kinematics.myard import Myard
 from sim_origami.kinematics.truncated_octahedron import TruncatedOctahedronCube, volume
+from sim_origami.kinematics.truncated_tetrahedron import VERTICES as TETRA_VERTICES
+from sim_origami.kinematics.truncated_tetrahedron import SchemeI, SchemeII, axis_g
 from sim_origami.studies.fabrication import (
     FINE_LENGTH,
     NOMINAL,
@@ -367,8 +369,124 @@ TRUNCATED_OCTAHEDRON = (
              _TO + "test_path_matches_seed_table", unit="deg", in_text=False) for row in _TO_PATH),
 )  # fmt: skip
 
-NUMBERS: tuple[Number, ...] = (*THREEFOLD, *CUBOCTAHEDRON, *FABRICATION, *TRUNCATED_OCTAHEDRON)
-CORRECTIONS: tuple[Correction, ...] = CORRECTIONS_3
+# --- chapter 6: the truncated tetrahedron ------------------------------------------------------------------------
+
+_TT = "test_truncated_tetrahedron.py::"
+
+
+@cache
+def scheme(name: str) -> SchemeI | SchemeII:
+    """Scheme II (delta2 = 0), scheme I (s_G along QG) or scheme I with its axis turned by delta1 = -5 deg."""
+    return {"II": SchemeII, "I": SchemeI, "I-5": lambda: SchemeI(-5 * DEG)}[name]()
+
+
+def rho_input(kinematics, rho: float) -> float:
+    """Input at which rho = angle AFE (rad) is reached on the last (folding) stretch of the path (bisection)."""
+    x = np.linspace(*kinematics.domain, 60)
+    r = kinematics.monitors(x)["rho"] - rho
+    cross = np.nonzero(np.diff(np.sign(r)))[0]
+    k = cross[0] if kinematics.domain[0] == kinematics.events()[1].input else cross[-1]
+    a, b, fa = x[k], x[k + 1], r[k]
+    for _ in range(40):
+        c = 0.5 * (a + b)
+        fc = kinematics.monitors(c)["rho"][0] - rho
+        a, b, fa = (c, b, fc) if np.sign(fc) == np.sign(fa) else (a, c, fa)
+    return 0.5 * (a + b)
+
+
+def _scheme_ii_frame_2() -> np.ndarray:
+    two = scheme("II")
+    return two._frame @ transform_z(two.theta_d) @ two.rows[0].link()  # joint B's D-H frame (6-26)
+
+
+def _monitors(name: str, rho_deg: float, keys: tuple[str, ...]) -> np.ndarray:
+    m = scheme(name).monitors(rho_input(scheme(name), rho_deg * DEG))
+    return np.array([m[k][0] / DEG if k in ("delta", "lambda1", "lambda2", "rotation") else m[k][0] for k in keys])
+
+
+_TABLE_II = (
+    ("105.03", "129.30, 81.58, 55.08, 146.87", "1.1661, 1.5870, 1.3066"),
+    ("90.05", "125.06, 64.96, 31.65, 157.01", "0.8457, 1.4148, 1.0740"),
+    ("59.95", "99.06, 38.32, 8.60, 154.84", "0.3979, 0.9992, 0.6563"),
+    ("29.94", "76.94, 17.29, 1.36, 140.00", "0.1430, 0.5166, 0.3005"),
+    ("5.01", "62.62, 2.77, 0.11, 123.79", "0.0175, 0.0874, 0.0484"),
+)
+_TABLE_I = (
+    ("105.02", "91.35, 65.93, 137.44", "1.3321, 1.4308"),
+    ("59.94", "50.29, 26.98, 143.12", "0.7416, 0.8498"),
+    ("4.99", "10.90, 9.90, 120.92", "0.1883, 0.1899"),
+)
+_C16 = _TT + "test_bricard_parameters_match_case_16"
+_PATH_II, _PATH_I = _TT + "test_scheme_ii_path_matches_seed_table", _TT + "test_scheme_i_path_matches_seed_table"
+_MISS = _TT + "test_scheme_i_misses_the_tetrahedron"
+
+TRUNCATED_TETRAHEDRON = (
+    Number("eqn 6-26, scheme II", "twist alpha12", "231.0378", lambda: scheme("II").rows[0].alpha % (2 * np.pi) / DEG,
+           5e-5, _C16, unit="deg", in_text=False),
+    Number("eqn 6-28", "G in joint B's frame (5 decimals, tolerance 1e-5)", "0.06019, -0.62767, 0.07593",
+           lambda: (invert(_scheme_ii_frame_2()) @ np.append(TETRA_VERTICES["G"], 1))[:3], 1e-5, _C16, unit="m",
+           in_text=False),
+    Number("eqn 6-33 (corrected)", "s_G in joint B's frame (6 decimals, tolerance 1e-6)",
+           "0.667325, -0.738119, -0.099286", lambda: _scheme_ii_frame_2()[:3, :3].T @ axis_g(0.0), 1e-6, _C16,
+           in_text=False),
+    Number("ch. 6, scheme II", "theta_d, phi_d (deployed) and theta_f, phi_f (folded), tolerance 1e-4",
+           "40.4591, 143.5473, 186.9018, 266.0295",
+           lambda: np.array([scheme("II").theta_d, scheme("II").phi_d, scheme("II").theta_f,
+                             scheme("II").phi(scheme("II").theta_f)[0] % (2 * np.pi)]) / DEG, 1e-4, _C16,
+           unit="deg", in_text=False),
+    Number("ch. 6, scheme II", "phi at theta = 60, 90, 120, 150 deg (tolerance 1e-4)",
+           "154.1717, 170.7849, 189.7716, 215.3841",
+           lambda: scheme("II").phi(np.array([60.0, 90.0, 120.0, 150.0]) * DEG) % (2 * np.pi) / DEG, 1e-4, _C16,
+           unit="deg", in_text=False),
+    Number("ch. 6, scheme I", "theta_G at the deployed state (T_A's angle, 4 decimals)", "146.4427",
+           lambda: scheme("I").domain[1] / DEG, 1e-4, _MISS, unit="deg", in_text=False),
+    Number("ch. 6, scheme I (s_G along QG)", "theta_G where the path ends at the Bricard fold (3 decimals)", "3.708",
+           lambda: scheme("I").domain[0] / DEG, 1e-3, _MISS, unit="deg", in_text=False),
+    Number("ch. 6, scheme I (s_G along QG)", "|BK| at the end (4 decimals)", "0.0585",
+           lambda: scheme("I").monitors(scheme("I").domain[0])["BK"][0], 1e-4, _MISS, unit="m", in_text=False),
+    Number("ch. 6, scheme I (s_G along QG)", "KLM height at the end (the end sample sits a little off the fold: "
+           "tolerance 3e-4)", "0.0586", lambda: scheme("I").monitors(scheme("I").domain[0])["height"][0], 3e-4, _MISS,
+           unit="m", in_text=False),
+    Number("ch. 6, scheme I (s_G along QG)", "KLM rotation at the end, less 90 deg (2 decimals)", "29.66",
+           lambda: scheme("I").monitors(scheme("I").domain[0])["rotation"][0] / DEG - 90, 0.01, _MISS, unit="deg",
+           in_text=False),
+    *(Number("ch. 6, scheme II path by the truss method (2 decimals)",
+             f"delta, lambda1, lambda2, KLM rotation where rho = {rho} deg (tolerance 0.02)", angles,
+             lambda rho=rho: _monitors("II", float(rho), ("delta", "lambda1", "lambda2", "rotation")), 0.02, _PATH_II,
+             unit="deg", in_text=False) for rho, angles, _ in _TABLE_II),
+    *(Number("ch. 6, scheme II path by the truss method (4 decimals)",
+             f"KLM height, |AE|, |BK| where rho = {rho} deg (tolerance 3e-4)", lengths,
+             lambda rho=rho: _monitors("II", float(rho), ("height", "AE", "BK")), 3e-4, _PATH_II, unit="m",
+             in_text=False) for rho, _, lengths in _TABLE_II),
+    *(Number("ch. 6, scheme I (delta1 = -5 deg) path by the truss method (2 decimals)",
+             f"lambda1, lambda2, KLM rotation where rho = {rho} deg (tolerance 0.02)", angles,
+             lambda rho=rho: _monitors("I-5", float(rho), ("lambda1", "lambda2", "rotation")), 0.02, _PATH_I,
+             unit="deg", in_text=False) for rho, angles, _ in _TABLE_I),
+    *(Number("ch. 6, scheme I (delta1 = -5 deg) path by the truss method (4 decimals)",
+             f"KLM height, |BK| where rho = {rho} deg (tolerance 3e-4)", lengths,
+             lambda rho=rho: _monitors("I-5", float(rho), ("height", "BK")), 3e-4, _PATH_I, unit="m", in_text=False)
+      for rho, _, lengths in _TABLE_I),
+)  # fmt: skip
+
+
+def eqn_6_17_residuals() -> tuple[float, float]:
+    """|(B - G) . s - (K - G) . s|: s_G must lie in the bisecting plane of angle BGK; corrected s_G = unit(G - Q)
+    and the printed direction of OG, (0, sqrt 6/3, sqrt 3/3)."""
+    G, B, K = (TETRA_VERTICES[v] for v in "GBK")
+    out = []
+    for s in (axis_g(0.0), np.array([0, np.sqrt(6) / 3, np.sqrt(3) / 3])):
+        out.append(float(abs((B - G) @ s - (K - G) @ s)))
+    return out[0], out[1]
+
+
+CORRECTIONS_6 = (
+    Correction("eqn 6-17", "s_G along OG, (0, sqrt 6/3, sqrt 3/3)", "s_G = unit(G - Q) = (0, 4 sqrt 66/33, sqrt 33/33)",
+               "| (B - G) . s_G - (K - G) . s_G | (m): s_G bisects angle BGK", eqn_6_17_residuals,
+               _TT + "test_corrected_axes", 1e-15, 0.1),
+)  # fmt: skip
+
+NUMBERS: tuple[Number, ...] = (*THREEFOLD, *CUBOCTAHEDRON, *FABRICATION, *TRUNCATED_OCTAHEDRON, *TRUNCATED_TETRAHEDRON)
+CORRECTIONS: tuple[Correction, ...] = (*CORRECTIONS_3, *CORRECTIONS_6)
 
 CHECKED_ELSEWHERE = (
     ("ch. 2 example", "the closed path sampled by the truss continuation (2 decimals, tolerance scaled by the slope)",
