@@ -149,11 +149,6 @@ CORRECTIONS: tuple[Correction, ...] = ()
 
 CHECKED_ELSEWHERE = (
     (
-        "Fig 8c",
-        "middle-row panels of the n6 m7 beta = 40 tube collide from alpha = 54.6 deg, not at 54.5 (MuJoCo contact)",
-        "test_waterbomb_tube_contact.py::test_contact_onset_is_the_seed_middle_row_interference",
-    ),
-    (
         "Fig 8c, 8d",
         "six thresholds in alpha or beta (1 decimal): the property switches within the printed precision",
         _TUBE + "test_seed004_fig8_thresholds_within_printed_precision",
@@ -235,8 +230,6 @@ NUMBERS: tuple[Number, ...] = (*TUBES, *TWISTS)
 CORRECTIONS: tuple[Correction, ...] = ()
 
 CHECKED_ELSEWHERE = (
-    ("Fig 8c", "middle-row panels of the n6 m7 beta = 40 tube collide from alpha = 54.6 deg, not at 54.5 (MuJoCo "
-     "contact)", "test_waterbomb_tube_contact.py::test_contact_onset_is_the_seed_middle_row_interference"),
     ("Fig 8c, 8d", "six thresholds in alpha or beta (1 decimal): the property switches within the printed precision",
      _TUBE + "test_seed004_fig8_thresholds_within_printed_precision"),
     ("Figs 14a, 14b", "twist ranges of n6 m7, m9, m11 and n5 m5 (2 decimals): ours contain them, within 0.11 deg",

@@ -9,8 +9,6 @@ from functools import cache
 import numpy as np
 
 from published import Correction, Number
-from sim_origami.kinematics.kokotsakis import Kokotsakis
-from sim_origami.kinematics.kokotsakis import example as kokotsakis_example
 from sim_origami.kinematics.square_twist import edge_multipliers, metamaterial_unit
 from sim_origami.kinematics.thick_diamond import COUNTER, DIAMOND, ThickDiamond, diamond_folds, hinge_heights
 from sim_origami.kinematics.thick_diamond import sectors as diamond_sectors
@@ -223,25 +221,10 @@ CHAPTER_3 = (
          "test_metamaterial.py::test_formulas_reproduce_the_digest_table", unit="m") for e, p, printed in _ELEMENTS),
 )  # fmt: skip
 
-KOKOTSAKIS = (
-    _w(
-        "ch. 2, Kokotsakis mesh of example 2",
-        "|rho_AB| where the mixed pairs end (creases c4, d4 fold flat)",
-        "0.423290",
-        lambda: Kokotsakis(kokotsakis_example(3)).branch("odd2-odd2-odd3-odd3").domain[1],
-        SIX_DECIMALS,
-        "test_kokotsakis.py::test_example2_follows_the_flat_foldable_multipliers_and_the_loop_gain",
-    ),
-)
-
-NUMBERS: tuple[Number, ...] = (*VERTEX4, *THICK, *CHAPTER_3, *KOKOTSAKIS)
+NUMBERS: tuple[Number, ...] = (*VERTEX4, *THICK, *CHAPTER_3)
 CORRECTIONS: tuple[Correction, ...] = CORRECTIONS_4
 
 CHECKED_ELSEWHERE = (
-    ("Table A1", "census of Kokotsakis meshes from the variants of one base vertex: counts of meshes, planar, "
-     "closing, case-1 type and new ones", "test_kokotsakis_variants.py::test_census_counts"),
-    ("Table A1", "classes of the variants aapp (R8), pppp (R4), appa (R3)",
-     "test_kokotsakis_variants.py::test_variants_are_the_supplement_sets_that_stay_developable"),
     ("eqns 3-30 to 3-32", "L, S, H of the square twist at alpha = 150, 135, 120 deg measured on its vertices, "
      "and the Poisson's ratios as differences of the measured geometry (rows as above)",
      "test_poisson.py::test_closed_form_geometry_reproduces_the_digest_tables"),

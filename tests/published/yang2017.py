@@ -489,10 +489,6 @@ NUMBERS: tuple[Number, ...] = (*THREEFOLD, *CUBOCTAHEDRON, *FABRICATION, *TRUNCA
 CORRECTIONS: tuple[Correction, ...] = (*CORRECTIONS_3, *CORRECTIONS_6)
 
 CHECKED_ELSEWHERE = (
-    ("ch. 5", "the feasible band -60.9 <= zeta <= 19.5 deg (printed to 0.1 deg): its edges, bisected, within 0.05 deg",
-     "test_polyhedra_interference.py::test_feasible_band_edges"),
-    ("ch. 5", "zeta = 40 deg: rho1's minimum 86.4 deg (ours 87.08: within 1 deg) where theta turns back",
-     "test_polyhedra_interference.py::test_zeta_40_stalls_at_the_turning_point_without_contact"),
     ("ch. 2 example", "the closed path sampled by the truss continuation (2 decimals, tolerance scaled by the slope)",
      _B3 + "test_sampled_closed_path_crosses_to_the_other_branch_at_each_bundle"),
     *(("ch. 1-2", f"truss counts j, b, r, m, s of the {what}", f"test_truss.py::{test}")
