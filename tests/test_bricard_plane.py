@@ -3,6 +3,7 @@ Part II (M4 to M7), the numeric loop solver and MuJoCo."""
 
 import numpy as np
 import pytest
+from published import check_every, checked_by, feng2018
 
 import sim_origami.scenes.bricard_plane  # noqa: F401  (registers the scene)
 from sim_origami import scenes
@@ -14,26 +15,16 @@ from sim_origami.kinematics.bricard_plane import (
     TABLE_4_1,
     Geometry,
     PlaneSymmetricBricard,
-    closure_coefficients,
     path_one,
     path_two,
-    theta1_fractions,
-    theta4_fraction,
 )
 from sim_origami.kinematics.dh import dh_loop
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
 
 DEG = np.pi / 180
-# Validation case 15 (seed000 §5): offsets that expose the sign of eqn 4-6c.
-OFFSETS = Geometry(1.3, 0.7, 1.1, 0.9, 0.4, 1.2, 0.3, -0.5)
-# Published angles carry 4 decimals (degrees): half a unit of the last place, plus rounding of the
-# printed inputs (e.g. 158.5428 deg); the largest difference measured below is 5.0e-5 deg.
-PUBLISHED_DEG = 6e-5
-
-
-def model(g: Geometry, **options) -> PlaneSymmetricBricard:
-    return PlaneSymmetricBricard(g.a, g.b, g.c, g.alpha, g.beta, g.gamma, g.R2, g.R3, **options)
+OFFSETS = feng2018.OFFSETS
+model = feng2018.bricard_model
 
 
 def random_offset_geometries(count: int, seed: int) -> list[Geometry]:
@@ -67,38 +58,19 @@ def closure_over_domains(kin: PlaneSymmetricBricard, samples: int = 2001) -> flo
 # ---------------------------------------------------------------------------------------------
 
 
-def textbook_configurations(g: Geometry, theta2: np.ndarray, printed_c: bool) -> np.ndarray:
-    """Both roots by eqn 4-15 with n = tan(theta3/2), theta1 by eqn 4-7, theta4 by appendix (3,1)."""
-    A, B, C = closure_coefficients(g, theta2, printed_c=printed_c)
-    with np.errstate(invalid="ignore"):  # the printed C leaves Delta < 0 at some inputs
-        root = np.sqrt(B * B - 4 * A * C)
-    out = []
-    for sign in (1.0, -1.0):
-        t3 = 2 * np.arctan((-B + sign * root) / (2 * A))
-        Y13, X13, _, _ = theta1_fractions(g, theta2, t3)
-        Y31, X31 = theta4_fraction(g, theta2, t3)
-        t1, t4 = 2 * np.arctan2(Y13, X13), 2 * np.arctan2(Y31, X31)
-        out.append(np.stack([t1, theta2, t3, t4, t3, theta2], -1))
-    return np.concatenate(out)
-
-
 def test_corrected_c_closes_with_offsets_and_the_printed_c_does_not():
-    theta2 = np.deg2rad(np.linspace(-120.0, -30.0, 91))  # inside both of OFFSETS' domains
-    loops = model(OFFSETS).loop_system()
-    corrected = textbook_configurations(OFFSETS, theta2, printed_c=False)
-    # Measured 7.6e-14 (the model's half-angle pair form: 8.5e-15 on the same inputs).
-    assert np.max(loops.residual_norm(corrected)) <= TOLERANCES.closed_form_residual
-    printed = textbook_configurations(OFFSETS, theta2, printed_c=True)
-    ok = np.all(np.isfinite(printed), axis=1)
-    # Measured 1.69 (seed000 reports up to 0.23 over 72 random offset cases): far above 0.01.
-    assert np.max(loops.residual_norm(printed[ok])) > 0.01
+    # Corrected: measured 7.6e-14 (the model's half-angle pair form: 8.5e-15 on the same inputs), within
+    # TOLERANCES.closed_form_residual; printed: measured 1.69, far above 0.01.
+    [correction] = checked_by(feng2018.CORRECTIONS, "test_corrected_c_closes_with_offsets_and_the_printed_c_does_not")
+    assert correction.closes == TOLERANCES.closed_form_residual
+    correction.check()
     # The same on random offset geometries, over their first branch's domain: measured 0.055 to 7.4
     # (the model closes them to 5.6e-14, test below).
     for g in random_offset_geometries(6, seed=7):
         kin = model(g)
         lo, hi = kin.branches()[0].domain
         x = wrap(np.linspace(lo, hi, 101)[1:-1])
-        printed = textbook_configurations(g, x, printed_c=True)
+        printed = feng2018.textbook_configurations(g, x, printed_c=True)
         ok = np.all(np.isfinite(printed), axis=1)
         assert np.max(kin.loop_system().residual_norm(printed[ok])) > 0.01
 
@@ -150,59 +122,31 @@ def test_path_one_holds_for_every_a_equal_b_plus_c_and_path_two_needs_b_equal_c(
 
 
 # ---------------------------------------------------------------------------------------------
-# Published numbers (seed000 §5, Chapter 4)
+# Published numbers (Feng 2018, chapter 4): tests/published/feng2018.py
 # ---------------------------------------------------------------------------------------------
 
 
-def angles_deg(kin: PlaneSymmetricBricard, branch: str, theta2_deg: float) -> np.ndarray:
-    return np.rad2deg(wrap(kin.joint_angles(branch, np.deg2rad(theta2_deg))[0]))
-
-
-def assert_published(measured: np.ndarray, expected: tuple[float, ...]) -> None:
-    np.testing.assert_allclose(np.rad2deg(wrap(np.deg2rad(measured - np.array(expected)))), 0.0, atol=PUBLISHED_DEG)
+@pytest.mark.parametrize("entry", checked_by(feng2018.NUMBERS, "test_published_configurations_of_table_4_1"), ids=str)
+def test_published_configurations_of_table_4_1(entry):
+    entry.check()
 
 
 @pytest.mark.parametrize(
-    "case, branch, theta2, expected",
-    [
-        (10, "theta1_eq_theta4", 60, (-147.7958, 60, 143.1301, -147.7958, 143.1301, 60)),
-        (10, "theta1_plus_theta4_eq_2theta2", 60, (-133.1736, 60, 126.8699, -106.8264, 126.8699, 60)),
-        (10, "theta1_eq_theta4", 120, (-98.2132, 120, 90, -98.2132, 90, 120)),
-        (10, "theta1_plus_theta4_eq_2theta2", 120, (-75.1782, 120, 67.3801, -44.8218, 67.3801, 120)),
-        (5, "all_joints_move", 60, (144.8396, 60, 16.2602, -177.6924, 16.2602, 60)),
-        (5, "all_joints_move", 120, (80.5145, 120, 46.3972, -174.1674, 46.3972, 120)),
-        (6, "all_joints_move", 60, (-46.8264, 60, 101.5370, 46.8264, 101.5370, 60)),
-        (6, "all_joints_move", 120, (0, 120, 0, 120, 0, 120)),
-        (8, "theta1_eq_theta4", np.rad2deg(0.5), (-165.4487, 28.6479, 163.2275, -165.4487, 163.2275, 28.6479)),
-        (8, "theta1_eq_theta4", np.rad2deg(2.0), (-104.1839, 114.5916, 96.0782, -104.1839, 96.0782, 114.5916)),
-        (9, "theta3_180_at_theta2_180", 90, (140.7460, 90, 150.3342, 71.4318, 150.3342, 90)),
-        (9, "theta3_0_at_theta2_180", 90, (101.5496, 90, 69.0589, -132.7723, 69.0589, 90)),
-        (9, "theta3_180_at_theta2_180", 150, (157.9355, 150, 173.0647, -90.2700, 173.0647, 150)),
-        (9, "theta3_0_at_theta2_180", 150, (33.2749, 150, 17.8935, -40.4613, 17.8935, 150)),
-    ],
+    "entry",
+    checked_by(feng2018.NUMBERS, "test_published_configurations_of_the_fig_4_5_geometry_and_the_offset_case"),
+    ids=str,
 )
-def test_published_configurations_of_table_4_1(case, branch, theta2, expected):
-    # Case 8's inputs are 0.5 and 2 rad (printed as 28.6479 and 114.5916 deg).
-    assert_published(angles_deg(model(TABLE_4_1[case]), branch, theta2), expected)
+def test_published_configurations_of_the_fig_4_5_geometry_and_the_offset_case(entry):
+    entry.check()
 
 
-def test_published_configurations_of_the_fig_4_5_geometry_and_the_offset_case():
-    fig = model(FIG_4_5)
-    assert_published(angles_deg(fig, "all_joints_move", 60), (113.7818, 60, -136.7224, 170.0617, -136.7224, 60))
-    assert_published(angles_deg(fig, "all_joints_move", 120), (138.8478, 120, 146.9081, 37.1804, 146.9081, 120))
+def test_the_offset_case_has_two_configurations_at_the_published_input():
     offsets = model(OFFSETS)
-    found = {name: angles_deg(offsets, name, -110) for name in (b.name for b in offsets.branches())
-             if offsets.evaluate(name, -110 * DEG)[1][0]}  # fmt: skip
-    assert len(found) == 2
-    expected = [
-        (-80.8970, -110, -49.5009, 96.0363, -49.5009, -110),
-        (97.6558, -110, -97.2543, -29.8270, -97.2543, -110),
-    ]
-    for exp in expected:
-        assert any(np.max(np.abs(wrap(np.deg2rad(v - np.array(exp))))) < PUBLISHED_DEG * DEG for v in found.values())
+    found = [b.name for b in offsets.branches() if offsets.evaluate(b.name, -110 * DEG)[1][0]]
+    assert found == ["theta3_m63_at_theta2_m80", "theta3_m124_at_theta2_m80"]  # the two published roots
 
 
-def test_fig_4_5_bennett_branch_obeys_tan_theta1_tan_theta2_equal_sqrt2_and_published_values():
+def test_fig_4_5_bennett_branch_obeys_tan_theta1_tan_theta2_equal_sqrt2():
     kin = model(FIG_4_5)
     x = np.linspace(-np.pi, np.pi, 361)[1:-1]
     values = kin.joint_angles("bennett_theta3_pi", x)
@@ -213,29 +157,30 @@ def test_fig_4_5_bennett_branch_obeys_tan_theta1_tan_theta2_equal_sqrt2_and_publ
     # Measured relative error 2.7e-14 away from theta2 = 0 (where tan(theta1/2) blows up).
     away = np.abs(x) > 0.05
     np.testing.assert_allclose(product[away], np.sqrt(2), rtol=1e-9)
-    for theta1, theta2 in ((30, 158.5428), (90, 109.4712), (150, 41.5071)):
-        assert_published(angles_deg(kin, "bennett_theta3_pi", theta2), (theta1, theta2, 180, theta1, 180, theta2))
+
+
+@pytest.mark.parametrize("entry", checked_by(feng2018.NUMBERS, "test_fig_4_5_bennett_branch_published_values"), ids=str)
+def test_fig_4_5_bennett_branch_published_values(entry):
+    entry.check()
 
 
 def test_case_9_bennett_branch_closes_and_meets_both_halves_at_the_published_configurations():
     kin = model(TABLE_4_1[9])
     loops = kin.loop_system()
     theta1 = np.deg2rad(np.array([30.0, 60.0, 90.0, 120.0, 150.0, 170.0]))
-    theta3 = 2 * np.arctan(-np.tan(theta1 / 2) / np.sqrt(2))  # seed000 M5, Fig. 4-4 [NEW]
+    theta3 = feng2018.case_9_bennett_theta3(theta1)
     q = np.stack([theta1, np.full(6, np.pi), theta3, theta1, theta3, np.full(6, np.pi)], -1)
     # Measured 1.1e-15: the Bennett 4R theta2 = theta6 = pi of eqn 4-30.
     assert np.max(loops.residual_norm(q)) <= TOLERANCES.closed_form_residual
-    np.testing.assert_allclose(np.rad2deg(theta3), [-21.4572, -44.4153, -70.5288, -101.5370, -138.4929, -165.8935],
-                               atol=PUBLISHED_DEG)  # fmt: skip
     meets = {e.branches[0]: e for e in kin.events() if e.kind == "bifurcation"}
     assert set(meets) == {"theta3_0_at_theta2_180", "theta3_180_at_theta2_180"}
-    for name, expected in (
-        ("theta3_0_at_theta2_180", (0, 180, 0, 0, 0, 180)),
-        ("theta3_180_at_theta2_180", (180,) * 6),
-    ):
+    for name in ("theta3_0_at_theta2_180", "theta3_180_at_theta2_180"):
         assert meets[name].input == pytest.approx(np.pi, abs=1e-12)
         assert "Bennett" in meets[name].detail
-        assert_published(angles_deg(kin, name, 180.0), expected)
+    # theta3 of the Bennett branch and the configurations where it meets both halves
+    check_every(
+        feng2018.NUMBERS, "test_case_9_bennett_branch_closes_and_meets_both_halves_at_the_published_configurations"
+    )
 
 
 # ---------------------------------------------------------------------------------------------
@@ -297,9 +242,9 @@ def test_case_9_theta2_covers_only_part_of_the_circle_and_turns_back():
     kin = model(TABLE_4_1[9])
     for b in kin.branches():
         lo, hi = b.domain
-        # seed000: Delta >= 0 iff |theta2| >= 71.67 deg (60.2 % of the circle).
-        assert np.rad2deg(lo) == pytest.approx(71.6692, abs=1e-4)
-        assert np.rad2deg(hi) == pytest.approx(360 - 71.6692, abs=1e-4)
+        # Delta >= 0 iff |theta2| >= 71.67 deg (60.2 % of the circle), symmetric about theta2 = 180 deg
+        [lower] = checked_by(feng2018.NUMBERS, "test_case_9_theta2_covers_only_part_of_the_circle_and_turns_back")
+        assert lower.difference(np.rad2deg(lo)) <= lower.tol and lower.difference(360 - np.rad2deg(hi)) <= lower.tol
         assert "not fully rotatable" in b.description and "60.2 %" in b.description
     turning = sorted(e.input for e in kin.events() if e.kind == "turning_point")
     np.testing.assert_allclose(turning, list(kin.branches()[0].domain), atol=0)
@@ -338,11 +283,11 @@ def test_case_10_bifurcations_are_the_two_collinear_configurations_on_both_paths
     bif = sorted((e for e in kin.events() if e.kind == "bifurcation"), key=lambda e: e.input)
     assert [e.input for e in bif] == [0.0, np.pi]
     names = {"theta1_eq_theta4", "theta1_plus_theta4_eq_2theta2"}
-    for e, expected in zip(bif, [(180, 0, 180, 180, 180, 0), (0, 180, 0, 0, 0, 180)], strict=True):
+    for e in bif:
         assert set(e.branches) == names
-        for name in names:
-            assert_published(angles_deg(kin, name, np.rad2deg(e.input)), expected)
         assert "instantaneous mobility 2" in e.detail
+    # both paths at theta2 = 0 and 180 deg are the published collinear configurations
+    check_every(feng2018.NUMBERS, "test_case_10_bifurcations_are_the_two_collinear_configurations_on_both_paths")
 
 
 @pytest.mark.parametrize("case, explicit, count", [(10, True, 2), (10, False, 2), (5, True, 1), (6, True, 2)])

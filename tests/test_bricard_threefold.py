@@ -5,19 +5,18 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from published import check_every, checked_by, yang2017
 
 import sim_origami.scenes.bricard_threefold  # noqa: F401  (registers the scene)
 from sim_origami import scenes
 from sim_origami.errors import DomainError, ParameterError
-from sim_origami.geometry import transform_z, wrap
+from sim_origami.geometry import wrap
 from sim_origami.kinematics.bricard_threefold import AGAINST, ALONG, BricardThreefold
 from sim_origami.kinematics.dh import DHRow
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
 
 DEG = np.pi / 180
-# Seed 001 §6 case 8 publishes phi to 4 decimals in degrees: half a unit of the last place.
-PUBLISHED_DEG = 5e-5
 HYPOTHESIS = settings(max_examples=25, deadline=None, derandomize=True, database=None)
 # One alpha of each kind: cos^2 alpha > 1/4 (disjoint), = 1/4 (bifurcating), < 1/4 (turning).
 ALPHAS = [30.0, 90.0, 120.0, 200.0, 250.0, 300.0]
@@ -32,14 +31,7 @@ def inputs(m: BricardThreefold, branch: str, n: int, shrink: float = 1.0) -> np.
     return np.linspace(shrink * lo, shrink * hi, n)
 
 
-def frames(m: BricardThreefold, q: np.ndarray) -> np.ndarray:
-    """World frames (6, 4, 4) of joints 1..6 from the D-H product (frame 1 = world), no closed form."""
-    loop = m.loop_system().loops[0]
-    out, T = [], np.eye(4)
-    for k in range(6):
-        out.append(T)
-        T = T @ transform_z(q[k]) @ loop.links[k]
-    return np.array(out)
+frames = yang2017.joint_frames
 
 
 def lean(m: BricardThreefold, q: np.ndarray) -> float:
@@ -55,65 +47,32 @@ def lean(m: BricardThreefold, q: np.ndarray) -> float:
     return float(F[1, :3, 2] @ u)
 
 
-# --- seed 001 published numbers ---------------------------------------------------------------
-
-# Seed 001 §6 case 8 (twists 300/60 deg, the axes as printed): theta -> (phi on along, phi on against)
-CASE8 = [
-    (0.0, 120.0, -120.0),
-    (30.0, 103.0036, -133.5265),
-    (60.0, 80.4156, -144.8241),
-    (90.0, 48.4069, -154.6671),
-    (129.31, -19.9903, -166.2084),
-    (150.0, -75.3342, -171.9186),
-    (170.0, -142.9811, -177.3189),
-    (179.0, -176.2683, -179.7320),
-]
+# --- Yang 2017's numbers: tests/published/yang2017.py -------------------------------------------------------
 
 
 @pytest.mark.parametrize("alpha", [300.0, 60.0])
 def test_case8_phi_roots(alpha):
     # 300/60 as printed; 60/300 gives the same closure (only cos alpha and sin^2 alpha enter).
-    m = model(alpha)
-    theta = np.array([row[0] for row in CASE8]) * DEG
-    for branch, col in ((ALONG, 1), (AGAINST, 2)):
-        got = m.joint_angles(branch, theta)[:, 1]
-        want = np.array([row[col] for row in CASE8]) * DEG
-        # measured worst 4.9e-5 deg (rounding of the published 4th decimal)
-        assert np.max(np.abs(wrap(got - want))) / DEG <= PUBLISHED_DEG
+    # measured worst 4.9e-5 deg (rounding of the 4th decimal)
+    for entry in checked_by(yang2017.NUMBERS, "test_case8_phi_roots"):
+        theta = float(entry.quantity.split("theta = ")[1].split(" deg")[0])
+        assert entry.difference(yang2017.threefold_phi(alpha, theta)) <= entry.tol, entry
 
 
 def test_ch2_example_with_even_axes_reversed_has_phi_negated():
-    # Seed 001 §2.5 CORRECTION (2-9): reversing the axes at B, D, F gives twists (120, 240) deg, alpha = 2 pi/3,
-    # and by the axis-reversal rule (§2.0) negates phi: theta = 129.31 -> phi = +19.990 / +166.208.
-    m = model(120.0)
-    x = 129.31 * DEG
-    got = {b: m.joint_angles(b, x)[0, 1] / DEG for b in (ALONG, AGAINST)}
-    # alpha -> pi - alpha negates phi and swaps the names (z2 flips against u)
-    assert abs(got[AGAINST] - 19.9903) <= PUBLISHED_DEG  # measured 2.6e-5 deg
-    assert abs(got[ALONG] - 166.2084) <= PUBLISHED_DEG  # measured 2.7e-5 deg
+    # Eqn 2-9 corrected: reversing the axes at B, D, F gives twists (120, 240) deg, alpha = 2 pi/3, and by the
+    # axis-reversal rule negates phi: theta = 129.31 -> phi = +19.990 / +166.208; alpha -> pi - alpha negates phi
+    # and swaps the names (z2 flips against u). Measured 2.6e-5 and 2.7e-5 deg.
+    check_every(yang2017.NUMBERS, "test_ch2_example_with_even_axes_reversed_has_phi_negated")
 
 
 def test_ch2_joint_coordinates_are_reproduced_up_to_a_rigid_motion():
-    # Seed 001 §2.5 (2-10, 2-11): joints A..F and second axis points X' = X + 0.1 s_X, printed to 4 decimals.
-    printed = np.array(
-        [
-            [0, 1.1372, 0.1569], [-0.4280, 0.2471, 0], [-0.9848, -0.5686, 0.1569],
-            [0, -0.4943, 0], [0.9848, -0.5686, 0.1569], [0.4281, 0.2471, 0],
-            [0, 1.1198, 0.2554], [-0.3498, 0.2019, 0.0428], [-0.9698, -0.5599, 0.2554],
-            [0, -0.4039, 0.0428], [0.9698, -0.5599, 0.2554], [0.3498, 0.2019, 0.0428],
-        ]
-    )  # fmt: skip
-    m = model(300.0)
-    F = frames(m, m.joint_angles(ALONG, 129.31 * DEG)[0])
-    ours = np.concatenate([F[:, :3, 3], F[:, :3, 3] + 0.1 * F[:, :3, 2]])
-    # Kabsch: best proper rotation + translation of ours onto the printed points
-    a, b = ours - ours.mean(0), printed - printed.mean(0)
-    U, _, Vt = np.linalg.svd(a.T @ b)
-    d = np.sign(np.linalg.det(Vt.T @ U.T))
+    # Eqns 2-10, 2-11: joints A..F and second axis points X' = X + 0.1 s_X, printed to 4 decimals, against ours
+    # moved by the best proper rotation + translation (Kabsch)
+    _, d = yang2017.ch2_fitted_points()
     assert d == 1.0  # a proper rotation: the printed linkage is this one, not its mirror image
-    fitted = a @ (Vt.T @ np.diag([1.0, 1.0, d]) @ U.T).T + printed.mean(0)
     # measured worst 5.8e-5 m per coordinate: the 4-decimal rounding (5e-5) plus that of theta = 129.31 deg
-    assert np.max(np.abs(fitted - printed)) < 1e-4
+    check_every(yang2017.NUMBERS, "test_ch2_joint_coordinates_are_reproduced_up_to_a_rigid_motion")
 
 
 # Seed 001 §2.5 closed path (truss continuation, 2 decimals): (step, theta, phi, branch it lies on).

@@ -4,6 +4,7 @@ ch. 4 (digest §2.6, validation cases 10, 11, 20) and the numeric loop closure o
 
 import numpy as np
 import pytest
+from published import check_every, checked_by, yang2017
 
 from sim_origami import scenes
 from sim_origami.errors import DomainError, ParameterError
@@ -53,15 +54,6 @@ def foot(p0: np.ndarray, s0: np.ndarray, p1: np.ndarray, s1: np.ndarray) -> np.n
     return p1 + ((s1 @ w) - b * (s0 @ w)) / (1 - b * b) * s1
 
 
-def theta_at_bd(model: CuboctahedronOctahedron, bd: float) -> float:
-    """Input at which the diagonal BD (m) is reached (BD grows monotonically with theta, digest §2.6)."""
-    lo, hi = model.domain
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if model.diagonals(mid)["BD"][0] < bd else (lo, mid)
-    return 0.5 * (lo + hi)
-
-
 def overlap(T1: np.ndarray, T2: np.ndarray) -> float:
     """Length (m) of the intersection of two non-coplanar triangles (3, 3): 0 when they only touch at a point."""
 
@@ -81,7 +73,7 @@ def overlap(T1: np.ndarray, T2: np.ndarray) -> float:
     return max(0.0, min(max(s1), max(s2)) - max(min(s1), min(s2)))
 
 
-# --- seed 001 numbers -------------------------------------------------------------------------------------------
+# --- Yang 2017's numbers (tests/published/yang2017.py) --------------------------------------------------
 
 
 def test_bennett_parameters_match_case_10(model):
@@ -100,13 +92,11 @@ def test_bennett_parameters_match_case_10(model):
     assert (ext["B"], ext["D"]) == pytest.approx((2 * np.sqrt(10) / 7,) * 2, abs=1e-14)
     # (4-10): a^2 + c^2 + d^2 - 2 c d cos(alpha) = 1 exactly
     assert model.rows[0].a ** 2 + ext["A"] ** 2 + ext["B"] ** 2 - 2 * ext["A"] * ext["B"] * 0.4 == pytest.approx(1.0)
-    # (4-7): gamma1 = angle(s_C, CB) = 71.57 deg (cos = 1/sqrt 10), gamma2 = angle(s_C, CF) = 50.77 deg
-    s_c = unit(AXES["C"])
-    g1, g2 = (np.arccos(s_c @ unit(VERTICES[v] - VERTICES["C"])) for v in "BF")
-    assert (g1 / DEG, g2 / DEG) == pytest.approx((71.57, 50.77), abs=5e-3)  # printed to 0.01 deg
+    # (4-7): gamma1 = angle(s_C, CB) = 71.57 deg (cos = 1/sqrt 10), gamma2 = angle(s_C, CF) = 50.77 deg, printed
+    # to 0.01 deg; (4-29): theta_d, phi_d = -154.79, -58.41 deg in the thesis, +154.7912, +58.4119 with the printed axes
+    check_every(yang2017.NUMBERS, "test_bennett_parameters_match_case_10")
+    g1, g2 = yang2017.axis_angles_at_c() * DEG
     assert (np.cos(g1), np.cos(g2)) == pytest.approx((1 / np.sqrt(10), np.sqrt(0.4)), abs=1e-15)
-    # (4-29): theta_d, phi_d = -154.79, -58.41 deg in the thesis, +154.7912, +58.4119 with the printed axes
-    assert (model.theta_d / DEG, model.phi_d / DEG) == pytest.approx((154.791, 58.412), abs=1e-3)
     assert model.theta_d == pytest.approx(THETA_D, abs=1e-14)  # tan(theta_d/2) = 2 sqrt 5 (4-28, digest sign)
     assert model.phi(THETA_D) == pytest.approx(model.phi_d, abs=1e-14)  # the closed form starts on the axes
 
@@ -117,14 +107,10 @@ def test_deployed_design_equations(model):
     cos_2g1, cos_2g2 = (cp + 1) / (ct - 1), (ct + 1) / (cp - 1)
     assert (cos_2g1, cos_2g2) == pytest.approx((-0.8, -0.2), abs=1e-14)  # (4-23), (4-24)
     assert np.sqrt(cos_2g1 * cos_2g2) == pytest.approx(0.4, abs=1e-14)  # (4-25): alpha = arccos 0.4
-    cg1, cg2, ca = np.sqrt((1 + cos_2g1) / 2), np.sqrt((1 + cos_2g2) / 2), 0.4
-    t3 = np.sqrt((1 + cp) * (1 - ct) / (-2 * (ct + cp)))  # (4-30) corrected
-    t4 = np.sqrt((1 + ct) * (1 - cp) / (-2 * (ct + cp)))
-    assert (t3, t4) == pytest.approx((1.951800, 0.243975), abs=1e-6)  # printed to 1e-6
-    term_a = 1 + t3**2 + t4**2 + 2 * t3 * t4 * ca
-    term_b = -t3 / cg1 + t4 / cg2 + (t3 / cg2) * ca - (t4 / cg1) * ca
-    term_c = 1 / (4 * cg1**2) + 1 / (4 * cg2**2) - ca / (2 * cg1 * cg2) - 1
-    assert (term_a, term_b, term_c) == pytest.approx((5.25, -4.860556, 1.125), abs=1e-6)  # (4-33)
+    cg1, cg2 = np.sqrt((1 + cos_2g1) / 2), np.sqrt((1 + cos_2g2) / 2)
+    # tan(theta3), tan(theta4) of (4-30) corrected and the terms of (4-33), to 1e-6
+    check_every(yang2017.NUMBERS, "test_deployed_design_equations")
+    t3, t4, term_a, term_b, term_c = yang2017.design_terms()
     assert term_b**2 - 4 * term_a * term_c == pytest.approx(0.0, abs=1e-12)  # [NEW] discriminant 0 (measured 1.1e-14)
     a = -term_b / (2 * term_a)  # (4-32)
     assert a == pytest.approx(model.rows[0].a, abs=1e-13)
@@ -132,13 +118,11 @@ def test_deployed_design_equations(model):
     assert (c, d) == pytest.approx((3 * np.sqrt(10) / 14, 2 * np.sqrt(10) / 7), abs=1e-13)
 
 
-@pytest.mark.parametrize("theta, phi, ac, bd", [(120, 110.570, 1.54826, 0.97136), (90, 136.397, 1.49712, 0.51643)])
-def test_bennett_samples_case_10(model, theta, phi, ac, bd):
-    """Case 10: lengths to its 1e-5 (measured <= 4.4e-6 m); phi is printed to 1e-3 deg, so half of that (measured
-    1.8e-4 deg at 90 deg, the rounding of the printed value)."""
-    d = model.diagonals(theta * DEG)
-    assert model.phi(theta * DEG) / DEG == pytest.approx(phi, abs=5e-4)
-    assert (d["AC"][0], d["BD"][0]) == pytest.approx((ac, bd), abs=1e-5)
+@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_bennett_samples_case_10"), ids=str)
+def test_bennett_samples_case_10(entry):
+    """Case 10: lengths to its 1e-5 (measured <= 4.4e-6 m); phi is given to 1e-3 deg, so half of that (measured
+    1.8e-4 deg at 90 deg, the rounding of the value)."""
+    entry.check()
 
 
 def test_fold_case_10(model):
@@ -146,7 +130,7 @@ def test_fold_case_10(model):
     angle ABC = 90 deg; (4-41) corrected: tan(theta_f/2) = -sqrt(5)/4 in the thesis's sign."""
     lo, hi = model.domain
     assert (lo, hi) == (THETA_F, THETA_D)
-    assert (lo / DEG, model.phi(lo) / DEG) == pytest.approx((58.4119, 154.7912), abs=1e-4)
+    check_every(yang2017.NUMBERS, "test_fold_case_10")
     assert (lo, model.phi(lo)) == pytest.approx((model.phi_d, model.theta_d), abs=1e-14)
     assert -np.tan(lo / 2) == pytest.approx(-np.sqrt(5) / 4, abs=1e-15)
     P = model.vertices(lo)[0]
@@ -189,28 +173,13 @@ def test_volume_ratio(model):
     assert np.all(np.diff(v) > 0)
 
 
-# Digest §2.6 path table (truss continuation, ground ABE; case 11 tolerance 2e-3): BD -> AI, EF, AC, EH, BJ (m).
-# Measured agreement 1.5e-4 or better (the table is printed to 1e-4).
-PATH = [
-    (1.2000, 1.2280, 1.0261, 1.5316, 1.4955, 1.6911),
-    (1.0002, 1.0011, 0.7484, 1.5490, 1.5352, 1.7759),
-    (0.7994, 0.7733, 0.5338, 1.5350, 1.5490, 1.7757),
-    (0.5996, 0.5591, 0.3644, 1.5094, 1.5416, 1.7262),
-    (0.4993, 0.4569, 0.2912, 1.4945, 1.5308, 1.6885),
-    (0.3006, 0.2650, 0.1634, 1.4634, 1.4966, 1.5947),
-    (0.0995, 0.0845, 0.0510, 1.4307, 1.4454, 1.4785),
-    (0.0100, 0.0084, 0.0050, 1.4159, 1.4175, 1.4209),
-    (0.0010, 0.0008, 0.0005, 1.4144, 1.4145, 1.4149),
-]
-
-
-@pytest.mark.parametrize("row", PATH)
-def test_path_matches_seed_table(model, row):
-    theta = theta_at_bd(model, row[0])
+@pytest.mark.parametrize(
+    "entry", checked_by(yang2017.NUMBERS, "test_cuboctahedron.py::test_path_matches_seed_table"), ids=str
+)
+def test_path_matches_seed_table(model, entry):
+    entry.check()  # < 3e-4: measured 1.5e-4 (4 decimals, truss tolerance; case 11's tolerance is 2e-3)
+    theta = yang2017.theta_at_bd(entry.value[0])
     d = model.diagonals(theta)
-    got = [d[k][0] for k in ("BD", "AI", "EF", "AC", "EH", "BJ")]
-    assert got == pytest.approx(row, abs=2e-3)
-    assert np.max(np.abs(np.array(got) - row)) < 3e-4  # measured 1.5e-4 (printed to 1e-4, truss tolerance)
     P = model.vertices(theta)[0]
     ik, jl = (np.linalg.norm(P[INDEX[a]] - P[INDEX[b]]) for a, b in ("IK", "JL"))
     assert (ik, jl) == pytest.approx((d["AC"][0], d["BD"][0]), abs=1e-14)  # IJKL mirrors ABCD
@@ -219,11 +188,7 @@ def test_path_matches_seed_table(model, row):
 def test_path_maxima(model):
     """Digest §2.6: AC = 1.5492 at BD ~ 1.02; EH = 1.5492 at BD ~ 0.78; BJ = 1.7836 at BD ~ 0.90 (printed to 1e-4
     and 0.01; measured 1.549193 at 1.0215, 1.549193 at 0.7746, 1.783612 at 0.9048 on 20001 samples)."""
-    d = model.diagonals(np.linspace(*model.domain, 20001))
-    for key, peak, at in (("AC", 1.5492, 1.02), ("EH", 1.5492, 0.78), ("BJ", 1.7836, 0.90)):
-        k = int(np.argmax(d[key]))
-        assert d[key][k] == pytest.approx(peak, abs=1e-4)
-        assert d["BD"][k] == pytest.approx(at, abs=0.01)
+    check_every(yang2017.NUMBERS, "test_path_maxima")
 
 
 # --- closure: closed form and the numeric loop system ------------------------------------------------------------

@@ -3,6 +3,7 @@ against seed 001 ch. 3 (digest §1.7, §2.2, §2.3, §6 cases 3-5, 7), the truss
 
 import numpy as np
 import pytest
+from published import check_every, checked_by, yang2017
 
 from sim_origami import scenes
 from sim_origami.errors import AssemblyError, ParameterError
@@ -17,7 +18,6 @@ from sim_origami.scenes.polyhedra import kutzbach
 from sim_origami.simulate import mujoco_mobility, simulate
 from sim_origami.studies.fabrication import (
     DEG,
-    FINE_LENGTH,
     NOMINAL,
     RSSR,
     VERY_COARSE,
@@ -29,16 +29,12 @@ from sim_origami.studies.fabrication import (
     output_error,
     peak,
     screw_mobility,
-    study,
     tilted,
     waggle,
 )
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.truss import analyse, truss_of
 
-# The digest prints degrees to 3 decimals (input locations to 0.1 deg): half a unit of the last place.
-PUBLISHED_DEG = 5e-4
-LOCATION_DEG = 0.05
 NOMINAL_RSSR = RSSR(*NOMINAL)
 D_ALPHA, D_L = VERY_COARSE
 CIRCLE = np.linspace(-np.pi, np.pi, 2001)
@@ -51,19 +47,13 @@ def counts(c) -> tuple[int, ...]:
 # --- the RSSR: key identity, (3-3)...(3-6) ----------------------------------------------------------------------
 
 
-@pytest.mark.parametrize(
-    ("a1", "a2", "alpha", "beta", "k_a", "k_b"),
-    [
-        (100, 70.72, 45, 30.0044, -4.665482, 1.249732),
-        (101.5, 69.22, 45, 28.8309, -4.270901, 1.238316),
-        (100, 70.72, 46, 30.5784, -4.618156, 1.262539),
-    ],
-)
-def test_key_identity_rssr_is_the_bennett_with_implied_beta(a1, a2, alpha, beta, k_a, k_b):
-    # Digest §2.2 table (beta to 4 decimals, K to 6): the two roots of (b - a) T^2 - 2 b cos(alpha) T + (a + b) = 0.
+@pytest.mark.parametrize(("a1", "a2", "alpha"), [(100, 70.72, 45), (101.5, 69.22, 45), (100, 70.72, 46)])
+def test_key_identity_rssr_is_the_bennett_with_implied_beta(a1, a2, alpha):
+    # beta to 4 decimals, K to 6: the two roots of (b - a) T^2 - 2 b cos(alpha) T + (a + b) = 0
+    for entry in checked_by(yang2017.NUMBERS, "test_key_identity_rssr_is_the_bennett_with_implied_beta"):
+        if f"= {(a1, a2, alpha)}" in entry.where:
+            entry.check()
     rssr, other = RSSR(a1, a2, alpha * DEG), RSSR(a1, a2, alpha * DEG, root=-1)
-    assert rssr.beta / DEG == pytest.approx(beta, abs=5e-5)
-    assert (rssr.K, other.K) == pytest.approx((k_a, k_b), abs=5e-7)
     for K in (rssr.K, other.K):  # measured 1.4e-13 (terms up to 7e2)
         assert abs((a2 - a1) * K**2 - 2 * a2 * np.cos(alpha * DEG) * K + (a1 + a2)) < 1e-11
     b = rssr.beta
@@ -94,22 +84,13 @@ def test_rssr_closes_the_distance_cd_and_equals_printed_3_5():
 # --- fabrication errors (Sec. 3.5): seed numbers ----------------------------------------------------------------
 
 
-@pytest.mark.parametrize(
-    ("error", "exact", "at", "linear"),
-    [
-        # thesis [T] 0.58, 5.06, 0.53 (k = +1); digest verified and [NEW] k = -1 rows, linearised (k = +1)
-        (FabricationError(D_ALPHA, 0.0, 1), 0.584, 155.7, 0.577),
-        (FabricationError(0.0, D_L, 1), 5.061, 154.7, 5.447),
-        (FabricationError(0.0, D_L, -1), 5.639, 156.9, 5.221),  # linearised: ours [NEW]
-        (FabricationError(0.0, FINE_LENGTH, 1), 0.530, 155.7, 0.534),
-        (FabricationError(0.0, FINE_LENGTH, -1), 0.536, 155.9, 0.532),  # linearised: ours [NEW]
-    ],
-)
-def test_seed_output_errors(error, exact, at, linear):
-    s = study(NOMINAL_RSSR, error)
-    assert s.exact.value / DEG == pytest.approx(exact, abs=PUBLISHED_DEG)
-    assert s.exact.theta1 / DEG == pytest.approx(at, abs=LOCATION_DEG)
-    assert s.linearised.value / DEG == pytest.approx(linear, abs=PUBLISHED_DEG)
+@pytest.mark.parametrize("name", list(yang2017.FABRICATION_ERRORS))
+def test_seed_output_errors(name):
+    # the thesis prints 0.58, 5.06, 0.53 (k = +1); the k = -1 rows and the linearised values are ours [NEW]
+    error = yang2017.FABRICATION_ERRORS[name]
+    for entry in checked_by(yang2017.NUMBERS, "test_seed_output_errors"):
+        if entry.quantity.endswith(f"{name} (3 decimals)") or entry.quantity.endswith(f"{name} (0.1 deg)"):
+            entry.check()
     # the error is odd in theta1: the peak recurs at -theta1 (measured 0 difference)
     built = error.built(NOMINAL_RSSR)
     assert output_error(NOMINAL_RSSR, built, -CIRCLE) == pytest.approx(-output_error(NOMINAL_RSSR, built, CIRCLE))
@@ -118,10 +99,8 @@ def test_seed_output_errors(error, exact, at, linear):
 
 
 def test_output_error_near_half_turn_matches_digest():
-    # Digest §2.2 [NEW]: d_l = 1.5 mm, k = +1: 3.431 deg at theta1 = 170 deg, 0.394 at 179 deg.
-    built = FabricationError(0.0, D_L, 1).built(NOMINAL_RSSR)
-    got = output_error(NOMINAL_RSSR, built, np.array([170.0, 179.0]) * DEG) / DEG
-    assert got == pytest.approx([3.431, 0.394], abs=PUBLISHED_DEG)
+    # [NEW] d_l = 1.5 mm, k = +1: 3.431 deg at theta1 = 170 deg, 0.394 at 179 deg
+    check_every(yang2017.NUMBERS, "test_output_error_near_half_turn_matches_digest")
 
 
 def test_linearised_error_is_printed_3_42_and_the_derivative_of_the_exact_one():
@@ -149,15 +128,15 @@ def test_linearised_error_is_printed_3_42_and_the_derivative_of_the_exact_one():
 
 
 @pytest.mark.parametrize(
-    ("error", "seed", "printed"),
-    [(FabricationError(-D_ALPHA, 0.0, 1), 0.581, 0.821), (FabricationError(0.0, D_L, -1), 1.224, 1.669)],
+    ("error", "printed"), [(FabricationError(-D_ALPHA, 0.0, 1), 0.821), (FabricationError(0.0, D_L, -1), 1.669)]
 )
-def test_waggle_corrected_3_50(error, seed, printed):
-    # Digest §2.2: corrected (3-50) gives 0.581 / 1.224 deg (thesis 0.58 / 1.22); the printed normalisation by
-    # a2R would give 0.821 / 1.669. It equals the angle between CD of (3-48) and the nominal z_D.
+def test_waggle_corrected_3_50(error, printed):
+    # Corrected (3-50) gives 0.581 / 1.224 deg (thesis 0.58 / 1.22); the printed normalisation by a2R would give
+    # 0.821 / 1.669 (ours, 3 decimals). It equals the angle between CD of (3-48) and the nominal z_D.
+    check_every(yang2017.NUMBERS, "test_waggle_corrected_3_50")
+    check_every(yang2017.CORRECTIONS, "test_waggle_corrected_3_50")  # |CD| = a1R: 4.3e-14 mm; a2R misses by 26 mm
     nominal, built = NOMINAL_RSSR, error.built(NOMINAL_RSSR)
     w = max_waggle(nominal, built)
-    assert w.value / DEG == pytest.approx(seed, abs=PUBLISHED_DEG)
     # [NEW] the maximum is |beta_R - beta| (measured 1.0e-16 rad apart): the balls turn about the implied axes
     assert w.value == pytest.approx(abs(built.beta - nominal.beta), abs=1e-12)
     t1 = CIRCLE
@@ -170,7 +149,7 @@ def test_waggle_corrected_3_50(error, seed, printed):
     vector = np.abs(np.arcsin(C_D[:, 2] / built.a1))
     assert np.abs(vector - waggle(nominal, built, t1)).max() < 1e-13  # measured 2.4e-16 rad
     wrong = np.abs(np.arcsin(C_D[:, 2] / built.a2))  # (3-49) as printed
-    assert wrong.max() / DEG == pytest.approx(printed, abs=PUBLISHED_DEG)
+    assert wrong.max() / DEG == pytest.approx(printed, abs=5e-4)  # the printed (3-49)'s waggle, 3 decimals
 
 
 # --- the overconstrained forms with the same errors ------------------------------------------------------------

@@ -1,9 +1,10 @@
-"""Asymmetric Miura vertex (`sim_origami.kinematics.miura`) against seed 002 (digest part A)."""
+"""Asymmetric Miura vertex (`sim_origami.kinematics.miura`) against Kamrava et al. 2021."""
 
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from published import check_every, checked_by, kamrava2021
 
 from sim_origami.errors import DomainError, ParameterError
 from sim_origami.geometry import wrap
@@ -20,13 +21,8 @@ HYPOTHESIS = settings(max_examples=40, deadline=None, derandomize=True, database
 MIURA_SECTOR_DEG = st.floats(1.0, 89.0)
 
 
-def miura(alpha1_deg: float, alpha2_deg: float) -> MiuraVertex:
-    return MiuraVertex(np.deg2rad(alpha1_deg), np.deg2rad(alpha2_deg))
-
-
-def deg_outputs(vertex: MiuraVertex, branch: str, theta_deg) -> np.ndarray:
-    """Outputs (n, 6) in degrees at inputs theta given in degrees."""
-    return np.rad2deg(vertex.joint_angles(branch, np.deg2rad(theta_deg)))
+miura = kamrava2021.miura
+deg_outputs = kamrava2021.deg_outputs
 
 
 def domain_grid(vertex: MiuraVertex, branch: str, fraction: float = 1.0, n: int = 200) -> np.ndarray:
@@ -41,50 +37,38 @@ def assert_angles_close(actual, expected, atol: float) -> None:
 
 
 # ---------------------------------------------------------------------------------------------
-# Published numbers (digest seed002_004.md, Miura validation cases 1-7)
+# Worked values of Kamrava et al. 2021's equations (cases 1-7): tests/published/kamrava2021.py
 # ---------------------------------------------------------------------------------------------
 
-CASE1_THETA = [10, 20, 30, 40, 45, 50, 54]
-CASE1_PHI = [16.9774, 32.0720, 44.0307, 52.1183, 54.4567, 55.4107, 54.9574]
-CASE1_PSI = [1.5418, 6.5056, 15.5928, 28.3376, 34.9864, 40.8309, 44.4588]
-# Printed to 4 decimals in degrees: half a unit of the last digit. (The digest's 1e-6 deg analytic
-# tolerance cannot apply to values rounded to 1e-4 deg.)
-FOUR_DECIMALS_DEG = 5e-5
+FOUR_DECIMALS_DEG = kamrava2021.FOUR_DECIMALS_DEG
 
 
-def test_published_projection_angles_case1():
-    out = deg_outputs(miura(30, 60), "miura", CASE1_THETA)
-    np.testing.assert_allclose(out[:, PHI], CASE1_PHI, atol=FOUR_DECIMALS_DEG, rtol=0)
-    np.testing.assert_allclose(out[:, PSI], CASE1_PSI, atol=FOUR_DECIMALS_DEG, rtol=0)
+@pytest.mark.parametrize("entry", checked_by(kamrava2021.NUMBERS, "test_published_projection_angles_case1"), ids=str)
+def test_published_projection_angles_case1(entry):
+    entry.check()
 
 
 def test_published_spinal_crease_case1():
+    check_every(kamrava2021.NUMBERS, "test_published_spinal_crease_case1")
     a = spinal_crease(np.deg2rad(30), np.deg2rad(60), np.deg2rad(30))[0]
-    # Printed to 6 decimals: half a unit of the last digit.
-    np.testing.assert_allclose(a, [0.704918, 0.196721, 0.681463], atol=5e-7, rtol=0)
     # Measured 1e-16 (a unit vector by construction); 1e-14 leaves 100x margin.
     np.testing.assert_allclose(np.linalg.norm(a), 1.0, atol=1e-14, rtol=0)
 
 
-@pytest.mark.parametrize(
-    "theta, expected",
-    [
-        # (rho_a, rho_b, rho_c, rho_d): a is a mountain (negative), b, c, d are valleys.
-        (10, (-20, 34.4709, 20, 19.6999)),
-        (30, (-60, 100.3889, 60, 52.6590)),
-        (50, (-100, 164.0130, 100, 69.7434)),
-    ],
-)
-def test_published_fold_angles_case2(theta, expected):
-    out = deg_outputs(miura(30, 60), "miura", [theta])[0]
-    # Stated tolerance 1e-3 deg (values printed to 4 decimals).
-    np.testing.assert_allclose(out[RHO], expected, atol=1e-3, rtol=0)
+@pytest.mark.parametrize("entry", checked_by(kamrava2021.NUMBERS, "test_published_fold_angles_case2"), ids=str)
+def test_published_fold_angles_case2(entry):
+    # a is a mountain (negative), b, c, d are valleys; stated tolerance 1e-3 deg (values printed to 4 decimals).
+    assert entry.value[0] < 0 < min(entry.value[1:])
+    entry.check()
 
 
 def test_published_fold_angles_near_lock_case2():
-    out = deg_outputs(miura(30, 60), "miura", [54])[0]
-    # Stated tolerance 1e-3 deg.
-    np.testing.assert_allclose(out[[RHO_B, RHO_D]], [177.4631, 70.5089], atol=1e-3, rtol=0)
+    check_every(kamrava2021.NUMBERS, "test_published_fold_angles_near_lock_case2")
+
+
+@pytest.mark.parametrize("entry", checked_by(kamrava2021.CORRECTIONS, "test_corrections_of_printed_equations"), ids=str)
+def test_corrections_of_printed_equations(entry):
+    entry.check()
 
 
 def test_spinal_folds_are_twice_theta_with_opposite_assignment():
@@ -108,22 +92,14 @@ def test_phi_is_odd_and_psi_is_even_in_theta_case3(pair):
     np.testing.assert_allclose(minus[:, RHO], -plus[:, RHO], atol=tol, rtol=0)  # central symmetry
 
 
-@pytest.mark.parametrize(
-    "pair, limit_deg",
-    [
-        ((30, 60), 54.7356),
-        ((60, 30), 54.7356),
-        ((20, 70), 48.8063),
-        ((40, 50), 67.3780),
-        ((50, 80), 51.0652),
-        ((70, 80), 59.4884),
-        ((45, 45), 90.0),
-        ((60, 60), 90.0),
-    ],
-)
-def test_published_lock_angle_case4_and_6(pair, limit_deg):
+@pytest.mark.parametrize("entry", checked_by(kamrava2021.NUMBERS, "test_published_lock_angle_case4_and_6"), ids=str)
+def test_published_lock_angle_case4_and_6(entry):
+    entry.check()
+
+
+@pytest.mark.parametrize("pair", PAIRS)
+def test_miura_branch_domain_ends_at_the_lock_angle(pair):
     vertex = miura(*pair)
-    np.testing.assert_allclose(np.rad2deg(vertex.theta_limit), limit_deg, atol=FOUR_DECIMALS_DEG, rtol=0)
     assert vertex.branch("miura").domain == (-vertex.theta_limit, vertex.theta_limit)
 
 
@@ -137,27 +113,23 @@ def test_crease_next_to_smaller_sector_folds_flat_at_lock_case4(pair):
 
 
 def test_phi_at_lock_equals_lock_angle_case4():
-    vertex = miura(30, 60)
-    phi = np.rad2deg(vertex.joint_angles("miura", vertex.theta_limit)[0, PHI])
-    np.testing.assert_allclose(phi, 54.7356, atol=FOUR_DECIMALS_DEG, rtol=0)
+    check_every(kamrava2021.NUMBERS, "test_phi_at_lock_equals_lock_angle_case4")
 
 
 def test_phi_is_non_monotonic_with_published_maximum_case5():
     vertex = miura(30, 60)
-    theta = np.linspace(0.0, vertex.theta_limit, 100001)  # 5.5e-4 deg steps
-    phi = np.rad2deg(vertex.joint_angles("miura", theta)[:, PHI])
-    k = int(np.argmax(phi))
-    assert 0 < k < len(theta) - 1, "the maximum of phi is interior"
+    theta_max = kamrava2021.phi_maximum()[1]
+    assert 0 < theta_max < np.rad2deg(vertex.theta_limit), "the maximum of phi is interior (not a grid end)"
     # Stated tolerance 0.01 deg, far above the grid step.
-    np.testing.assert_allclose(phi[k], 55.4185, atol=0.01, rtol=0)
-    np.testing.assert_allclose(np.rad2deg(theta[k]), 50.475, atol=0.01, rtol=0)
+    check_every(kamrava2021.NUMBERS, "test_phi_is_non_monotonic_with_published_maximum_case5")
 
 
-@pytest.mark.parametrize("alpha, phi30", [(45, 53.1301), (60, 81.7868)])
-def test_symmetric_vertex_has_zero_psi_and_closed_form_phi_case6(alpha, phi30):
+@pytest.mark.parametrize("alpha", [45, 60])
+def test_symmetric_vertex_has_zero_psi_and_closed_form_phi_case6(alpha):
     vertex = miura(alpha, alpha)
-    phi = deg_outputs(vertex, "miura", [30])[0, PHI]
-    np.testing.assert_allclose(phi, phi30, atol=FOUR_DECIMALS_DEG, rtol=0)
+    entries = checked_by(kamrava2021.NUMBERS, "test_symmetric_vertex_has_zero_psi_and_closed_form_phi_case6")
+    [entry] = [e for e in entries if e.where == f"sectors {alpha}/{alpha}"]
+    entry.check()
     theta = np.linspace(-0.99, 0.99, 199) * np.deg2rad(35)  # phi < 90 deg here, so a_x > 0
     out = vertex.joint_angles("miura", theta)
     assert np.all(out[:, PSI] == 0.0)
@@ -167,8 +139,7 @@ def test_symmetric_vertex_has_zero_psi_and_closed_form_phi_case6(alpha, phi30):
 
 
 def test_psi_uses_atan2_past_ninety_degrees_case7():
-    out = deg_outputs(miura(50, 80), "miura", [45])[0]
-    np.testing.assert_allclose(out[[PHI, PSI]], [100.4486, 105.7768], atol=FOUR_DECIMALS_DEG, rtol=0)
+    check_every(kamrava2021.NUMBERS, "test_psi_uses_atan2_past_ninety_degrees_case7")
 
 
 def test_spinal_crease_x_changes_sign_at_published_angle_case7():

@@ -6,17 +6,15 @@ import numpy as np
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
+from published import checked_by, peng2018
 
 from sim_origami.errors import DomainError, ParameterError
 from sim_origami.geometry import wrap
 from sim_origami.kinematics.vertex4 import Vertex4, flat_foldable_fold_angles, flat_foldable_multipliers
 
-# Seed 003 validation case 4: the generic developable vertex (2-34).
-CASE4_ALPHA = (np.pi / 2, 7 * np.pi / 18, np.pi / 3, 7 * np.pi / 9)
-# Seed 003 M6, Fig 3-2: alpha = 3pi/4, beta = pi/3, gamma = pi/4, delta = 2pi/3; type II is type I
-# with the sectors taken clockwise (alpha, delta, gamma, beta).
-TYPE_I_ALPHA = (3 * np.pi / 4, np.pi / 3, np.pi / 4, 2 * np.pi / 3)
-TYPE_II_ALPHA = (3 * np.pi / 4, 2 * np.pi / 3, np.pi / 4, np.pi / 3)
+# Peng 2018: the generic developable vertex (2-34) and the flat-foldable vertex of Fig 3-2 (alpha = 3pi/4,
+# beta = pi/3, gamma = pi/4, delta = 2pi/3; type II is type I with the sectors taken clockwise).
+CASE4_ALPHA, TYPE_I_ALPHA, TYPE_II_ALPHA = peng2018.CASE4_ALPHA, peng2018.TYPE_I_ALPHA, peng2018.TYPE_II_ALPHA
 # A developable vertex whose creases 1 and 3 are collinear (60 + 120 = 180 deg), not flat-foldable.
 COLLINEAR_ALPHA = tuple(np.deg2rad([60.0, 120.0, 100.0, 80.0]))
 
@@ -69,32 +67,28 @@ def fold_signs(rho: np.ndarray) -> np.ndarray:
 # ---------------------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize(
-    "x, branch, expected",
-    [
-        (0.5, "odd2", (-0.084225, 0.443379, 0.109452)),
-        (0.5, "odd3", (0.849175, -0.443379, 1.129539)),
-        (-0.5, "odd3", (-0.849175, 0.443379, -1.129539)),
-        (-0.5, "odd2", (0.084225, -0.443379, -0.109452)),
-    ],
-)
-def test_published_generic_vertex_case4(x, branch, expected):
-    rho = Vertex4(np.array(CASE4_ALPHA)).joint_angles(branch, x)[0]
-    assert rho[0] == x
-    # Published to 6 decimals: half a unit of the last digit.
-    np.testing.assert_allclose(rho[1:], expected, atol=5e-7, rtol=0)
+@pytest.mark.parametrize("entry", checked_by(peng2018.NUMBERS, "test_published_generic_vertex_case4"), ids=str)
+def test_published_generic_vertex_case4(entry):
+    # 6 decimals: half a unit of the last digit
+    entry.check()
+
+
+@pytest.mark.parametrize("x", [0.5, -0.5])
+@pytest.mark.parametrize("branch", ["odd2", "odd3"])
+def test_generic_vertex_keeps_its_input(x, branch):
+    assert Vertex4(np.array(CASE4_ALPHA)).joint_angles(branch, x)[0, 0] == x
 
 
 @pytest.mark.parametrize(
-    "branch, expected",
-    [("odd2", (-1.656368e-5, 8.887416e-5, 2.152044e-5)), ("odd3", (1.843836e-4, -8.887416e-5, 2.395610e-4))],
+    "entry", checked_by(peng2018.NUMBERS, "test_published_generic_vertex_case4_near_flat"), ids=str
 )
-def test_published_generic_vertex_case4_near_flat(branch, expected):
+def test_published_generic_vertex_case4_near_flat(entry):
+    branch = entry.quantity.split(" on ")[1].split()[0]
     vertex = Vertex4(np.array(CASE4_ALPHA))
     rho = vertex.joint_angles(branch, 1e-4)
-    # Printed to 7 significant digits whose last digit is off by up to 1.1 units (2.152044e-5 vs
-    # 2.1520429e-5 here, which closes to 5e-16 where the printed value closes to 6e-12): 1e-6 relative.
-    np.testing.assert_allclose(rho[0, 1:] / np.array(expected), 1.0, atol=1e-6, rtol=0)
+    # 7 significant digits whose last digit is off by up to 1.1 units (2.152044e-5 vs 2.1520429e-5 here, which
+    # closes to 5e-16 where the printed value closes to 6e-12): 1e-6 relative.
+    entry.check()
     # Measured 5.2e-16 (rounding floor of the loop product); 1e-15 leaves 2x.
     assert vertex.loop_system().residual_norm(rho)[0] < 1e-15
 
@@ -110,36 +104,22 @@ def test_near_flat_values_keep_full_absolute_precision(branch):
     np.testing.assert_allclose(vertex.joint_angles(branch, x), x[:, None] * slope, atol=1e-14, rtol=0)
 
 
-@pytest.mark.parametrize(
-    "alpha, mode, expected",
-    [
-        (TYPE_I_ALPHA, "S", (1, 1.454216, -1, 1.454216)),
-        (TYPE_I_ALPHA, "C", (1, 0.179279, 1, -0.179279)),
-        (TYPE_II_ALPHA, "S", (1, 2.556551, -1, 2.556551)),
-        (TYPE_II_ALPHA, "C", (1, 0.647286, 1, -0.647286)),
-    ],
-    ids=["I-S", "I-C", "II-S", "II-C"],
-)
-def test_published_flat_foldable_case7(alpha, mode, expected):
-    rho = Vertex4(np.array(alpha)).joint_angles(mode, 1.0)[0]
-    # Published to 6 decimals: half a unit of the last digit.
-    np.testing.assert_allclose(rho, expected, atol=5e-7, rtol=0)
-    np.testing.assert_allclose(flat_foldable_fold_angles(alpha, 1.0, mode)[0], expected, atol=5e-7, rtol=0)
+@pytest.mark.parametrize("entry", checked_by(peng2018.NUMBERS, "test_published_flat_foldable_case7"), ids=str)
+def test_published_flat_foldable_case7(entry):
+    # 6 decimals: half a unit of the last digit; the closed form of the flat-foldable vertex gives the same
+    entry.check()
+    kind = entry.where.split("type ")[1]
+    mode = entry.quantity.split("mode ")[1][0]
+    ff = flat_foldable_fold_angles(peng2018.TYPES[kind], 1.0, mode)[0]
+    assert entry.difference(ff) <= entry.tol
 
 
 @pytest.mark.parametrize(
-    "alpha, mode, expected",
-    [
-        (TYPE_I_ALPHA, "S", (1.628626, -0.614014, -1.628626, 0.614014)),
-        (TYPE_I_ALPHA, "C", (0.164525, 6.078116, -0.164525, -6.078116)),
-        (TYPE_II_ALPHA, "S", (6.078116, -0.164525, -6.078116, 0.164525)),
-        (TYPE_II_ALPHA, "C", (0.614014, 1.628626, -0.614014, -1.628626)),
-    ],
-    ids=["I-S", "I-C", "II-S", "II-C"],
+    "entry", checked_by(peng2018.NUMBERS, "test_flat_foldable_multipliers_match_table_m6"), ids=str
 )
-def test_flat_foldable_multipliers_match_table_m6(alpha, mode, expected):
-    # Published to 6 decimals: half a unit of the last digit.
-    np.testing.assert_allclose(flat_foldable_multipliers(alpha)[mode], expected, atol=5e-7, rtol=0)
+def test_flat_foldable_multipliers_match_table_m6(entry):
+    # 6 decimals: half a unit of the last digit
+    entry.check()
 
 
 def test_flat_foldable_multipliers_compose_to_one_around_the_vertex():

@@ -3,6 +3,7 @@ the geometry of scene `corrugated-sheet` (2 x 2 P units; closed-form poses and M
 
 import numpy as np
 import pytest
+from published import checked_by, peng2018
 
 import sim_origami.scenes.corrugated_sheet  # noqa: F401  (registers `corrugated-sheet`)
 from sim_origami import scenes
@@ -51,22 +52,10 @@ def measured(sc, q):
     return positions, gap, np.pi - np.abs(q[:, m.joint_index("u1_2")]), q[:, m.joint_index("u1_1")]
 
 
-@pytest.mark.parametrize(
-    ("element", "rows"),
-    [  # phi, W, H, L (digest M8 table; the printed phi 1.0472, 1.5708, 2.0944 are pi/3, pi/2, 2 pi/3: at the
-        # rounded phi W differs by up to 1.2e-6)
-        (1, ((np.pi / 3, 0.824937, 0.705701, 1.325076),
-             (np.pi / 2, 1.137055, 0.654654, 1.467314),
-             (2 * np.pi / 3, 1.380314, 0.530926, 1.668058))),
-        (2, ((np.pi / 3, 0.824937, 1.411402, 2.650152),
-             (np.pi / 2, 1.137055, 1.309307, 2.934628),
-             (2 * np.pi / 3, 1.380314, 1.061852, 3.336116))),
-    ],
-)  # fmt: skip
-def test_formulas_reproduce_the_digest_table(element, rows):
-    rows = np.array(rows)
-    d = element_formulas(rows[:, 0], ALPHA, BETA, element)
-    np.testing.assert_allclose(np.stack([d.W, d.H, d.L], axis=1), rows[:, 1:], rtol=0, atol=PRINTED)
+@pytest.mark.parametrize("entry", checked_by(peng2018.NUMBERS, "test_formulas_reproduce_the_digest_table"), ids=str)
+def test_formulas_reproduce_the_digest_table(entry):
+    # 6 decimals at phi = pi/3, pi/2, 2 pi/3 (the rounded phi 1.0472, 1.5708, 2.0944 would move W by up to 1.2e-6)
+    entry.check()
 
 
 def test_element_3_theta_is_the_printed_3_26_with_gamma_for_alpha():

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from published import checked_by, yang2017
 
 import sim_origami.scenes.myard  # noqa: F401  (registers the scene)
 from sim_origami import scenes
@@ -18,8 +19,6 @@ from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
 
 DEG = np.pi / 180
-# Seed 001 §2.3 / §6 case 6 publishes angles to 4 decimals in degrees: half a unit of the last place.
-PUBLISHED_DEG = 5e-5
 HYPOTHESIS = settings(max_examples=25, deadline=None, derandomize=True, database=None)
 
 
@@ -28,17 +27,10 @@ def circle(n: int = 721) -> np.ndarray:
     return np.linspace(-np.pi, np.pi, n)
 
 
-@pytest.mark.parametrize(
-    ("alpha12", "theta2", "theta5"),
-    [(50.0, 90.0, 270.0), (30.0, 64.4559, 295.5441), (70.0, 128.3039, 231.6961)],
-)
-def test_seed001_example_theta3_40_deg(alpha12, theta2, theta5):
-    # Seed 001 §2.3: theta3 = 40 deg gives theta1 = 100, theta4 = 220 (= -140) for every alpha12.
-    model = Myard(1.0, alpha12 * DEG)
-    got = np.rad2deg(model.joint_angles(BRANCH, 40 * DEG)[0])
-    want = np.array([100.0, theta2, 40.0, 220.0, theta5])
-    np.testing.assert_allclose(wrap((got - want) * DEG) / DEG, 0.0, atol=PUBLISHED_DEG, rtol=0)
-    assert np.isclose(np.mod(got[3] - 360.0, 360.0) - 360.0, -140.0, atol=PUBLISHED_DEG)
+@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_seed001_example_theta3_40_deg"), ids=str)
+def test_seed001_example_theta3_40_deg(entry):
+    # Yang 2017 ch. 2: theta3 = 40 deg gives theta1 = 100, theta4 = 220 (= -140) for every alpha12.
+    entry.check()
 
 
 def test_seed001_case6_dh_product_is_identity():

@@ -3,6 +3,7 @@ cases 10 and 11), the signed and unsigned loop solvers and MuJoCo."""
 
 import numpy as np
 import pytest
+from published import check_every, checked_by, peng2018
 
 import sim_origami.scenes.square_twist  # noqa: F401  (registers `square-twist`)
 from sim_origami import scenes
@@ -75,9 +76,8 @@ def test_every_assignment_obeys_maekawa_and_big_little_big(modes):
 
 def test_case10_multipliers_against_the_digest():
     m = edge_multipliers(ALPHA)
-    # seed value vs ours: m_C 1.732051 vs 1.7320508, m_S -0.577350 vs -0.5773503
-    assert m["C"] == pytest.approx(1.732051, abs=PRINTED)
-    assert m["S"] == pytest.approx(-0.577350, abs=PRINTED)
+    # m_C 1.732051 vs ours 1.7320508, m_S -0.577350 vs -0.5773503
+    check_every(peng2018.NUMBERS, "test_case10_multipliers_against_the_digest")
     vertex = flat_foldable_multipliers([ALPHA, np.pi / 2, np.pi - ALPHA, np.pi / 2])
     assert (m["C"], m["S"]) == pytest.approx((vertex["C"][1], vertex["S"][1]), abs=1e-15)  # M6 eqn 3-3 = M9
     for alpha in np.linspace(0.51 * np.pi, 0.99 * np.pi, 25):
@@ -155,33 +155,16 @@ def test_events_mobility_and_kutzbach():
         assert loops.mobility(model.joint_angles(modes, 1.0)[0]) == 1
 
 
-@pytest.mark.parametrize(
-    ("alpha", "rows"),
-    [  # theta, phi, L, S, H, nu_SL, nu_HL (digest M9, a = b = c = 1)
-        (5 * np.pi / 6, ((np.pi / 6, 0.869038, 1.566987, 1.456756, 0.631854, -0.398480, 9.186190),
-                         (np.pi / 3, np.pi / 2, 1.383975, 1.133975, 0.933013, -0.614521, 0.856406),
-                         (np.pi / 2, 2 * np.pi / 3, 1.133975, 0.883975, 0.933013, -1.039382, -0.526279),
-                         (2 * np.pi / 3, 2.498092, 0.883975, 0.733975, 0.733013, -1.729816, -1.468060),
-                         (5 * np.pi / 6, 2.834625, 0.700962, 0.657347, 0.401085, -2.567671, -5.040666))),
-        (3 * np.pi / 4, ((np.pi / 6, 1.148367, 1.905266, 1.582791, 0.998502, -0.249648, 6.159052),
-                         (np.pi / 3, 1.896924, 1.646447, 1.066352, 1.282208, -0.541313, 0.221755),
-                         (np.pi / 2, 2.356194, 1.292893, 0.792893, 1.207107, -1.226541, -0.535534),
-                         (2 * np.pi / 3, 2.672117, 0.939340, 0.662291, 0.932281, -2.583492, -1.123755),
-                         (5 * np.pi / 6, 2.920521, 0.680521, 0.602995, 0.508604, -4.607159, -3.462525))),
-        (2 * np.pi / 3, ((np.pi / 6, np.pi / 2, 2.250000, 1.500000, 1.299038, -0.166667, 3.000000),
-                         (np.pi / 3, 2.272555, 1.933013, 0.940927, 1.411390, -0.625933, -0.109581),
-                         (np.pi / 2, 2.617994, 1.500000, 0.750000, 1.299038, -2.000000, -0.500000),
-                         (2 * np.pi / 3, 2.834625, 1.066987, 0.674458, 1.011686, -5.192249, -1.013962),
-                         (5 * np.pi / 6, 2.998245, 0.750000, 0.642857, 0.556731, -10.500000, -3.095238))),
-    ],
-)  # fmt: skip
-def test_case11_metamaterial_tables(alpha, rows):
-    rows = np.array(rows)
-    unit = metamaterial_unit(alpha, rows[:, 0])
-    got = np.stack([unit.phi, unit.L, unit.S, unit.H, unit.nu_sl, unit.nu_hl], -1)
-    np.testing.assert_allclose(got, rows[:, 1:], atol=PRINTED, rtol=0)
+@pytest.mark.parametrize("alpha", [5 * np.pi / 6, 3 * np.pi / 4, 2 * np.pi / 3])
+def test_case11_metamaterial_tables(alpha):
+    # phi, L, S, H, nu_SL, nu_HL at a = b = c = 1, 6 decimals
+    for entry in checked_by(peng2018.NUMBERS, "test_case11_metamaterial_tables"):
+        if entry.where.endswith(f"alpha = {round(np.rad2deg(alpha))} deg"):
+            entry.check()
+    theta = np.deg2rad([30.0, 60.0, 90.0, 120.0, 150.0])
+    unit = metamaterial_unit(alpha, theta)
     # phi is crease DA of vertex A in mode C at rho_AB = theta: the square twist's own closed form
-    np.testing.assert_allclose(unit.phi, SquareTwist(alpha).joint_angles("CCSS", rows[:, 0])[:, 3], atol=1e-15, rtol=0)
+    np.testing.assert_allclose(unit.phi, SquareTwist(alpha).joint_angles("CCSS", theta)[:, 3], atol=1e-15, rtol=0)
     ca, sa = np.cos(alpha), np.sin(alpha)
     c31 = -ca * np.cos(unit.theta) + ca * np.cos(unit.phi) - sa * np.sin(unit.theta) * np.sin(unit.phi)
     assert np.max(np.abs(c31)) <= 1e-12  # eqn 3-31 on the C branch, measured 5.6e-16

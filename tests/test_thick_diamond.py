@@ -3,6 +3,7 @@
 
 import numpy as np
 import pytest
+from published import check_every, peng2018
 
 import sim_origami.scenes.thick_diamond  # noqa: F401  (registers the scene)
 from sim_origami import scenes
@@ -24,15 +25,11 @@ from sim_origami.validation import validate
 
 DEG = np.pi / 180
 BRANCHES = (DIAMOND, COUNTER)
-# Seed 003 publishes to 6 decimals (case 16 main branch) and 4 decimals (second flat branch): half a unit.
-PUBLISHED_6 = 5e-7
-PUBLISHED_4 = 5e-5
 # (alpha deg, p, q): r = p + q
 GEOMETRIES = ((30.0, 0.3, 0.5), (30.0, 0.03, 0.05), (10.0, 1.0, 0.01), (45.0, 0.01, 1.0), (20.0, 0.5, 0.5))
 
 
-def case16() -> ThickDiamond:
-    return ThickDiamond(np.pi / 6, 0.3, 0.5, 0.8)
+case16 = peng2018.thick_diamond
 
 
 def domain(n: int = 721) -> np.ndarray:
@@ -44,17 +41,14 @@ def test_case16_heights_and_published_main_branch():
     assert model.heights == pytest.approx([0.0, 0.3, -0.2, -1.0, -0.2, 0.3], abs=1e-15)
     assert model.sectors == pytest.approx(np.array([30.0, 120.0, 30.0, 30.0, 120.0, 30.0]) * DEG)
     q = model.at(DIAMOND, np.pi / 2)
-    # measured 1.0e-7 (rho) and 2.4e-7 rad (phi2)
-    for k in (2, 3, 5, 6):
-        assert abs(q[f"rho{k}"] + 1.714144) <= PUBLISHED_6
+    # measured 1.0e-7 (rho) and 2.4e-7 rad (phi2 = pi + rho2, eqn 4-38), 6 decimals
+    check_every(peng2018.NUMBERS, "test_case16_heights_and_published_main_branch")
     assert q["rho4"] == pytest.approx(np.pi / 2, abs=1e-15)
-    assert abs(np.pi + q["rho2"] - 1.427449) <= PUBLISHED_6  # phi2 = pi + rho2 (eqn 4-38)
 
 
 def test_case16_second_flat_branch_at_q1_0_5():
-    got = case16().joint_angles(COUNTER, 0.5)[0, 1:]
-    # measured worst 3.0e-5 rad (4 decimals published)
-    np.testing.assert_allclose(got, [-0.0844, 0.2242, -0.0342, 0.2242, -0.0844], atol=PUBLISHED_4, rtol=0)
+    # measured worst 3.0e-5 rad (4 decimals)
+    check_every(peng2018.NUMBERS, "test_case16_second_flat_branch_at_q1_0_5")
 
 
 def test_case16_line_fold_is_impossible_thick_and_possible_with_zero_thickness():
@@ -76,8 +70,8 @@ def test_case16_r_0_7_is_refused_and_moves_along_another_curve():
     x = np.linspace(0.02, np.pi / 2, 80)
     q = loops.follow(diamond_folds(np.pi / 6, x[0])[0], 0, x)[-1]
     phi = np.pi - np.abs(q)
-    # measured 4.5e-7 rad (6 decimals published)
-    np.testing.assert_allclose(phi[1:4], [1.257179, 1.047198, 1.010984], atol=PUBLISHED_6, rtol=0)
+    # measured 4.5e-7 rad (6 decimals)
+    check_every(peng2018.NUMBERS, "test_case16_r_0_7_is_refused_and_moves_along_another_curve")
     assert loops.residual_norm(q) < 1e-13
     assert abs(phi[3] - np.pi / 2) > 0.5  # the equivalent motion would have phi4 = phi1
 

@@ -3,6 +3,7 @@ against seed 003 M12 / case 15, the loop solver and MuJoCo."""
 
 import numpy as np
 import pytest
+from published import check_every, checked_by, peng2018
 
 import sim_origami.scenes.thick_vertex5  # noqa: F401  (registers the scene)
 from sim_origami import scenes
@@ -15,11 +16,10 @@ from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
 
 DEG = np.pi / 180
-# Seed 003 publishes angles to 6 decimals (rad): half a unit of the last place.
-PUBLISHED = 5e-7
-# Case 15: alpha = pi/6, a23 = 1 m, a12 = 0.5 m.
-CASE15_Q = np.array([1.570796, -1.244669, -0.785398, -0.785398, -1.244669])
-CASE15_PHI = np.array([np.pi / 2, 1.896924, 2.356194, 2.356194, 1.896924])
+# Case 15: alpha = pi/6, a23 = 1 m, a12 = 0.5 m; its fold angles at rho1 = pi/2 (Peng 2018, 6 decimals).
+[CASE15_Q_ENTRY] = [e for e in checked_by(peng2018.NUMBERS, "test_case15_published_fold_and_dihedral_angles")
+                    if e.quantity.startswith("fold angles")]  # fmt: skip
+CASE15_Q = CASE15_Q_ENTRY.value
 ALPHAS_DEG = (5.0, 30.0, 45.0, 60.0, 85.0)
 
 
@@ -32,9 +32,7 @@ def domain(n: int = 721) -> np.ndarray:
     return np.linspace(-np.pi, np.pi, n)
 
 
-def dihedral(q: np.ndarray) -> np.ndarray:
-    """Seed 003 (4-22) dihedral angles of fold angles q (n, 5): phi1 = pi - q1, phi_k = q_k + pi (mod 2 pi)."""
-    return np.column_stack([np.pi - q[:, 0], np.mod(q[:, 1:] + np.pi, 2 * np.pi)])
+dihedral = peng2018.dihedral
 
 
 def test_case15_published_fold_and_dihedral_angles():
@@ -42,9 +40,9 @@ def test_case15_published_fold_and_dihedral_angles():
     assert model.heights == pytest.approx([0.0, 0.5, 1.5, 1.5, 0.5], abs=1e-15)
     assert model.sectors == pytest.approx(np.array([30.0, 90.0, 120.0, 90.0, 30.0]) * DEG)
     q = model.joint_angles(BRANCH, np.pi / 2)
-    # measured 3.7e-7 (q) and 4.9e-7 rad (phi): the 6-decimal rounding
-    np.testing.assert_allclose(q[0], CASE15_Q, atol=PUBLISHED, rtol=0)
-    np.testing.assert_allclose(dihedral(q)[0], CASE15_PHI, atol=PUBLISHED, rtol=0)
+    # measured 3.7e-7 (q) and 4.9e-7 rad (phi): the 6-decimal rounding; phi1 = pi/2 exactly
+    check_every(peng2018.NUMBERS, "test_case15_published_fold_and_dihedral_angles")
+    assert dihedral(q)[0, 0] == pytest.approx(np.pi / 2, abs=1e-15)
 
 
 def test_case15_published_q_closes_thick_and_zero_thickness_loops():
@@ -110,14 +108,13 @@ def test_thick_mobility_is_one_at_flat_and_folded(x):
 @pytest.mark.parametrize("alpha", [30.0, 50.0, 70.0])
 def test_corrected_4_21b_holds_and_printed_4_20_fails(alpha):
     al = alpha * DEG
-    K, K2 = np.cos(al) / (1 - np.sin(al)), (1 + np.sin(al)) / (1 - np.sin(al))
+    K = np.cos(al) / (1 - np.sin(al))
     q = ThickVertex5(al, 1.0).joint_angles(BRANCH, np.linspace(0.2, 3.0, 57))
-    t1, t2 = np.tan(q[:, 0] / 2), np.tan(q[:, 1] / 2)
-    corrected = t2**2 - (2 * t2 / t1) * K - K2
-    printed = t2**2 - (t2 / (2 * t1)) * K - K2
+    t2 = np.tan(q[:, 1] / 2)
     # measured worst 4.3e-14 (corrected, alpha = 70 deg) against at least 0.30 (printed, alpha = 30 deg)
-    assert np.max(np.abs(corrected)) < 1e-12
-    assert np.min(np.abs(printed)) > 0.1
+    [correction] = checked_by(peng2018.CORRECTIONS, "test_corrected_4_21b_holds_and_printed_4_20_fails")
+    fixed, printed = correction.residuals((alpha,))
+    assert fixed < 1e-12 and printed > 0.1
     assert np.all(t2 < 0)  # the root with tan(rho2/2) < 0 for rho1 > 0
     # (4-18): t3/t2 = (1 - sin(alpha)) / cos(alpha) = 1/K
     assert np.max(np.abs(np.tan(q[:, 2] / 2) - t2 / K)) < 1e-12
@@ -126,15 +123,13 @@ def test_corrected_4_21b_holds_and_printed_4_20_fails(alpha):
 @pytest.mark.parametrize("alpha", [30.0, 50.0, 70.0])
 def test_corrected_4_23c_and_4_28c_hold_and_printed_sign_fails(alpha):
     al = alpha * DEG
-    K, K2 = np.cos(al) / (1 - np.sin(al)), (1 + np.sin(al)) / (1 - np.sin(al))
+    K = np.cos(al) / (1 - np.sin(al))
     phi = dihedral(ThickVertex5(al, 1.0).joint_angles(BRANCH, np.linspace(0.2, 3.0, 57)))
-    T1, T2, T3 = (np.tan(phi[:, k] / 2) for k in range(3))
-    corrected = 1 / T2**2 + (2 * T1 / T2) * K - K2
-    printed = 1 / T2**2 - (2 * T1 / T2) * K - K2
-    # measured worst 5.7e-14 (corrected) against at least 0.79 (printed; 6.0 near flat at 30 deg, the
-    # digest's "error 6.0")
-    assert np.max(np.abs(corrected)) < 1e-12
-    assert np.min(np.abs(printed)) > 0.5
+    T2, T3 = (np.tan(phi[:, k] / 2) for k in (1, 2))
+    # measured worst 5.7e-14 (corrected) against at least 0.79 (printed; 6.0 near flat at 30 deg)
+    [correction] = checked_by(peng2018.CORRECTIONS, "test_corrected_4_23c_and_4_28c_hold_and_printed_sign_fails")
+    fixed, printed = correction.residuals((alpha,))
+    assert fixed < 1e-12 and printed > 0.5
     # (4-23b) tan(phi2/2) = tan(phi3/2) / K, and phi4 = phi3, phi5 = phi2
     assert np.max(np.abs(T2 - T3 / K)) < 1e-12
     assert np.max(np.abs(phi[:, 3] - phi[:, 2])) < 1e-15 and np.max(np.abs(phi[:, 4] - phi[:, 1])) < 1e-15

@@ -4,6 +4,7 @@ closure and MuJoCo."""
 
 import numpy as np
 import pytest
+from published import check_every, checked_by, feng2018
 
 import sim_origami.scenes.twist_6r  # noqa: F401  (registers `triangle-twist-6r`)
 from sim_origami import scenes
@@ -38,7 +39,6 @@ from sim_origami.kinematics.triangle_twist import (
     verdict_table,
 )
 from sim_origami.kinematics.twist_6r import TwistSixR, compatible_angles, dh_rows
-from sim_origami.kinematics.vertex4 import Vertex4
 from sim_origami.report import write
 from sim_origami.scenes.triangle_twist import assigned  # (also registers `triangle-twist`)
 from sim_origami.simulate import simulate
@@ -67,19 +67,20 @@ def vertex_folds(q: np.ndarray, v: str) -> np.ndarray:
 # --- M1: the degree-4 vertex (validation cases 1, 2; digest correction 1) ---------------------------------------
 
 
-@pytest.mark.parametrize(
-    ("mode", "published"), [("S", (0.3, -0.7621, -0.3, -0.7621)), ("C", (0.3, -0.1960, 0.3, 0.1960))]
-)
-def test_case1_2_spherical_4r_vertex_families(mode, published):
+@pytest.mark.parametrize("mode", ["S", "C"])
+def test_case1_2_spherical_4r_vertex_families(mode):
     """Vertex-I (eqn 3-3a) is our mode S, Vertex-II (3-3b) mode C: same D-H twists, same signs."""
-    a12, a23 = 0.6, 1.2
-    got = Vertex4([a12, a23, np.pi - a12, np.pi - a23]).joint_angles(mode, 0.3)[0]
-    np.testing.assert_allclose(got, published, atol=5e-5, rtol=0)  # 4 decimals (rad): measured <= 4.8e-5
-    # eqn 3-4a, fourth ratio CORRECTED (digest 2.1): tan(phi4/2)/tan(phi1/2) = s-/s+ with phi = pi - |theta|
+    # 4 decimals (rad): measured <= 4.8e-5
+    [entry] = [
+        e
+        for e in checked_by(feng2018.NUMBERS, "test_case1_2_spherical_4r_vertex_families")
+        if f"mode {mode}" in e.quantity
+    ]
+    entry.check()
+    # eqn 3-4a, fourth ratio corrected: tan(phi4/2)/tan(phi1/2) = s-/s+ with phi = pi - |theta| (measured 2.2e-16),
+    # not the printed s-/s- = 1
     if mode == "S":
-        ratio = np.tan((np.pi - abs(got[3])) / 2) / np.tan((np.pi - abs(got[0])) / 2)
-        assert ratio == pytest.approx(np.sin((a23 - a12) / 2) / np.sin((a23 + a12) / 2), rel=1e-13)  # 4.4e-16
-        assert abs(ratio - 1.0) > 0.5  # the printed s-/s- = 1
+        check_every(feng2018.CORRECTIONS, "test_case1_2_spherical_4r_vertex_families")
 
 
 # --- M2: pattern, schemes, verdicts -----------------------------------------------------------------------------
@@ -106,13 +107,10 @@ def test_pattern_vertices_have_the_seed_sectors_and_assignment_obeys_maekawa(sch
 
 
 def test_case3_compatible_epsilon_against_the_seed():
-    """Eqn 3-12 (Fig. 3-5, scheme SSP) and the PSR formula; 4 printed decimals (deg)."""
-    for (alpha, beta, gamma, delta), published in (((55, 50, 50, 45), 35.4368), ((55, 50, 45, 45), 33.5166)):
-        eps = epsilon_formula("SSP", alpha * DEG, beta * DEG, gamma * DEG, delta * DEG)
-        assert abs(eps - published * DEG) <= DEC4  # ours 35.436776, 33.516640
-    assert abs(epsilon_formula("PSR", 30 * DEG, 80 * DEG, 90 * DEG, 45 * DEG) - 7.0355 * DEG) <= DEC4  # 7.035508
-    eps = epsilon_formula("PSR", 60 * DEG, 60 * DEG, 90 * DEG, 45 * DEG)
-    assert abs(eps - (-25.5288) * DEG) <= DEC4 and eps < 0  # -25.528779: no compatible pattern
+    """Eqn 3-12 (Fig. 3-5, scheme SSP) and the PSR formula; 4 decimals (deg): ours 35.436776, 33.516640, 7.035508,
+    -25.528779 (negative: no compatible pattern)."""
+    check_every(feng2018.NUMBERS, "test_case3_compatible_epsilon_against_the_seed")
+    assert epsilon_formula("PSR", 60 * DEG, 60 * DEG, 90 * DEG, 45 * DEG) < 0
     # Fig. 3-5: its only motion is SSP, with the digest's M/V (AB, BC, CA, A2, A3, B2, B3, C2, C3)
     model = TriangleTwist(angles_deg(*FIG_3_5, 35.436775581528764))
     assert [b.name for b in model.branches()] == ["SSP"]
@@ -244,55 +242,37 @@ def test_locked_scheme_cannot_leave_flat_in_mujoco_the_rigid_one_can():
 
 
 def test_case5_dh_data_and_motion_against_the_seed():
-    model = TwistSixR(compatible_angles(*(v * DEG for v in FIG_3_5)))
-    twists = wrap([r.alpha for r in model.rows])
-    np.testing.assert_allclose(twists, np.array([-5, 130, -9.5632, 105, 14.5632, 125]) * DEG, atol=DEC4, rtol=0)
-    R = [r.R for r in model.rows]
-    np.testing.assert_allclose(R, [8.11314, -8.789374, 2.959639, -3.609461, -2.416104, 1.828703], atol=5e-6, rtol=0)
+    model = feng2018.twist_6r(*FIG_3_5)
     assert all(r.a == 0 for r in model.rows) and abs(model.bricard_sum()) <= 1e-13  # eqn 2-14: 1.4e-14
-    assert (model.ka, model.kb) == pytest.approx((1.641116, 1.478778), abs=5e-7)
-    assert model.ka * model.kb == pytest.approx(2.4268, abs=5e-5)
-    published = {30: (-66.0696, -47.4736), 60: (-108.9688, -86.9116), 90: (-135.2111, -117.2886),
-                 120: (-153.2360, -141.2359), 150: (-167.3989, -161.4540)}  # fmt: skip
+    # D-H data, Ka, Kb and the path (theta4 = theta1, theta5 = theta2, theta6 = -theta3)
+    check_every(feng2018.NUMBERS, "test_case5_dh_data_and_motion_against_the_seed")
     loops = model.loop_system()
-    for t1, (t2, t3) in published.items():
-        q = model.joint_angles("SSP", t1 * DEG)
-        np.testing.assert_allclose(q[0], np.array([t1, t2, t3, t1, t2, -t3]) * DEG, atol=DEC4, rtol=0)
-        assert loops.residual_norm(q)[0] <= 1e-14  # digest: <= 4e-15; measured <= 3.3e-15
-    # eqn 3-39 as printed (tan(theta2/2) = +Ka Kb tan(theta1/2), ..., theta4 = -theta1) misses closure
-    x = np.linspace(-3, 3, 61)
-    t2, t3 = 2 * np.arctan(model.ka * model.kb * np.tan(x / 2)), 2 * np.arctan(model.ka * np.tan(x / 2))
-    assert np.max(loops.residual_norm(np.stack([x, t2, t3, -x, t2, t3], -1))) >= 1.0  # measured 1.88
+    for t1 in (30, 60, 90, 120, 150):
+        assert loops.residual_norm(model.joint_angles("SSP", t1 * DEG))[0] <= 1e-14  # measured <= 3.3e-15
+    # eqn 3-39 as printed (tan(theta2/2) = +Ka Kb tan(theta1/2), ..., theta4 = -theta1) misses closure: measured
+    # 1.88 >= 1.0, where the closed form closes to 4.2e-15
+    check_every(feng2018.CORRECTIONS, "test_case5_dh_data_and_motion_against_the_seed")
 
 
-@pytest.mark.parametrize(
-    ("joint", "published"),
-    [(0, (17.19, -40.28, -27.86, 17.19, -40.28, 27.86)), (1, (-7.13, 17.19, 11.67, -7.13, 17.19, -11.67)),
-     (2, (-10.52, 25.20, 17.19, -10.52, 25.20, -17.19)), (5, (10.52, -25.20, -17.19, 10.52, -25.20, 17.19))],
-)  # fmt: skip
-def test_case5_one_held_joint_admits_one_configuration(joint, published):
-    model = TwistSixR(compatible_angles(*(v * DEG for v in FIG_3_5)))
+@pytest.mark.parametrize("joint", [0, 1, 2, 5])
+def test_case5_one_held_joint_admits_one_configuration(joint):
+    model = feng2018.twist_6r(*FIG_3_5)
     found = model.loop_system().assemblies(joint, 0.3, starts=32, seed=1)
     assert len(found) == 1  # a single branch: every random start lands on the same pose
-    np.testing.assert_allclose(found[0], np.array(published) * DEG, atol=0.005 * DEG, rtol=0)  # 2 decimals: <= 0.0043
+    # 2 decimals: measured <= 0.0043 deg
+    entries = checked_by(feng2018.NUMBERS, "test_case5_one_held_joint_admits_one_configuration")
+    [entry] = [e for e in entries if f"joint {joint + 1} held" in e.quantity]
+    assert entry.difference(np.rad2deg(found[0])) <= entry.tol
     # and it is the closed form's pose at the theta1 it has
     assert np.max(np.abs(wrap(model.joint_angles("SSP", found[0][0])[0] - found[0]))) <= 1e-12
 
 
 def test_case6_parallel_pleats_the_new_6r():
-    model = TwistSixR(compatible_angles(55 * DEG, 50 * DEG, 45 * DEG, 45 * DEG))
-    assert model.angles.epsilon == pytest.approx(33.5166 * DEG, abs=DEC4)
-    twists = wrap([r.alpha for r in model.rows])
-    np.testing.assert_allclose(twists, np.array([0, 130, -11.4834, 105, 11.4834, 125]) * DEG, atol=DEC4, rtol=0)
-    R = [r.R for r in model.rows]
-    np.testing.assert_allclose(R, [0, -0.707107, 2.352154, -3.012110, -2.816828, 2.199659], atol=5e-7, rtol=0)
-    assert model.rows[0].a == pytest.approx(0.707107, abs=5e-7)
-    assert model.bricard_sum() == pytest.approx(4.685016, abs=5e-7)  # with R1 = 0 (digest §6.2)
-    assert (model.ka, model.ka * model.kb) == pytest.approx((1.5498, 2.2918), abs=5e-5)
+    model = feng2018.twist_6r(55, 50, 45, 45)
+    # epsilon, D-H data (a12, eqn 2-14's sum with R1 = 0), Ka, Ka Kb and theta at theta1 = 0.5 rad
+    check_every(feng2018.NUMBERS, "test_case6_parallel_pleats_the_new_6r")
     np.testing.assert_allclose(model.joint_angles("SSP", -np.pi / 2)[0], np.array([-90, 90, 0, 0, 0, 0]) * DEG,
                                atol=1e-15)  # fmt: skip
-    published = np.array([28.648, -60.977, -138.111, 118.648, -150.977, 138.111]) * DEG
-    np.testing.assert_allclose(model.joint_angles("SSP", 0.5)[0], published, atol=DEC3, rtol=0)
 
 
 @pytest.mark.parametrize("angles", [FIG_3_5, (55, 50, 45, 45), (55, 50, 40, 45), (55, 50, 60, 30), (70, 40, 30, 35)])

@@ -5,6 +5,7 @@ as hinge triples) and MuJoCo (spherical joints as ball joints)."""
 import mujoco
 import numpy as np
 import pytest
+from published import check_every, checked_by, yang2017
 
 from sim_origami import scenes
 from sim_origami.errors import DomainError, ParameterError
@@ -39,34 +40,18 @@ def edge_errors(P: np.ndarray) -> np.ndarray:
     return np.stack([np.abs(np.linalg.norm(P[:, INDEX[a]] - P[:, INDEX[b]], axis=-1) - 1.0) for a, b in EDGES], -1)
 
 
-def theta_at(model: TruncatedOctahedronCube, rho1: float) -> float:
-    """Input at which Bricard 1's fold angle rho1 (rad) is reached (rho1 falls monotonically, digest §2.7)."""
-
-    def rho(theta: float) -> float:  # angle B1 C2 C1 from Bricard 1 alone
-        p = model.bricard_points(np.array([theta]))
-        u, w = p["B1"][0] - p["C2"][0], p["C1"][0] - p["C2"][0]
-        return float(np.arctan2(np.linalg.norm(np.cross(u, w)), u @ w))
-
-    lo, hi = model.domain
-    for _ in range(50):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if rho(mid) > rho1 else (lo, mid)
-    return 0.5 * (lo + hi)
-
-
-# --- seed 001 numbers ---------------------------------------------------------------------------------------
+# --- Yang 2017, chapter 5 (tests/published/yang2017.py) --------------------------------------------------
 
 
 def test_bricard_parameters_match_case_12(model):
-    # Case 12: a = 0.713234, alpha = 214.7865 deg, theta_d = 34.3147, phi_d = 147.4964, theta_f = 166.1251,
-    # phi_f = 268.4470 deg; the seed's tolerance is 1e-3 deg (measured within 5e-5 deg of every value).
-    assert model.bricard.a == pytest.approx(0.713234, abs=5e-7)
-    assert model.bricard.alpha / DEG == pytest.approx(214.7865, abs=1e-3)
-    assert model.rows[1].alpha % (2 * np.pi) / DEG == pytest.approx(360 - 214.7865, abs=1e-3)
+    # Case 12: a, alpha, theta_d, phi_d, theta_f, phi_f; the example's tolerance is 1e-3 deg (measured within
+    # 5e-5 deg of every value)
+    check_every(yang2017.NUMBERS, "test_bricard_parameters_match_case_12")
+    [alpha] = [
+        e for e in checked_by(yang2017.NUMBERS, "test_bricard_parameters_match_case_12") if "alpha" in e.quantity
+    ]
+    assert alpha.difference(360 - model.rows[1].alpha % (2 * np.pi) / DEG) <= alpha.tol  # the even twists
     assert max(abs(r.R) for r in model.rows) < 1e-12  # offsets 0 (measured 4.6e-16 m)
-    lo, hi = model.domain
-    assert (lo / DEG, model.phi(lo)[0] / DEG) == pytest.approx((34.3147, 147.4964), abs=1e-3)
-    assert (hi / DEG, model.phi(hi)[0] % (2 * np.pi) / DEG) == pytest.approx((166.1251, 268.4470), abs=1e-3)
 
 
 @pytest.mark.slow
@@ -91,32 +76,20 @@ def test_end_state_is_the_cube(model):
 
 
 def test_volume_ratio(model):
-    """Ch. 5 abstract: 11.3 (printed to 0.1); exactly 8 sqrt 2 for unit edges (digest §2.7)."""
+    """Ch. 5 abstract: 11.3 (printed to 0.1); exactly 8 sqrt 2 for unit edges."""
     deployed, cube = volume(model.vertices(np.array(model.domain)))
     assert deployed == pytest.approx(8 * np.sqrt(2), abs=1e-12)  # measured 7e-15
     assert cube == pytest.approx(1.0, abs=1e-12)  # measured 1.6e-14
     assert deployed / cube == pytest.approx(VOLUME_RATIO, rel=1e-12)
-    assert abs(deployed / cube - 11.3) < 0.05
+    check_every(yang2017.NUMBERS, "test_volume_ratio")
 
 
-# Digest §2.7 path table (complete truss continuation, +/-0.1 deg, case 14): rho1 -> rho2, delta_A, delta_D,
-# and the odd joint angles of Bricard 1 and 2 (deg). Measured agreement 0.02 deg or better.
-PATH = [
-    (109.98, 106.43, 129.39, 132.34, 47.21, 51.76),
-    (95.90, 95.87, 139.35, 139.37, 65.09, 65.14),
-    (90.03, 93.03, 141.82, 140.71, 72.41, 68.68),
-    (60.01, 84.62, 135.59, 142.97, 107.71, 79.04),
-    (30.01, 68.06, 113.55, 139.87, 138.78, 98.63),
-    (9.97, 37.09, 97.75, 119.12, 157.38, 131.83),
-]
-
-
-@pytest.mark.parametrize("rho1, rho2, delta_a, delta_d, theta_1, theta_2", PATH)
-def test_path_matches_seed_table(model, rho1, rho2, delta_a, delta_d, theta_1, theta_2):
-    theta = theta_at(model, rho1 * DEG)
-    angles = model.fold_angles(theta)[0] / DEG
-    assert angles == pytest.approx([rho1, rho2, delta_a, delta_d], abs=0.1)
-    assert (theta / DEG, model.state(theta)[0, 0] / DEG) == pytest.approx((theta_1, theta_2), abs=0.1)
+@pytest.mark.parametrize(
+    "entry", checked_by(yang2017.NUMBERS, "test_truncated_octahedron.py::test_path_matches_seed_table"), ids=str
+)
+def test_path_matches_seed_table(entry):
+    # measured agreement 0.02 deg or better
+    entry.check()
 
 
 # --- closure: closed form and the numeric loop system --------------------------------------------------------

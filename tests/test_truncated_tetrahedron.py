@@ -4,6 +4,7 @@ closure of the whole assembly (9 R hinges, 3 spherical joints, 3 loops) and MuJo
 
 import numpy as np
 import pytest
+from published import check_every, checked_by, yang2017
 
 from sim_origami import scenes
 from sim_origami.errors import DomainError, ParameterError
@@ -60,20 +61,6 @@ def case(request, one, two, one_reaching):
     return request.param[:2].rstrip("-"), kinematics, assembly_of(kinematics)
 
 
-def rho_input(kinematics, rho: float) -> float:
-    """Input at which rho = angle AFE (rad) is reached on the last (folding) stretch of the path (bisection)."""
-    x = np.linspace(*kinematics.domain, 60)
-    r = kinematics.monitors(x)["rho"] - rho
-    cross = np.nonzero(np.diff(np.sign(r)))[0]
-    k = cross[0] if kinematics.domain[0] == kinematics.events()[1].input else cross[-1]
-    a, b, fa = x[k], x[k + 1], r[k]
-    for _ in range(40):
-        c = 0.5 * (a + b)
-        fc = kinematics.monitors(c)["rho"][0] - rho
-        a, b, fa = (c, b, fc) if np.sign(fc) == np.sign(fa) else (a, c, fa)
-    return 0.5 * (a + b)
-
-
 def kabsch_error(P: np.ndarray, target: dict[str, np.ndarray]) -> float:
     """Largest distance (m) of vertices P (12, 3) from `target` after the best proper rigid fit."""
     T = np.array([target[v] for v in NAMES])
@@ -83,7 +70,7 @@ def kabsch_error(P: np.ndarray, target: dict[str, np.ndarray]) -> float:
     return float(np.max(np.linalg.norm((P - P.mean(0)) @ R.T + T.mean(0) - T, axis=1)))
 
 
-# --- seed 001 numbers ---------------------------------------------------------------------------------------
+# --- Yang 2017, chapter 6 (tests/published/yang2017.py) --------------------------------------------------
 
 
 def test_bricard_parameters_match_case_16(two):
@@ -93,21 +80,12 @@ def test_bricard_parameters_match_case_16(two):
         assert abs(row.R) < 1e-14  # measured 5.7e-16
         expected = np.pi + np.arccos(19 / np.sqrt(913)) if k % 2 == 0 else np.pi - np.arccos(19 / np.sqrt(913))
         assert row.alpha % (2 * np.pi) == pytest.approx(expected, abs=1e-12)
-    assert two.rows[0].alpha % (2 * np.pi) / DEG == pytest.approx(231.0378, abs=5e-5)
     frame_2 = two._frame @ transform_z(two.theta_d) @ two.rows[0].link()  # joint B's D-H frame (6-26)
     assert (invert(two._frame) @ np.append(VERTICES["A"], 1))[2] == pytest.approx(17 * np.sqrt(22) / 92, abs=1e-14)
     assert (invert(frame_2) @ np.append(VERTICES["B"], 1))[2] == pytest.approx(-5 * np.sqrt(166) / 92, abs=1e-14)
-    # (6-28) 2G and corrected (6-33) 2s_G, printed to 5-6 digits
-    assert (invert(frame_2) @ np.append(VERTICES["G"], 1))[:3] == pytest.approx([0.06019, -0.62767, 0.07593], abs=1e-5)
-    assert frame_2[:3, :3].T @ axis_g(0.0) == pytest.approx([0.667325, -0.738119, -0.099286], abs=1e-6)
-    # deployed 40.4591 / 143.5473 and folded 186.9018 / 266.0295 deg, printed to 1e-4 deg (measured 3e-5)
-    assert (two.theta_d / DEG, two.phi_d / DEG) == pytest.approx((40.4591, 143.5473), abs=1e-4)
-    assert (two.theta_f / DEG, two.phi(two.theta_f)[0] % (2 * np.pi) / DEG) == pytest.approx(
-        (186.9018, 266.0295), abs=1e-4
-    )
-    # input-output samples theta -> phi, printed to 1e-4 deg
-    phi = two.phi(np.array([60.0, 90.0, 120.0, 150.0]) * DEG) % (2 * np.pi) / DEG
-    assert phi == pytest.approx([154.1717, 170.7849, 189.7716, 215.3841], abs=1e-4)
+    # alpha12; (6-28) 2G and corrected (6-33) 2s_G to 5-6 digits; deployed and folded angles and theta -> phi
+    # samples to 1e-4 deg (measured 3e-5)
+    check_every(yang2017.NUMBERS, "test_bricard_parameters_match_case_16")
 
 
 def test_corrected_axes():
@@ -120,8 +98,7 @@ def test_corrected_axes():
     # s_G lies in the bisecting plane of angle BGK: equal angles to GB and GK (the printed OG direction does not)
     G, B, K = VERTICES["G"], VERTICES["B"], VERTICES["K"]
     assert (B - G) @ axis_g(0.0) == pytest.approx((K - G) @ axis_g(0.0), abs=1e-15)
-    printed = np.array([0, np.sqrt(6) / 3, np.sqrt(3) / 3])
-    assert abs((B - G) @ printed - (K - G) @ printed) > 0.1
+    check_every(yang2017.CORRECTIONS, "test_corrected_axes")  # the printed OG: 0.71 m apart
 
 
 @pytest.mark.slow
@@ -158,15 +135,11 @@ def test_scheme_ii_reaches_the_tetrahedron(two):
 def test_scheme_i_misses_the_tetrahedron(one):
     """Case 19 [NEW in the digest]: with s_G ∥ QG the path ends at the Bricard fold with theta_G = 3.708 deg,
     |BK| = 0.0585, KLM height 0.0586 m, KLM rotation 29.66 deg; theta_G starts at the printed 146.44 deg."""
-    lo, hi = one.domain
-    assert hi / DEG == pytest.approx(146.4427, abs=1e-4)  # T_A's angle, printed 146.4427 (measured 146.44269)
-    assert lo / DEG == pytest.approx(3.708, abs=1e-3)  # measured 3.70837
+    lo = one.domain[0]
+    # theta_G from 146.44269 to 3.70837 deg; |BK| 0.058534, height 0.058435, rotation 29.6617 (measured)
+    check_every(yang2017.NUMBERS, "test_scheme_i_misses_the_tetrahedron")
     m = one.monitors(lo)
     assert m["AE"][0] < 1e-13  # A = C = E (measured 2.2e-15 m)
-    assert m["BK"][0] == pytest.approx(0.0585, abs=1e-4)  # measured 0.058534
-    # digest 0.0586 m; measured 0.058435 (the digest's end sample sits a little off the exact fold)
-    assert m["height"][0] == pytest.approx(0.0586, abs=3e-4)
-    assert m["rotation"][0] / DEG - 90 == pytest.approx(29.66, abs=0.01)  # measured 29.6617
     assert "short of the tetrahedron" in one.events()[1].detail
 
 
@@ -199,42 +172,18 @@ def test_scheme_ii_negative_delta_over_opens():
         _ = kinematics.domain
 
 
-# Digest §2.8 scheme II table (delta2 = 0; truss continuation, 2 decimals): rho -> delta, lambda1, lambda2 (deg),
-# h (m), KLM rotation (deg), |AE|, |BK| (m). Measured agreement <= 0.0051 deg and <= 5e-5 m.
-TABLE_II = [
-    (105.03, 129.30, 81.58, 55.08, 1.1661, 146.87, 1.5870, 1.3066),
-    (90.05, 125.06, 64.96, 31.65, 0.8457, 157.01, 1.4148, 1.0740),
-    (59.95, 99.06, 38.32, 8.60, 0.3979, 154.84, 0.9992, 0.6563),
-    (29.94, 76.94, 17.29, 1.36, 0.1430, 140.00, 0.5166, 0.3005),
-    (5.01, 62.62, 2.77, 0.11, 0.0175, 123.79, 0.0874, 0.0484),
-]
+@pytest.mark.slow
+@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_scheme_ii_path_matches_seed_table"), ids=str)
+def test_scheme_ii_path_matches_seed_table(entry):
+    # measured agreement <= 0.0051 deg and <= 5e-5 m
+    entry.check()
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("row", TABLE_II)
-def test_scheme_ii_path_matches_seed_table(two, row):
-    m = two.monitors(rho_input(two, row[0] * DEG))
-    angles = [m[k][0] / DEG for k in ("delta", "lambda1", "lambda2", "rotation")]
-    assert angles == pytest.approx([row[1], row[2], row[3], row[5]], abs=0.02)
-    assert [m["height"][0], m["AE"][0], m["BK"][0]] == pytest.approx([row[4], row[6], row[7]], abs=3e-4)
-
-
-# Digest §2.8 scheme I table (delta1 = -5 deg): rho -> lambda1, lambda2, KLM rotation (deg), h, |BK| (m).
-# Measured agreement <= 0.0050 deg and <= 1e-4 m.
-TABLE_I = [
-    (105.02, 91.35, 65.93, 1.3321, 137.44, 1.4308),
-    (59.94, 50.29, 26.98, 0.7416, 143.12, 0.8498),
-    (4.99, 10.90, 9.90, 0.1883, 120.92, 0.1899),
-]
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("row", TABLE_I)
-def test_scheme_i_path_matches_seed_table(one_reaching, row):
-    m = one_reaching.monitors(rho_input(one_reaching, row[0] * DEG))
-    angles = [m[k][0] / DEG for k in ("lambda1", "lambda2", "rotation")]
-    assert angles == pytest.approx([row[1], row[2], row[4]], abs=0.02)
-    assert [m["height"][0], m["BK"][0]] == pytest.approx([row[3], row[5]], abs=3e-4)
+@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_scheme_i_path_matches_seed_table"), ids=str)
+def test_scheme_i_path_matches_seed_table(entry):
+    # measured agreement <= 0.0050 deg and <= 1e-4 m
+    entry.check()
 
 
 def test_volume_ratio(two):

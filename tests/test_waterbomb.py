@@ -3,6 +3,7 @@ seed 000 ch. 5 (digest M8, M9, validation cases 17 to 21), the loop solver and M
 
 import numpy as np
 import pytest
+from published import check_every, checked_by, feng2018
 
 from sim_origami import scenes
 from sim_origami.checks.blockage import assess
@@ -30,59 +31,30 @@ from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import BLOCKAGE_HOLD, run_blockage, validate
 
 DEG = np.pi / 180
-# The seed prints 4 decimals (deg): half a unit of the last digit, in radians.
-PUBLISHED = 5e-5 * DEG
-B_ORDER = ("B1", "B2", "A2", "B4", "B5", "B6")  # B's creases 1..6 (B3 is A2)
+dihedrals = feng2018.dihedrals
 
 
-def dihedrals(model: Waterbomb, branch: str, phi1_deg: float, order=B_ORDER) -> np.ndarray:
-    """Seed dihedrals phi = pi - |rho| (deg) of the creases in `order` at phi1 (deg)."""
-    q = dict(zip(CREASES, model.joint_angles(branch, -(np.pi - phi1_deg * DEG))[0], strict=True))
-    return np.rad2deg([np.pi - abs(q[c]) for c in order])
+# Worked values of Feng 2018, chapter 5 (cases 17 to 20): tests/published/feng2018.py
 
 
-@pytest.mark.parametrize(
-    ("alpha", "beta", "line", "plane"),
-    [
-        (40, 40, (90, 19.7022, 74.9074, 90, 74.9074, 19.7022), (90, 60.8109, 74.9074, 31.6217, 74.9074, 60.8109)),
-        (35, 45, (90, 19.7022, 78.6454, 90, 78.6454, 19.7022), (90, 83.2113, 78.6454, 1.2332, 78.6454, 83.2113)),
-    ],
-)
-def test_case18_vertex_b_dihedrals(alpha, beta, line, plane):
-    model = Waterbomb(alpha * DEG, beta * DEG, 0.5)
-    np.testing.assert_allclose(dihedrals(model, LINE, 90) * DEG, np.array(line) * DEG, atol=PUBLISHED, rtol=0)
-    np.testing.assert_allclose(dihedrals(model, PLANE, 90) * DEG, np.array(plane) * DEG, atol=PUBLISHED, rtol=0)
+@pytest.mark.parametrize("entry", checked_by(feng2018.NUMBERS, "test_case18_vertex_b_dihedrals"), ids=str)
+def test_case18_vertex_b_dihedrals(entry):
+    entry.check()
 
 
-@pytest.mark.parametrize(("phi1", "phi2"), [(90, 74.9074), (150, 141.4421), (30, 23.1990)])
-def test_case17_vertex_a(phi1, phi2):
-    got = dihedrals(Waterbomb(40 * DEG, 40 * DEG, 0.5), LINE, phi1, order=("A2",))[0]
-    assert abs(got - phi2) * DEG <= PUBLISHED
+@pytest.mark.parametrize("entry", checked_by(feng2018.NUMBERS, "test_case17_vertex_a"), ids=str)
+def test_case17_vertex_a(entry):
+    entry.check()
 
 
-@pytest.mark.parametrize(
-    ("alpha", "beta", "rows"),
-    [  # (phi1, phi3, path I phi2, path II phi2, path II phi4), table 18b, 3 decimals
-        (40, 40, ((150, 141.442, 65.892, 130.916, 111.833), (60, 47.717, 11.450, 37.433, 14.866))),
-        (35, 45, ((120, 109.647, 33.479, 105.903, 48.135), (60, 50.622, 11.450, 71.965, -44.050))),
-    ],
-)
-def test_case18b_sweeps_including_blocked_phi4(alpha, beta, rows):
-    model = Waterbomb(alpha * DEG, beta * DEG, 0.5)
-    for phi1, phi3, line2, plane2, plane4 in rows:
-        line = dihedrals(model, LINE, phi1)
-        q = dict(zip(CREASES, model.joint_angles(PLANE, -(np.pi - phi1 * DEG))[0], strict=True))
-        # phi4 < 0 is crease B4 folded past flat: rho_B4 beyond -pi, wrapped to (0, pi]
-        phi4 = np.rad2deg(np.pi + q["B4"]) if q["B4"] < 0 else np.rad2deg(q["B4"] - np.pi)
-        got = np.array([line[2], line[1], dihedrals(model, PLANE, phi1)[1], phi4])
-        np.testing.assert_allclose(got, [phi3, line2, plane2, plane4], atol=5e-4, rtol=0)
+@pytest.mark.parametrize("entry", checked_by(feng2018.NUMBERS, "test_case18b_sweeps_including_blocked_phi4"), ids=str)
+def test_case18b_sweeps_including_blocked_phi4(entry):
+    entry.check()
 
 
 def test_case19_blockage_onsets_of_path_two():
-    # phi1* = pi + x* (deg): 35/45 89.148, 30/60 113.196 (alpha + beta = 90 is outside the model, formula only)
-    assert 180 + np.rad2deg(plane_blockage(35 * DEG, 45 * DEG)) == pytest.approx(89.148, abs=5e-4)
-    assert 180 + np.rad2deg(plane_blockage(50 * DEG, 50 * DEG)) == pytest.approx(90.488, abs=5e-4)
-    assert 180 + np.rad2deg(plane_blockage(40 * DEG, 55 * DEG)) == pytest.approx(109.972, abs=5e-4)
+    # phi1* = pi + x* (deg) for 35/45, 50/50, 40/55 (alpha + beta = 90 is outside the model, formula only)
+    check_every(feng2018.NUMBERS, "test_case19_blockage_onsets_of_path_two")
     assert plane_blockage(40 * DEG, 40 * DEG) is None  # (a): alpha = beta < 45 deg, path II smooth
     events = [e for e in Waterbomb(35 * DEG, 45 * DEG, 0.5).events() if e.branches == (PLANE,)]
     assert [e.kind for e in events] == ["lock", "lock"] and events[0].input == -events[1].input
@@ -125,11 +97,7 @@ def test_thick_cell_matches_the_seed_dh_linkages(alpha, beta, mu):
 
 
 def test_case20_thick_b_dh_angles():
-    model = Waterbomb(35 * DEG, 45 * DEG, 0.5, 0.5, 0.05)
-    fb = dihedrals(model, LINE, 90)
-    omega = np.array([360 - fb[0], 180 - fb[1], fb[2], 360 - fb[3], fb[4], 180 - fb[5]])
-    published = np.array([-90, 160.2978, 78.6454, -90, 78.6454, 160.2978]) % 360
-    np.testing.assert_allclose(omega % 360 * DEG, published * DEG, atol=PUBLISHED, rtol=0)
+    check_every(feng2018.NUMBERS, "test_case20_thick_b_dh_angles")
 
 
 def test_branches_by_thickness():

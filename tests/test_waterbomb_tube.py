@@ -3,6 +3,7 @@ seed002_004 part B and its validation cases 9-23) and seed 000 ch. 6 (digest M10
 
 import numpy as np
 import pytest
+from published import check_every, checked_by, feng2018, feng_ma_chen2020
 
 import sim_origami.scenes.waterbomb_tube  # noqa: F401  (registers the scene)
 from sim_origami import scenes
@@ -14,10 +15,7 @@ from sim_origami.graph import breadth_first_depths
 from sim_origami.kinematics.waterbomb_tube import (
     BRANCH,
     WaterbombTube,
-    alpha_limit,
-    alpha_min,
     beta_max,
-    dihedrals,
     folds_at,
     lengths,
     motion_range,
@@ -34,115 +32,47 @@ from sim_origami.simulate import project, simulate
 from sim_origami.tolerances import TOLERANCES
 
 DEG = np.pi / 180
-# The digest prints 4 decimals (deg) and 5 (lengths, a = 1): half a unit of the last digit.
-PUBLISHED_DEG = 5e-5
-PUBLISHED_LENGTH = 5e-6
 
 
-def seed_dihedrals(n, m, alpha, beta, theta, names):
-    """The seeds' dihedrals (deg) of the named creases at theta (deg), a = 1."""
-    layout = tube_layout(n, m, alpha * DEG, beta * DEG, 1.0)
-    phi = dihedrals(layout, folds_at(layout, np.array([theta * DEG])))[0] / DEG
-    return np.array([phi[layout.index(name)] for name in names])
-
-
-def a_vertex(r, k=0):
-    """Creases 1..6 of unit k's A in row r (names count rows from the bottom)."""
-    return [f"A{r}_{k}_{j}" for j in range(1, 7)]
+# Worked values at Feng, Ma and Chen 2020's tubes (cases 9-14, 22) and Feng 2018's (case 23): tests/published/
 
 
 def test_case9_dihedrals_and_radii():
-    """Digest seed 004 validation case 9: n6 m3 alpha 40 beta 35, eta01 = 90 deg; A0, B0, C0, A1 and radii."""
-    # m = 3: rows 0, 1, 2 from the bottom are seed rows -1, 0, 1
-    a0 = seed_dihedrals(6, 3, 40, 35, 90, a_vertex(1))
-    np.testing.assert_allclose(a0, [90, 74.9074, 74.9074, 90, 74.9074, 74.9074], atol=PUBLISHED_DEG, rtol=0)
-    b0 = seed_dihedrals(6, 3, 40, 35, 90, ["A2_0_4", "T1_0_r", "A1_0_2", "V1_0", "A1_1_6", "T1_1_l"])
-    np.testing.assert_allclose(b0, [83.2454, 67.6797, 74.9074, 30.0, 74.9074, 67.6797], atol=PUBLISHED_DEG, rtol=0)
-    c0 = seed_dihedrals(6, 3, 40, 35, 90, ["A1_0_1", "T1_0_r", "A2_0_5", "V2_5", "A2_5_3", "T1_0_l"])
-    np.testing.assert_allclose(c0, [90, 67.6797, 79.2123, 40.8206, 79.2123, 67.6797], atol=PUBLISHED_DEG, rtol=0)
-    a1 = seed_dihedrals(6, 3, 40, 35, 90, a_vertex(2))
-    np.testing.assert_allclose(a1, [119.4914, 92.4303, 79.2123, 83.2454, 79.2123, 92.4303], atol=PUBLISHED_DEG, rtol=0)
-    rows = row_coordinates(6, 3, 40 * DEG, 35 * DEG, 1.0, 90 * DEG)
-    got = [rows["A", 0][0][0], rows["A", 1][0][0], rows["B", 0][0][0]]
-    np.testing.assert_allclose(got, [0.51764, 0.69748, 1.41421], atol=PUBLISHED_LENGTH, rtol=0)
+    """n6 m3 alpha 40 beta 35, eta01 = 90 deg: A0, B0, C0, A1 and radii (m = 3: rows 0, 1, 2 from the bottom are the
+    paper's rows -1, 0, 1)."""
+    check_every(feng_ma_chen2020.NUMBERS, "test_case9_dihedrals_and_radii")
 
 
-@pytest.mark.parametrize(
-    ("theta", "kappa", "eta"),
-    [(60, 12.132, 90.760), (70, 21.744, 100.436), (80, 31.256, 109.873), (100, 50.685, 130.159),
-     (110, 61.239, 143.850), (120, 73.049, 171.015)],
-)  # fmt: skip
-def test_case10_row1_against_eta01(theta, kappa, eta):
+@pytest.mark.parametrize("entry", checked_by(feng_ma_chen2020.NUMBERS, "test_case10_row1_against_eta01"), ids=str)
+def test_case10_row1_against_eta01(entry):
     """Case 10 (n6 m3 alpha 40 beta 35): kappa_B1,4 (row 1's vertical edges) and eta_1,1, 3 decimals."""
-    got = seed_dihedrals(6, 3, 40, 35, theta, ["V2_0", "A2_0_1"])
-    np.testing.assert_allclose(got, [kappa, eta], atol=5e-4, rtol=0)
+    entry.check()
 
 
 def test_case11_alpha45_beta40():
-    b0 = seed_dihedrals(6, 3, 45, 40, 90, ["A2_0_4", "T1_0_r", "A1_0_2", "V1_0", "A1_1_6", "T1_1_l"])
-    np.testing.assert_allclose(b0, [87.0990, 51.8944, 70.5288, 30, 70.5288, 51.8944], atol=PUBLISHED_DEG, rtol=0)
-    np.testing.assert_allclose(seed_dihedrals(6, 3, 45, 40, 90, ["A2_0_5", "V2_5"]), [72.4735, 33.9445],
-                               atol=PUBLISHED_DEG, rtol=0)  # fmt: skip
-    a1 = seed_dihedrals(6, 3, 45, 40, 90, a_vertex(2)[:4])
-    np.testing.assert_allclose(a1, [100.6946, 75.9759, 72.4735, 87.0990], atol=PUBLISHED_DEG, rtol=0)
-    rows = row_coordinates(6, 3, 45 * DEG, 40 * DEG, 1.0, 90 * DEG)
-    assert abs(rows["A", 1][0][0] - 0.58382) <= PUBLISHED_LENGTH
+    check_every(feng_ma_chen2020.NUMBERS, "test_case11_alpha45_beta40")
 
 
 def test_case12_and_case14_radii_and_uniform_states():
-    """Case 12: n6 m5 alpha 45 beta 40 at eta01 = 100 (A2 and radii); case 14: n6 m5 40/40 uniform states."""
-    a2 = seed_dihedrals(6, 5, 45, 40, 100, a_vertex(4))
-    np.testing.assert_allclose(a2, [115.0126, 91.1117, 86.5277, 101.7818, 86.5277, 91.1117], atol=PUBLISHED_DEG,
-                               rtol=0)  # fmt: skip
-    rows = row_coordinates(6, 5, 45 * DEG, 40 * DEG, 1.0, 100 * DEG)
-    np.testing.assert_allclose([rows["A", i][0][0] for i in range(3)], [0.68404, 0.72047, 0.81883],
-                               atol=PUBLISHED_LENGTH, rtol=0)  # fmt: skip
-    model = WaterbombTube(6, 5, 40 * DEG, 40 * DEG)
-    uniform = [e for e in model.events() if e.kind == "uniform_radius"]
-    np.testing.assert_allclose([np.pi + e.input for e in uniform], np.array([98.7248, 111.2752]) * DEG,
-                               atol=PUBLISHED_DEG * DEG, rtol=0)  # fmt: skip
-    for e, r_a in zip(uniform, (0.66308, 0.86535), strict=True):  # every row alike; the digest truncates 0.8653552
-        np.testing.assert_allclose(model.radii(e.input)[0], r_a, atol=2 * PUBLISHED_LENGTH, rtol=0)
-    # case 14 axial lengths (top free-edge midpoint to bottom one), 4 decimals
-    np.testing.assert_allclose(model.length(np.array([60, 90, 120]) * DEG - np.pi), [6.8962, 7.7583, 9.2507],
-                               atol=5e-5, rtol=0)  # fmt: skip
-    # seed 000 case 23 measures between the corners (eqn 6-18): m = 3, alpha = beta = 45, 60 and 100 deg
-    thesis = WaterbombTube(6, 3, 45 * DEG, 45 * DEG)
-    np.testing.assert_allclose(thesis.length(np.array([60, 100]) * DEG - np.pi, corners=True), [4.28477, 4.78041],
-                               atol=PUBLISHED_LENGTH, rtol=0)  # fmt: skip
+    """Case 12: n6 m5 alpha 45 beta 40 at eta01 = 100 (A2 and radii); case 14: n6 m5 40/40 uniform states (every row
+    alike) and axial lengths (top free-edge midpoint to bottom one); Feng 2018's case 23 measures between the
+    corners (eqn 6-18)."""
+    check_every(feng_ma_chen2020.NUMBERS, "test_case12_and_case14_radii_and_uniform_states")
+    check_every(feng2018.NUMBERS, "test_case12_and_case14_radii_and_uniform_states")
 
 
 def test_case22_even_tube_equator():
-    """Case 22 (m even, n6 alpha 45 beta 40): the corrected eqn 18 radius and the equatorial vertices."""
-    # m = 4: rows 0..3 from the bottom are seed rows -1..2; seed row 0 (below the equator) is row 1
-    a0 = seed_dihedrals(6, 4, 45, 40, 80, a_vertex(1))
-    np.testing.assert_allclose(a0, [80, 64.4835, 66.3380, 88.9804, 66.3380, 64.4835], atol=PUBLISHED_DEG, rtol=0)
-    b0 = seed_dihedrals(6, 4, 45, 40, 80, ["A2_0_4", "T1_0_r", "A1_0_2", "V1_0"])
-    np.testing.assert_allclose(b0, [80, 47.7495, 64.4835, 24.5376], atol=PUBLISHED_DEG, rtol=0)
-    for theta, r_a0, kappa in ((80, 0.42500, 24.5376), (100, 0.71331, 41.7897), (120, 1.00452, 60.2994)):
+    """Case 22 (m even, n6 alpha 45 beta 40): the corrected eqn 18 radius and the equatorial vertices (m = 4: rows
+    0..3 from the bottom are the paper's rows -1..2; its row 0, below the equator, is row 1)."""
+    check_every(feng_ma_chen2020.NUMBERS, "test_case22_even_tube_equator")
+    for theta in (80, 100, 120):
         rows = row_coordinates(6, 4, 45 * DEG, 40 * DEG, 1.0, theta * DEG)
-        assert abs(rows["A", 0][0][0] - r_a0) <= PUBLISHED_LENGTH
         assert rows["A", 1][0][0] == rows["A", 0][0][0]  # the half-turn maps A_0 to A_1
-        assert abs(seed_dihedrals(6, 4, 45, 40, theta, ["V1_0"])[0] - kappa) <= PUBLISHED_DEG
 
 
-@pytest.mark.parametrize(
-    ("theta", "r_a", "r_b", "z_a"),
-    [  # seed 000 validation case 23, m = 7 (rows from the equator outward), 5 decimals
-        (60, (0, 0.01361, 0.05118, 0.10327), (1.0, 1.0333, 1.08128, 1.13116), (0, 1.1644, 2.33061, 3.50043)),
-        (
-            100,
-            (0.68404, 0.5642, 0.27854, -0.05363),
-            (1.53209, 1.27821, 0.94061, 0.64657),
-            (0, 1.25137, 2.41594, 3.53001),
-        ),
-        (140, (1.28558, 1.2151, 0.9167, 0.43918), (1.87939, 1.79301, 1.43821, 0.83989), (0, 1.74748, 3.26954, 4.39813)),
-    ],
-)
-def test_seed000_case23_m7_tube_states(theta, r_a, r_b, z_a):
-    rows = row_coordinates(6, 7, 45 * DEG, 45 * DEG, 1.0, theta * DEG)
-    got = np.array([[rows[kind, i][c][0] for i in range(4)] for kind, c in (("A", 0), ("B", 0), ("A", 1))])
-    np.testing.assert_allclose(got, [r_a, r_b, z_a], atol=PUBLISHED_LENGTH, rtol=0)
+@pytest.mark.parametrize("entry", checked_by(feng2018.NUMBERS, "test_seed000_case23_m7_tube_states"), ids=str)
+def test_seed000_case23_m7_tube_states(entry):
+    entry.check()
 
 
 @pytest.mark.parametrize(("n", "m", "alpha", "beta"), [(6, 3, 40, 35), (6, 4, 45, 40), (5, 2, 40, 40), (7, 1, 40, 40),
@@ -214,15 +144,16 @@ def test_closed_form_matches_the_numeric_continuation():
     assert np.max(np.abs(wrap(numeric - q))) <= TOLERANCES.closed_form_rad
 
 
-@pytest.mark.parametrize(
-    ("m", "alpha", "beta", "published"),
-    [(3, 40, 35, 120.6), (3, 45, 40, 139.8), (5, 45, 40, 131.1)],  # seed 004 §2.1, Figs 6-7
-)
-def test_seed004_contraction_ranges(m, alpha, beta, published):
-    lo, hi = motion_range(tube_layout(6, m, alpha * DEG, beta * DEG, 1.0))
+@pytest.mark.parametrize("entry", checked_by(feng_ma_chen2020.NUMBERS, "test_seed004_contraction_ranges"), ids=str)
+def test_seed004_contraction_ranges(entry):
+    # the paper truncates to 1 decimal (120.6478 is printed 120.6): within one unit above
+    entry.check()
+
+
+@pytest.mark.parametrize(("m", "alpha", "beta"), [(3, 40, 35), (3, 45, 40), (5, 45, 40)])
+def test_contraction_starts_fully_folded(m, alpha, beta):
+    lo, _ = motion_range(tube_layout(6, m, alpha * DEG, beta * DEG, 1.0))
     assert lo == pytest.approx(60 * DEG, abs=1e-12)  # the fully folded equatorial row, eqn 13
-    # the seed truncates to 1 decimal (digest B.6: 120.6478 is printed 120.6): within one unit above
-    assert 0 <= hi / DEG - published < 0.1
 
 
 def test_seed004_model_that_cannot_fold_rigidly():
@@ -230,8 +161,7 @@ def test_seed004_model_that_cannot_fold_rigidly():
     on an island 119.98-120.19 deg with the top diagonals reversed (digest B.6)."""
     with pytest.raises(ParameterError, match="cannot contract rigidly"):
         WaterbombTube(6, 5, 40 * DEG, 35 * DEG)
-    island = motion_range(tube_layout(6, 5, 40 * DEG, 35 * DEG, 1.0), strict=False)
-    np.testing.assert_allclose(np.array(island) / DEG, [119.98, 120.19], atol=0.005, rtol=0)
+    check_every(feng_ma_chen2020.NUMBERS, "test_seed004_model_that_cannot_fold_rigidly")
 
 
 def starts_fully_folded(m, alpha, beta):
@@ -268,15 +198,10 @@ def test_seed004_fig8_thresholds_within_printed_precision(predicate, published, 
 
 
 def test_twist_limits_and_thresholds_closed_forms():
-    # seed 004 eqn 40 / Fig. 15, 2 decimals; seed 000 eqn 6-49 to 3 decimals (42.011, 45.594, 49.168)
-    for alpha, published in ((40, 42.01), (45, 45.59), (50, 49.17)):
-        assert abs(beta_max(alpha * DEG, 6) / DEG - published) <= 0.005
-    assert abs(alpha_limit(6) / DEG - 49.1) <= 0.05  # seed 004 eqn 38 (49.107)
-    # seed 000 eqns 6-47 and 6-33, the digest's 4 decimals
-    np.testing.assert_allclose([alpha_limit(n) / DEG for n in (5, 6, 8, 12)], [51.0266, 49.1066, 47.2658, 45.9930],
-                               atol=PUBLISHED_DEG, rtol=0)  # fmt: skip
-    np.testing.assert_allclose([alpha_min(n) / DEG for n in (5, 6, 8, 12)], [44.1788, 44.6530, 44.9024, 44.9822],
-                               atol=PUBLISHED_DEG, rtol=0)  # fmt: skip
+    # Feng, Ma and Chen 2020 eqn 40 / Fig 15 (beta_max, 2 decimals; ours 42.0105, 45.5937, 49.1684) and eqn 38
+    # (49.1; ours 49.107); Feng 2018 eqns 6-47 and 6-33 (4 decimals)
+    check_every(feng_ma_chen2020.NUMBERS, "test_twist_limits_and_thresholds_closed_forms")
+    check_every(feng2018.NUMBERS, "test_twist_limits_and_thresholds_closed_forms")
 
 
 @pytest.mark.parametrize("alpha", [40, 45, 50])
@@ -301,17 +226,8 @@ def test_seed000_m7_events_against_the_thesis():
     """Seed 000 §6.2 (n6 m7 alpha = beta = 45): the thesis samples on a grid of 0.06-0.12 deg (digest M10), so its
     values agree to one step: uniform radius 65.88 (ours 65.937), interference 90.72-128.52 (90.751-128.475),
     theta_max 144.24 (144.242)."""
-    model = WaterbombTube(6, 7, 45 * DEG, 45 * DEG)
-    events = {}
-    for e in model.events():
-        events.setdefault(e.kind, []).append(np.pi + e.input)
-    np.testing.assert_allclose(np.array(events["uniform_radius"]) / DEG, [65.88, 144.0], atol=0.12, rtol=0)
-    np.testing.assert_allclose(np.array(events["lock"]) / DEG, [60, 90.72, 128.52], atol=0.12, rtol=0)
-    np.testing.assert_allclose(np.array(events["turning_point"]) / DEG, [144.24], atol=0.12, rtol=0)
-    # the digest's exact values (seed 000 validation cases 22, 24)
-    np.testing.assert_allclose(np.array(events["uniform_radius"] + events["lock"][1:]) / DEG,
-                               [65.937, 144.063, 90.751, 128.475], atol=5e-4, rtol=0)  # fmt: skip
-    assert model.radii(100 * DEG - np.pi)[0, -1] == pytest.approx(-0.05363, abs=PUBLISHED_LENGTH)
+    # the printed events to the thesis's grid step (0.12 deg), our exact values (3 decimals) and r_A of the top row
+    check_every(feng2018.NUMBERS, "test_seed000_m7_events_against_the_thesis")
 
 
 def test_pattern_lengths_and_counts():

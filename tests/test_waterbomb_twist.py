@@ -4,6 +4,7 @@ and MuJoCo."""
 
 import numpy as np
 import pytest
+from published import check_every, checked_by, feng2018, feng_ma_chen2020
 
 import sim_origami.scenes.waterbomb_twist  # noqa: F401  (registers the scene)
 from sim_origami import scenes
@@ -11,7 +12,7 @@ from sim_origami.checks.branches import classify
 from sim_origami.checks.paths import compare
 from sim_origami.errors import DomainError, ParameterError
 from sim_origami.geometry import wrap
-from sim_origami.kinematics.waterbomb_tube import dihedrals, tube_layout
+from sim_origami.kinematics.waterbomb_tube import tube_layout
 from sim_origami.kinematics.waterbomb_twist import (
     CCW,
     CONTRACTION,
@@ -30,41 +31,17 @@ from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
 
 DEG = np.pi / 180
-# The digest prints 4 decimals (deg) and 5 (lengths, a = 1): half a unit of the last digit.
-PUBLISHED_DEG = 5e-5
-PUBLISHED_LENGTH = 5e-6
-TWIST_6X5 = WaterbombTwist(6, 5, 40 * DEG, 40 * DEG)
+TWIST_6X5 = feng_ma_chen2020.twist(6, 5, 40, 40)
+seed_angles = feng_ma_chen2020.twist_angles
 
 
-def seed_angles(model: WaterbombTwist, branch: str, eta02: float, names: list[str]) -> np.ndarray:
-    """The seeds' dihedrals (deg) of the named creases at eta02 (deg) on `branch`."""
-    q = model.joint_angles(branch, np.pi - eta02 * DEG)
-    phi = dihedrals(model.layout, q)[0] / DEG
-    return np.array([phi[model.layout.index(name)] for name in names])
-
-
-# m = 5: rows 0..4 from the bottom are seed rows -2..2; the middle row (seed row 0) is row 2. eta06 = A2_0_6,
-# eta01 = A2_0_1, eta04 = A2_0_4; at B_0 (slot 1): kappa_1 = A3_0_4 (the down midline of row 3's unit 0),
-# kappa_2 = T2_0_r, kappa_4 = V2_0; kappa_C0,4 = V3_0 (row 3's vertical edge).
-CASE17 = ["A2_0_6", "A2_0_1", "A2_0_4", "A3_0_4", "T2_0_r", "V3_0"]
-
-
-@pytest.mark.parametrize(
-    ("eta02", "published", "twist"),
-    [  # digest validation case 17: eta02 -> eta06, eta01 = eta04, kappa_B0,1, kappa_B0,2, kappa_C0,4; |end twist|
-        (60, (35.7835, 60.8729, 60.8729, 57.9237, 45.7725, 4.3649), 18.493),
-        (70, (26.5514, 62.8522, 62.8522, 58.3068, 46.1970, 6.7363), 32.944),
-        (80, (17.6997, 65.9920, 65.9920, 58.8755, 46.8342, 10.5694), 46.689),
-        (90, (9.1382, 70.3573, 70.3573, 59.5810, 47.6364, 16.0552), 59.577),
-        (100, (0.6819, 76.0328, 76.0328, 60.3295, 48.5024, 23.4977), 71.448),
-    ],
-)
-def test_case17_twist_states(eta02, published, twist):
-    """n6 m5 alpha = beta = 40: eta02 rising from its start is the clockwise twist (seed 004 Fig 13b)."""
-    got = seed_angles(TWIST_6X5, CW, eta02, CASE17)
-    np.testing.assert_allclose(got, published, atol=PUBLISHED_DEG, rtol=0)  # measured <= 4.9e-5 deg (rounding)
-    end = TWIST_6X5.end_twist(CW, np.pi - eta02 * DEG)[0] / DEG
-    assert end < 0 and abs(abs(end) - twist) <= 5e-4  # printed to 3 decimals (measured <= 4.8e-4); clockwise
+@pytest.mark.parametrize("eta02", [60, 70, 80, 90, 100])
+def test_case17_twist_states(eta02):
+    """n6 m5 alpha = beta = 40: eta02 rising from its start is the clockwise twist (Feng, Ma and Chen 2020 Fig 13b);
+    the dihedrals to 4 decimals (measured <= 4.9e-5 deg, rounding), the end twist to 3 (measured <= 4.8e-4)."""
+    entries = checked_by(feng_ma_chen2020.NUMBERS, "test_case17_twist_states")
+    for entry in [e for e in entries if f"eta02 = {eta02} deg" in e.quantity]:
+        entry.check()
     # kappa_B0,4 = 0 on every unit and every A_0 on the axis throughout (measured 0 and 0)
     q = TWIST_6X5.joint_angles(CW, np.pi - eta02 * DEG)[0]
     vertical = [TWIST_6X5.layout.index(f"V2_{k}") for k in range(6)]
@@ -76,16 +53,12 @@ def test_case17_start_and_case18_limits():
     """Start eta02 = eta06 = 47.7173 at eta01 = 60 (eqn 39a); limit eta02 = 100.8002, eta01 = 76.5459, end twist
     72.35, r_A1 = 0.4191, r_A2 = 0.9194, eta_2,1 = 149.522 (m = 5); mirror end eta02 = 0 with eta06 = 100.8002."""
     model = TWIST_6X5
-    assert np.pi - model.start == pytest.approx(47.7173 * DEG, abs=PUBLISHED_DEG * DEG)
     lo, hi = model.domain
-    assert np.pi - lo == pytest.approx(100.8002 * DEG, abs=PUBLISHED_DEG * DEG)
     assert np.pi - hi == pytest.approx(0.0, abs=1e-12)  # measured 9.2e-14 (the domain's ends sit 1e-13 inside)
-    end = seed_angles(model, CW, np.rad2deg(np.pi - lo), ["A2_0_1", "A2_0_3", "A2_0_6", "A4_0_1"])
-    assert np.all(np.abs(end - [76.5459, 0, 0, 149.522]) <= [PUBLISHED_DEG, 1e-9, 1e-9, 5e-4])
-    assert abs(model.end_twist(CW, lo)[0] / DEG + 72.35) <= 5e-3  # 2 decimals printed; ours 72.3493
-    np.testing.assert_allclose(model.radii(CW, lo)[0, 3:], [0.4191, 0.9194], atol=5e-5, rtol=0)
-    mirror = seed_angles(model, CCW, np.rad2deg(np.pi - hi), ["A2_0_2", "A2_0_6", "A2_0_1"])
-    np.testing.assert_allclose(mirror, [0, 100.8002, 76.5459], atol=PUBLISHED_DEG, rtol=0)
+    end = seed_angles(model, CW, np.rad2deg(np.pi - lo), ["A2_0_3", "A2_0_6"])
+    assert np.all(np.abs(end) <= 1e-9)  # eta03 = eta06 = 0 at the limit
+    # start, limit, eta01 and eta_2,1 there, the end twist (2 decimals; ours 72.3493), r_A1, r_A2, the mirror end
+    check_every(feng_ma_chen2020.NUMBERS, "test_case17_start_and_case18_limits")
     assert model.end_twist(CCW, hi)[0] == pytest.approx(-model.end_twist(CW, lo)[0], abs=1e-12)
     # at the start the three branches are one configuration (measured 1.8e-15 rad)
     q = [model.joint_angles(b, model.start)[0] for b in (CCW, CW, CONTRACTION)]
@@ -93,15 +66,15 @@ def test_case17_start_and_case18_limits():
     assert model.start == pytest.approx(start_input(6, 40 * DEG), abs=0)
 
 
-@pytest.mark.parametrize(
-    ("n", "alpha", "limit", "twist"),
-    [(6, 45, 90.0, 60.0), (5, 40, 130.9559, None), (7, 40, 83.7207, None), (8, 40, 72.0213, None)],
-)
-def test_middle_row_limits(n, alpha, limit, twist):
+@pytest.mark.parametrize(("n", "alpha", "twist"), [(6, 45, 60.0), (5, 40, None), (7, 40, None), (8, 40, None)])
+def test_middle_row_limits(n, alpha, twist):
     """Digest B.6 / case 18: the double roots of the corrected W quartic (eqn 41), the middle row's own limit, here
     on m = 1 tubes (beta = 40); seed 000 M13: the end twist at that limit is 60 deg for alpha = 45, n = 6."""
-    model = WaterbombTwist(n, 1, alpha * DEG, 40 * DEG)
-    assert np.rad2deg(np.pi - model.domain[0]) == pytest.approx(limit, abs=PUBLISHED_DEG)
+    model = feng_ma_chen2020.twist(n, 1, alpha, 40)
+    [limit] = [
+        e for e in checked_by(feng_ma_chen2020.NUMBERS, "test_middle_row_limits") if f"n{n} m1 {alpha}/" in e.where
+    ]
+    limit.check()
     if twist is not None:
         assert abs(model.end_twist(CW, model.domain[0])[0] / DEG + twist) <= 1e-9  # measured 7.0e-12 deg
     # seed 000 eqn 6-51 at the eta02 = 0 end: tan(t/2) = (1 - cos eta06) / (tan(pi/n) (3 + cos eta06))
@@ -116,16 +89,11 @@ def test_seed000_square_tube_twist():
     70.529 and the side edge tilted to zeta = 54.736 deg (atan sqrt 2), end twist 60; untwisted eta02 = 44.415."""
     model = WaterbombTwist(6, 3, 45 * DEG, 45 * DEG)
     np.testing.assert_allclose(np.rad2deg(np.pi - np.array(model.domain)), [90, 0], atol=1e-9, rtol=0)
-    assert np.rad2deg(np.pi - model.start) == pytest.approx(44.415, abs=5e-4)
     hi = model.domain[1]
-    got = seed_angles(model, CCW, np.rad2deg(np.pi - hi), ["A1_0_3", "A1_0_6", "A1_0_1"])
-    np.testing.assert_allclose(got, [90, 90, 70.529], atol=5e-4, rtol=0)
+    # untwisted eta02, the eta02 = 0 end and the table at zeta = 80 deg (3 decimals)
+    check_every(feng2018.NUMBERS, "test_seed000_square_tube_twist")
     assert model.tilt(hi)[0] == pytest.approx(np.arctan(np.sqrt(2)), abs=1e-12)  # measured 9.9e-14 (the domain's
     assert model.end_twist(CCW, hi)[0] == pytest.approx(60 * DEG, abs=1e-12)  # end sits 1e-13 inside); 1.2e-13
-    # the table of M13 at zeta = 80 deg: eta01 = 60.993, eta02 = 30.510, eta03 = 58.514
-    x = middle_input(6, 45 * DEG, 45 * DEG, 1.0, np.array([80 * DEG]))
-    np.testing.assert_allclose(seed_angles(model, CCW, np.rad2deg(np.pi - x[0]), ["A1_0_1", "A1_0_2", "A1_0_3"]),
-                               [60.993, 30.510, 58.514], atol=5e-4, rtol=0)  # fmt: skip
 
 
 @pytest.mark.slow
@@ -244,10 +212,8 @@ def test_events():
     ends = {e.branches[0]: e for e in events if e.kind == "lock"}
     assert ends[CCW].input == TWIST_6X5.domain[1] and "eta02 = 0" in ends[CCW].detail
     assert ends[CW].input == TWIST_6X5.domain[0] and "eta03 = eta06 = 0" in ends[CW].detail
-    uniform = [np.pi + e.input for e in events if e.kind == "uniform_radius"]
-    # the contraction's uniform states (digest case 14: eta01 = 98.7248, 111.2752) seen from eta02 (eqn 9)
-    np.testing.assert_allclose(sorted(TWIST_6X5.contraction_theta(np.array(uniform) - np.pi) / DEG),
-                               [98.7248, 111.2752], atol=PUBLISHED_DEG, rtol=0)  # fmt: skip
+    # the contraction's uniform states (case 14) seen from eta02 (eqn 9)
+    check_every(feng_ma_chen2020.NUMBERS, "test_events")
     # beta above beta_max (eqn 40): rows 1 and 3 start through the axis and leave it during the twist
     interfering = WaterbombTwist(6, 5, 35.73 * DEG, 40 * DEG)
     assert all("beta > beta_max" in e.detail for e in interfering.events() if e.kind == "bifurcation")
