@@ -18,9 +18,9 @@ import mujoco
 import numpy as np
 
 from sim_origami import scenes
-from sim_origami.mjcf import ModelOptions, build_xml
+from sim_origami.mjcf import ModelOptions
 from sim_origami.scenes.base import without_implied_closures
-from sim_origami.simulate import Bindings, preset_duration, ramp, start_pose
+from sim_origami.simulate import Bindings, preset_duration, ramp, scene_xml, start_pose
 
 REPEATS = 3
 
@@ -54,15 +54,15 @@ def variants(scene) -> dict[str, mujoco.MjModel]:
     def compile_(xml: str) -> mujoco.MjModel:
         return mujoco.MjModel.from_xml_string(xml)
 
-    base = build_xml(scene, ModelOptions())
+    base = scene_xml(scene, ModelOptions())
     out = {"as generated": compile_(base)}
     contact = scene if (scene.contact_pairs or scene.self_contact) else None
     if contact is not None:
-        out["+ contact detection"] = compile_(build_xml(scene, ModelOptions(contact=True)))
+        out["+ contact detection"] = compile_(scene_xml(scene, ModelOptions(contact=True)))
     gravity = compile_(base)
     gravity.opt.disableflags &= ~int(mujoco.mjtDisableBit.mjDSBL_GRAVITY)
     out["+ gravity"] = gravity
-    out["+ render assets (lights, sky)"] = compile_(build_xml(scene, ModelOptions(render=True)))
+    out["+ render assets (lights, sky)"] = compile_(scene_xml(scene, ModelOptions(render=True)))
     sensors = base.replace(
         "</mujoco>",
         "<sensor>"
@@ -83,10 +83,10 @@ def variants(scene) -> dict[str, mujoco.MjModel]:
         ),
     )
     out["+ a third connect per cut crease"] = compile_(
-        build_xml(dataclasses.replace(scene, mechanism=redundant), ModelOptions())
+        scene_xml(dataclasses.replace(scene, mechanism=redundant), ModelOptions())
     )
     if scene.mechanism.couplings:
-        out["- closures the couplings imply"] = compile_(build_xml(without_implied_closures(scene), ModelOptions()))
+        out["- closures the couplings imply"] = compile_(scene_xml(without_implied_closures(scene), ModelOptions()))
     return out  # fmt: skip
 
 

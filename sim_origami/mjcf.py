@@ -25,7 +25,6 @@ from .errors import ParameterError
 from .geometry import invert, quaternion, quaternion_matrix, xyz_angles, xyz_rotation
 from .mechanism import Body, Mechanism
 from .mjcf_tidy import attach_comments, box_of, tidy
-from .scenes.base import Scene
 
 ORDER = (
     "compiler", "option", "size", "custom", "visual", "default", "asset", "worldbody",
@@ -43,7 +42,33 @@ class ModelOptions:
     drive: str = "equality"  # "equality": kinematic tracking; "servo": force-limited actuator; "none"
     contact: bool = False
     render: bool = False
-    gravity: bool = False  # the scene's gravity (m/s^2, its root frame) and the energy flag
+    gravity: bool = False  # the setup's gravity (m/s^2, its root frame) and the energy flag
+
+
+@dataclass(frozen=True)
+class ModelSetup:
+    """
+    What a model holds beyond its mechanism, whatever the run: its name and note, the driven joints, which collision
+    solids may touch, gravity, which hinges are creases of paper (drawn as paper and crease lines) and the fast
+    preset's step scale. `scenes.base.Scene.model_setup` fills it from a scene.
+
+    Contact: `contact_pairs` (body, body) may touch; with `self_contact_exclude` not None, every collision solid
+    may touch every other except those pairs (bodies that touch in every pose, e.g. faces sharing a vertex).
+    """
+
+    name: str
+    drives: tuple[str, ...]
+    notes: str = ""
+    contact_pairs: tuple[tuple[str, str], ...] = ()
+    self_contact_exclude: tuple[tuple[str, str], ...] | None = None
+    gravity: tuple[float, float, float] | None = None
+    creases: frozenset[str] = frozenset()
+    fast_step_scale: float = 1.0
+
+    @property
+    def has_contact(self) -> bool:
+        """Whether any collision solids may touch."""
+        return bool(self.contact_pairs) or self.self_contact_exclude is not None
 
 
 def template(name: str) -> ET.Element:
@@ -206,17 +231,17 @@ def _add_paper(root: ET.Element, mechanism: Mechanism, elements: dict[str, ET.El
             )
 
 
-def _add_self_contact(root: ET.Element, scene: Scene) -> None:
-    """Collision solids collide by contype/conaffinity; bodies that share a vertex are excluded."""
+def _add_self_contact(root: ET.Element, mechanism: Mechanism, exclude: tuple[tuple[str, str], ...]) -> None:
+    """Collision solids collide by contype/conaffinity; the `exclude` pairs of bodies (sharing a vertex) do not."""
     for geom in root.iter("geom"):
         if geom.get("class") == "collision":
             geom.set("contype", "1")
             geom.set("conaffinity", "1")
     section = _section(root, "contact")
     section.append(ET.Comment(" panels that share a vertex touch in every pose: excluded "))
-    body = {name: ("world" if name == scene.mechanism.root else name) for name in scene.pattern.face_names}
-    for a, b in scene.pattern.touching_faces():
-        ET.SubElement(section, "exclude", body1=body[a], body2=body[b])
+    for a, b in exclude:
+        ET.SubElement(section, "exclude", body1="world" if a == mechanism.root else a,
+                      body2="world" if b == mechanism.root else b)  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -322,14 +347,6 @@ def keyframe_qpos(mechanism: Mechanism, q: NDArray[np.float64]) -> NDArray[np.fl
     return np.concatenate([j.qpos(np.asarray(q, dtype=float)) for j in mujoco_joints(mechanism)])
 
 
-def crease_names(scene: Scene) -> frozenset[str]:
-    """Hinges that are creases of paper: a crease pattern's creases and an origami vertex's `crease_*` hinges."""
-    names = {j.name for j in scene.mechanism.joints if j.name.startswith("crease_")}
-    if scene.pattern is not None:
-        names |= {c.name for c in scene.pattern.creases}
-    return frozenset(names)
-
-
 def model_size(mechanism: Mechanism) -> float:
     """Largest coordinate (m) of any body's solid or joint frame, in its own body frame: the scale of float noise."""
     extents = [np.max(np.abs(b.solid.vertices)) for b in mechanism.bodies if len(b.solid.vertices)]
@@ -351,42 +368,45 @@ def _note_preset(root: ET.Element, preset: str) -> None:
     ))  # fmt: skip
 
 
-def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarray] | None = None) -> str:
+def build_xml(
+    mechanism: Mechanism, setup: ModelSetup, options: ModelOptions, keyframes: dict[str, np.ndarray] | None = None
+) -> str:
     """
-    MJCF text of a scene.
+    MJCF text of a mechanism.
 
     Parameters
     ----------
-    scene : Scene
+    mechanism : Mechanism
+    setup : ModelSetup
+      Name, drives, contact, gravity and crease hinges (`Scene.model_setup` for a scene).
     options : ModelOptions
     keyframes : {name: (n_joints,) float}, optional
       Mechanism joint angles stored as keyframes `start_<name>`.
     """
     if options.preset not in PRESETS:
         raise ParameterError(f"unknown preset {options.preset!r}; presets are {', '.join(PRESETS)}")
-    mechanism = scene.mechanism
-    contact = options.contact and (bool(scene.contact_pairs) or scene.self_contact)
-    root = ET.Element("mujoco", model=scene.name)
-    root.append(ET.Comment(f" sim_origami {__version__}, scene {scene.name}; {scene.notes} "))
+    contact = options.contact and setup.has_contact
+    root = ET.Element("mujoco", model=setup.name)
+    root.append(ET.Comment(f" sim_origami {__version__}, {setup.name}; {setup.notes} "))
     fragments = ["base.xml", f"options/{options.preset}.xml", "defaults.xml"]
     if options.render:
         fragments += ["visual.xml", "render_scene.xml"]
     for name in fragments:
         _merge(root, template(name))
-    if options.preset == "fast" and scene.fast_step_scale != 1.0:
-        _scale_step(root, scene.fast_step_scale)
+    if options.preset == "fast" and setup.fast_step_scale != 1.0:
+        _scale_step(root, setup.fast_step_scale)
     if contact:
         root.find("option/flag").set("contact", "enable")
     if options.gravity:
         # free motion under gravity (e.g. the IFToMM A04 benchmark): energy reported, not dissipated
-        root.find("option").set("gravity", _fmt(scene.gravity))
+        root.find("option").set("gravity", _fmt(setup.gravity))
         root.find("option/flag").set("gravity", "enable")
         root.find("option/flag").set("energy", "enable")
     _note_preset(root, options.preset)
     _add_meshes(_section(root, "asset"), mechanism)
-    elements = _add_bodies(_section(root, "worldbody"), mechanism, contact, crease_names(scene))
+    elements = _add_bodies(_section(root, "worldbody"), mechanism, contact, setup.creases)
     if options.render:
-        _add_paper(root, mechanism, elements, crease_names(scene))
+        _add_paper(root, mechanism, elements, setup.creases)
 
     equality = _section(root, "equality")
     if mechanism.cut_joints:
@@ -422,22 +442,22 @@ def build_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, np.ndarr
 
     if options.drive == "equality":
         equality.append(ET.Comment(" input: the harness writes the target angle into eq_data[drive, 0] each step "))
-        for joint in scene.drives:
+        for joint in setup.drives:
             ET.SubElement(equality, "joint", name=f"drive_{joint}", joint1=joint, polycoef="0 0 0 0 0").set(
                 "class", "drive"
             )
     elif options.drive == "servo":
         actuator = _section(root, "actuator")
         actuator.append(ET.Comment(" input: force-limited servo, so that contact can stop the motion "))
-        for joint in scene.drives:
+        for joint in setup.drives:
             ET.SubElement(actuator, "position", name=f"drive_{joint}", joint=joint).set("class", "servo")
 
-    if contact and scene.self_contact:
-        _add_self_contact(root, scene)
-    if contact and scene.contact_pairs:
+    if contact and setup.self_contact_exclude is not None:
+        _add_self_contact(root, mechanism, setup.self_contact_exclude)
+    if contact and setup.contact_pairs:
         pairs = _section(root, "contact")
         pairs.append(ET.Comment(" only panels that fold onto each other may touch; all others share a vertex "))
-        for a, b in scene.contact_pairs:
+        for a, b in setup.contact_pairs:
             ET.SubElement(pairs, "pair", geom1=f"{a}_collision", geom2=f"{b}_collision").set("class", "contact")
 
     if keyframes:

@@ -12,7 +12,6 @@ import mujoco
 import numpy as np
 from numpy.typing import NDArray
 
-from .mjcf import crease_names
 from .scenes.base import Scene
 
 MOUNTAIN = (0.85, 0.12, 0.10, 1.0)
@@ -41,7 +40,7 @@ def crease_lines(scene: Scene, radius: float) -> CreaseLines:
     """
     mech = scene.mechanism
     bodies = {b.name: b for b in mech.bodies}
-    names = crease_names(scene)
+    names = scene.crease_hinges
     joints, parents, ends = [], [], []
     thickest = 0.0
     for i, joint in enumerate(mech.joints):

@@ -11,8 +11,8 @@ import numpy as np
 from . import __version__
 from .files import write_text
 from .fold import write_fold
-from .mjcf import ModelOptions, build_xml
-from .simulate import start_input
+from .mjcf import ModelOptions
+from .simulate import scene_xml, start_input
 from .stabilize import preset_mode
 from .tolerances import TOLERANCES
 from .validation import Report
@@ -155,7 +155,7 @@ def model_xml(report: Report) -> str:
     """
     scene = report.scene
     starts = {r.requested: scene.pose(r.requested, start_input(scene, r.requested, report.seed)) for r in report.runs}
-    return build_xml(scene, ModelOptions(preset=report.preset), keyframes=starts) + "\n"
+    return scene_xml(scene, ModelOptions(preset=report.preset), keyframes=starts) + "\n"
 
 
 def write(report: Report, out: str | Path) -> dict[str, Path]:

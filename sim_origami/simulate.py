@@ -85,9 +85,14 @@ def captured_warnings():
         mujoco.set_mju_user_warning(previous)
 
 
+def scene_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, NDArray[np.float64]] | None = None) -> str:
+    """The MJCF text of a scene's mechanism and setup for these options (`mjcf.build_xml`)."""
+    return build_xml(scene.mechanism, scene.model_setup(), options, keyframes)
+
+
 def compile_model(scene: Scene, options: ModelOptions) -> tuple[mujoco.MjModel, mujoco.MjData]:
     """Compile the scene's MJCF for these options, with the preset's regularisation scale applied."""
-    model = mujoco.MjModel.from_xml_string(build_xml(scene, options))
+    model = mujoco.MjModel.from_xml_string(scene_xml(scene, options))
     scale_regularization(model, preset_number(options.preset, "regularization_scale"))
     return model, mujoco.MjData(model)
 

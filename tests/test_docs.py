@@ -28,3 +28,10 @@ def test_scenes_page_lists_every_registered_scene():
     text = (ROOT / "docs" / "scenes.md").read_text()
     missing = [n for n in scenes.names() if f"\n## {n}\n" not in text]
     assert not missing
+
+
+def test_layers_import_one_way_and_the_architecture_page_is_current():
+    """No module imports from a higher layer (scripts/import_graph.py LAYERS), and docs/architecture.md shows it."""
+    import_graph = load_script("import_graph")
+    assert import_graph.upward(import_graph.imports()) == []
+    assert import_graph.PAGE.read_text() == import_graph.page()

@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from sim_origami import scenes
-from sim_origami.mjcf import ModelOptions, build_xml, closures, mujoco_joints, preset_duration, qpos_order
+from sim_origami.mjcf import ModelOptions, closures, mujoco_joints, preset_duration, qpos_order
+from sim_origami.simulate import scene_xml
 from sim_origami.studies import pareto
 
 # Menagerie's top-level order; `visual` appears only in rendered models.
@@ -28,7 +29,7 @@ def thick_miura():
 
 def compiled(scene, keyframes=None, **options) -> tuple[mujoco.MjModel, str]:
     """Compiled model and its MJCF text."""
-    xml = build_xml(scene, ModelOptions(**options), keyframes)
+    xml = scene_xml(scene, ModelOptions(**options), keyframes)
     return mujoco.MjModel.from_xml_string(xml), xml
 
 
@@ -227,7 +228,7 @@ def test_preset_sweep_duration_is_the_compiled_custom_numeric(preset):
 
 def test_unknown_preset_raises_naming_it():
     with pytest.raises(ValueError, match="turbo"):
-        build_xml(all_scenes()[0], ModelOptions(preset="turbo"))
+        scene_xml(all_scenes()[0], ModelOptions(preset="turbo"))
 
 
 def test_stiff_preset_is_semi_implicit_euler_with_closures_at_twice_its_step():

@@ -8,10 +8,10 @@ import pytest
 
 from sim_origami import scenes
 from sim_origami.checks.paths import compare
-from sim_origami.mjcf import ModelOptions, build_xml, preset_duration
+from sim_origami.mjcf import ModelOptions, preset_duration
 from sim_origami.mjcf_tidy import box_of, short
 from sim_origami.report import write
-from sim_origami.simulate import Bindings, drive_targets, scale_regularization, start_input, track
+from sim_origami.simulate import Bindings, drive_targets, scale_regularization, scene_xml, start_input, track
 from sim_origami.validation import validate
 
 
@@ -69,7 +69,7 @@ def test_model_xml_reads_as_a_model_file(bennett_run):
 
 def test_model_file_is_the_compiled_model_of_the_run(bennett_run):
     scene, report, path = bennett_run
-    stepped = build_xml(scene, ModelOptions(preset=report.preset))
+    stepped = scene_xml(scene, ModelOptions(preset=report.preset))
     loaded = mujoco.MjModel.from_xml_path(str(path))
     compiled = mujoco.MjModel.from_xml_string(stepped)
     assert loaded.opt.timestep == compiled.opt.timestep == 0.008

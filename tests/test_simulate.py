@@ -12,7 +12,7 @@ from sim_origami.checks.branches import classify
 from sim_origami.checks.paths import compare
 from sim_origami.errors import DomainError, ParameterError, SimOrigamiError, SimulationError
 from sim_origami.geometry import rotation
-from sim_origami.mjcf import ModelOptions, build_xml, preset_number
+from sim_origami.mjcf import ModelOptions, preset_number
 from sim_origami.origami import crease_directions
 from sim_origami.simulate import (
     Bindings,
@@ -21,6 +21,7 @@ from sim_origami.simulate import (
     contact_input,
     project,
     ramp,
+    scene_xml,
     simulate,
     warn_in_python,
 )
@@ -244,7 +245,7 @@ def test_flat_foldable_vertex_follows_both_branches_within_fast_tolerances(branc
 def test_compiled_models_carry_the_presets_regulariser_scale(preset):
     """compile_model scales MuJoCo's inverse weights (hence every row's R) by the preset's stated factor."""
     scene = scenes.get("thick-diamond").build()
-    plain = mujoco.MjModel.from_xml_string(build_xml(scene, ModelOptions(preset=preset)))
+    plain = mujoco.MjModel.from_xml_string(scene_xml(scene, ModelOptions(preset=preset)))
     model, _ = compile_model(scene, ModelOptions(preset=preset))
     scale = preset_number(preset, "regularization_scale")
     assert scale == model.numeric("regularization_scale").data[0] == 0.01

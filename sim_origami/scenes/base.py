@@ -16,6 +16,7 @@ from ..creases import CreasePattern
 from ..errors import ParameterError
 from ..kinematics.base import Kinematics
 from ..mechanism import Mechanism
+from ..mjcf import ModelSetup
 from ..path import Polyline
 
 UNITS = {"deg": np.pi / 180.0, "m": 1.0, "": 1.0}
@@ -124,6 +125,23 @@ class Scene:
         names = self.pattern.face_names
         free = tuple((a, b) for i, a in enumerate(names) for b in names[i + 1 :] if (a, b) not in touching)
         return self.contact_pairs + free
+
+    @property
+    def crease_hinges(self) -> frozenset[str]:
+        """Hinges that are creases of paper: a crease pattern's creases and an origami vertex's `crease_*` hinges."""
+        names = {j.name for j in self.mechanism.joints if j.name.startswith("crease_")}
+        if self.pattern is not None:
+            names |= {c.name for c in self.pattern.creases}
+        return frozenset(names)
+
+    def model_setup(self) -> ModelSetup:
+        """What the scene's MuJoCo models hold beyond the mechanism (`mjcf.build_xml`)."""
+        return ModelSetup(
+            name=self.name, drives=self.drives, notes=self.notes,
+            contact_pairs=self.contact_pairs,
+            self_contact_exclude=self.pattern.touching_faces() if self.self_contact else None,
+            gravity=self.gravity, creases=self.crease_hinges, fast_step_scale=self.fast_step_scale,
+        )  # fmt: skip
 
     def loop_to_mechanism(self, q_loop: ArrayLike) -> NDArray[np.float64]:
         """Mechanism joint angles (n, n_joints) from loop joint angles (n, n_loop)."""

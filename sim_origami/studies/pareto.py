@@ -25,9 +25,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..checks.paths import compare
-from ..mjcf import ModelOptions, build_xml, preset_number, template
+from ..mjcf import ModelOptions, preset_number, template
 from ..scenes.base import Scene, without_implied_closures
-from ..simulate import Bindings, drive_targets, scale_regularization, simulate, start_pose, track
+from ..simulate import Bindings, drive_targets, scale_regularization, scene_xml, simulate, start_pose, track
 from ..stabilize import drive_step, preset_mode
 
 INTEGRATORS = {"RK4": mujoco.mjtIntegrator.mjINT_RK4, "Euler": mujoco.mjtIntegrator.mjINT_EULER,
@@ -127,7 +127,7 @@ def _scene_for(scene: Scene, closure: str) -> Scene:
 
 def model_for(scene: Scene, setting: Setting) -> mujoco.MjModel:
     """The compiled model of `scene` with `setting` applied on top of the fast preset's MJCF."""
-    model = mujoco.MjModel.from_xml_string(build_xml(scene, ModelOptions(preset="fast", drive=setting.drive)))
+    model = mujoco.MjModel.from_xml_string(scene_xml(scene, ModelOptions(preset="fast", drive=setting.drive)))
     model.opt.integrator, model.opt.timestep = INTEGRATORS[setting.integrator], setting.h
     model.eq_solref[:, 0], model.eq_solimp[:] = setting.tau, setting.solimp
     scale_regularization(model, setting.regularization)
