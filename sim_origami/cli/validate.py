@@ -10,7 +10,7 @@ from tqdm import tqdm
 
 from .. import scenes
 from ..errors import ParameterError
-from ..files import write_text
+from ..files import claimed_folder, write_text
 from ..report import as_dict, plain, write
 from ..scenes.fold_file import fold_scene
 from ..validation import validate
@@ -39,6 +39,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
         help="start at a closed pose on the branch, or 1e-4 rad from flat on it (with --preset accurate)",
     )
     parser.add_argument("--out", type=Path, help="output folder (default runs/<scene>)")
+    parser.add_argument("--force", action="store_true", help="write into a folder holding files this tool did not")
     parser.add_argument("--render", action="store_true", help="also write frames/, fold.gif and fold.mp4")
     parser.add_argument("--json", action="store_true", help="print report.json to stdout")
 
@@ -84,11 +85,13 @@ def run(args: argparse.Namespace) -> int:
             raise ParameterError("--all runs every scene with its defaults; -p and --branch need a SCENE")
         out = args.out or Path("runs")
         docs = []
-        for name in tqdm(scenes.names(), desc="validate", unit="scene", file=sys.stderr):
-            docs.append(run_one(scenes.get(name).build(), args, out / name))
-        table = "\n".join([HEADER, *map(summary_line, docs)])
-        write_text(out / "summary.md", f"# sim_origami validation\n\n{table}\n")
-        write_text(out / "summary.json", json.dumps(docs, indent=2, default=plain) + "\n")
+        with claimed_folder(out, force=args.force):
+            for name in tqdm(scenes.names(), desc="validate", unit="scene", file=sys.stderr):
+                with claimed_folder(out / name, force=args.force):
+                    docs.append(run_one(scenes.get(name).build(), args, out / name))
+            table = "\n".join([HEADER, *map(summary_line, docs)])
+            write_text(out / "summary.md", f"# sim_origami validation\n\n{table}\n")
+            write_text(out / "summary.json", json.dumps(docs, indent=2, default=plain) + "\n")
         print(table)
         return 0 if all(d["passed"] for d in docs) else 1
     if args.fold is not None:
@@ -98,7 +101,8 @@ def run(args: argparse.Namespace) -> int:
     else:
         scene = scenes.get(args.scene).build_from_user(parse_params(args.param))
     out = args.out or Path("runs") / scene.name
-    doc = run_one(scene, args, out)
+    with claimed_folder(out, force=args.force):
+        doc = run_one(scene, args, out)
     if args.json:
         print(json.dumps(doc, indent=2, default=plain))
     else:

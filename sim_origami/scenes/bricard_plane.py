@@ -12,18 +12,18 @@ from ..errors import AssemblyError, ParameterError
 from ..geometry import wrap
 from ..kinematics.bricard_plane import TABLE_4_1, Geometry, PlaneSymmetricBricard
 from ..linkage import dh_mechanism
-from .base import Param, Scene, register
+from .base import OFFSET, TWIST, Param, Scene, register
 
 _CASE10 = TABLE_4_1[10]
 PARAMS = (
-    Param("a", "m", _CASE10.a, "link length a12 = a61"),
-    Param("b", "m", _CASE10.b, "link length a23 = a56"),
-    Param("c", "m", _CASE10.c, "link length a34 = a45"),
-    Param("alpha", "deg", float(np.rad2deg(_CASE10.alpha)), "twist alpha12 (alpha61 = 360 - alpha)"),
-    Param("beta", "deg", float(np.rad2deg(_CASE10.beta)), "twist alpha23 (alpha56 = 360 - beta)"),
-    Param("gamma", "deg", float(np.rad2deg(_CASE10.gamma)), "twist alpha34 (alpha45 = 360 - gamma)"),
-    Param("R2", "m", 0.0, "offset R2 (R6 = -R2)"),
-    Param("R3", "m", 0.0, "offset R3 (R5 = -R3)"),
+    Param("a", "m", _CASE10.a, "link length a12 = a61", zero_ok=True),
+    Param("b", "m", _CASE10.b, "link length a23 = a56", zero_ok=True),
+    Param("c", "m", _CASE10.c, "link length a34 = a45", zero_ok=True),
+    Param("alpha", "deg", float(np.rad2deg(_CASE10.alpha)), "twist alpha12 (alpha61 = 360 - alpha)", **TWIST),
+    Param("beta", "deg", float(np.rad2deg(_CASE10.beta)), "twist alpha23 (alpha56 = 360 - beta)", **TWIST),
+    Param("gamma", "deg", float(np.rad2deg(_CASE10.gamma)), "twist alpha34 (alpha45 = 360 - gamma)", **TWIST),
+    Param("R2", "m", 0.0, "offset R2 (R6 = -R2)", **OFFSET),
+    Param("R3", "m", 0.0, "offset R3 (R5 = -R3)", **OFFSET),
     Param("case", "", 10.0, "Table 4-1 case 5..10 (overrides the geometry, R = 0), or 0 for the values given"),
 )
 

@@ -10,7 +10,8 @@ PARAMS = (
     # The Ch. 2 example with the axes as printed in (2-10, 2-11): twists alternate 300/60 deg
     # (seed 001 §2.5 and validation case 8); alpha = 120 deg is the same linkage with the axes of
     # joints 2, 4, 6 reversed (phi negated).
-    Param("alpha", "deg", 300.0, "twist alpha12 = alpha34 = alpha56; alpha23 = alpha45 = alpha61 = 360 - alpha"),
+    Param("alpha", "deg", 300.0, "twist alpha12 = alpha34 = alpha56; alpha23 = alpha45 = alpha61 = 360 - alpha",
+          lo=0, hi=360, open_lo=True, open_hi=True),
 )
 
 

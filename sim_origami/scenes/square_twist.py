@@ -21,7 +21,8 @@ from .base import Param, Scene, register
 from .patterns import pattern_scene
 
 PARAMS = (
-    Param("alpha", "deg", 150.0, "sector angle between pleat 1 and square edge 2 at each vertex; 90 < alpha < 180"),
+    Param("alpha", "deg", 150.0, "sector angle between pleat 1 and square edge 2 at each vertex; 90 < alpha < 180",
+          lo=90, hi=180, open_lo=True, open_hi=True),
     Param("side", "m", 1.0, "side of the central square"),
     Param("pleat", "m", 1.0, "length of every pleat crease"),
 )

@@ -20,10 +20,17 @@ from .patterns import pattern_scene
 from .thick_vertex4 import RELIEF
 
 PARAMS = (
-    Param("alpha", "deg", 150.0, "sector angle between pleat 1 and square edge 2 at each vertex; 90 < alpha < 180"),
+    Param("alpha", "deg", 150.0, "sector angle between pleat 1 and square edge 2 at each vertex; 90 < alpha < 180",
+          lo=90, hi=180, open_lo=True, open_hi=True),
     Param("b", "m", 0.05, "thickness scale: square edges of a vertex b apart in height, pleat 1 a = b sin(alpha)"),
     Param(
-        "modes", "", 5.0, "rigid mode string (vertices A..D): " + ", ".join(f"{k + 1} {m}" for k, m in enumerate(RIGID))
+        "modes",
+        "",
+        5.0,
+        "rigid mode string (vertices A..D): " + ", ".join(f"{k + 1} {m}" for k, m in enumerate(RIGID)),
+        lo=1,
+        hi=len(RIGID),
+        integer=True,
     ),
     Param("side", "m", 1.0, "side of the central square"),
     Param("pleat", "m", 1.0, "length of every pleat crease"),

@@ -86,7 +86,8 @@ def assembly(zeta: float = 0.0) -> Mechanism:
 @register(
     "truncated-octahedron",
     "truncated octahedron <-> cube (seed 001 ch. 5): two threefold Bricards, 15 R + 9 S joints, input A1",
-    (Param("zeta", "deg", 0.0, "deviation of the A3, B3, C3 axes from the direction to the centre"),),
+    (Param("zeta", "deg", 0.0, "deviation of the A3, B3, C3 axes from the direction to the centre",
+           lo=-90, hi=90, open_lo=True, open_hi=True),),
 )
 def build(zeta: float) -> Scene:
     """
