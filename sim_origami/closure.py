@@ -12,6 +12,7 @@ tolerates the rank-deficient Jacobians of overconstrained loops) with continuati
 """
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -92,6 +93,22 @@ class LoopSystem:
         parts += [(q[..., c.joint] - c.scale * q[..., c.other])[..., None] for c in self.couplings]
         return np.concatenate(parts, axis=-1)
 
+    @cached_property
+    def length_scale(self) -> float:
+        """
+        The loops' longest link (largest translation of any L_k, length units), at least 1: translations are held to
+        the solve's tolerance in units of it on large models and in length units on small and spherical ones (whose
+        links carry only rounding, 1e-16).
+        """
+        lengths = [float(np.linalg.norm(L[:3, 3])) for loop in self.loops for L in loop.links]
+        return max([1.0, *lengths])
+
+    @cached_property
+    def _weights(self) -> NDArray[np.float64]:
+        """Residual weights that make every component dimensionless: translations in units of `length_scale`."""
+        loop = np.r_[np.ones(3), np.full(3, 1.0 / self.length_scale)]
+        return np.r_[np.tile(loop, len(self.loops)), np.ones(len(self.couplings))]
+
     def residual_norm(self, q: ArrayLike) -> NDArray[np.float64]:
         """Largest absolute closure residual component, (...)."""
         return np.max(np.abs(self.residual(q)), axis=-1)
@@ -139,7 +156,9 @@ class LoopSystem:
         fixed : (n_joints,) bool
           Joints held at their `q0` value (the input).
         tol : float
-          Stop when the largest residual component is below this (radians / length units).
+          Stop when the largest residual component is below this: radians, and translations in units of the
+          loops' `length_scale` (a Bricard linkage with 10 km links closes to the same relative precision as one
+          with 1 m links; an absolute 1e-14 m was below the rounding of its 1e4 m products).
 
         Raises
         ------
@@ -148,6 +167,7 @@ class LoopSystem:
         """
         q = np.array(q0, dtype=float)
         free = ~np.asarray(fixed, dtype=bool)
+        w = self._weights
 
         def q_of(u: NDArray[np.float64]) -> NDArray[np.float64]:
             out = q.copy()
@@ -155,12 +175,16 @@ class LoopSystem:
             return out
 
         u, r = _levenberg_marquardt(
-            lambda u: self.residual(q_of(u)), lambda u: self.jacobian(q_of(u))[:, free], q[free], tol, max_iter
-        )
+            lambda u: w * self.residual(q_of(u)), lambda u: w[:, None] * self.jacobian(q_of(u))[:, free], q[free],
+            tol, max_iter,
+        )  # fmt: skip
         q = q_of(u)
         if np.max(np.abs(r)) < 100 * tol:
             return q
-        raise ConvergenceError(f"loop closure did not converge: residual {np.max(np.abs(r)):.3g} > tolerance {tol:g}")
+        raise ConvergenceError(
+            f"loop closure did not converge: residual {np.max(np.abs(r)):.3g} > tolerance {tol:g} (radians, lengths "
+            f"in units of the longest link, {self.length_scale:.4g})"
+        )
 
     def solve_signed(
         self, signs: ArrayLike, input_joint: int, x: float, *, tol: float = 1e-14, max_iter: int = 200

@@ -116,7 +116,7 @@ def _lock_holder(lock: Path) -> int | None:
         os.kill(pid, 0)
     except (ValueError, OSError):
         return None
-    return pid if pid != os.getpid() else None
+    return pid
 
 
 def _is_run(entry: Path) -> bool:

@@ -141,8 +141,8 @@ def run_point(scene_name: str, params: dict[str, float], preset: str | None = No
             gaps.append(float(np.max(run.closure_residual)))
             followed.append(classify(kin, path.input, path.simulated).followed)
         used = preset or scene.preset
-        passed = (max(errors) <= TOLERANCES.angle(used) and max(gaps) <= TOLERANCES.residual(used)
-                  and max(residuals) <= TOLERANCES.closed_form_residual
+        passed = (max(errors) <= TOLERANCES.angle(used) and max(gaps) <= TOLERANCES.residual(used, scene.length_scale)
+                  and max(residuals) <= TOLERANCES.loop_residual(scene.length_scale)
                   and followed == [b.name for b in kin.branches()])  # fmt: skip
         row |= {"passed": bool(passed), "angle_error_max_rad": max(errors), "closure_residual_max_m": max(gaps),
                 "closed_form_residual_max": max(residuals), "branches_followed": ";".join(followed),

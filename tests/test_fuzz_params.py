@@ -174,8 +174,14 @@ def _check_masks(built, where: str) -> None:
             _problem("mask", where, f"{b.name} domain [{lo!r}, {hi!r}] at {x.tolist()}: valid {valid.tolist()}")
         elif not (np.all(np.isfinite(values[valid])) and np.all(np.isnan(values[~valid]))):
             _problem("values", where, f"{b.name}: non-finite inside or finite outside the domain")
-        elif np.any(residual[valid] > 1e-9 * max(1.0, _length_scale(built))):
-            _problem("residual", where, f"{b.name}: closed form misses its loop by {np.max(residual[valid]):.3g}")
+        else:
+            # Inside, the closed form closes its loop to rounding; at a domain end (a lock or turning point) the
+            # roots' discriminant vanishes and 1e-16 of rounding becomes sqrt(1e-16) = 1e-8 (measured 7.8e-8 on
+            # kokotsakis case 2 at its ends).
+            scale = max(1.0, _length_scale(built))
+            bound = np.where(np.isin(x, (lo, hi)), 1e-6, 1e-9) * scale
+            if np.any(residual[valid] > bound[valid]):
+                _problem("residual", where, f"{b.name}: closed form misses its loop by {np.max(residual[valid]):.3g}")
 
 
 def _length_scale(built) -> float:

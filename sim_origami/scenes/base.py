@@ -30,9 +30,12 @@ LENGTH_RANGE = (1e-4, 1e4)
 # Largest ratio of two positive lengths of one scene: beyond it the small one (a thickness) is rounding on the large.
 LENGTH_RATIO_MAX = 1e4
 
-# Angle ranges (deg) shared by many parameters: sector angles and twists of a spherical or spatial link.
-ACUTE = {"lo": 0, "hi": 90, "open_lo": True, "open_hi": True}
-SECTOR = {"lo": 0, "hi": 180, "open_lo": True, "open_hi": True}
+# Angle ranges (deg) shared by many parameters: sector angles and twists of a spherical or spatial link. An angle
+# within ANGLE_MARGIN of a degenerate end (a zero sector, a straight one) makes panels of zero area: trimesh and qhull
+# overflowed at alpha = 1e-300 rad.
+ANGLE_MARGIN = 1e-3
+ACUTE = {"lo": ANGLE_MARGIN, "hi": 90 - ANGLE_MARGIN}
+SECTOR = {"lo": ANGLE_MARGIN, "hi": 180 - ANGLE_MARGIN}
 TWIST = {"lo": -360, "hi": 360}
 # A signed offset along a joint axis (m): zero or either sign, as large as a length.
 OFFSET = {"lo": -LENGTH_RANGE[1], "hi": LENGTH_RANGE[1]}
@@ -60,6 +63,9 @@ class Param:
     integer: bool = False
     limit: str = ""
     zero_ok: bool = False
+    # A preset parameter (e.g. a table's case number): a nonzero value replaces these parameters, 0 uses them as
+    # given. A preset never replaces a value the user gave (`SceneType.build`).
+    replaces: tuple[str, ...] = ()
 
     def to_api(self, value: float) -> float:
         """Command-line value (in `unit`) to the API's radians or metres."""
@@ -258,6 +264,15 @@ class SceneType:
                 )
         full = {p.name: p.to_api(p.default) for p in self.params} | values
         full = {key: known[key].check(value) for key, value in full.items()}
+        for preset in (p for p in self.params if p.replaces):
+            given = [name for name in preset.replaces if name in values]
+            if given and preset.name not in values:
+                full[preset.name] = 0.0  # the user's values, not the default preset's
+            elif given and full[preset.name] != 0.0:
+                raise ParameterError(
+                    f"{given[0]} is given with {preset.name} = {full[preset.name]:g}, whose preset replaces it; give "
+                    f"{preset.name} = 0 to use {', '.join(given)}, or leave {given[0]} out"
+                )
         lengths = {k: abs(v) for k, v in full.items() if known[k].unit == "m" and v != 0.0}
         if len(lengths) > 1:
             small, large = min(lengths, key=lengths.get), max(lengths, key=lengths.get)

@@ -15,13 +15,13 @@ import itertools
 
 from ..kinematics.square_twist import INPUT, RIGID
 from ..kinematics.thick_square_twist import ThickSquareTwist
-from .base import Param, Scene, choice, register
+from .base import ANGLE_MARGIN, Param, Scene, choice, register
 from .patterns import pattern_scene
 from .thick_vertex4 import RELIEF
 
 PARAMS = (
     Param("alpha", "deg", 150.0, "sector angle between pleat 1 and square edge 2 at each vertex; 90 < alpha < 180",
-          lo=90, hi=180, open_lo=True, open_hi=True),
+          lo=90 + ANGLE_MARGIN, hi=180 - ANGLE_MARGIN),
     Param("b", "m", 0.05, "thickness scale: square edges of a vertex b apart in height, pleat 1 a = b sin(alpha)"),
     Param(
         "modes",

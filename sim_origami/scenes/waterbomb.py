@@ -32,7 +32,7 @@ ANGLES = (
 )
 THICK = (
     Param("mu", "", 0.5, "thickness ratio mu (B's link 34 over link 23); mu = 1 with alpha = beta keeps path II",
-          lo=0, hi=100, open_lo=True),
+          lo=1e-3, hi=100),
     Param("a", "m", 0.05, "thickness unit a' (B's link 23)"),
 )
 # Default sweep of x = rho_A4 (rad), kept where the cell is well conditioned. The cells carry joint couplings
