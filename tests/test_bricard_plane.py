@@ -432,14 +432,15 @@ def test_closed_form_matches_numeric_continuation_with_offsets():
 # ---------------------------------------------------------------------------------------------
 
 
-def test_scene_defaults_are_case_10_and_presets_override_the_geometry():
+def test_scene_defaults_are_case_10_and_presets_never_replace_given_geometry():
     scene_type = scenes.get("bricard-plane")
     scene = scene_type.build()
     assert scene.params["case"] == 10.0
     assert {b.name for b in scene.kinematics.branches()} == {"theta1_eq_theta4", "theta1_plus_theta4_eq_2theta2"}
     assert scene.drive_joint == "joint_2" and scene.loop_joints == tuple(f"joint_{i}" for i in range(1, 7))
-    preset = scene_type.build_from_user({"case": 9, "a": 7.0})
-    assert preset.params["a"] == 3.0  # Table 4-1 case 9, not the given a
+    with pytest.raises(ParameterError, match="a is given with case = 9"):  # issue 16: never silently case 9's a
+        scene_type.build_from_user({"case": 9, "a": 7.0})
+    assert scene_type.build_from_user({"case": 9}).params["a"] == 3.0  # Table 4-1 case 9
     fields = ("a", "b", "c", "alpha", "beta", "gamma", "R2", "R3")
     user = {"case": 0.0} | {f: getattr(OFFSETS, f) for f in fields}
     for f in ("alpha", "beta", "gamma"):
