@@ -104,6 +104,8 @@ def check_scheduler(address: str, timeout: float = SCHEDULER_TIMEOUT_S) -> None:
     ParameterError unless `address` is PROTOCOL://HOST:PORT (tcp, tls, ws, wss) and a scheduler answers there
     within `timeout` seconds (a TCP connection): an unreachable cluster is refused before any work.
     """
+    if address.startswith("inproc://"):
+        return  # a scheduler in this process (dask's LocalCluster(processes=False)): nothing to connect to
     match = re.fullmatch(r"(tcp|tls|ws|wss)://(\[[0-9a-fA-F:]+\]|[A-Za-z0-9_.-]+):(\d{1,5})", address)
     if not match:
         raise ParameterError(f"--scheduler {address!r} is not an address like tcp://HOST:PORT (tcp, tls, ws, wss)")

@@ -265,7 +265,10 @@ class SceneType:
         full = {p.name: p.to_api(p.default) for p in self.params} | values
         full = {key: known[key].check(value) for key, value in full.items()}
         for preset in (p for p in self.params if p.replaces):
-            given = [name for name in preset.replaces if name in values]
+            # A value equal to its default (case 10's geometry for bricard-plane) is what the default preset has:
+            # listing every parameter with its default, as a generic caller may, conflicts with nothing.
+            given = [name for name in preset.replaces if name in values and full[name] != known[name].to_api(
+                known[name].default)]
             if given and preset.name not in values:
                 full[preset.name] = 0.0  # the user's values, not the default preset's
             elif given and full[preset.name] != 0.0:
