@@ -70,6 +70,11 @@ def _levenberg_marquardt(residual, jacobian, u: NDArray[np.float64], tol: float,
     return u, r
 
 
+def _scale_rows(J, w: NDArray[np.float64]):
+    """Rows of a dense or sparse Jacobian times weights w (n_rows,)."""
+    return J.multiply(w[:, None]).tocsc() if sp.issparse(J) else w[:, None] * J
+
+
 @dataclass(frozen=True)
 class Coupling:
     """A linear joint coupling q[joint] = scale * q[other] (an imposed symmetry or a periodic copy)."""
@@ -127,6 +132,22 @@ class LoopSystem:
         for c, coupling in enumerate(self.couplings):
             out[..., 6 * len(self.loops) + c] = q[..., coupling.joint] - coupling.scale * q[..., coupling.other]
         return out
+
+    @cached_property
+    def length_scale(self) -> float:
+        """
+        The loops' longest link (largest translation of any L_k, length units), at least 1: translations are held to
+        the solve's tolerance in units of it on large models and in length units on small and spherical ones (whose
+        links carry only rounding, 1e-16).
+        """
+        lengths = [float(np.linalg.norm(L[:3, 3])) for loop in self.loops for L in loop.links]
+        return max([1.0, *lengths])
+
+    @cached_property
+    def _weights(self) -> NDArray[np.float64]:
+        """Residual weights that make every component dimensionless: translations in units of `length_scale`."""
+        loop = np.r_[np.ones(3), np.full(3, 1.0 / self.length_scale)]
+        return np.r_[np.tile(loop, len(self.loops)), np.ones(len(self.couplings))]
 
     def residual_norm(self, q: ArrayLike) -> NDArray[np.float64]:
         """Largest absolute closure residual component, (...); 0 for an open chain."""
@@ -196,7 +217,9 @@ class LoopSystem:
         fixed : (n_joints,) bool
           Joints held at their `q0` value (the input).
         tol : float
-          Stop when the largest residual component is below this (radians / length units).
+          Stop when the largest residual component is below this: radians, and translations in units of the
+          loops' `length_scale` (a Bricard linkage with 10 km links closes to the same relative precision as one
+          with 1 m links; an absolute 1e-14 m was below the rounding of its 1e4 m products).
 
         Raises
         ------
@@ -205,6 +228,7 @@ class LoopSystem:
         """
         q = np.array(q0, dtype=float)
         free = ~np.asarray(fixed, dtype=bool)
+        w = self._weights
 
         def q_of(u: NDArray[np.float64]) -> NDArray[np.float64]:
             out = q.copy()
@@ -213,13 +237,17 @@ class LoopSystem:
 
         jacobian = self.jacobian_sparse if self.sparse else self.jacobian
         u, r = _levenberg_marquardt(
-            lambda u: self.residual(q_of(u)), lambda u: jacobian(q_of(u))[:, free], q[free], tol, max_iter
-        )
+            lambda u: w * self.residual(q_of(u)), lambda u: _scale_rows(jacobian(q_of(u))[:, free], w), q[free], tol,
+            max_iter,
+        )  # fmt: skip
         q = q_of(u)
         worst = float(np.max(np.abs(r), initial=0.0))
         if worst < 100 * tol:
             return q
-        raise ConvergenceError(f"loop closure did not converge: residual {worst:.3g} > tolerance {tol:g}")
+        raise ConvergenceError(
+            f"loop closure did not converge: residual {worst:.3g} > tolerance {tol:g} (radians, lengths in units of "
+            f"the longest link, {self.length_scale:.4g})"
+        )
 
     def solve_signed(
         self, signs: ArrayLike, input_joint: int, x: float, *, tol: float = 1e-14, max_iter: int = 200

@@ -159,6 +159,11 @@ class Mechanism:
             if name not in cut:
                 raise ParameterError(f"implied closure {name!r} is not a cut hinge; cut hinges are {sorted(cut)}")
 
+    @cached_property
+    def length_scale(self) -> float:
+        """The largest dimension of any body's solid (m): the size length tolerances are relative to."""
+        return max((float(np.max(b.solid.extents)) for b in self.bodies if len(b.solid.vertices)), default=1.0) or 1.0
+
     def joint_index(self, name: str) -> int:
         """Position of joint `name` in `joints`."""
         for i, j in enumerate(self.joints):

@@ -32,8 +32,8 @@ from .stabilize import StepFunction, run_step
 RESIDUAL_SAMPLES = 400
 # Below this residual (m) a projection step that no longer lowers it ends the iteration (rounding floor).
 STALL_TOL = 1e-13
-# Projection stops when MuJoCo's equality residual (m) falls below this (1e-14 left up to 1.8e-13 rad of angle
-# error on ill-conditioned loops; 1e-15 at most 2.3e-14, still within 20 Gauss-Newton steps).
+# Projection stops when MuJoCo's equality residual falls below this times the scene's length scale (m; 1e-14 left up
+# to 1.8e-13 rad of angle error on ill-conditioned loops; 1e-15 at most 2.3e-14, still within 20 Gauss-Newton steps).
 PROJECTION_TOL = 1e-15
 # A quasi-static sweep moves no joint by this much (rad) in one step: a larger jump marks a divergence.
 JUMP_RAD = 0.5
@@ -403,7 +403,7 @@ def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: s
                 rows = data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY
                 r = data.efc_pos[rows]
                 size = np.max(np.abs(r), initial=0.0)
-                if size < PROJECTION_TOL or (size < STALL_TOL and size >= previous):
+                if size < PROJECTION_TOL * scene.length_scale or (size < STALL_TOL and size >= previous):
                     break  # converged, or at the rounding floor of a large model
                 previous = size
                 J = constraint_jacobian(model, data)[rows][:, free]

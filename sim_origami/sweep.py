@@ -16,6 +16,8 @@ import importlib.util
 import io
 import itertools
 import os
+import re
+import socket
 import time
 from collections.abc import Callable, Iterator
 from concurrent.futures import ProcessPoolExecutor, as_completed
@@ -31,6 +33,13 @@ from .errors import ParameterError
 from .files import atomic_path, write_text
 from .simulate import simulate
 from .tolerances import TOLERANCES
+
+# Largest grid a sweep takes: at 1 to 20 s of CPU per point, 10 000 points keep 8 cores busy for up to 7 hours.
+GRID_POINTS_MAX = 10_000
+# Most local processes (each holds a MuJoCo model; far beyond the cores only costs memory).
+WORKERS_MAX = 1024
+# How long a scheduler may take to accept a connection before the sweep is refused (s).
+SCHEDULER_TIMEOUT_S = 5.0
 
 METRICS = ("passed", "angle_error_max_rad", "closure_residual_max_m", "closed_form_residual_max",
            "branches_followed", "cpu_s", "error")  # fmt: skip
@@ -54,10 +63,62 @@ def parse_axis(text: str) -> Axis:
         start, stop, step = (float(p) for p in parts)
     except ValueError:
         raise ParameterError(f"grid axis {text!r}: START, STOP and STEP must be numbers") from None
+    if not all(np.isfinite((start, stop, step))):
+        raise ParameterError(f"grid axis {text!r}: START, STOP and STEP must be finite numbers")
     if not step > 0 or stop < start:
         raise ParameterError(f"grid axis {text!r}: needs STEP > 0 and STOP >= START")
-    count = int(np.floor((stop - start) / step + 1e-9)) + 1
-    return Axis(name.strip(), tuple(float(v) for v in start + step * np.arange(count)))
+    count = np.floor((stop - start) / step + 1e-9) + 1  # a float first: a tiny step must not allocate the grid
+    if not count <= GRID_POINTS_MAX:
+        raise ParameterError(f"grid axis {text!r} has {count:.3g} points; a sweep takes at most {GRID_POINTS_MAX}")
+    return Axis(name.strip(), tuple(float(v) for v in start + step * np.arange(int(count))))
+
+
+def check_grid(scene_name: str, axes: list[Axis]) -> None:
+    """
+    ParameterError before any work when an axis names no parameter of the scene or is given twice, a value breaks
+    its parameter's rule (`Param.check`), or the grid has more than GRID_POINTS_MAX points.
+    """
+    kind = scenes.get(scene_name)
+    known = {p.name: p for p in kind.params}
+    seen = set()
+    for axis in axes:
+        if axis.name not in known:
+            raise ParameterError(f"unknown parameter {axis.name!r} for scene {scene_name!r}; parameters are "
+                                 f"{', '.join(sorted(known))}")  # fmt: skip
+        if axis.name in seen:
+            raise ParameterError(f"grid axis {axis.name!r} is given twice; give each parameter one --grid")
+        seen.add(axis.name)
+        for value in axis.values:
+            known[axis.name].check(known[axis.name].to_api(value))
+    total = float(np.prod([len(a.values) for a in axes]))
+    if total > GRID_POINTS_MAX:
+        raise ParameterError(f"the grid has {total:.3g} points; a sweep takes at most {GRID_POINTS_MAX}")
+
+
+def check_workers(workers: int | None) -> None:
+    """ParameterError unless `workers` is None (every core) or a whole number from 1 to WORKERS_MAX."""
+    if workers is not None and not 1 <= workers <= WORKERS_MAX:
+        raise ParameterError(f"--workers {workers}; it must be a whole number from 1 to {WORKERS_MAX}")
+
+
+def check_scheduler(address: str, timeout: float = SCHEDULER_TIMEOUT_S) -> None:
+    """
+    ParameterError unless `address` is PROTOCOL://HOST:PORT (tcp, tls, ws, wss) and a scheduler answers there
+    within `timeout` seconds (a TCP connection): an unreachable cluster is refused before any work.
+    """
+    if address.startswith("inproc://"):
+        return  # a scheduler in this process (dask's LocalCluster(processes=False)): nothing to connect to
+    match = re.fullmatch(r"(tcp|tls|ws|wss)://(\[[0-9a-fA-F:]+\]|[A-Za-z0-9_.-]+):(\d{1,5})", address)
+    if not match:
+        raise ParameterError(f"--scheduler {address!r} is not an address like tcp://HOST:PORT (tcp, tls, ws, wss)")
+    host, port = match.group(2).strip("[]"), int(match.group(3))
+    try:
+        with socket.create_connection((host, port), timeout=timeout):
+            pass
+    except OSError as exc:
+        raise ParameterError(
+            f"--scheduler {address}: no scheduler answers there within {timeout:g} s ({exc.strerror or exc})"
+        ) from None
 
 
 def grid_points(axes: list[Axis]) -> list[dict[str, float]]:
@@ -84,8 +145,8 @@ def run_point(scene_name: str, params: dict[str, float], preset: str | None = No
             gaps.append(float(np.max(run.closure_residual)))
             followed.append(classify(kin, path.input, path.simulated).followed)
         used = preset or scene.preset
-        passed = (max(errors) <= TOLERANCES.angle(used) and max(gaps) <= TOLERANCES.residual(used)
-                  and max(residuals) <= TOLERANCES.closed_form_residual
+        passed = (max(errors) <= TOLERANCES.angle(used) and max(gaps) <= TOLERANCES.residual(used, scene.length_scale)
+                  and max(residuals) <= TOLERANCES.loop_residual(scene.length_scale)
                   and followed == [b.name for b in kin.branches()])  # fmt: skip
         row |= {"passed": bool(passed), "angle_error_max_rad": max(errors), "closure_residual_max_m": max(gaps),
                 "closed_form_residual_max": max(residuals), "branches_followed": ";".join(followed),
@@ -133,14 +194,12 @@ def sweep(
     scheduler : a Dask distributed scheduler address (e.g. tcp://10.0.0.5:8786), or None for local processes.
     progress : wraps the stream of finished rows (e.g. a tqdm bar), given the number of points.
     """
-    kind = scenes.get(scene_name)
-    known = {p.name for p in kind.params}
-    for axis in axes:
-        if axis.name not in known:
-            raise ParameterError(f"unknown parameter {axis.name!r} for scene {scene_name!r}; parameters are "
-                                 f"{', '.join(sorted(known))}")  # fmt: skip
+    check_grid(scene_name, axes)
+    check_workers(workers)
     if scheduler and importlib.util.find_spec("distributed") is None:
         raise ParameterError(f"--scheduler {scheduler} needs Dask distributed: pip install -e '.[cluster]'")
+    if scheduler:
+        check_scheduler(scheduler)
     points = grid_points(axes)
     tasks = [(scene_name, p, preset) for p in points]
     stream = _dask(tasks, scheduler) if scheduler else _local(tasks, workers or os.cpu_count() or 1)

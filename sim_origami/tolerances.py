@@ -66,15 +66,28 @@ class Tolerances:
         return {"fast": self.fast_rad, "stiff": self.fast_rad, "accurate": self.accurate_rad,
                 "projection": self.projection_rad, "fast-projected": self.projected_rad}[mode]  # fmt: skip
 
-    def residual(self, mode: str) -> float:
-        """Closure-residual tolerance (m) for a run mode."""
-        return {
+    def residual(self, mode: str, length_scale: float = 1.0) -> float:
+        """
+        Closure-residual tolerance (m) for a run mode, for a model whose characteristic length (`Scene.length_scale`,
+        its largest body dimension) is `length_scale` m: the values above were measured on models of about 1 m,
+        and a gap between closure sites is an angle error times a lever arm, so it scales with the model's size
+        (bennett with a = 1000, b = 1500 m: gap 1.0e-4 m at 6.7e-8 rad of path error).
+        """
+        return length_scale * {
             "fast": self.fast_residual_m,
             "stiff": self.fast_residual_m,
             "accurate": self.accurate_residual_m,
             "projection": self.projection_residual_m,
             "fast-projected": self.projected_residual_m,
         }[mode]
+
+    def loop_residual(self, length_scale: float = 1.0) -> float:
+        """
+        Tolerance of a closed form's loop residual (max |rotation vector (rad), translation (m)|) for a model of
+        characteristic length `length_scale` m: the translation's rounding grows with the size, the rotation's
+        does not, so the bound is the 1 m value times max(1, size).
+        """
+        return self.closed_form_residual * max(1.0, length_scale)
 
 
 TOLERANCES = Tolerances()

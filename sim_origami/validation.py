@@ -93,7 +93,7 @@ def closed_form_verdicts(scene: Scene, branch: str, x: np.ndarray) -> tuple[Verd
         Verdict(
             f"{branch}: closed-form closure residual",
             float(np.max(loops.residual_norm(q))),
-            TOLERANCES.closed_form_residual,
+            TOLERANCES.loop_residual(scene.length_scale),
             "max |rotation vector, translation| of the loop product",
         ),
         Verdict(
@@ -237,7 +237,7 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
                 TOLERANCES.angle(preset),
                 "max over samples and joints of |sim - closed form at the simulated input|"),
         Verdict(f"{branch}: MuJoCo {preset} closure residual (m)", float(np.max(dynamic.closure_residual)),
-                TOLERANCES.residual(preset), "largest gap between paired closure sites"),
+                TOLERANCES.residual(preset, scene.length_scale), "largest gap between paired closure sites"),
         Verdict(f"{branch}: MuJoCo projection path error (rad)", proj.max_error(), TOLERANCES.projection_rad,
                 "Gauss-Newton on MuJoCo's equality residuals at each input"),
         Verdict(f"{branch}: branch followed", float(labels.followed != branch or labels.flips > 0), 0.0,

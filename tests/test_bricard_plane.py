@@ -248,12 +248,12 @@ def test_case_9_theta2_covers_only_part_of_the_circle_and_turns_back():
         assert "not fully rotatable" in b.description and "60.2 %" in b.description
     turning = sorted(e.input for e in kin.events() if e.kind == "turning_point")
     np.testing.assert_allclose(turning, list(kin.branches()[0].domain), atol=0)
-    # Inputs are taken modulo 2 pi; |theta2| < 71.67 deg has no configuration.
+    # Valid exactly on the printed domain (issue 16): -2 rad is the configuration at -2 + 2 pi but lies outside
+    # [71.67, 288.33] deg, so it is null like |theta2| < 71.67 deg, which has no configuration.
     name = kin.branches()[0].name
     a, valid_a = kin.evaluate(name, [-2.0, -2.0 + 2 * np.pi, 0.5])
-    assert valid_a.tolist() == [True, True, False]
-    np.testing.assert_allclose(wrap(a[0] - a[1])[[0, 2, 3]], 0.0, atol=1e-12)
-    assert np.all(np.isnan(a[2]))
+    assert valid_a.tolist() == [False, True, False]
+    assert np.all(np.isnan(a[0])) and np.all(np.isnan(a[2]))
     with pytest.raises(DomainError, match=r"theta2 = 0\.5 rad"):
         kin.joint_angles(name, 0.5)
 
@@ -296,8 +296,12 @@ def test_each_branch_keeps_its_name_and_identity_through_the_crossings(case, exp
     crossings = [e for e in kin.events() if e.kind == "bifurcation" and len(e.branches) == 2]
     assert len(crossings) == count
     for e in crossings:
-        x = e.input + np.array([-1e-3, -1e-6, 0.0, 1e-6, 1e-3])
         for name in e.branches:
+            # A crossing at theta2 = +/- pi continues at the domain's other end: inputs beyond it are taken a turn
+            # back (evaluate is null outside the domain it prints).
+            lo, hi = kin.branch(name).domain
+            x = e.input + np.array([-1e-3, -1e-6, 0.0, 1e-6, 1e-3])
+            x = np.where((x < lo) | (x > hi), lo + np.mod(x - lo, 2 * np.pi), x)
             v = kin.joint_angles(name, x)
             # Continuous through the crossing: the +/- root labels swap there, the names do not. Over
             # 2e-6 rad of input the joints move at most 1.5e-5 rad (slope 7.5, case 6's theta1).
@@ -316,12 +320,12 @@ def test_each_branch_keeps_its_name_and_identity_through_the_crossings(case, exp
                 assert abs(float(wrap(t3[0] - np.pi))) > 1e-4
 
 
-def test_evaluate_contract_nan_outside_unknown_branch_and_inputs_modulo_two_pi():
+def test_evaluate_contract_nan_outside_the_domain_and_unknown_branch():
     kin = model(TABLE_4_1[10])
-    values, valid = kin.evaluate("theta1_eq_theta4", [0.3, 0.3 + 2 * np.pi, np.nan])
-    assert valid.tolist() == [True, True, False]
-    np.testing.assert_allclose(wrap(values[0] - values[1])[[0, 2, 3]], 0.0, atol=1e-12)
-    assert np.all(np.isnan(values[2]))
+    # Null outside the printed domain [-pi, pi], even a whole turn on (issue 16: -1e10 gave loop residual 3.0).
+    values, valid = kin.evaluate("theta1_eq_theta4", [0.3, 0.3 + 2 * np.pi, np.nan, -1e10])
+    assert valid.tolist() == [True, False, False, False]
+    assert np.all(np.isnan(values[1:]))
     with pytest.raises(ParameterError, match="theta1_eq_theta4"):
         kin.evaluate("plus", 0.3)
     assert kin.loop_input() == (1, 1.0)
@@ -374,14 +378,15 @@ def test_closed_form_matches_numeric_continuation_with_offsets():
 # ---------------------------------------------------------------------------------------------
 
 
-def test_scene_defaults_are_case_10_and_presets_override_the_geometry():
+def test_scene_defaults_are_case_10_and_presets_never_replace_given_geometry():
     scene_type = scenes.get("bricard-plane")
     scene = scene_type.build()
     assert scene.params["case"] == 10.0
     assert {b.name for b in scene.kinematics.branches()} == {"theta1_eq_theta4", "theta1_plus_theta4_eq_2theta2"}
     assert scene.drive_joint == "joint_2" and scene.loop_joints == tuple(f"joint_{i}" for i in range(1, 7))
-    preset = scene_type.build_from_user({"case": 9, "a": 7.0})
-    assert preset.params["a"] == 3.0  # Table 4-1 case 9, not the given a
+    with pytest.raises(ParameterError, match="a is given with case = 9"):  # issue 16: never silently case 9's a
+        scene_type.build_from_user({"case": 9, "a": 7.0})
+    assert scene_type.build_from_user({"case": 9}).params["a"] == 3.0  # Table 4-1 case 9
     fields = ("a", "b", "c", "alpha", "beta", "gamma", "R2", "R3")
     user = {"case": 0.0} | {f: getattr(OFFSETS, f) for f in fields}
     for f in ("alpha", "beta", "gamma"):

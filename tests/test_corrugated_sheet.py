@@ -108,11 +108,11 @@ def test_validate_default_sheet_and_self_contact():
 @pytest.mark.parametrize(
     ("kwargs", "match"),
     [
-        ({"unit": 2.0}, "unit = 2; use 0 for P or 1 for Q"),
-        ({"rows": 0.0}, "rows = 0; a sheet needs a whole number of units"),
+        ({"unit": 2.0}, "unit = 2; it must be a whole number from 0 to 1"),
+        ({"rows": 0.0}, "rows = 0; it must be a whole number from 1 to 16"),
         ({"cols": 1.5}, "cols = 1.5"),
         ({"gamma": np.deg2rad(50.0), "delta": np.deg2rad(115.0)}, "alpha \\+ gamma = 185 deg"),
-        ({"L2": 0.0}, "L2 = 0 m; lengths must be positive"),
+        ({"L2": 0.0}, r"L2 = 0 m; it must be a number in \[0\.0001, 10000\] m"),
     ],
 )
 def test_bad_input_is_refused(kwargs, match):

@@ -176,10 +176,9 @@ def test_evaluate_marks_inputs_outside_the_domain_and_joint_angles_refuses_them(
 
 @pytest.mark.parametrize("alpha12", [0.0, 90.0, 95.0, -10.0, 180.0])
 def test_alpha12_outside_0_90_deg_raises_parameter_error_naming_value_and_rule(alpha12):
-    message = rf"alpha12 = {alpha12:g} deg.*\(0, 90\) deg"
-    with pytest.raises(ParameterError, match=message):
+    with pytest.raises(ParameterError, match=rf"alpha12 = {alpha12:g} deg; it must be a number in \[0\.001, 89\.999\]"):
         scenes.get("myard").build_from_user({"alpha12": alpha12})
-    with pytest.raises(ParameterError, match=message):
+    with pytest.raises(ParameterError, match=rf"alpha12 = {alpha12:g} deg.*\(0, 90\) deg"):
         Myard(1.0, alpha12 * DEG)
 
 

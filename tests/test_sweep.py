@@ -60,7 +60,7 @@ def test_cli_sweep_writes_tables_and_plot_and_exits_1_when_a_point_fails(tmp_pat
     code = main(["sweep", "vertex4", "--grid", "alpha1=55:60:5", "--workers", "2", "--out", str(out)])
     text = capsys.readouterr().out
     assert code == 1 and "2 points, 1 passed, 1 failed" in text and "alpha1=55" in text
-    assert {p.name for p in out.iterdir()} == {"sweep.csv", "sweep.parquet", "sweep.png"}
+    assert {p.name for p in out.iterdir()} == {"sweep.csv", "sweep.parquet", "sweep.png", ".sim_origami-run.json"}
     code = main(["sweep", "vertex4", "--grid", "alpha1=60:60:5", "--workers", "1", "--out", str(out)])
     assert code == 0
     assert main(["sweep", "vertex4", "--grid", "nope=1:2:1"]) == 2

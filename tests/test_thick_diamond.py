@@ -205,13 +205,13 @@ def test_branches_events_gruebler_and_domain_checks():
 
 @pytest.mark.parametrize("alpha", [0.0, 46.0, 60.0, -30.0])
 def test_alpha_outside_0_45_deg_raises_parameter_error(alpha):
-    with pytest.raises(ParameterError, match=rf"alpha = {alpha:g} deg.*0 < alpha <= 45 deg"):
+    with pytest.raises(ParameterError, match=rf"alpha = {alpha:g} deg; it must be a number in \[0\.001, 45\] deg"):
         scenes.get("thick-diamond").build_from_user({"alpha": alpha})
 
 
 @pytest.mark.parametrize("name", ["p", "q", "r"])
 def test_non_positive_spacing_raises_parameter_error(name):
-    with pytest.raises(ParameterError, match=rf"{name} = 0 m; it must be positive"):
+    with pytest.raises(ParameterError, match=rf"{name} = 0 m; it must be a number in \[0\.0001, 10000\] m"):
         scenes.get("thick-diamond").build_from_user({name: 0.0})
 
 

@@ -190,7 +190,7 @@ def test_panels_touch_only_near_the_flat_folded_end():
     [
         ({"modes": 0.0}, "modes = 0; it must be a whole number from 1 to 6"),
         ({"modes": 2.5}, "modes = 2.5; it must be a whole number"),
-        ({"b": 0.0}, "thickness scale b = 0 m"),
+        ({"b": 0.0}, "b = 0 m; it must be a number"),
         ({"alpha": np.pi / 2}, "alpha = 90 deg"),
     ],
 )

@@ -156,7 +156,7 @@ def test_zero_thickness_mujoco_follows_each_branch_and_thick_equals_path_one():
     [
         ({"alpha": 45 * DEG, "beta": 45 * DEG}, "alpha \\+ beta = 90"),
         ({"alpha": 0.0}, "alpha = 0 deg"),
-        ({"t": -1.0}, "half-width t = -1"),
+        ({"t": -1.0}, "t = -1 m; it must be a number"),
     ],
 )
 def test_bad_geometry_is_refused(kwargs, match):
@@ -165,7 +165,7 @@ def test_bad_geometry_is_refused(kwargs, match):
 
 
 def test_bad_thickness_is_refused():
-    with pytest.raises(ParameterError, match="mu > 0 and a > 0"):
+    with pytest.raises(ParameterError, match=r"mu = 0; it must be a number in \[0\.001, 100\]"):
         scenes.get("waterbomb-thick").build(mu=0.0)
 
 

@@ -287,7 +287,7 @@ def test_mujoco_follows_the_contraction_crease_by_crease():
         ({"m": 2.5}, "m = 2.5"),
         ({"alpha": 0.0}, "alpha = 0 deg"),
         ({"beta": 95 * DEG}, "beta = 95 deg"),
-        ({"a": -1.0}, "half-width a = -1"),
+        ({"a": -1.0}, "a = -1 m; it must be a number"),
     ],
 )
 def test_bad_geometry_is_refused(kwargs, match):

@@ -1,6 +1,7 @@
 """Argument helpers shared by commands: -p NAME=VALUE and degree lists."""
 
 import argparse
+import re
 
 import numpy as np
 
@@ -14,26 +15,39 @@ def add_params(parser: argparse.ArgumentParser) -> None:
                         help="scene parameter in degrees or metres (see describe)")  # fmt: skip
 
 
+# A plain decimal number as people type it: sign, digits with an optional point, an optional exponent. Python's
+# float() also takes '1_0', 'inf', 'nan' and 'Infinity', which no command-line value means.
+NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?")
+
+
+def parse_number(text: str, what: str) -> float:
+    """A plain decimal number (NUMBER) that is finite as a float; ParameterError naming `what` otherwise."""
+    text = text.strip()
+    if not NUMBER.fullmatch(text):
+        raise ParameterError(f"{what} = {text!r} is not a plain decimal number (e.g. 60, -0.5, 1e-3)")
+    value = float(text)
+    if not np.isfinite(value):
+        raise ParameterError(f"{what} = {text} overflows a float; it must be a finite number")
+    return value
+
+
 def parse_params(items: list[str]) -> dict[str, float]:
-    """['alpha1=60', ...] -> {'alpha1': 60.0}; ParameterError on a malformed item."""
+    """['alpha1=60', ...] -> {'alpha1': 60.0}; ParameterError on a malformed item, a non-number or a repeated name."""
     out = {}
     for item in items:
         name, sep, value = item.partition("=")
+        name = name.strip()
         if not sep or not name:
             raise ParameterError(f"parameter {item!r} is not NAME=VALUE")
-        try:
-            out[name.strip()] = float(value)
-        except ValueError:
-            raise ParameterError(f"parameter {name}={value!r} is not a number") from None
+        if name in out:
+            raise ParameterError(f"parameter {name} is given twice; give each -p NAME once")
+        out[name] = parse_number(value, name)
     return out
 
 
 def parse_degrees(text: str) -> np.ndarray:
     """'10,20,30' (degrees) -> radians; ParameterError on anything that is not a finite number."""
-    try:
-        values = np.array([float(v) for v in text.split(",") if v.strip()])
-    except ValueError:
-        raise ParameterError(f"--input {text!r} is not a comma-separated list of numbers (degrees)") from None
-    if not values.size or not np.all(np.isfinite(values)):
-        raise ParameterError(f"--input {text!r} needs finite values in degrees")
-    return deg_to_rad(values)
+    parts = [v for v in text.split(",") if v.strip()]
+    if not parts:
+        raise ParameterError(f"--input {text!r} needs comma-separated values in degrees")
+    return deg_to_rad(np.array([parse_number(v, "--input value") for v in parts]))

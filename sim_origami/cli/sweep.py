@@ -11,8 +11,9 @@ from pathlib import Path
 
 from tqdm import tqdm
 
+from ..files import claimed_folder
 from ..mjcf import PRESETS
-from ..sweep import parse_axis, sweep, write_tables
+from ..sweep import check_grid, check_workers, parse_axis, sweep, write_tables
 
 NAME = "sweep"
 HELP = "cross-check a scene over a parameter grid in parallel (local processes or a Dask cluster)"
@@ -26,6 +27,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--workers", type=int, help="local processes (default: every core)")
     parser.add_argument("--scheduler", help="Dask distributed scheduler address, e.g. tcp://10.0.0.5:8786")
     parser.add_argument("--out", type=Path, help="output folder (default runs/sweep-<scene>)")
+    parser.add_argument("--force", action="store_true", help="write into a folder holding files this tool did not")
 
 
 def _bar(stream, total: int):
@@ -36,11 +38,14 @@ def run(args: argparse.Namespace) -> int:
     from ..plots import plot_sweep
 
     axes = [parse_axis(text) for text in args.grid]
-    rows = sweep(args.scene, axes, preset=args.preset, workers=args.workers, scheduler=args.scheduler,
-                 progress=_bar)  # fmt: skip
+    check_grid(args.scene, axes)
+    check_workers(args.workers)
     out = args.out or Path("runs") / f"sweep-{args.scene}"
-    paths = write_tables(rows, out)
-    plot_sweep(rows, [a.name for a in axes], out / "sweep.png")
+    with claimed_folder(out, force=args.force):
+        rows = sweep(args.scene, axes, preset=args.preset, workers=args.workers, scheduler=args.scheduler,
+                     progress=_bar)  # fmt: skip
+        paths = write_tables(rows, out)
+        plot_sweep(rows, [a.name for a in axes], out / "sweep.png")
     failed = [r for r in rows if not r["passed"]]
     parquet = paths.get("parquet", "no sweep.parquet (pip install -e '.[cluster]' for pyarrow)")
     print(f"{len(rows)} points, {len(rows) - len(failed)} passed, {len(failed)} failed; "

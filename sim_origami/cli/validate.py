@@ -12,7 +12,7 @@ from .. import scenes
 from ..checks.reference import read_reference, summary_lines
 from ..conventions import deg_to_rad
 from ..errors import ParameterError, SimulationError
-from ..files import write_text
+from ..files import check_folder, claimed_folder, write_text
 from ..mjcf import PRESETS
 from ..report import as_dict, plain, write
 from ..report_page import write_index, write_page
@@ -51,6 +51,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--reference-tol", type=float, metavar="DEG",
                         help="one tolerance (deg) for every reference value (default: its printed precision)")
     parser.add_argument("--out", type=Path, help="output folder (default runs/<scene>)")
+    parser.add_argument("--force", action="store_true", help="write into a folder holding files this tool did not")
     parser.add_argument("--render", action="store_true", help="also write frames/, fold.gif and fold.mp4")
     parser.add_argument("--size", type=frame_size, default=(640, 480), metavar="WxH",
                         help="frame size in pixels with --render (default 640x480)")  # fmt: skip
@@ -125,14 +126,18 @@ def run(args: argparse.Namespace) -> int:
             raise ParameterError("--all runs every scene with its defaults; -p and --branch need a SCENE")
         out = args.out or Path("runs")
         docs = []
-        for name in tqdm(scenes.names(), desc="validate", unit="scene", file=sys.stderr):
-            docs.append(run_one(scenes.get(name).build(), args, out / name))
-        table = "\n".join([HEADER, *map(summary_line, docs)])
-        write_text(out / "summary.md", f"# sim_origami validation\n\n{table}\n")
-        write_text(out / "summary.json", json.dumps(docs, indent=2, default=plain) + "\n")
-        write_index(docs, out)
+        with claimed_folder(out, force=args.force):
+            for name in tqdm(scenes.names(), desc="validate", unit="scene", file=sys.stderr):
+                with claimed_folder(out / name, force=args.force):
+                    docs.append(run_one(scenes.get(name).build(), args, out / name))
+            table = "\n".join([HEADER, *map(summary_line, docs)])
+            write_text(out / "summary.md", f"# sim_origami validation\n\n{table}\n")
+            write_text(out / "summary.json", json.dumps(docs, indent=2, default=plain) + "\n")
+            write_index(docs, out)
         print(table)
         return 0 if all(d["passed"] for d in docs) else 1
+    if args.out is not None:  # before the scene is built (a large pattern's trace takes seconds); made when claimed
+        check_folder(args.out, make=False)
     if args.fold is not None:
         if args.param:
             raise ParameterError("-p sets a registered scene's parameters; a --fold pattern has none")
@@ -150,12 +155,13 @@ def validate_scene(scene, args: argparse.Namespace) -> int:
         tol = None if args.reference_tol is None else float(deg_to_rad(args.reference_tol))
         reference = read_reference(args.reference, scene.kinematics, units=args.reference_units, tol=tol)
     out = args.out or Path("runs") / scene.name
-    try:
-        doc = run_one(scene, args, out, reference)
-    except SimulationError as err:  # MuJoCo diverged: a failed check on this pattern, not bad input
-        failed_run(scene, args, out, err)
-        print(f"FAIL {scene.name}: {err}\noutputs in {out}/")
-        return 1
+    with claimed_folder(out, force=args.force):
+        try:
+            doc = run_one(scene, args, out, reference)
+        except SimulationError as err:  # MuJoCo diverged: a failed check on this pattern, not bad input
+            failed_run(scene, args, out, err)
+            print(f"FAIL {scene.name}: {err}\noutputs in {out}/")
+            return 1
     if args.json:
         print(json.dumps(doc, indent=2, default=plain))
     else:

@@ -121,6 +121,20 @@ class Kinematics(ABC):
         x = np.atleast_1d(np.asarray(x, dtype=float))
         return x, (x >= lo) & (x <= hi)
 
+    def within_domain(
+        self, branch: str, x: NDArray[np.float64], values: NDArray[np.float64], valid: NDArray[np.bool_]
+    ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        """
+        `evaluate`'s result made valid only on the branch's printed domain: a domain found by bisection
+        (`domain_of`) ends EDGE_MARGIN inside where the model's own test flips, and inputs between must be null too.
+        """
+        lo, hi = self.branch(branch).domain
+        outside = valid & ((x < lo) | (x > hi))
+        if np.any(outside):
+            values = values.copy()
+            values[outside] = np.nan
+        return values, valid & ~outside
+
     def branch(self, name: str) -> Branch:
         """The branch called `name`; ParameterError listing the names otherwise."""
         for b in self.branches():

@@ -822,17 +822,15 @@ class PlaneSymmetricBricard(DHKinematics):
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
         k = self._index(branch)
         lo, hi = self._candidates[k].domain
-        period = 4 * np.pi if hi - lo > 2 * np.pi + 1e-9 else 2 * np.pi
         x = np.atleast_1d(np.asarray(x, dtype=float))
-        inside = (x >= lo) & (x <= hi)
-        with np.errstate(invalid="ignore"):
-            xm = np.where(inside, x, lo + np.mod(x - lo, period))
-        valid = (xm >= lo) & (xm <= hi)
+        # Valid exactly on the domain `describe` prints: a full-turn branch is not continued periodically beyond it
+        # (at |x| = 1e10 the wrapped input had lost every digit: loop residual 3.0).
+        valid = (x >= lo) & (x <= hi)
         values = np.full((x.size, 6), np.nan)
         if np.any(valid):
-            raw = self._raw(k, xm[valid])
+            raw = self._raw(k, x[valid])
             xs, table = self._lift[k]
-            ref = np.stack([np.interp(xm[valid], xs, table[:, j]) for j in range(6)], -1)
+            ref = np.stack([np.interp(x[valid], xs, table[:, j]) for j in range(6)], -1)
             lifted = ref + wrap(raw - ref)
             lifted[:, 1] = x[valid]
             if self._candidates[k].explicit != "rocker":  # theta6 = theta2 on the plane-symmetric branches

@@ -400,6 +400,10 @@ class Kokotsakis(JointSpaceKinematics):
         if branch not in self._combinations:
             self.branch(branch)  # raises with the list of names
         x = np.atleast_1d(np.asarray(x, dtype=float))
+        return self.within_domain(branch, x, *self._evaluate_all(branch, x))
+
+    def _evaluate_all(self, branch: str, x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        """The model's own values and validity, before the printed domain is applied (it is found from these)."""
         values, valid = np.empty((x.size, len(self.creases))), np.empty(x.size, dtype=bool)
         for block in input_blocks(x.size):
             valid[block] = self._evaluate(self._combinations[branch], x[block], values[block])
@@ -437,7 +441,7 @@ class Kokotsakis(JointSpaceKinematics):
     def _branches(self) -> tuple[Branch, ...]:
         out = []
         for name, combo in self._combinations.items():
-            domain = domain_of(lambda x, n=name: self.evaluate(n, x)[1], -np.pi, np.pi, 0.0)
+            domain = domain_of(lambda x, n=name: self._evaluate_all(n, x)[1], -np.pi, np.pi, 0.0)
             out.append(Branch(name, self._describe(combo), domain))
         return tuple(sorted(out, key=lambda b: b.name))
 

@@ -37,8 +37,16 @@ ANGLE_TOL = 1e-9
 # A fold angle below this fraction of the largest fold counts as unfolded when naming a root by its
 # sign pattern (the straight-fold root carries about 1e-16 rad there; real folds are not that small).
 ZERO_FOLD = 1e-8
+# ... and below this absolute fold (rad): near flat a straight fold's idle creases carry up to 1.5e-12 rad of rounding
+# (sectors 89.999/90.001/90.001/89.999 deg at rho1 = 1e-5), which the relative test alone named mode C.
+ZERO_FOLD_ABS = 1e-11
 # A fold this close to +/- pi (rad, a few ulps) is folded flat; its sign is ambiguous.
 FLAT_FOLD = 1e-14
+# A flat-foldable vertex with every fold this close to +/- pi (rad) is in its fully folded state, which modes S and
+# C share (rho3 = -rho1 and rho3 = rho1 agree mod 2 pi there). Its roots carry sqrt(eps) ~ 1e-8 rad of rounding, so
+# their signs name a mode at random within ~1e-8 rad of the lock (thick-vertex4 with alpha2 = 46 deg refused inputs
+# 1e-9 inside the domain it printed); 1e-7 is ten times that.
+FOLDED_FLAT = 1e-7
 # Inputs below this (rad) are evaluated on the tangent at the flat state, from +/- TANGENT_STEP.
 TINY_INPUT = 1e-8
 TANGENT_STEP = 1e-5
@@ -60,7 +68,8 @@ def developable_sectors(sectors: ArrayLike, names: tuple[str, ...]) -> NDArray[n
     total = float(np.sum(s))
     if abs(total - 2 * np.pi) > ANGLE_TOL:
         raise ParameterError(
-            f"sector angles sum to {np.rad2deg(total):.12g} deg ({np.rad2deg(total - 2 * np.pi):+.3g} deg); "
+            f"sector angles sum to {np.rad2deg(total):.12g} deg ({' + '.join(names)}, "
+            f"{np.rad2deg(total - 2 * np.pi):+.3g} deg); "
             "a flat (developable) vertex needs 360"
         )
     return s
@@ -250,7 +259,7 @@ class Vertex4(JointSpaceKinematics):
 
     def _sign_codes(self, rho: NDArray[np.float64]) -> NDArray[np.int8]:
         scale = np.max(np.abs(rho), axis=-1, keepdims=True)
-        sign = np.where(np.abs(rho) <= ZERO_FOLD * scale, 0, np.sign(rho)).astype(np.int8)
+        sign = np.where(np.abs(rho) <= np.maximum(ZERO_FOLD * scale, ZERO_FOLD_ABS), 0, np.sign(rho)).astype(np.int8)
         codes = np.full(rho.shape[:-1], -1, dtype=np.int8)
         zeros = np.sum(sign == 0, axis=-1)
         total = np.sum(sign, axis=-1)
@@ -284,20 +293,28 @@ class Vertex4(JointSpaceKinematics):
         if branch not in self._branch_names:
             self.branch(branch)  # raises with the list of names
         x = np.atleast_1d(np.asarray(x, dtype=float))
+        return self.within_domain(branch, x, *self._evaluate_all(branch, x))
+
+    def _evaluate_all(self, branch: str, x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        """The roots on `branch` wherever they are real, before the printed domain is applied (found from these)."""
         rho, real = self._roots(x)
         real &= np.abs(x) <= np.pi  # an input fold angle lives in [-pi, pi]
         codes = self._codes(rho)
         values = np.full((x.size, 4), np.nan)
         valid = np.zeros(x.size, dtype=bool)
+        folded = (
+            np.all(np.abs(rho) > np.pi - FOLDED_FLAT, axis=-1) if self.flat_foldable and branch in ("S", "C")
+            else np.zeros(codes.shape, dtype=bool)
+        )  # fmt: skip
         for k in (1, 0):
-            hit = real & (codes[k] == NAMES.index(branch))
+            hit = real & ((codes[k] == NAMES.index(branch)) | folded[k])
             values[hit] = rho[k, hit]
             valid |= hit
         # At rounding-level folds the sign pattern is noise: use the branch's tangent at flat
         # (central difference at +/- TANGENT_STEP; the neglected O(x^2) term is below 1e-16 rad).
         tiny = np.abs(x) < TINY_INPUT
         if np.any(tiny):
-            ends, _ = self.evaluate(branch, np.array([-TANGENT_STEP, TANGENT_STEP]))
+            ends, _ = self._evaluate_all(branch, np.array([-TANGENT_STEP, TANGENT_STEP]))
             values[tiny] = np.outer(x[tiny], (ends[1] - ends[0]) / (2 * TANGENT_STEP))
             valid |= tiny
         return values, valid
@@ -308,7 +325,8 @@ class Vertex4(JointSpaceKinematics):
         signs: `_codes(rho) == name`, tested for that name alone, column by column (12x faster measured).
         """
         size = [np.abs(r) for r in rho]
-        cut = ZERO_FOLD * np.maximum(np.maximum(size[0], size[1]), np.maximum(size[2], size[3]))
+        largest = np.maximum(np.maximum(size[0], size[1]), np.maximum(size[2], size[3]))
+        cut = np.maximum(ZERO_FOLD * largest, ZERO_FOLD_ABS)
         folded = [s > cut for s in size]  # the nonzero signs of `_sign_codes`
         up = [r > 0 for r in rho]
         if name.startswith("straight"):  # creases i, j folded alike, the other two not
@@ -348,14 +366,15 @@ class Vertex4(JointSpaceKinematics):
 
     def branch_folds(self, branch: str, x: ArrayLike) -> tuple[list[NDArray[np.float64]], NDArray[np.bool_]]:
         """
-        `evaluate` as four columns (n,) each, computing only the branch's root where it takes one (`_branch_roots`):
-        inputs where that root is off the branch, or below TINY_INPUT, are handed to `evaluate`. The same numbers
+        `evaluate` as four columns (n,) each (valid wherever the root is real, the printed domain not applied: the
+        mesh applies its own), computing only the branch's root where it takes one (`_branch_roots`): inputs where
+        that root is off the branch, or below TINY_INPUT, are handed to `_evaluate_all`. The same numbers
         (bit for bit on the vertices of the tests), 4x faster.
         """
         x = np.atleast_1d(np.asarray(x, dtype=float))
         k = self._branch_roots.get(branch)
         if k is None:
-            values, valid = self.evaluate(branch, x)
+            values, valid = self._evaluate_all(branch, x)
             return [values[:, j] for j in range(4)], valid
         rolled, real = fold_root(np.roll(self.alpha, -self._shift), x, k)
         rho = [rolled[(j - self._shift) % 4] for j in range(4)]
@@ -363,13 +382,13 @@ class Vertex4(JointSpaceKinematics):
         redo = ~valid | (np.abs(x) < TINY_INPUT)
         rho = [np.where(valid, r, np.nan) for r in rho]
         if np.any(redo):
-            values, valid[redo] = self.evaluate(branch, x[redo])
+            values, valid[redo] = self._evaluate_all(branch, x[redo])
             for j in range(4):
                 rho[j][redo] = values[:, j]
         return rho, valid
 
     def _valid(self, branch: str):
-        return lambda x: self.evaluate(branch, x)[1]
+        return lambda x: self._evaluate_all(branch, np.atleast_1d(np.asarray(x, dtype=float)))[1]
 
     @cached_property
     def _branches(self) -> tuple[Branch, ...]:

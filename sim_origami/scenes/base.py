@@ -25,14 +25,49 @@ UNITS = {"deg": np.pi / 180.0, "m": 1.0, "": 1.0}
 CLOSURE_SAMPLES = 9
 
 
+# Lengths every scene accepts (m). MuJoCo, the collision meshes (qhull) and the solvers' floors work in absolute
+# units: below 1e-4 m a thick panel's hull falls under trimesh's volume floor and qhull's precision, above 1e4 m the
+# closure sites' 1e-15 m projection floor is lost in rounding. Inside, every tolerance scales with the model's size.
+LENGTH_RANGE = (1e-4, 1e4)
+# Largest ratio of two positive lengths of one scene: beyond it the small one (a thickness) is rounding on the large.
+LENGTH_RATIO_MAX = 1e4
+
+# Angle ranges (deg) shared by many parameters: sector angles and twists of a spherical or spatial link. An angle
+# within ANGLE_MARGIN of a degenerate end (a zero sector, a straight one) makes panels of zero area: trimesh and qhull
+# overflowed at alpha = 1e-300 rad.
+ANGLE_MARGIN = 1e-3
+ACUTE = {"lo": ANGLE_MARGIN, "hi": 90 - ANGLE_MARGIN}
+SECTOR = {"lo": ANGLE_MARGIN, "hi": 180 - ANGLE_MARGIN}
+TWIST = {"lo": -360, "hi": 360}
+# A signed offset along a joint axis (m): zero or either sign, as large as a length.
+OFFSET = {"lo": -LENGTH_RANGE[1], "hi": LENGTH_RANGE[1]}
+
+
 @dataclass(frozen=True)
 class Param:
-    """A scene parameter. `unit` is what people type (deg or m); the API takes radians/metres."""
+    """
+    A scene parameter. `unit` is what people type (deg or m); the API takes radians/metres.
+
+    Every value is checked against the declared rules before a scene is built (`check`): a real finite number, an
+    integer where `integer`, inside [lo, hi] (open at an end where `open_lo` / `open_hi`; bounds in `unit`). `limit`
+    says why `hi` is where it is when it is a size limit (the estimated cost), so the refusal can say so. Length
+    parameters (unit m) without their own bounds get LENGTH_RANGE, and zero as well where `zero_ok`.
+    """
 
     name: str
     unit: str
     default: float
     help: str
+    lo: float | None = None
+    hi: float | None = None
+    open_lo: bool = False
+    open_hi: bool = False
+    integer: bool = False
+    limit: str = ""
+    zero_ok: bool = False
+    # A preset parameter (e.g. a table's case number): a nonzero value replaces these parameters, 0 uses them as
+    # given. A preset never replaces a value the user gave (`SceneType.build`).
+    replaces: tuple[str, ...] = ()
 
     def to_api(self, value: float) -> float:
         """Command-line value (in `unit`) to the API's radians or metres."""
@@ -41,6 +76,50 @@ class Param:
     def to_user(self, value: float) -> float:
         """API value back to `unit`."""
         return value / UNITS[self.unit]
+
+    def bounds(self) -> tuple[float | None, float | None]:
+        """(lo, hi) in `unit`; lengths default to LENGTH_RANGE (signed offsets, with lo < 0, keep their own)."""
+        if self.unit == "m" and self.lo is None and self.hi is None:
+            return LENGTH_RANGE
+        return self.lo, self.hi
+
+    def rule(self) -> str:
+        """The accepted values in words, e.g. 'a whole number from 2 to 32' or 'a number in (0, 180) deg'."""
+        lo, hi = self.bounds()
+        unit = f" {self.unit}" if self.unit else ""
+        if self.integer:
+            text = f"a whole number from {lo:g} to {hi:g}" if hi is not None else f"a whole number >= {lo:g}"
+        elif lo is None and hi is None:
+            text = "a finite number"
+        else:
+            left = "(" if self.open_lo or lo is None else "["
+            right = ")" if self.open_hi or hi is None else "]"
+            low, high = ("-inf" if lo is None else f"{lo:g}"), ("inf" if hi is None else f"{hi:g}")
+            text = f"a number in {left}{low}, {high}{right}{unit}"
+        if self.zero_ok:
+            text += " or 0"
+        return text + (f" ({self.limit})" if self.limit else "")
+
+    def check(self, value: object) -> float:
+        """
+        The API value (radians, metres) as a float after checking it against the rules; ParameterError naming the
+        parameter, the value (in `unit`) and the rule otherwise.
+        """
+        if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+            raise ParameterError(f"{self.name} = {value!r}; it must be {self.rule()}")
+        api = float(value)
+        user = self.to_user(api) if np.isfinite(api) else api
+        shown = f"{self.name} = {user:.10g}{' ' + self.unit if self.unit else ''}"
+        if not np.isfinite(api):
+            raise ParameterError(f"{shown}; it must be {self.rule()}")
+        if self.zero_ok and api == 0.0:
+            return api
+        lo, hi = self.bounds()
+        too_low = lo is not None and (user < lo or (self.open_lo and user == lo))
+        too_high = hi is not None and (user > hi or (self.open_hi and user == hi))
+        if too_low or too_high or (self.integer and user != round(user)):
+            raise ParameterError(f"{shown}; it must be {self.rule()}")
+        return api
 
 
 @dataclass(frozen=True)
@@ -127,6 +206,12 @@ class Scene:
         return self.contact_pairs + free
 
     @property
+    def length_scale(self) -> float:
+        """The model's characteristic length (m): its largest body dimension (`Mechanism.length_scale`). Length
+        tolerances of the loop solve and the verdicts are in units of it."""
+        return self.mechanism.length_scale
+
+    @property
     def crease_hinges(self) -> frozenset[str]:
         """Hinges that are creases of paper: a crease pattern's creases and an origami vertex's `crease_*` hinges."""
         names = {j.name for j in self.mechanism.joints if j.name.startswith("crease_")}
@@ -208,7 +293,11 @@ class SceneType:
     build_fn: Callable[..., Scene] = field(repr=False)
 
     def build(self, **values: float) -> Scene:
-        """Build with API values (radians, metres); unknown names raise ParameterError."""
+        """
+        Build with API values (radians, metres). Every value is checked first (`Param.check`, then the scene's
+        lengths against LENGTH_RATIO_MAX); unknown names, non-numbers, non-finite or out-of-range values raise
+        ParameterError naming the parameter and the rule.
+        """
         known = {p.name: p for p in self.params}
         for key in values:
             if key not in known:
@@ -216,6 +305,27 @@ class SceneType:
                     f"unknown parameter {key!r} for scene {self.name!r}; parameters are {', '.join(known)}"
                 )
         full = {p.name: p.to_api(p.default) for p in self.params} | values
+        full = {key: known[key].check(value) for key, value in full.items()}
+        for preset in (p for p in self.params if p.replaces):
+            # A value equal to its default (case 10's geometry for bricard-plane) is what the default preset has:
+            # listing every parameter with its default, as a generic caller may, conflicts with nothing.
+            given = [name for name in preset.replaces if name in values and full[name] != known[name].to_api(
+                known[name].default)]
+            if given and preset.name not in values:
+                full[preset.name] = 0.0  # the user's values, not the default preset's
+            elif given and full[preset.name] != 0.0:
+                raise ParameterError(
+                    f"{given[0]} is given with {preset.name} = {full[preset.name]:g}, whose preset replaces it; give "
+                    f"{preset.name} = 0 to use {', '.join(given)}, or leave {given[0]} out"
+                )
+        lengths = {k: abs(v) for k, v in full.items() if known[k].unit == "m" and v != 0.0}
+        if len(lengths) > 1:
+            small, large = min(lengths, key=lengths.get), max(lengths, key=lengths.get)
+            if lengths[large] > LENGTH_RATIO_MAX * lengths[small]:
+                raise ParameterError(
+                    f"{large} = {lengths[large]:g} m is more than {LENGTH_RATIO_MAX:g} times {small} = "
+                    f"{lengths[small]:g} m; a scene's lengths must lie within a factor {LENGTH_RATIO_MAX:g}"
+                )
         return self._build(tuple(sorted(full.items())))
 
     @functools.lru_cache(maxsize=64)  # noqa: B019  (scenes are immutable; the registry lives as long as the process)
@@ -224,7 +334,7 @@ class SceneType:
         return self.build_fn(**dict(values))
 
     def build_from_user(self, values: dict[str, float]) -> Scene:
-        """Build from command-line values (degrees, metres)."""
+        """Build from command-line values (degrees, metres); checked as `build` checks them."""
         known = {p.name: p for p in self.params}
         api = {}
         for key, value in values.items():
@@ -232,7 +342,8 @@ class SceneType:
                 raise ParameterError(
                     f"unknown parameter {key!r} for scene {self.name!r}; parameters are {', '.join(known)}"
                 )
-            api[key] = known[key].to_api(value)
+            number = isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
+            api[key] = known[key].to_api(value) if number else value  # `build` names what is not a number
         return self.build(**api)
 
 

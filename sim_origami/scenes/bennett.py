@@ -4,14 +4,15 @@ import numpy as np
 
 from ..kinematics.bennett import Bennett
 from ..linkage import dh_mechanism
-from .base import Param, Scene, register
+from .base import SECTOR, Param, Scene, register
 
 PARAMS = (
     Param("a", "m", 1.0, "link length a12 = a34"),
-    Param("alpha", "deg", 30.0, "twist alpha12 = alpha34"),
+    Param("alpha", "deg", 30.0, "twist alpha12 = alpha34", **SECTOR),
     Param("b", "m", 1.5, "link length a23 = a41"),
     # arcsin(b sin(alpha) / a) = arcsin(0.75): the Bennett condition for the other defaults
-    Param("beta", "deg", float(np.rad2deg(np.arcsin(0.75))), "twist alpha23 = alpha41; sin(alpha)/a = sin(beta)/b"),
+    Param("beta", "deg", float(np.rad2deg(np.arcsin(0.75))), "twist alpha23 = alpha41; sin(alpha)/a = sin(beta)/b",
+          **SECTOR),
 )
 
 

@@ -1,7 +1,8 @@
 """Scene `bricard-plane`: the plane-symmetric Bricard 6R (seed 000 M4 to M7), driven by theta2; link 6 is ground.
 
-`case` picks a Table 4-1 preset (5 to 10), which overrides the geometry; 0 uses a, b, c, alpha, beta,
-gamma, R2, R3 as given. The defaults are case 10 (two 6R paths crossing at theta2 = 0 and 180 deg).
+`case` picks a Table 4-1 preset (5 to 10) and its geometry; 0 uses a, b, c, alpha, beta, gamma, R2, R3 as given
+(the case 10 values where not given). Geometry given without `case` means case 0; geometry given with a nonzero
+case is refused, never silently replaced. The defaults are case 10 (two 6R paths crossing at theta2 = 0 and 180 deg).
 Case 7 is a structure (Delta < 0 for every finite theta2; the loop closes only at one rigid
 configuration): building it raises AssemblyError, which the command line reports with exit code 2.
 """
@@ -12,19 +13,21 @@ from ..errors import AssemblyError, ParameterError
 from ..geometry import wrap
 from ..kinematics.bricard_plane import TABLE_4_1, Geometry, PlaneSymmetricBricard
 from ..linkage import dh_mechanism
-from .base import Param, Scene, register
+from .base import OFFSET, TWIST, Param, Scene, register
 
 _CASE10 = TABLE_4_1[10]
 PARAMS = (
-    Param("a", "m", _CASE10.a, "link length a12 = a61"),
-    Param("b", "m", _CASE10.b, "link length a23 = a56"),
-    Param("c", "m", _CASE10.c, "link length a34 = a45"),
-    Param("alpha", "deg", float(np.rad2deg(_CASE10.alpha)), "twist alpha12 (alpha61 = 360 - alpha)"),
-    Param("beta", "deg", float(np.rad2deg(_CASE10.beta)), "twist alpha23 (alpha56 = 360 - beta)"),
-    Param("gamma", "deg", float(np.rad2deg(_CASE10.gamma)), "twist alpha34 (alpha45 = 360 - gamma)"),
-    Param("R2", "m", 0.0, "offset R2 (R6 = -R2)"),
-    Param("R3", "m", 0.0, "offset R3 (R5 = -R3)"),
-    Param("case", "", 10.0, "Table 4-1 case 5..10 (overrides the geometry, R = 0), or 0 for the values given"),
+    Param("a", "m", _CASE10.a, "link length a12 = a61", zero_ok=True),
+    Param("b", "m", _CASE10.b, "link length a23 = a56", zero_ok=True),
+    Param("c", "m", _CASE10.c, "link length a34 = a45", zero_ok=True),
+    Param("alpha", "deg", float(np.rad2deg(_CASE10.alpha)), "twist alpha12 (alpha61 = 360 - alpha)", **TWIST),
+    Param("beta", "deg", float(np.rad2deg(_CASE10.beta)), "twist alpha23 (alpha56 = 360 - beta)", **TWIST),
+    Param("gamma", "deg", float(np.rad2deg(_CASE10.gamma)), "twist alpha34 (alpha45 = 360 - gamma)", **TWIST),
+    Param("R2", "m", 0.0, "offset R2 (R6 = -R2)", **OFFSET),
+    Param("R3", "m", 0.0, "offset R3 (R5 = -R3)", **OFFSET),
+    Param("case", "", 10.0, "Table 4-1 case 5..10 (its geometry, R = 0), or 0 for the values given; giving any of "
+          "a, b, c, alpha, beta, gamma, R2, R3 without case means case 0", lo=0, hi=10, integer=True,
+          replaces=("a", "b", "c", "alpha", "beta", "gamma", "R2", "R3")),
 )
 
 # The default sweep is centred in the widest input interval shared by the branches and free of events
@@ -50,7 +53,11 @@ def geometry_for(case: float, given: Geometry) -> tuple[int, Geometry]:
 def structure_message(kinematics: PlaneSymmetricBricard, number: int) -> str:
     """One line saying why this geometry has no motion driven by theta2."""
     lo, hi = kinematics.classification().delta_range
-    label = f"case {number}" if number else "this geometry"
+    g = kinematics.geometry
+    label = f"case {number}" if number else (
+        f"the geometry a = {g.a:g}, b = {g.b:g}, c = {g.c:g} m, alpha = {np.rad2deg(g.alpha):g}, beta = "
+        f"{np.rad2deg(g.beta):g}, gamma = {np.rad2deg(g.gamma):g} deg, R2 = {g.R2:g}, R3 = {g.R3:g} m"
+    )
     places = kinematics.isolated_assemblies()
     if places:
         conf = ", ".join(f"{v + 0.0:.4g}" for v in np.round(np.rad2deg(wrap(places[0][1])), 4))

@@ -3,14 +3,15 @@ theta1; link 6 is ground."""
 
 from ..kinematics.bricard_threefold import BricardThreefold
 from ..linkage import dh_mechanism
-from .base import Param, Scene, register
+from .base import ANGLE_MARGIN, Param, Scene, register
 
 PARAMS = (
     Param("a", "m", 1.0, "common link length a12 = ... = a61"),
     # The Ch. 2 example with the axes as printed in (2-10, 2-11): twists alternate 300/60 deg
     # (seed 001 §2.5 and validation case 8); alpha = 120 deg is the same linkage with the axes of
     # joints 2, 4, 6 reversed (phi negated).
-    Param("alpha", "deg", 300.0, "twist alpha12 = alpha34 = alpha56; alpha23 = alpha45 = alpha61 = 360 - alpha"),
+    Param("alpha", "deg", 300.0, "twist alpha12 = alpha34 = alpha56; alpha23 = alpha45 = alpha61 = 360 - alpha",
+          lo=ANGLE_MARGIN, hi=360 - ANGLE_MARGIN),
 )
 
 

@@ -9,15 +9,16 @@ all six rigid mode combinations (the kinematics' branches); the default sweep st
 
 from ..errors import ParameterError
 from ..kinematics.corrugated import CorrugatedUnit
-from .base import Param, Scene, register
+from .base import SECTOR, Param, Scene, register
 from .patterns import pattern_scene
 
 PARAMS = (
-    Param("unit", "", 0.0, "which unit: 0 = P (parallelogram ABCD), 1 = Q (parallelogram ABEF)"),
-    Param("alpha", "deg", 135.0, "design angle alpha (largest sector, P's angle at A); seed Fig 3-2"),
-    Param("beta", "deg", 60.0, "design angle beta (Q's angle at A)"),
-    Param("gamma", "deg", 45.0, "design angle gamma = 180 - alpha, the smallest sector"),
-    Param("delta", "deg", 120.0, "design angle delta = 180 - beta"),
+    Param("unit", "", 0.0, "which unit: 0 = P (parallelogram ABCD), 1 = Q (parallelogram ABEF)",
+          lo=0, hi=1, integer=True),
+    Param("alpha", "deg", 135.0, "design angle alpha (largest sector, P's angle at A); seed Fig 3-2", **SECTOR),
+    Param("beta", "deg", 60.0, "design angle beta (Q's angle at A)", **SECTOR),
+    Param("gamma", "deg", 45.0, "design angle gamma = 180 - alpha, the smallest sector", **SECTOR),
+    Param("delta", "deg", 120.0, "design angle delta = 180 - beta", **SECTOR),
     Param("L1", "m", 1.0, "|AB|"),
     Param("L2", "m", 1.0, "|AD| (P), and Q's outer creases"),
     Param("L3", "m", 1.0, "|AF| (Q), and P's outer creases"),

@@ -20,6 +20,9 @@ PARAMS = (
         "",
         1.0,
         "1 = Example 1 (eqn 2-34), 2 = Example 2 (eqn 2-38), 3 = two-fold case [RECON], 4 = plane-symmetric [RECON]",
+        lo=1,
+        hi=4,
+        integer=True,
     ),
     Param("outer", "m", 0.5, "length of the eight outer creases (central sides |AB| = |BC| = 1 m)"),
 )

@@ -8,13 +8,13 @@ P_ab meets P_bc, before the zero-thickness lock theta_limit.
 
 from ..kinematics.miura import MiuraVertex
 from ..origami import vertex_mechanism
-from .base import Param, Scene, register
+from .base import ACUTE, Param, Scene, register
 
 PARAMS = (
-    Param("alpha1", "deg", 30.0, "sector angle between creases a and b"),
-    Param("alpha2", "deg", 60.0, "sector angle between creases d and a"),
+    Param("alpha1", "deg", 30.0, "sector angle between creases a and b", **ACUTE),
+    Param("alpha2", "deg", 60.0, "sector angle between creases d and a", **ACUTE),
     Param("length", "m", 1.0, "crease length"),
-    Param("thickness", "m", 0.0, "panel thickness; > 0 makes panels solid and collide"),
+    Param("thickness", "m", 0.0, "panel thickness; > 0 makes panels solid and collide", zero_ok=True),
 )
 
 # Collision solids keep this many thicknesses clear of the creases (and so of the vertex).

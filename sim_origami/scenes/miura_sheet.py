@@ -8,15 +8,18 @@ hinges and every other crease (one per interior vertex) is closed by two connect
 import numpy as np
 
 from ..kinematics.miura_sheet import MiuraSheet
-from .base import Param, Scene, register
+from .base import ACUTE, Param, Scene, register
 from .patterns import pattern_scene
 
+# Largest sheet accepted: 32 x 32 panels (1024 bodies, 1984 creases) builds in 1.2 s of CPU, and a validate's cost
+# grows faster than the panel count (16 x 16: 3.4 s of MuJoCo CPU, scripts/miura_sheet_bench.py).
+SIZE = {"lo": 2, "hi": 32, "integer": True, "limit": "at most 32 x 32 panels: 1024 bodies build in about 1 s"}
 PARAMS = (
-    Param("rows", "", 4, "panels along y (>= 2)"),
-    Param("cols", "", 4, "panels along x (>= 2)"),
+    Param("rows", "", 4, "panels along y (>= 2)", **SIZE),
+    Param("cols", "", 4, "panels along x (>= 2)", **SIZE),
     Param("a", "m", 0.5, "panel width along x"),
     Param("b", "m", 0.5, "vertical panel edge"),
-    Param("gamma", "deg", 60.0, "panel angle between a vertical and a zigzag edge, in (0, 90)"),
+    Param("gamma", "deg", 60.0, "panel angle between a vertical and a zigzag edge, in (0, 90)", **ACUTE),
 )
 # Default sweep: 5% to 90% of the fold range (-pi, pi) of the input crease.
 PATH = (0.05 * np.pi, 0.9 * np.pi)

@@ -6,11 +6,12 @@ Joints 3 and 4 meet at one point (a34 = 0): link 3 is drawn as a cube of the bar
 
 from ..kinematics.myard import Myard
 from ..linkage import dh_mechanism
-from .base import Param, Scene, register
+from .base import ACUTE, Param, Scene, register
 
 PARAMS = (
     Param("a23", "m", 1.0, "link length a23 = a45; a12 = a51 = a23 sin(alpha12), a34 = 0"),
-    Param("alpha12", "deg", 50.0, "twist alpha12 in (0, 90) deg; alpha51 = 180 - alpha12, alpha34 = 180 - 2 alpha12"),
+    Param("alpha12", "deg", 50.0, "twist alpha12 in (0, 90) deg; alpha51 = 180 - alpha12, alpha34 = 180 - 2 alpha12",
+          **ACUTE),
 )
 
 # Default sweep of theta3 (rad). The motion has no singular pose (closure Jacobian rank 4, 4th

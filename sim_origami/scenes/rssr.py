@@ -11,13 +11,13 @@ import numpy as np
 
 from ..kinematics.rssr import RSSR
 from ..linkage_forms import rssr_mechanism, rssr_motion
-from .base import Param, Scene, register
+from .base import SECTOR, Param, Scene, register
 from .polyhedra import AssemblyKinematics, kutzbach
 
 PARAMS = (
     Param("a1", "m", 1.0, "AB = CD, the link with twist alpha (seed 001 Sec. 3.5: 100 mm)"),
     Param("a2", "m", 0.7072, "BC = DA (70.72 mm)"),
-    Param("alpha", "deg", 45.0, "twist of AB"),
+    Param("alpha", "deg", 45.0, "twist of AB", **SECTOR),
 )
 
 

@@ -17,11 +17,12 @@ flat with the servo saturated; CCSS and CSCS reach the target with at most 0.14 
 
 from ..creases import CreasePattern
 from ..kinematics.square_twist import EDGES, INPUT, VERTICES, SquareTwist, check_modes, crease_pattern
-from .base import Param, Scene, register
+from .base import ANGLE_MARGIN, Param, Scene, register
 from .patterns import pattern_scene
 
 PARAMS = (
-    Param("alpha", "deg", 150.0, "sector angle between pleat 1 and square edge 2 at each vertex; 90 < alpha < 180"),
+    Param("alpha", "deg", 150.0, "sector angle between pleat 1 and square edge 2 at each vertex; 90 < alpha < 180",
+          lo=90 + ANGLE_MARGIN, hi=180 - ANGLE_MARGIN),
     Param("side", "m", 1.0, "side of the central square"),
     Param("pleat", "m", 1.0, "length of every pleat crease"),
 )

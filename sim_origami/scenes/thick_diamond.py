@@ -12,11 +12,12 @@ import itertools
 
 from ..kinematics.thick_diamond import ThickDiamond
 from ..origami import vertex_mechanism
-from .base import Param, Scene, register
+from .base import ANGLE_MARGIN, Param, Scene, register
 from .thick_vertex4 import RELIEF
 
 PARAMS = (
-    Param("alpha", "deg", 30.0, "sector angle in (0, 45]; sectors a, 180 - 2a, a, a, 180 - 2a, a"),
+    Param("alpha", "deg", 30.0, "sector angle in (0, 45]; sectors a, 180 - 2a, a, a, 180 - 2a, a",
+          lo=ANGLE_MARGIN, hi=45),
     Param("p", "m", 0.03, "hinge spacing a12 = a61 (thickness of panels 1 and 6)"),
     Param("q", "m", 0.05, "hinge spacing a23 = a56 (thickness of panels 2 and 5)"),
     Param("r", "m", 0.08, "hinge spacing a34 = a45 (thickness of panels 3 and 4); must equal p + q"),

@@ -15,15 +15,22 @@ import itertools
 
 from ..kinematics.square_twist import INPUT, RIGID
 from ..kinematics.thick_square_twist import ThickSquareTwist
-from .base import Param, Scene, choice, register
+from .base import ANGLE_MARGIN, Param, Scene, choice, register
 from .patterns import pattern_scene
 from .thick_vertex4 import RELIEF
 
 PARAMS = (
-    Param("alpha", "deg", 150.0, "sector angle between pleat 1 and square edge 2 at each vertex; 90 < alpha < 180"),
+    Param("alpha", "deg", 150.0, "sector angle between pleat 1 and square edge 2 at each vertex; 90 < alpha < 180",
+          lo=90 + ANGLE_MARGIN, hi=180 - ANGLE_MARGIN),
     Param("b", "m", 0.05, "thickness scale: square edges of a vertex b apart in height, pleat 1 a = b sin(alpha)"),
     Param(
-        "modes", "", 5.0, "rigid mode string (vertices A..D): " + ", ".join(f"{k + 1} {m}" for k, m in enumerate(RIGID))
+        "modes",
+        "",
+        5.0,
+        "rigid mode string (vertices A..D): " + ", ".join(f"{k + 1} {m}" for k, m in enumerate(RIGID)),
+        lo=1,
+        hi=len(RIGID),
+        integer=True,
     ),
     Param("side", "m", 1.0, "side of the central square"),
     Param("pleat", "m", 1.0, "length of every pleat crease"),

@@ -11,7 +11,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..kinematics.thick_vertex4 import ThickVertex4
 from ..origami import vertex_mechanism
-from .base import Param, Scene, register
+from .base import SECTOR, Param, Scene, register
 
 # Collision solids stop this fraction of b short of the hinge lines, so hinged neighbours do not touch
 # along their shared edge at flat. Slabs reaching the hinge line collide at |rho2| = pi/2, i.e.
@@ -19,11 +19,11 @@ from .base import Param, Scene, register
 RELIEF = 2e-3
 
 PARAMS = (
-    Param("alpha1", "deg", 60.0, "sector angle between creases 1 and 2 (alpha3 = 180 - alpha1)"),
-    Param("alpha2", "deg", 90.0, "sector angle between creases 2 and 3 (alpha4 = 180 - alpha2)"),
+    Param("alpha1", "deg", 60.0, "sector angle between creases 1 and 2 (alpha3 = 180 - alpha1)", **SECTOR),
+    Param("alpha2", "deg", 90.0, "sector angle between creases 2 and 3 (alpha4 = 180 - alpha2)", **SECTOR),
     Param("b", "m", 0.05, "thickness scale: hinge 3 sits b above hinge 2; a = b sin(alpha1)/sin(alpha2)"),
     Param("length", "m", 1.0, "crease length"),
-    Param("zigzag", "", 0.0, "0: staircase hinges (mode S), 1: zigzag hinges (mode C)"),
+    Param("zigzag", "", 0.0, "0: staircase hinges (mode S), 1: zigzag hinges (mode C)", lo=0, hi=1, integer=True),
 )
 
 

@@ -17,11 +17,11 @@ from ..kinematics.thick_vertex5 import ThickVertex5
 from ..mechanism import Body, Mechanism
 from ..origami import PALETTE, crease_directions, vertex_mechanism
 from ..solids import inset_outline, prism, sector_outline
-from .base import Param, Scene, register
+from .base import ACUTE, Param, Scene, register
 from .thick_vertex4 import RELIEF
 
 PARAMS = (
-    Param("alpha", "deg", 30.0, "sector angle alpha12 = alpha51 in (0, 90); sectors a, 90, 180 - 2a, 90, a"),
+    Param("alpha", "deg", 30.0, "sector angle alpha12 = alpha51 in (0, 90); sectors a, 90, 180 - 2a, 90, a", **ACUTE),
     Param("b", "m", 0.05, "thickness scale: a23 = a45 = b between hinges 2, 3 and 4, 5; a12 = a51 = b sin(alpha)"),
     Param("length", "m", 1.0, "crease length"),
 )

@@ -26,7 +26,8 @@ from .base import Param, Scene, choice, register
 from .patterns import pattern_scene
 
 PARAMS = (
-    Param("scheme", "", 4.0, "rigid scheme class: " + ", ".join(f"{k + 1} {s}" for k, s in enumerate(RIGID_SCHEMES))),
+    Param("scheme", "", 4.0, "rigid scheme class: " + ", ".join(f"{k + 1} {s}" for k, s in enumerate(RIGID_SCHEMES)),
+          lo=1, hi=len(RIGID_SCHEMES), integer=True),
     Param("d", "m", 1.0, "side AB of the central triangle"),
     Param("pleat", "m", 0.5, "pleat length (shorter where two pleats of a panel converge)"),
 )

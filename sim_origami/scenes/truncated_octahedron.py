@@ -30,7 +30,7 @@ from ..kinematics.truncated_octahedron import (
 from ..linkage import bar
 from ..mechanism import Body, Joint, Mechanism, ball_joint
 from ..origami import PALETTE
-from .base import Param, Scene, register
+from .base import ANGLE_MARGIN, Param, Scene, register
 from .polyhedra import AssemblyKinematics, collision_plate, kutzbach, plate
 
 WIDTH = 0.04  # bar and plate thickness (m); geometry only, the kinematics has zero thickness
@@ -86,7 +86,8 @@ def assembly(zeta: float = 0.0) -> Mechanism:
 @register(
     "truncated-octahedron",
     "truncated octahedron <-> cube (seed 001 ch. 5): two threefold Bricards, 15 R + 9 S joints, input A1",
-    (Param("zeta", "deg", 0.0, "deviation of the A3, B3, C3 axes from the direction to the centre"),),
+    (Param("zeta", "deg", 0.0, "deviation of the A3, B3, C3 axes from the direction to the centre",
+           lo=ANGLE_MARGIN - 90, hi=90 - ANGLE_MARGIN),),
 )
 def build(zeta: float) -> Scene:
     """

@@ -34,7 +34,7 @@ from ..kinematics.truncated_tetrahedron import (
 from ..linkage import bar
 from ..mechanism import Body, Joint, Mechanism, ball_joint
 from ..origami import PALETTE
-from .base import Param, Scene, register
+from .base import ANGLE_MARGIN, Param, Scene, register
 from .polyhedra import AssemblyKinematics, collision_plate, kutzbach, plate
 
 WIDTH = 0.04  # bar and plate thickness (m); geometry only, the kinematics has zero thickness
@@ -180,7 +180,8 @@ FAST_STEP_SCALE = 1.25
 @register(
     "truncated-tetrahedron-i",
     "truncated tetrahedron <-> tetrahedron, scheme I (seed 001 ch. 6): Bricard + S joints at K, L, M, input G",
-    (Param("delta", "deg", 0.0, "delta1: turn of the G, H, J axes (seed 001 §2.8); <= -3.5 deg reaches the end"),),
+    (Param("delta", "deg", 0.0, "delta1: turn of the G, H, J axes (seed 001 §2.8); <= -3.5 deg reaches the end",
+           lo=ANGLE_MARGIN - 90, hi=90 - ANGLE_MARGIN),),
 )
 def build_scheme_1(delta: float) -> Scene:
     return _scene("I", delta)
@@ -189,7 +190,8 @@ def build_scheme_1(delta: float) -> Scene:
 @register(
     "truncated-tetrahedron-ii",
     "truncated tetrahedron <-> tetrahedron, scheme II (seed 001 ch. 6): Bricard + S joints at G, H, J, input A",
-    (Param("delta", "deg", 0.0, "delta2: turn of the K, L, M axes (seed 001 §2.8); >= 0 reaches the tetrahedron"),),
+    (Param("delta", "deg", 0.0, "delta2: turn of the K, L, M axes (seed 001 §2.8); >= 0 reaches the tetrahedron",
+           lo=ANGLE_MARGIN - 90, hi=90 - ANGLE_MARGIN),),
 )
 def build_scheme_2(delta: float) -> Scene:
     return _scene("II", delta)

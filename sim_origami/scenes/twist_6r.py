@@ -9,13 +9,13 @@ import numpy as np
 
 from ..kinematics.twist_6r import TwistSixR, compatible_angles
 from ..linkage import dh_mechanism
-from .base import Param, Scene, register
+from .base import SECTOR, Param, Scene, register
 
 PARAMS = (
-    Param("alpha", "deg", 55.0, "triangle corner at A"),
-    Param("beta", "deg", 50.0, "triangle corner at B"),
-    Param("gamma", "deg", 50.0, "pleat angle at A; gamma = delta gives the seed's 'new' 6R (eqn 3-40)"),
-    Param("delta", "deg", 45.0, "pleat angle at B"),
+    Param("alpha", "deg", 55.0, "triangle corner at A", **SECTOR),
+    Param("beta", "deg", 50.0, "triangle corner at B", **SECTOR),
+    Param("gamma", "deg", 50.0, "pleat angle at A; gamma = delta gives the seed's 'new' 6R (eqn 3-40)", **SECTOR),
+    Param("delta", "deg", 45.0, "pleat angle at B", **SECTOR),
     Param("d", "m", 1.0, "triangle side AB"),
 )
 # Sweep of psi1 = theta1 - theta1(flat) (rad), clear of the singular flat state. Fast preset, 2 s sweep: error

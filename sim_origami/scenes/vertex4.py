@@ -4,13 +4,13 @@ import numpy as np
 
 from ..kinematics.vertex4 import Vertex4
 from ..origami import vertex_mechanism
-from .base import Param, Scene, register
+from .base import SECTOR, Param, Scene, register
 
 PARAMS = (
-    Param("alpha1", "deg", 60.0, "sector angle between creases 1 and 2"),
-    Param("alpha2", "deg", 100.0, "sector angle between creases 2 and 3"),
-    Param("alpha3", "deg", 90.0, "sector angle between creases 3 and 4"),
-    Param("alpha4", "deg", 110.0, "sector angle between creases 4 and 1"),
+    Param("alpha1", "deg", 60.0, "sector angle between creases 1 and 2", **SECTOR),
+    Param("alpha2", "deg", 100.0, "sector angle between creases 2 and 3", **SECTOR),
+    Param("alpha3", "deg", 90.0, "sector angle between creases 3 and 4", **SECTOR),
+    Param("alpha4", "deg", 110.0, "sector angle between creases 4 and 1", **SECTOR),
     Param("length", "m", 1.0, "crease length"),
 )
 

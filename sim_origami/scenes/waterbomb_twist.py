@@ -13,20 +13,21 @@ own A<row + r0>_0_2 (seed 004 Fig 16 paths I, III; `WaterbombTwist`, "Other rows
 """
 
 from ..kinematics.waterbomb_twist import WaterbombTwist
-from .base import Param, Scene, register
-from .waterbomb_tube import tube_mechanism
+from .base import ACUTE, Param, Scene, register
+from .waterbomb_tube import TUBE_ROWS, TUBE_UNITS, check_size, tube_mechanism
 
 PARAMS = (
-    Param("n", "", 6, "units round the tube (>= 3)"),
+    Param("n", "", 6, "units round the tube (>= 3)", **TUBE_UNITS),
     # 3 rows by default: a full `validate` of the 6 x 5 tube (3 branches, 258 creases) measured 7.6 min of CPU, 2.3 of
     # them in the bifurcation study (since shortened to the preset's own sweep time), against 1.4 min for 6 x 3;
     # `-p m=5` gives the seed's 6 x 5 tube (numbers below)
-    Param("m", "", 3, "rows, odd (a middle row to fold)"),
-    Param("alpha", "deg", 40.0, "design angle alpha, below atan(1 / cos(180/n)) (seed 004 eqn 38)"),
-    Param("beta", "deg", 40.0, "design angle beta, at most beta_max(alpha) (seed 004 eqn 40)"),
+    Param("m", "", 3, "rows, odd (a middle row to fold)", **TUBE_ROWS),
+    Param("alpha", "deg", 40.0, "design angle alpha, below atan(1 / cos(180/n)) (seed 004 eqn 38)", **ACUTE),
+    Param("beta", "deg", 40.0, "design angle beta, at most beta_max(alpha) (seed 004 eqn 40)", **ACUTE),
     Param("a", "m", 0.5, "half-width of a unit"),
     # rows other than 0 twist from the contraction's end only at beta = beta_max (seed 004 Fig 16 paths I, III)
-    Param("row", "", 0.0, "seed row that twists: 0 the middle row, +1 .. (m-1)/2 above, -1 .. below"),
+    Param("row", "", 0.0, "seed row that twists: 0 the middle row, +1 .. (m-1)/2 above, -1 .. below",
+          lo=-TUBE_ROWS["hi"], hi=TUBE_ROWS["hi"], integer=True),
 )
 # The symmetry couplings are soft (MuJoCo joint equalities) and set the path error, which falls as the square of
 # the sweep time. Default sweeps (each branch's domain less Scene.branch_path's margins: the counter-clockwise twist
@@ -49,6 +50,7 @@ FAST_STEP_SCALE = 1.25
           "row (any row at beta_max, Fig 16) under the twist's symmetry (seed 004 §3, seed 000 M13), input rho of the "
           "twisting row's upper-right diagonal", PARAMS)  # fmt: skip
 def build(n: float, m: float, alpha: float, beta: float, a: float, row: float) -> Scene:
+    check_size(n, m)
     kinematics = WaterbombTwist(n, m, alpha, beta, a, row)
     lo, hi = kinematics.branch("twist-cw").domain[0], kinematics.branch("twist-ccw").domain[1]
     return Scene(
