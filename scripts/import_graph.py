@@ -13,6 +13,8 @@ import sys
 from collections import defaultdict
 from pathlib import Path
 
+from sim_origami.files import write_or_check
+
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "sim_origami"
 PAGE = ROOT / "docs" / "architecture.md"
@@ -127,18 +129,10 @@ def run(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--check", action="store_true", help="check the page and the layers instead of writing")
     args = parser.parse_args(argv)
-    text = page()
-    if args.check:
-        wrong = upward(imports())
-        for a, b in wrong:
-            print(f"{a} imports {b}: a lower layer must not import a higher one", file=sys.stderr)
-        stale = not PAGE.exists() or PAGE.read_text() != text
-        if stale:
-            print(f"{PAGE} is not current: run python scripts/import_graph.py", file=sys.stderr)
-        return 1 if wrong or stale else 0
-    PAGE.write_text(text)
-    print(f"wrote {PAGE}")
-    return 0
+    wrong = upward(imports()) if args.check else []
+    for a, b in wrong:
+        print(f"{a} imports {b}: a lower layer must not import a higher one", file=sys.stderr)
+    return write_or_check(PAGE, page(), args.check, "python scripts/import_graph.py") or int(bool(wrong))
 
 
 if __name__ == "__main__":

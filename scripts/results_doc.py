@@ -4,7 +4,7 @@
     python scripts/results_doc.py --check    # exit 1 if docs/results.md is not current
 
 The numbers and corrections live in tests/published/ (one module per source document), which the tests read;
-this script computes ours, the differences and the residuals from the same entries. tests/test_results_doc.py
+this script computes ours, the differences and the residuals from the same entries. tests/test_docs.py
 runs the check, so the page cannot drift from the tests.
 """
 
@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from sim_origami.files import write_text
+from sim_origami.files import write_or_check
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGE = ROOT / "docs" / "results.md"
@@ -133,18 +133,8 @@ def page() -> str:
 
 def run(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--check", action="store_true", help="compare with docs/results.md instead of writing it")
-    args = parser.parse_args(argv)
-    text = page()
-    if args.check:
-        current = PAGE.read_text() if PAGE.exists() else ""
-        if current != text:
-            print(f"{PAGE} is not current: run python scripts/results_doc.py", file=sys.stderr)
-            return 1
-        return 0
-    write_text(PAGE, text)
-    print(f"wrote {PAGE}")
-    return 0
+    parser.add_argument("--check", action="store_true", help="compare with the page instead of writing it")
+    return write_or_check(PAGE, page(), parser.parse_args(argv).check, "python scripts/results_doc.py")
 
 
 if __name__ == "__main__":

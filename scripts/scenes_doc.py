@@ -9,12 +9,11 @@ tests/test_docs.py runs the check, so the page cannot drift from the code.
 import argparse
 import contextlib
 import io
-import sys
 from pathlib import Path
 
 from sim_origami import scenes
 from sim_origami.cli import main
-from sim_origami.files import write_text
+from sim_origami.files import write_or_check
 
 PAGE = Path(__file__).resolve().parents[1] / "docs" / "scenes.md"
 
@@ -47,18 +46,8 @@ def page() -> str:
 
 def run(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--check", action="store_true", help="compare with docs/scenes.md instead of writing it")
-    args = parser.parse_args(argv)
-    text = page()
-    if args.check:
-        current = PAGE.read_text() if PAGE.exists() else ""
-        if current != text:
-            print(f"{PAGE} is not current: run python scripts/scenes_doc.py", file=sys.stderr)
-            return 1
-        return 0
-    write_text(PAGE, text)
-    print(f"wrote {PAGE}")
-    return 0
+    parser.add_argument("--check", action="store_true", help="compare with the page instead of writing it")
+    return write_or_check(PAGE, page(), parser.parse_args(argv).check, "python scripts/scenes_doc.py")
 
 
 if __name__ == "__main__":

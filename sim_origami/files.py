@@ -6,6 +6,7 @@ folder (`claimed_folder`): checked before any work, cleaned of an earlier run's 
 import contextlib
 import json
 import os
+import sys
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
@@ -166,3 +167,19 @@ def _record(path: Path) -> None:
     if name not in _CLAIMED[folder]:
         _CLAIMED[folder].append(name)
         _write_manifest(folder)
+
+
+def write_or_check(path: str | os.PathLike, text: str, check: bool, how: str) -> int:
+    """
+    A generated page: with `check`, 0 if `path` holds `text` and 1 (saying `how` to regenerate it) if not; else
+    write it. Returns an exit status for the generating script.
+    """
+    path = Path(path)
+    if check:
+        if not path.exists() or path.read_text() != text:
+            print(f"{path} is not current: run {how}", file=sys.stderr)
+            return 1
+        return 0
+    write_text(path, text)
+    print(f"wrote {path}")
+    return 0
