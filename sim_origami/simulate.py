@@ -36,9 +36,9 @@ STALL_TOL = 1e-13
 # Projection stops when MuJoCo's equality residual falls below this times the scene's length scale (m), or at the
 # rounding floor (STALL_TOL). With Newton steps 1e-14 left up to 1.8e-13 rad of angle error on ill-conditioned loops
 # and 1e-15 at most 2.3e-14; the chord steps converge linearly, so they stop just under the bound: 1e-15 left 5.5e-14
-# (corrugated sheet), 1e-16 (which ends at the rounding floor) 4.3e-14, every scene's worst branch within 2x of Newton's.
+# (corrugated sheet), 1e-16 (ending at the rounding floor) 4.3e-14, every scene's worst branch within 2x of Newton's.
 PROJECTION_TOL = 1e-16
-# A projection step keeps the input's first pseudo-inverse (chord method) while each step divides the residual by at
+# A projection step keeps the input's first factorisation (chord method) while each step divides the residual by at
 # least 1 / CHORD_RATE; a slower step takes a fresh Jacobian.
 CHORD_RATE = 0.1
 # The projection's normal equations are solved by Cholesky only while its factor's diagonal spans less than this
