@@ -27,9 +27,10 @@ class Tolerances:
     # sweeps <= 1.7e-12 rad (waterbomb-vertex; truncated polyhedra 1.1e-12, most scenes 1e-14 .. 2e-13); the
     # A04 free run 2.3e-11 (10 s under gravity). Before the regulariser scale: 8.4e-11 (thick diamond).
     accurate_rad: float = 2e-10
-    # Kinematic projection (Gauss-Newton on MuJoCo's efc_pos to 1e-15 m): worst 2.3e-14 rad (the thin thick
-    # waterbomb loop; 1.4e-14 the Miura sheet, <= 1.7e-14 Bricard case 10, 2e-15 single vertices). Stopping at
-    # 1e-14 m instead left 1.8e-13 on the Miura sheet and 1.9e-13 on the waterbomb with a = 0.02 m.
+    # Kinematic projection (Gauss-Newton chord steps on MuJoCo's efc_pos to the rounding floor): worst 4.3e-14 rad over
+    # every scene's branches (corrugated sheet CCSS; 2.9e-14 the thin thick waterbomb loop, 2.2e-14 the tube, 2e-15
+    # single vertices). Stopping at 1e-14 m instead left 1.8e-13 on the Miura sheet and 1.9e-13 on the waterbomb
+    # with a = 0.02 m.
     projection_rad: float = 1e-13
     # Closure-site gap (m, 1 m links): fast worst 1.7e-7 (IFToMM A04), accurate 4.6e-13 (A04; 2.5e-11 before the
     # regulariser scale). Projection stops once
