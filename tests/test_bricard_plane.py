@@ -386,6 +386,9 @@ def test_scene_defaults_are_case_10_and_presets_never_replace_given_geometry():
     assert scene.drive_joint == "joint_2" and scene.loop_joints == tuple(f"joint_{i}" for i in range(1, 7))
     with pytest.raises(ParameterError, match="a is given with case = 9"):  # issue 16: never silently case 9's a
         scene_type.build_from_user({"case": 9, "a": 7.0})
+    with pytest.raises(ParameterError, match="a is given with case = 9"):  # the default's value (case 10's a) too
+        scene_type.build_from_user({"case": 9, "a": 2.0})
+    assert scene_type.build_from_user({"case": 10, "a": 2.0}).params["a"] == 2.0  # case 10 has a = 2: no conflict
     assert scene_type.build_from_user({"case": 9}).params["a"] == 3.0  # Table 4-1 case 9
     fields = ("a", "b", "c", "alpha", "beta", "gamma", "R2", "R3")
     user = {"case": 0.0} | {f: getattr(OFFSETS, f) for f in fields}

@@ -307,13 +307,16 @@ class SceneType:
         full = {p.name: p.to_api(p.default) for p in self.params} | values
         full = {key: known[key].check(value) for key, value in full.items()}
         for preset in (p for p in self.params if p.replaces):
-            # A value equal to its default (case 10's geometry for bricard-plane) is what the default preset has:
-            # listing every parameter with its default, as a generic caller may, conflicts with nothing.
-            given = [name for name in preset.replaces if name in values and full[name] != known[name].to_api(
-                known[name].default)]
+            # A value equal to its default is what the default preset has (case 10's geometry for bricard-plane):
+            # listing every parameter with its default, as a generic caller may, conflicts with nothing. Any other
+            # preset replaces every parameter it lists, so naming one of them beside it is refused, default or not.
+            explicit = [name for name in preset.replaces if name in values]
+            given = [name for name in explicit if full[name] != known[name].to_api(known[name].default)]
+            default_preset = full[preset.name] == known[preset.name].to_api(known[preset.name].default)
             if given and preset.name not in values:
                 full[preset.name] = 0.0  # the user's values, not the default preset's
-            elif given and full[preset.name] != 0.0:
+            elif full[preset.name] != 0.0 and (given or (explicit and not default_preset)):
+                given = given or explicit
                 raise ParameterError(
                     f"{given[0]} is given with {preset.name} = {full[preset.name]:g}, whose preset replaces it; give "
                     f"{preset.name} = 0 to use {', '.join(given)}, or leave {given[0]} out"
