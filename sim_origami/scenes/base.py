@@ -159,6 +159,8 @@ class Scene:
     gravity: tuple[float, float, float] | None = None  # m/s^2 in the root's frame: adds a free run
     free_start: float = 0.0  # input (rad) at which the free run is released at rest
     free_branch: str = ""  # branch of that start pose
+    # Another tool's published CPU time (s) for the same free run, shown beside ours: (tool, seconds)
+    free_run_peer: tuple[str, float] | None = None
     # Quasi-static sweeps of loops that are ill-conditioned along their whole motion run this many times
     # slower than the preset's; the soft closures' angle error falls as the square of the sweep time
     # (measured 4.0x per doubling on every scene). Each scene that sets it states its measured error.
