@@ -46,6 +46,7 @@ def _test_functions(path: Path) -> set[str]:
     return {n.name for n in ast.walk(tree) if isinstance(n, ast.FunctionDef) and n.name.startswith("test_")}
 
 
+@pytest.mark.slow
 def test_every_published_entry_names_a_test_that_exists_and_reads_it():
     results_doc = load_script("results_doc")
     for name in results_doc.MODULES:

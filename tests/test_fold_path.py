@@ -125,6 +125,7 @@ def test_open_chains_validate_three_ways_with_every_freedom_driven(tmp_path, pat
     assert any(e["kind"] == "open-chain" for e in run.events)
 
 
+@pytest.mark.slow
 def test_a_two_dof_vertex_driven_by_named_inputs(tmp_path, capsys):
     """A degree-5 vertex has mobility 2: one input leaves a freedom undriven (a failed verdict), two agree."""
     pattern = vertex([70.0, 80.0, 60.0, 75.0, 75.0], "MVMVV")
@@ -167,6 +168,7 @@ def test_letters_only_miura_finds_the_rigid_motion(tmp_path):
     assert compare(scene, BRANCH, run.q).max_error() <= TOLERANCES.fast_rad
 
 
+@pytest.mark.slow
 def test_same_pattern_at_1_mm_1_m_and_1000_units_gives_the_same_verdict(tmp_path):
     pattern = vertex([60.0, 100.0, 90.0, 110.0], "MVMV")
     q = Vertex4(np.deg2rad([60.0, 100.0, 90.0, 110.0])).joint_angles("odd2", 1.2)[0]
@@ -188,6 +190,7 @@ def test_independent_joints_respects_the_first_pick():
     assert independent_joints(loops, q, first=(3,))[0] == 3 and len(independent_joints(loops, q)) == 2
 
 
+@pytest.mark.slow
 def test_frames_are_compared_with_the_rigid_motion_through_them(tmp_path):
     pattern = vertex([60.0, 100.0, 90.0, 110.0], "MVMV")
     frames = Vertex4(np.deg2rad([60.0, 100.0, 90.0, 110.0])).joint_angles("odd2", [0.4, 0.8, 1.2])
@@ -213,6 +216,7 @@ def test_f_creases_stay_flat_and_a_vertex_needing_them_stalls():
     assert [e.kind for e in stuck.events() if e.kind in ("stall", "lock")] == ["stall"]
 
 
+@pytest.mark.slow
 def test_the_square_base_has_five_freedoms_and_validates_with_five_inputs(tmp_path, capsys):
     """The square (preliminary) base: one degree-8 vertex, mobility 8 - 3 = 5 along its motion."""
     pattern = vertex([45.0] * 8, "VMVMVMVM")

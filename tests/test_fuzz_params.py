@@ -234,6 +234,7 @@ def _fuzz_checks(scene: str, given: dict[str, str]) -> None:
     _check_api(scene, given)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("scene", scenes.names())
 def test_fuzz_scene(scene):
     @settings(settings.get_profile("fuzz"), max_examples=_count_examples(scene))

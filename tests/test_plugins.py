@@ -159,6 +159,7 @@ def test_plugins_load_and_broken_ones_are_left_out_with_one_line(tmp_path, monke
     assert main(["describe", "plugin-buggy"]) == 2 and capsys.readouterr().err.count("\n") == 1
 
 
+@pytest.mark.slow
 def test_example_package_lists_and_validates_with_its_reference(tmp_path, monkeypatch, capsys, registry):
     env = example_env(tmp_path)
     for folder in env["PYTHONPATH"].split(os.pathsep):
@@ -179,6 +180,7 @@ def test_example_package_lists_and_validates_with_its_reference(tmp_path, monkey
     assert "theta4 at theta1 = -140 deg (line 3, branch elbow-cw)" in printed
 
 
+@pytest.mark.slow
 def test_installed_script_lists_plugins_and_survives_a_broken_one(tmp_path):
     (tmp_path / "mods").mkdir()
     (tmp_path / "mods" / "bad_syntax.py").write_text("def broken(:\n")

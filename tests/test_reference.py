@@ -229,6 +229,7 @@ def test_fold_file_scene_takes_a_reference_through_the_same_interface(tmp_path):
 EXAMPLES = Path(__file__).resolve().parents[1] / "docs" / "examples"
 
 
+@pytest.mark.slow
 def test_fold_example_with_its_reference_passes(tmp_path, capsys):
     """docs/extending.md's FOLD example, as printed there."""
     fold, curves = EXAMPLES / "reference" / "vertex4.fold", EXAMPLES / "reference" / "vertex4_curves.csv"
