@@ -134,3 +134,11 @@ def test_bench_scene_sweeps_settings_and_writes_the_front(capsys, tmp_path):
     header = (tmp_path / "pareto.csv").read_text().splitlines()[0]
     assert header == "scene,setting,integrator,h_s,tau_s,solimp,closure,drive,error_rad,cpu_s"
     assert (tmp_path / "pareto.png").stat().st_size > 0
+
+
+def test_bench_refuses_an_unusable_out_before_sweeping(capsys, tmp_path):
+    """issue 16: the folder is checked before the minutes of sweeping, one line and exit 2."""
+    blocker = tmp_path / "file"
+    blocker.write_text("not a folder")
+    code, out, err = run(capsys, "bench", "vertex4", "--quick", "--out", str(blocker))
+    assert code == 2 and err.count("\n") == 1 and "it is a file, not a folder" in err and out == ""
