@@ -142,3 +142,21 @@ def test_bench_refuses_an_unusable_out_before_sweeping(capsys, tmp_path):
     blocker.write_text("not a folder")
     code, out, err = run(capsys, "bench", "vertex4", "--quick", "--out", str(blocker))
     assert code == 2 and err.count("\n") == 1 and "it is a file, not a folder" in err and out == ""
+
+
+def test_a_closed_pipe_ends_quietly():
+    """`sim-origami list | head -1`: the reader leaving is not a bug; no traceback, no 'internal error' line. The
+    pipe's read end is closed before the command starts, so its first write meets the closed pipe every time."""
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    read, write = os.pipe()
+    os.close(read)
+    try:
+        done = subprocess.run([str(Path(sys.executable).parent / "sim-origami"), "list"], stdout=write,
+                              stderr=subprocess.PIPE, text=True, timeout=120)  # fmt: skip
+    finally:
+        os.close(write)
+    assert done.stderr == "" and done.returncode == 141  # 128 + SIGPIPE, as shell tools end

@@ -7,6 +7,7 @@ naming the value and the rule; a traceback only with --debug), 130 / 143 when in
 
 import argparse
 import contextlib
+import os
 import re
 import signal
 import sys
@@ -124,6 +125,9 @@ def main(argv: list[str] | None = None) -> int:
             if args.debug:
                 raise
             return _refuse(" ".join(str(exc).split()), 2)
+        except BrokenPipeError:  # the reader went away (`sim-origami list | head`): not an error of ours
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no second error at exit's flush
+            return 128 + signal.SIGPIPE
         except (Interrupted, KeyboardInterrupt) as exc:
             signum = exc.signum if isinstance(exc, Interrupted) else signal.SIGINT
             name = signal.Signals(signum).name
