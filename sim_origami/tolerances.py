@@ -13,6 +13,11 @@ class Tolerances:
     # Closed form vs numeric loop closure (LM continuation to 1e-14): worst 2.7e-14 rad (Miura
     # 30/60), 2.2e-13 (symmetric Miura 45/45, near its flat-folded end).
     closed_form_rad: float = 1e-12
+    # The continuation stops once the residual is below 1e-14 (about 45 eps), which leaves the angles up to that over
+    # the closure Jacobian's smallest singular value: on ill-conditioned paths a sample is held to
+    # max(closed_form_rad, closed_form_cond_factor eps cond) (`checks.paths.floor_verdict_values`). The 16 x 16
+    # Miura FOLD sheet measured at most 15 eps cond (1.66e-12 rad at cond 492, near its folded end): 10x that.
+    closed_form_cond_factor: float = 150.0
     # Closure residual of a closed form (product of joint transforms): worst 7.3e-16 (origami),
     # 5.3e-15 (Myard with a23 = 10 m).
     closed_form_residual: float = 1e-12
@@ -32,6 +37,13 @@ class Tolerances:
     # single vertices). Stopping at 1e-14 m instead left 1.8e-13 on the Miura sheet and 1.9e-13 on the waterbomb
     # with a = 0.02 m.
     projection_rad: float = 1e-13
+    # The projection and a numerically traced reference both stop at their residual's rounding floor, which moves the
+    # angles by about eps times the closure Jacobian's condition number (inputs held). The 16 x 16 Miura FOLD sheet
+    # (480 creases, a lock at its folded end) measured at most 1.9 eps cond (1.4e-13 rad at cond 328; 3.2e-14 at cond
+    # 104 mid-path), so a sample is held to max(projection_rad, 20 eps cond) (`checks.paths.floor_verdict_values`):
+    # projection_rad itself wherever cond < 23. Before the reference was polished to its own floor it was 3.7e-12 off
+    # there (stopped at a 5e-14 residual), which no tolerance should have covered.
+    projection_cond_factor: float = 20.0
     # Closure-site gap (m, 1 m links): fast worst 1.7e-7 (IFToMM A04), accurate 4.6e-13 (A04; 2.5e-11 before the
     # regulariser scale). Projection stops once
     # every equality row is below 1e-14 m, so a gap can reach sqrt(3) 1e-14 (measured 1.2e-14).

@@ -13,7 +13,7 @@ import numpy as np
 
 from .checks.blockage import Blockage, assess
 from .checks.branches import classify
-from .checks.paths import PathComparison, compare
+from .checks.paths import PathComparison, compare, floor_verdict_values
 from .checks.reference import ReferenceCheck, ReferenceCurves, compare_reference
 from .checks.verdict import Verdict
 from .errors import ParameterError
@@ -88,6 +88,8 @@ def closed_form_verdicts(scene: Scene, branch: str, x: np.ndarray) -> tuple[Verd
     q = kin.loop_angles(values)
     joints, held = kin.loop_inputs(x)
     numeric = loops.follow(q[0], joints[0], held[:, 0]) if len(joints) == 1 else loops.follow(q[0], joints, held)
+    error, tol, where = floor_verdict_values(scene, branch, PathComparison(x, kin.observe(numeric), values),
+                                             TOLERANCES.closed_form_rad, TOLERANCES.closed_form_cond_factor)
     return (
         Verdict(
             f"{branch}: closed-form closure residual",
@@ -97,9 +99,9 @@ def closed_form_verdicts(scene: Scene, branch: str, x: np.ndarray) -> tuple[Verd
         ),
         Verdict(
             f"{branch}: closed form vs numeric closure (rad)",
-            float(np.max(np.abs(kin.observe(numeric) - values))),
-            TOLERANCES.closed_form_rad,
-            "damped-Newton continuation over the same inputs, no closed form used",
+            error,
+            tol,
+            f"damped-Newton continuation over the same inputs, no closed form used; {where}",
         ),
     )
 
@@ -222,6 +224,8 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
     start, stop = scene.branch_path(branch)
     proj_traj = project(scene, branch, np.linspace(start, stop, ANALYTIC_SAMPLES), preset=preset)
     proj = compare(scene, branch, proj_traj.q)
+    proj_error, proj_tol, proj_where = floor_verdict_values(scene, branch, proj, TOLERANCES.projection_rad,
+                                                            TOLERANCES.projection_cond_factor)  # fmt: skip
     mobility = mobility_report(scene, branch, start)
     disagree = sum(
         len({p["numeric"], p["mujoco"], p["truss"]}) > 1 for p in [mobility["start"], *mobility["bifurcations"]]
@@ -237,8 +241,8 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
                 "max over samples and joints of |sim - closed form at the simulated input|"),
         Verdict(f"{branch}: MuJoCo {preset} closure residual (m)", float(np.max(dynamic.closure_residual)),
                 TOLERANCES.residual(preset, scene.length_scale), "largest gap between paired closure sites"),
-        Verdict(f"{branch}: MuJoCo projection path error (rad)", proj.max_error(), TOLERANCES.projection_rad,
-                "Gauss-Newton on MuJoCo's equality residuals at each input"),
+        Verdict(f"{branch}: MuJoCo projection path error (rad)", proj_error, proj_tol,
+                f"Gauss-Newton on MuJoCo's equality residuals at each input, to the rounding floor; {proj_where}"),
         Verdict(f"{branch}: branch followed", float(labels.followed != branch or labels.flips > 0), 0.0,
                 f"followed {labels.followed or 'none'}, {labels.flips} flips"),
         Verdict(f"{branch}: mobility, numeric rank vs MuJoCo rank vs truss (poses that differ)", float(disagree), 0.0,

@@ -34,3 +34,44 @@ def compare(scene: Scene, branch: str, q: NDArray[np.float64]) -> PathComparison
     x = scene.input_of(q)
     analytic, _ = scene.kinematics.evaluate(branch, x)
     return PathComparison(x, scene.outputs(q), analytic)
+
+
+def closure_condition(scene: Scene, branch: str, x: float, values: NDArray[np.float64]) -> float:
+    """
+    Condition number of the loop-closure Jacobian with the inputs held, at the closed form's outputs `values` (k,)
+    at input x (rad): how much the rounding of a closure residual moves the joint angles. Singular values below
+    1e-6 of the largest (idle spins, redundant freedoms) are left out, as in `LoopSystem.mobility`.
+    """
+    kin = scene.kinematics
+    loops = kin.loop_system()
+    q = kin.loop_angles(values[None])[0]
+    free = np.ones(loops.n_joints, dtype=bool)
+    free[list(kin.loop_inputs([x])[0])] = False
+    s = np.linalg.svd(loops.jacobian(q)[:, free], compute_uv=False)
+    s = s[s > 1e-6 * max(s.max(initial=0.0), 1.0)]
+    return float(s.max() / s.min()) if len(s) else 1.0
+
+
+def floor_verdict_values(
+    scene: Scene, branch: str, path: PathComparison, base: float, factor: float
+) -> tuple[float, float, str]:
+    """
+    (error, tolerance, where) of a comparison held to a rounding floor: every sample's error against
+    max(base, factor eps cond), cond the closure Jacobian's condition number there (`closure_condition`, computed
+    only at samples whose error exceeds `base`); the sample with the largest error over tolerance is reported.
+    """
+    err = np.max(path.error, axis=1)
+    if not np.all(np.isfinite(err)):
+        return float("inf"), base, "the input left the branch's domain"
+    above = np.flatnonzero(err > base)
+    if not len(above):
+        return float(np.max(err, initial=0.0)), base, "every sample within the base tolerance"
+    ratio, out = -1.0, (0.0, base, "")
+    for k in above:
+        cond = closure_condition(scene, branch, float(path.input[k]), path.analytic[k])
+        tol = max(base, factor * np.finfo(float).eps * cond)
+        if err[k] / tol > ratio:
+            ratio = err[k] / tol
+            out = (float(err[k]), tol, f"worst against its tolerance at input {path.input[k]:.6g} rad, where the "
+                   f"closure Jacobian's condition number is {cond:.3g} ({len(above)} samples above {base:g})")
+    return out
