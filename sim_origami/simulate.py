@@ -426,7 +426,9 @@ def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: s
     cpu = time.thread_time()
     with captured_warnings() as messages:
         for k, value in enumerate(inputs):
-            if k >= 2:  # secant predictor along the path (in MuJoCo's tangent space, so balls stay unit quaternions)
+            # secant predictor along the path (in MuJoCo's tangent space, so balls stay unit quaternions); repeated
+            # inputs (a one-point domain) have no secant: its rate would divide by zero
+            if k >= 2 and inputs[k - 1] != inputs[k - 2]:
                 mujoco.mj_differentiatePos(model, rate, inputs[k - 1] - inputs[k - 2], qpos_log[k - 2], qpos_log[k - 1])
                 mujoco.mj_integratePos(model, data.qpos, rate, value - inputs[k - 1])
             if scene.drive_path is None:
@@ -440,6 +442,9 @@ def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: s
                     rows, nefc, solve = data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY, data.nefc, None
                 r = data.efc_pos[rows]
                 size = np.max(np.abs(r), initial=0.0)
+                if not np.isfinite(size):  # a Gauss-Newton step diverged: a failed run, named where it happened
+                    raise SimulationError(f"{_context(scene, branch, preset, 'projection')}: non-finite closure "
+                                          f"residual at input {value:.6g} rad (sample {k + 1} of {len(inputs)})")
                 if size < best:
                     best, best_qpos[:] = size, data.qpos
                 if size < PROJECTION_TOL * scene.length_scale or (size < STALL_TOL and size >= previous):

@@ -168,7 +168,8 @@ def validate_scene(scene, args: argparse.Namespace) -> int:
         print("\n".join([HEADER, summary_line(doc)]))
         for v in doc["verdicts"] + [v for b in doc["branches"] for v in b["verdicts"]]:
             mark = "ok  " if v["passed"] else "FAIL"
-            print(f"  {mark} {v['name']}: {v['measured']:.3g} (tolerance {v['tolerance']:g})")
+            measured = "null (inf or nan)" if v["measured"] is None else f"{v['measured']:.3g}"  # JSON's null
+            print(f"  {mark} {v['name']}: {measured} (tolerance {v['tolerance']:g})")
             if v["name"].startswith("reference") and not v["passed"]:
                 print(f"       {v['detail']}")
         if "reference" in doc:
