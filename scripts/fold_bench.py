@@ -1,11 +1,16 @@
 """FOLD-file benchmarks (issue 15): CPU seconds of the verdicts, printed as a table (timings live here, not in tests).
 
 - a 16 x 16 Miura-ori given only as M/V letters: the numeric trace from flat, 200 polished reference inputs, and
-  with --validate the whole `validate` with the fast preset (slow: see docs/performance.md);
+  with --validate the whole `sim-origami validate --fold FILE --preset fast` (no --render) in a child process, its
+  CPU (user + system, every thread) and the stages of its report.json;
 - a 480-crease non-rigid pattern (the same sheet with jittered vertices): time to its stall verdict.
 """
 
 import argparse
+import json
+import resource
+import subprocess
+import sys
 import tempfile
 import time
 from dataclasses import replace
@@ -17,13 +22,30 @@ from sim_origami.fold import write_fold
 from sim_origami.kinematics.miura_sheet import MiuraSheet
 from sim_origami.kinematics.numeric_pattern import BRANCH, PatternPath, assignment_signs
 from sim_origami.scenes.fold_file import fold_scene
-from sim_origami.validation import validate
 
 
 def cpu(fn):
     t0 = time.process_time()
     out = fn()
     return out, time.process_time() - t0
+
+
+def validate_cli(path: Path, out: Path, creases: int) -> list[tuple]:
+    """`sim-origami validate --fold path --preset fast` as a user runs it: whole CPU, then report.json's stages."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    command = "import sys; from sim_origami.cli import main; sys.exit(main(sys.argv[1:]))"
+    code = subprocess.run([sys.executable, "-c", command, "validate", "--fold", str(path), "--preset", "fast",
+                           "--out", str(out)], capture_output=True, text=True).returncode  # fmt: skip
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    total = after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
+    doc = json.loads((out / "report.json").read_text())
+    failed = [v["name"] for v in doc["verdicts"] + [v for b in doc["branches"] for v in b["verdicts"]]
+              if not v["passed"]]  # fmt: skip
+    rows = [("16 x 16 Miura, M/V letters only: `validate --fold --preset fast`, whole process", creases, total,
+             f"exit {code}; failed: {', '.join(failed) or 'none'}")]  # fmt: skip
+    rows += [(f"  stage {name}", creases, seconds, "report.json timings_s") for name, seconds in
+             doc["timings_s"].items() if name.endswith("cpu_s")]  # fmt: skip
+    return rows
 
 
 def main() -> None:
@@ -43,9 +65,7 @@ def main() -> None:
         rows.append(("16 x 16 Miura: 200 reference inputs polished", len(sheet.creases), t_eval,
                      f"residual <= {np.max(kin.loop_system().residual_norm(values)):.2g}"))
         if args.validate:
-            report, t_val = cpu(lambda: validate(scene, preset="fast"))
-            rows.append(("16 x 16 Miura, M/V letters only: validate fast", len(sheet.creases), t_val,
-                         f"passed={report.passed}, error {report.runs[0].dynamic_path.max_error():.2e} rad"))
+            rows += validate_cli(path, Path(tmp) / "out", len(sheet.creases))
     rng = np.random.default_rng(1)
     jittered = replace(sheet, vertices=sheet.vertices + rng.uniform(-0.02, 0.02, sheet.vertices.shape))
     path, t_stall = cpu(lambda: PatternPath(jittered, jittered.creases[0].name, signs=assignment_signs(jittered)))
