@@ -16,6 +16,9 @@ import time
 from dataclasses import replace
 from pathlib import Path
 
+import sim_origami  # noqa: F401  (before numpy: one OpenBLAS thread unless set, see sim_origami/__init__.py)
+
+# isort: split
 import numpy as np
 
 from sim_origami.fold import write_fold

@@ -16,6 +16,7 @@ aborts the run with `SimulationError`; warnings are captured so no MUJOCO_LOG.TX
 import contextlib
 import time
 import warnings
+import weakref
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -46,6 +47,9 @@ CHORD_RATE = 0.1
 CHOLESKY_SPAN = 1e6
 # A quasi-static sweep moves no joint by this much (rad) in one step: a larger jump marks a divergence.
 JUMP_RAD = 0.5
+# MJCF texts kept by `scene_xml` (scenes are immutable; a scene's text is asked for up to four times a validation).
+XML_MEMO = 8
+_XML: dict[tuple[int, ModelOptions], tuple[weakref.ref, str]] = {}
 
 
 @dataclass(frozen=True)
@@ -95,8 +99,22 @@ def captured_warnings():
 
 
 def scene_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, NDArray[np.float64]] | None = None) -> str:
-    """The MJCF text of a scene's mechanism and setup for these options (`mjcf.build_xml`)."""
-    return build_xml(scene.mechanism, scene.model_setup(), options, keyframes)
+    """
+    The MJCF text of a scene's mechanism and setup for these options (`mjcf.build_xml`). Without keyframes the text
+    of the last XML_MEMO (scene, options) pairs is kept: a validation compiles the same model for its run, its
+    projection and its mobility count (the 16 x 16 Miura FOLD sheet's text takes 0.42 s of CPU to build).
+    """
+    if keyframes is not None:
+        return build_xml(scene.mechanism, scene.model_setup(), options, keyframes)
+    key = (id(scene), options)
+    kept = _XML.get(key)
+    if kept is not None and kept[0]() is scene:  # the same scene object, not a later one at a reused id
+        return kept[1]
+    xml = build_xml(scene.mechanism, scene.model_setup(), options)
+    if len(_XML) >= XML_MEMO:
+        _XML.pop(next(iter(_XML)))
+    _XML[key] = (weakref.ref(scene), xml)
+    return xml
 
 
 def compile_model(scene: Scene, options: ModelOptions) -> tuple[mujoco.MjModel, mujoco.MjData]:
