@@ -428,7 +428,7 @@ def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: s
     iterate with the smallest residual. The least-squares step reuses the last factorisation, of this input or an
     earlier one (chord method), while the residual falls by 1 / CHORD_RATE a step or is below STALL_TOL, by Cholesky
     where J is well conditioned (`_least_squares`): the 16 x 16 Miura FOLD sheet (1350 rows, 255 hinges) took 418
-    factorisations and 4.6 s of CPU for 200 inputs with one per input, 31 and 1.9 s now.
+    factorisations and 4.6 s of CPU for 200 inputs with a fresh one per input and per slow step, 201 and 2.5 s now.
     """
     preset = preset or scene.preset
     model, data = compile_model(scene, ModelOptions(preset=preset))
@@ -453,7 +453,7 @@ def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: s
                 data.qpos[binds.drive_qpos] = scene.drive_scale * value
             else:
                 data.qpos[binds.drives_qpos] = scene.drive_values(value)[0]
-            previous, best, best_qpos = np.inf, np.inf, data.qpos.copy()
+            previous, best, best_qpos, fresh = np.inf, np.inf, data.qpos.copy(), False
             for _ in range(20):
                 mujoco.mj_fwdPosition(model, data)
                 if data.nefc != nefc:  # reading efc_type costs 1.1 ms on the 16 x 16 Miura sheet: only when it changes
@@ -465,12 +465,12 @@ def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: s
                                           f"residual at input {value:.6g} rad (sample {k + 1} of {len(inputs)})")
                 if size < best:
                     best, best_qpos[:] = size, data.qpos
-                if size < PROJECTION_TOL * scene.length_scale or (size < STALL_TOL and size >= previous):
-                    break  # converged, or at the rounding floor of a large model
-                # the last factorisation, of this input or an earlier one, while it contracts fast enough (below
-                # STALL_TOL the residual is near the floor, where a fresh Jacobian gains nothing)
-                if solve is None or (size > CHORD_RATE * previous and size >= STALL_TOL):
-                    solve = _least_squares(constraint_jacobian(model, data)[rows][:, free])
+                if size < PROJECTION_TOL * scene.length_scale or (size < STALL_TOL and size >= previous and fresh):
+                    break  # converged, or at the rounding floor of a large model (for this input's own Jacobian)
+                # the last factorisation, of this input or an earlier one, while it contracts fast enough; a slow step
+                # takes a fresh Jacobian, once per input below STALL_TOL (there a slow fresh step is the floor)
+                if solve is None or (size > CHORD_RATE * previous and (size >= STALL_TOL or not fresh)):
+                    solve, fresh = _least_squares(constraint_jacobian(model, data)[rows][:, free]), True
                 previous = size
                 step[free] = -solve(r)
                 mujoco.mj_integratePos(model, data.qpos, step, 1.0)  # hinges add, balls turn their quaternion

@@ -32,10 +32,10 @@ class Tolerances:
     # sweeps <= 1.7e-12 rad (waterbomb-vertex; truncated polyhedra 1.1e-12, most scenes 1e-14 .. 2e-13); the
     # A04 free run 2.3e-11 (10 s under gravity). Before the regulariser scale: 8.4e-11 (thick diamond).
     accurate_rad: float = 2e-10
-    # Kinematic projection (Gauss-Newton chord steps on MuJoCo's efc_pos to the rounding floor): worst 4.3e-14 rad over
-    # every scene's branches (corrugated sheet CCSS; 2.9e-14 the thin thick waterbomb loop, 2.2e-14 the tube, 2e-15
-    # single vertices). Stopping at 1e-14 m instead left 1.8e-13 on the Miura sheet and 1.9e-13 on the waterbomb
-    # with a = 0.02 m.
+    # Kinematic projection (Gauss-Newton chord steps on MuJoCo's efc_pos to the rounding floor): worst 7.4e-14 rad over
+    # every scene's branches (waterbomb-twist twist-cw) with the factorisation kept across inputs; before, 4.3e-14
+    # (corrugated sheet CCSS; 2.9e-14 the thin thick waterbomb loop, 2.2e-14 the tube, 2e-15 single vertices).
+    # Stopping at 1e-14 m instead left 1.8e-13 on the Miura sheet and 1.9e-13 on the waterbomb with a = 0.02 m.
     projection_rad: float = 1e-13
     # The projection and a numerically traced reference both stop at their residual's rounding floor, which moves the
     # angles by about eps times the closure Jacobian's condition number (inputs held). The 16 x 16 Miura FOLD sheet
