@@ -104,9 +104,12 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     inputs = parse_inputs(input_crease, pattern)
     kwargs = {"frames": several, "signs": signs if letters_only else None}
     reference = None if several is not None else target
+    trial = None
     if inputs is None:
-        inputs = _choose_inputs(pattern, reference, several, signs if letters_only else None)
-    kinematics = PatternPath(pattern, inputs, None if several is not None else target, **kwargs)
+        inputs, trial = _choose_inputs(pattern, reference, several, signs if letters_only else None)
+    # the trial traced with the first input is this very path when that input is all it needs (half the build)
+    kinematics = trial if trial is not None and trial.inputs == inputs else \
+        PatternPath(pattern, inputs, None if several is not None else target, **kwargs)  # fmt: skip
     if frames_tolerance is not None and frames_tolerance < 0:
         raise ParameterError(f"frames tolerance {frames_tolerance:g} rad: it must be >= 0")
     from_coords = getattr(fold, "frames_from_coords", False)
@@ -130,10 +133,11 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     )  # fmt: skip
 
 
-def _choose_inputs(pattern: CreasePattern, target, frames, signs) -> tuple[str, ...]:
+def _choose_inputs(pattern: CreasePattern, target, frames, signs) -> tuple[tuple[str, ...], PatternPath]:
     """
     The most folded crease of the state (or the first lettered one), then, when the pattern has more freedoms
-    along its motion than one (the mobility at the middle of a one-input trace), as many as it has, by rank.
+    along its motion than one (the mobility at the middle of a one-input trace), as many as it has, by rank; and that
+    one-input trace.
     """
     names = [c.name for c in pattern.creases]
     state = frames[-1] if frames is not None else target if target is not None else signs
@@ -145,7 +149,7 @@ def _choose_inputs(pattern: CreasePattern, target, frames, signs) -> tuple[str, 
     middle = len(trial.nodes) // 2
     m = int(trial.mobility[middle])
     if m <= 1:
-        return (names[first],)
+        return (names[first],), trial
     allowed = np.array([c.assignment != "F" for c in pattern.creases]) & np.isfinite(state)
     picked = independent_joints(trial.loop_system(), trial.nodes[middle], m, among=allowed, first=(first,))
-    return tuple(names[k] for k in picked)
+    return tuple(names[k] for k in picked), trial
