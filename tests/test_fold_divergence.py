@@ -1,7 +1,8 @@
 """A FOLD file whose run cannot finish normally is a failed check (issue 15 item 4): exit 1 with report.json, not exit
-2 (bad input) or an internal error. Real MuJoCo, no mocks. No realistic file was found that makes MuJoCo itself warn
-under a preset (sliver panels, near-degenerate vertices, near-flat and near-square Miura sheets all step cleanly);
-this one made the projection's own predictor divide by zero."""
+2 (bad input) or an internal error; and a large pattern's reference is exact to its rounding floor. Real MuJoCo, no
+mocks. No realistic file was found that makes MuJoCo itself warn under a preset (sliver panels, near-degenerate
+vertices, near-flat and near-square Miura sheets all step cleanly); the one below made the projection's own
+predictor divide by zero."""
 
 import json
 
@@ -10,6 +11,8 @@ import numpy as np
 from sim_origami.cli import main
 from sim_origami.creases import Crease, CreasePattern
 from sim_origami.fold import write_fold
+from sim_origami.kinematics.miura_sheet import MiuraSheet
+from sim_origami.kinematics.numeric_pattern import BRANCH, SPARSE_FROM
 from sim_origami.scenes.fold_file import fold_scene
 from sim_origami.simulate import project
 
@@ -44,3 +47,16 @@ def test_a_one_point_motion_exits_1_with_a_report(tmp_path, capsys):
     assert "FAIL through-target: swept range" in printed and "null (inf or nan)" in printed
     report = json.loads((out / "report.json").read_text())
     assert report["passed"] is False
+
+
+def test_a_sparse_pattern_is_polished_to_the_rounding_floor(tmp_path):
+    """Patterns above SPARSE_FROM creases polish by chord steps (`PatternPath._polish_chord`): to the residual's floor,
+    not to 1e-13, which near the 16 x 16 Miura sheet's folded end left the reference 3.7e-12 rad off."""
+    sheet = MiuraSheet(8, 8, 0.5, 0.5, np.deg2rad(60.0)).pattern
+    assert len(sheet.creases) > SPARSE_FROM
+    scene = fold_scene(write_fold(tmp_path / "miura8.fold", sheet))
+    kin = scene.kinematics
+    x = np.linspace(*scene.path, 60)
+    values = kin.joint_angles(BRANCH, x)
+    assert np.max(kin.loop_system().residual_norm(values)) <= 1e-14  # measured 1.8e-15 (9.7e-14 before)
+    assert np.array_equal(kin.joint_angles(BRANCH, x), values)  # kept values, not a second polish
