@@ -4,7 +4,8 @@ Ground DA, input theta1 at A (hinge `joint_1`), R at B (`joint_2`), balls at C (
 connect). Any a1 = AB = CD, a2 = BC = DA and twist alpha of AB (a2 sin alpha < a1) moves like the Bennett linkage
 of implied beta = asin(a2 sin alpha / a1): so a built RSSR with fabrication errors stays mobile where the Bennett
 locks (`sim_origami.fabrication`; `scripts/fabrication_errors.py`). Yang 2017's 1.5 mm length error (§3.5;
-k = +1, lengths scaled 100 mm -> 1 m) is `-p a1=1.015 -p a2=0.6922`. Outputs: theta1 and theta2 (rad); points: the joint origins.
+k = +1, lengths scaled 100 mm -> 1 m) is `-p a1=1.015 -p a2=0.6922`. Outputs: theta1 and theta2 (rad); points: the
+joint origins.
 """
 
 import numpy as np
