@@ -2,7 +2,7 @@
 
 Loop: P_AB -B2- O_B -B3- P_BC -C2- O_C -C3- P_CA -A2- O_A -A3- P_AB, joints z1..z6 = A3, B2, B3, C2, C3, A2 of
 `kinematics.triangle_twist`, each z_i pointing away from the triangle corner it passes through. D-H rows in Feng 2018's
-convention ( eqns 2-1 to 2-5; `kinematics.dh`, T = Rz(theta) Tz(R) Tx(a) Rx(alpha)); with the x axes on the
+convention (eqns 2-1 to 2-5; `kinematics.dh`, T = Rz(theta) Tz(R) Tx(a) Rx(alpha)); with the x axes on the
 flat sheet's +z every theta_i is the fold angle rho of its crease (its left face is link i(i+1)), 0 flat.
 
 gamma != delta (eqn 3-38, "R45" read as the twist alpha45): a = 0; twists alpha12 = 2 pi - gamma + delta,
