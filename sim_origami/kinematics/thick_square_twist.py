@@ -19,7 +19,7 @@ on a non-rigid string (loop gain K != 1) is immobile, mobility 0 even at the fla
 three layouts of CCCC and SSSS; the zero-thickness sheet has mobility 4 there).
 
 Kinematic equivalence: each thick vertex follows only its mode of the zero-thickness vertex with the same
-fold angles (M10), so the thick sheet folds exactly like `SquareTwist` on its mode string (the thick
+fold angles (Peng 2018, §4.2), so the thick sheet folds exactly like `SquareTwist` on its mode string (the thick
 per-vertex PoE loops close on that closed form to ~1e-15) and on no other: it has one branch through the
 flat state, where the zero-thickness sheet's six cross (mobility 1 at flat, not 4).
 
