@@ -12,7 +12,7 @@ Height rule ([NEW], derived and checked here): with the thesis frame at every ve
 pattern's 90 deg rotation maps one vertex's layout onto the next) the heights close iff #S = #C, i.e. for
 exactly the six rigid mode strings (`square_twist.RIGID`), and the central square is a single slab (two
 levels) only for the opposite class CSCS / SCSC; the adjacent class leaves it three levels (a hull).
-[NEW] That rule's scope is narrower than it looks: mirroring single vertices (f_k = -1) reverses their lift, so every
+[NEW] The rule holds only in the thesis frame: mirroring single vertices (f_k = -1) reverses their lift, so every
 sign-consistent mode string (even #S) has three height-consistent layouts up to the global mirror, one of them
 with a single-slab square (`layouts`). Heights do not select the rigid strings, kinematics does: a thick sheet
 on a non-rigid string (loop gain K != 1) is immobile, mobility 0 even at the flat state (measured for all

@@ -1,5 +1,4 @@
-"""Zero-thickness waterbomb tessellation of rows x cols bases in the symmetric folding of Feng 2018,
-§5.3.
+"""Zero-thickness waterbomb tessellation of rows x cols bases in the symmetric folding of Feng 2018, §5.3.
 
 Layout (reconstructed here, as in `waterbomb`): base (i, j) is centred on A = (2 t j + t (i mod 2), i H) with
 H = t cot(alpha) + h_C, so each row is shifted by half a base; its six triangles are those of
