@@ -20,10 +20,10 @@ smooth on rho1 in [-pi, pi], where crease 1 folds flat (panels 5 and 1 face to f
 odd in rho1, so the mirrored heights -h close the same angles. Unlike the zero-thickness vertex (2 DOF,
 instantaneous mobility 3 at flat), the thick loop has mobility 1 everywhere: no bifurcation at flat.
 
-Corrected here: Peng 2018's printed (4-20) (t2/(2 t1) for 2 t2/t1; (4-21b) with 2 t2/t1 closes to 4e-13) and the
-middle signs of (4-23c)/(4-28c) are wrong (printed: error 6.0; corrected: 5e-13), and (4-26b,c) hold only with
-alpha the sector angle alpha12 (not alpha12^My = pi - alpha12); the tests prove each by a closure residual. The
-Myard of (4-24) is Yang 2017's eqn 1-19 with alpha12 = pi - alpha.
+Corrected here: Peng 2018's printed (4-20) (t2/(2 t1) for 2 t2/t1; (4-21b) with 2 t2/t1 closes to 4e-13) and the middle
+signs of (4-23c)/(4-28c) are wrong ((4-23c) as printed: error 6.0, corrected 5e-13), and (4-26b,c) hold only with alpha
+the sector angle alpha12 (not alpha12^My = pi - alpha12); the tests prove each by a closure residual. The Myard of
+(4-24) is Yang 2017's eqn 1-19 with alpha12 = pi - alpha.
 """
 
 import numpy as np
