@@ -99,7 +99,7 @@ def test_numeric_verdict_closes_rigid_classes_and_stalls_on_locked_ones(tables):
 
 
 @pytest.mark.parametrize(("unit", "table"), [("P", P_TABLE), ("Q", Q_TABLE)])
-def test_assignments_and_modes_match_the_digest_strings(unit, table):
+def test_assignments_and_modes_match_the_enumerated_strings(unit, table):
     """Brute-force M/V enumeration (Maekawa + Big-Little-Big only) gives exactly the digest's sign-consistent
     mode combinations (P all 16, Q the 8 with an even number of S) and their M/V strings."""
     model = UnitModel(unit, FIG_3_2)
@@ -114,7 +114,7 @@ def test_assignments_and_modes_match_the_digest_strings(unit, table):
     assert ours == table
 
 
-def test_half_turn_maps_creases_as_the_seed_does():
+def test_half_turn_maps_creases_as_peng2018_does():
     for unit, pairs in (("P", (("a3", "c3"), ("AB", "CD"), ("AD", "BC"), ("b1", "d1"))),
                         ("Q", (("a1", "e1"), ("AB", "EF"), ("AF", "BE"), ("b4", "f4")))):  # fmt: skip
         model = UnitModel(unit, FIG_3_2)

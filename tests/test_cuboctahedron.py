@@ -174,9 +174,9 @@ def test_volume_ratio(model):
 
 
 @pytest.mark.parametrize(
-    "entry", checked_by(yang2017.NUMBERS, "test_cuboctahedron.py::test_path_matches_seed_table"), ids=str
+    "entry", checked_by(yang2017.NUMBERS, "test_cuboctahedron.py::test_path_matches_yang2017_table"), ids=str
 )
-def test_path_matches_seed_table(model, entry):
+def test_path_matches_yang2017_table(model, entry):
     entry.check()  # < 3e-4: measured 1.5e-4 (4 decimals, truss tolerance; case 11's tolerance is 2e-3)
     theta = yang2017.theta_at_bd(entry.value[0])
     d = model.diagonals(theta)
@@ -259,7 +259,7 @@ def test_mobility(model, mechanism):
     [(REVOLUTE, 1), (tuple("ABCD"), 2), ((), 6), ((*REVOLUTE, "E"), 0)],
     ids=["seed design", "R at ABCD only", "all S", "plus R at E"],
 )
-def test_mobility_of_the_seed_variants(mechanism, revolute, dof):
+def test_mobility_of_yang2017_variants(mechanism, revolute, dof):
     """Digest §2.6 truss counts at the cuboctahedron: 1; only Bennett 1 as R joints: 2; all S: 6 (not the 18 of
     Sec. 4.2); an R joint at E with its axis toward the centre: 0. A ball adds 3 joint coordinates, so the joint-space
     mobility equals the truss m (no idle spins: no S-S bar)."""

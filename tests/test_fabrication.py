@@ -85,10 +85,10 @@ def test_rssr_closes_the_distance_cd_and_equals_printed_3_5():
 
 
 @pytest.mark.parametrize("name", list(yang2017.FABRICATION_ERRORS))
-def test_seed_output_errors(name):
+def test_yang2017_output_errors(name):
     # the thesis prints 0.58, 5.06, 0.53 (k = +1); the k = -1 rows and the linearised values are ours [NEW]
     error = yang2017.FABRICATION_ERRORS[name]
-    for entry in checked_by(yang2017.NUMBERS, "test_seed_output_errors"):
+    for entry in checked_by(yang2017.NUMBERS, "test_yang2017_output_errors"):
         if entry.quantity.endswith(f"{name} (3 decimals)") or entry.quantity.endswith(f"{name} (0.1 deg)"):
             entry.check()
     # the error is odd in theta1: the peak recurs at -theta1 (measured 0 difference)
@@ -98,9 +98,9 @@ def test_seed_output_errors(name):
     assert abs(output_error(NOMINAL_RSSR, built, np.pi)) < 1e-15
 
 
-def test_output_error_near_half_turn_matches_digest():
+def test_output_error_near_half_turn_as_measured_here():
     # [NEW] d_l = 1.5 mm, k = +1: 3.431 deg at theta1 = 170 deg, 0.394 at 179 deg
-    check_every(yang2017.NUMBERS, "test_output_error_near_half_turn_matches_digest")
+    check_every(yang2017.NUMBERS, "test_output_error_near_half_turn_as_measured_here")
 
 
 def test_linearised_error_is_printed_3_42_and_the_derivative_of_the_exact_one():

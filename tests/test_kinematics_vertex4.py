@@ -225,7 +225,7 @@ def test_flat_foldable_closed_form_equals_general_closed_form_on_modes_s_and_c(a
         )
 
 
-def test_flat_foldable_modes_have_the_seed_sign_patterns():
+def test_flat_foldable_modes_have_peng2018_sign_patterns():
     # Seed 003 M6, theta1 > 0: mode S is (+, +, -, +), mode C is (+, +, +, -).
     vertex = Vertex4(np.array(TYPE_I_ALPHA))
     x = np.linspace(0.05, 3.0, 50)

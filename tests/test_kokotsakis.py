@@ -39,7 +39,7 @@ def crease_angles_deg(pattern, v: int) -> list[float]:
     return sorted(np.round(np.rad2deg(np.arctan2(d[1], d[0])), 9) % 360 for _, d in pattern.vertex_creases(v))
 
 
-def test_example1_layout_is_the_digest_reconstruction():
+def test_example1_layout_is_the_reconstructed_one():
     pattern = crease_pattern(example(1))
     np.testing.assert_allclose(
         pattern.vertices[:4], [[0, 0], [0, 1], [0.939693, 0.657980], [0.155543, 0]], atol=PRINTED, rtol=0
@@ -83,7 +83,7 @@ def test_example2_and_two_fold_central_panels():
 @pytest.mark.parametrize(
     ("branch", "published"), [("odd2", (-0.084225, 0.443379, 0.109452)), ("odd3", (0.849175, -0.443379, 1.129539))]
 )
-def test_example1_every_vertex_carries_the_seed_fold_vector(branch, published):
+def test_example1_every_vertex_carries_the_published_fold_vector(branch, published):
     """Validation cases 4 and 5: rho1 = 0.5 at a vertex of (2-34), driven through rho_AB = its rho2."""
     x = Vertex4(np.array(GENERIC) * DEG, 1).at(branch, 0.5)["rho2"]
     mesh = Kokotsakis(example(1))

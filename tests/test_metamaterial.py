@@ -52,8 +52,8 @@ def measured(sc, q):
     return positions, gap, np.pi - np.abs(q[:, m.joint_index("u1_2")]), q[:, m.joint_index("u1_1")]
 
 
-@pytest.mark.parametrize("entry", checked_by(peng2018.NUMBERS, "test_formulas_reproduce_the_digest_table"), ids=str)
-def test_formulas_reproduce_the_digest_table(entry):
+@pytest.mark.parametrize("entry", checked_by(peng2018.NUMBERS, "test_formulas_reproduce_the_element_table"), ids=str)
+def test_formulas_reproduce_the_element_table(entry):
     # 6 decimals at phi = pi/3, pi/2, 2 pi/3 (the rounded phi 1.0472, 1.5708, 2.0944 would move W by up to 1.2e-6)
     entry.check()
 
@@ -169,7 +169,7 @@ def test_closed_form_ratios_and_the_texts_claims():
         (3, 2.8, 2e-2, 400),
     ],
 )
-def test_mujoco_motion_has_the_seed_dimensions_and_ratios(element, stop, nu_out_tol, min_samples):
+def test_mujoco_motion_has_the_published_dimensions_and_ratios(element, stop, nu_out_tol, min_samples):
     sc = sheet()
     branch = ELEMENTS[element].branch
     run = simulate(sc, branch, stop=stop)

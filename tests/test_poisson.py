@@ -52,7 +52,7 @@ def measured(sc, q):
                          (5 * np.pi / 6, 0.750000, 0.642857, 0.556731, -10.500000, -3.095238))),
     ],
 )  # fmt: skip
-def test_closed_form_geometry_reproduces_the_digest_tables(alpha, rows):
+def test_closed_form_geometry_reproduces_the_poisson_tables(alpha, rows):
     rows = np.array(rows)
     sc = scene(alpha)
     for branch in A_IN_C:
@@ -75,7 +75,7 @@ def test_closed_form_geometry_reproduces_the_digest_tables(alpha, rows):
 
 
 @pytest.mark.parametrize("branch", A_IN_C)
-def test_mujoco_motion_has_the_seed_poisson_ratios(branch):
+def test_mujoco_motion_has_peng2018_poisson_ratios(branch):
     sc = scene(5 * np.pi / 6)
     run = simulate(sc, branch)  # fast preset (RK4, 8 ms), 4x sweep over 0.5..2.4 rad (the H peak at 1.2995 inside)
     positions, gap, theta, phi = measured(sc, run.q)

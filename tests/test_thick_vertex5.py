@@ -158,7 +158,7 @@ def test_4_26_holds_with_sector_alpha_not_alpha12_myard(alpha):
 
 
 @pytest.mark.parametrize("alpha", [30.0, 50.0, 70.0])
-def test_seed001_eqn_1_19_with_alpha12_180_minus_alpha_closes_at_the_thesis_angles(alpha):
+def test_yang2017_eqn_1_19_with_alpha12_180_minus_alpha_closes_at_the_thesis_angles(alpha):
     # (4-24) twists (pi - alpha, pi/2, pi + 2 alpha, pi/2, alpha) = eqn 1-19 with alpha12 = pi - alpha
     # (alpha34 = pi - 2 alpha12 = 2 alpha - pi, the same modulo 2 pi); a12 = a51 = a23 sin(alpha), a34 = 0.
     al = alpha * DEG

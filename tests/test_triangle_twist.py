@@ -87,7 +87,7 @@ def test_case1_2_spherical_4r_vertex_families(mode):
 
 
 @pytest.mark.parametrize("scheme", RIGID_SCHEMES + LOCKED_SCHEMES)
-def test_pattern_vertices_have_the_seed_sectors_and_assignment_obeys_maekawa(scheme):
+def test_pattern_vertices_have_feng2018_sectors_and_assignment_obeys_maekawa(scheme):
     types, angles = example_angles(scheme)
     pattern = crease_pattern(angles, 1.0, 0.5, types)
     assert (len(pattern.faces), len(pattern.creases), len(pattern.interior_vertices())) == (7, 9, 3)
@@ -106,10 +106,10 @@ def test_pattern_vertices_have_the_seed_sectors_and_assignment_obeys_maekawa(sch
         assert mv.count(mv[odd]) == 1
 
 
-def test_case3_compatible_epsilon_against_the_seed():
+def test_compatible_epsilon_against_feng2018():
     """Eqn 3-12 (Fig. 3-5, scheme SSP) and the PSR formula; 4 decimals (deg): ours 35.436776, 33.516640, 7.035508,
     -25.528779 (negative: no compatible pattern)."""
-    check_every(feng2018.NUMBERS, "test_case3_compatible_epsilon_against_the_seed")
+    check_every(feng2018.NUMBERS, "test_compatible_epsilon_against_feng2018")
     assert epsilon_formula("PSR", 60 * DEG, 60 * DEG, 90 * DEG, 45 * DEG) < 0
     # Fig. 3-5: its only motion is SSP, with the digest's M/V (AB, BC, CA, A2, A3, B2, B3, C2, C3)
     model = TriangleTwist(angles_deg(*FIG_3_5, 35.436775581528764))
@@ -121,7 +121,7 @@ def test_case3_compatible_epsilon_against_the_seed():
 
 
 @pytest.mark.slow
-def test_verdict_table_reproduces_the_seed_eight_rigid_four_never():
+def test_verdict_table_reproduces_feng2018_eight_rigid_four_never():
     table = verdict_table()
     assert [v.name for v in table] == list(RIGID_SCHEMES + LOCKED_SCHEMES)
     for v in table:
@@ -241,17 +241,17 @@ def test_locked_scheme_cannot_leave_flat_in_mujoco_the_rigid_one_can():
 # --- M3: the derived 6R linkages (validation cases 5, 6; digest corrections 4 to 6) ------------------------------
 
 
-def test_case5_dh_data_and_motion_against_the_seed():
+def test_dh_data_and_motion_against_feng2018():
     model = feng2018.twist_6r(*FIG_3_5)
     assert all(r.a == 0 for r in model.rows) and abs(model.bricard_sum()) <= 1e-13  # eqn 2-14: 1.4e-14
     # D-H data, Ka, Kb and the path (theta4 = theta1, theta5 = theta2, theta6 = -theta3)
-    check_every(feng2018.NUMBERS, "test_case5_dh_data_and_motion_against_the_seed")
+    check_every(feng2018.NUMBERS, "test_dh_data_and_motion_against_feng2018")
     loops = model.loop_system()
     for t1 in (30, 60, 90, 120, 150):
         assert loops.residual_norm(model.joint_angles("SSP", t1 * DEG))[0] <= 1e-14  # measured <= 3.3e-15
     # eqn 3-39 as printed (tan(theta2/2) = +Ka Kb tan(theta1/2), ..., theta4 = -theta1) misses closure: measured
     # 1.88 >= 1.0, where the closed form closes to 4.2e-15
-    check_every(feng2018.CORRECTIONS, "test_case5_dh_data_and_motion_against_the_seed")
+    check_every(feng2018.CORRECTIONS, "test_dh_data_and_motion_against_feng2018")
 
 
 @pytest.mark.parametrize("joint", [0, 1, 2, 5])

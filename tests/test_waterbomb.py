@@ -78,7 +78,7 @@ def test_closed_forms_close_the_cell_and_match_the_numeric_solve(alpha, beta, mu
 
 
 @pytest.mark.parametrize(("alpha", "beta", "mu"), [(35, 45, 0.5), (40, 40, 1.0), (20, 30, 2.0)])
-def test_thick_cell_matches_the_seed_dh_linkages(alpha, beta, mu):
+def test_thick_cell_matches_feng2018_dh_linkages(alpha, beta, mu):
     """Eqns 5-11 and 5-12 (the seed's D-H Bricard loops of A and B) close at our path I through the seed's
     joint maps: the hinge heights of the cell are an independent, equivalent reconstruction."""
     a, b, ap = alpha * DEG, beta * DEG, 0.03

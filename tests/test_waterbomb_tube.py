@@ -70,8 +70,8 @@ def test_case22_even_tube_equator():
         assert rows["A", 1][0][0] == rows["A", 0][0][0]  # the half-turn maps A_0 to A_1
 
 
-@pytest.mark.parametrize("entry", checked_by(feng2018.NUMBERS, "test_seed000_case23_m7_tube_states"), ids=str)
-def test_seed000_case23_m7_tube_states(entry):
+@pytest.mark.parametrize("entry", checked_by(feng2018.NUMBERS, "test_feng2018_m7_tube_states"), ids=str)
+def test_feng2018_m7_tube_states(entry):
     entry.check()
 
 
@@ -144,8 +144,10 @@ def test_closed_form_matches_the_numeric_continuation():
     assert np.max(np.abs(wrap(numeric - q))) <= TOLERANCES.closed_form_rad
 
 
-@pytest.mark.parametrize("entry", checked_by(feng_ma_chen2020.NUMBERS, "test_seed004_contraction_ranges"), ids=str)
-def test_seed004_contraction_ranges(entry):
+@pytest.mark.parametrize(
+    "entry", checked_by(feng_ma_chen2020.NUMBERS, "test_feng_ma_chen2020_contraction_ranges"), ids=str
+)
+def test_feng_ma_chen2020_contraction_ranges(entry):
     # the paper truncates to 1 decimal (120.6478 is printed 120.6): within one unit above
     entry.check()
 
@@ -156,12 +158,12 @@ def test_contraction_starts_fully_folded(m, alpha, beta):
     assert lo == pytest.approx(60 * DEG, abs=1e-12)  # the fully folded equatorial row, eqn 13
 
 
-def test_seed004_model_that_cannot_fold_rigidly():
+def test_feng_ma_chen2020_model_that_cannot_fold_rigidly():
     """n6 m5 alpha 40 beta 35: row 2 closes nowhere on the strict criterion (§2.1); the seed's chain is real only
     on an island 119.98-120.19 deg with the top diagonals reversed (digest B.6)."""
     with pytest.raises(ParameterError, match="cannot contract rigidly"):
         WaterbombTube(6, 5, 40 * DEG, 35 * DEG)
-    check_every(feng_ma_chen2020.NUMBERS, "test_seed004_model_that_cannot_fold_rigidly")
+    check_every(feng_ma_chen2020.NUMBERS, "test_feng_ma_chen2020_model_that_cannot_fold_rigidly")
 
 
 def starts_fully_folded(m, alpha, beta):
@@ -191,7 +193,7 @@ def top_row_interferes(m, alpha, beta):
         (lambda v: motion_range(tube_layout(6, 7, 45 * DEG, v * DEG, 1.0)) is not None, 39.0, 0.5),
     ],
 )
-def test_seed004_fig8_thresholds_within_printed_precision(predicate, published, tol):
+def test_feng_ma_chen2020_fig8_thresholds_within_printed_precision(predicate, published, tol):
     """The property switches inside [published - tol, published + tol] (ours: 31.309, 37.269, 44.518, 40.179,
     44.415, 38.977 by bisection in scripts/waterbomb_tube_numbers.py)."""
     assert not predicate(published - tol) and predicate(published + tol)
@@ -222,12 +224,12 @@ def test_equal_diameter_bifurcation_at_beta_max(alpha):
     assert above["A", 1][0][0] < -1e-3  # measured -1.4e-2, -1.1e-2, -8.2e-3 (alpha 40, 45, 50)
 
 
-def test_seed000_m7_events_against_the_thesis():
+def test_feng2018_m7_events_against_the_thesis():
     """Seed 000 §6.2 (n6 m7 alpha = beta = 45): the thesis samples on a grid of 0.06-0.12 deg (digest M10), so its
     values agree to one step: uniform radius 65.88 (ours 65.937), interference 90.72-128.52 (90.751-128.475),
     theta_max 144.24 (144.242)."""
     # the printed events to the thesis's grid step (0.12 deg), our exact values (3 decimals) and r_A of the top row
-    check_every(feng2018.NUMBERS, "test_seed000_m7_events_against_the_thesis")
+    check_every(feng2018.NUMBERS, "test_feng2018_m7_events_against_the_thesis")
 
 
 def test_pattern_lengths_and_counts():

@@ -20,13 +20,13 @@ DEG = np.pi / 180
 # Seed 004 Fig. 8c (digest B.6): no middle-row collision at alpha = 54.5 deg, onset at 54.6 deg at the bottom of
 # the range (theta = 89.32 deg); at alpha = 56 deg the colliding part of the range is [88.79, 95.04] deg.
 # The onset measured by bisection on alpha: 54.593 deg with MuJoCo's solids, 54.578 with the bare triangles.
-SEED_ONSET_DEG = 54.6
-SEED_END_DEG = 95.04
+PUBLISHED_ONSET_DEG = 54.6
+PUBLISHED_END_DEG = 95.04
 # Where the colliding part of the range ends at alpha = 56 deg: MuJoCo's inset plates measured 95.130 deg, the exact
 # crossing of the zero-thickness triangles 95.168 deg (the digest's collision test found 95.04; a crossing
 # tolerance of 1e-3 in barycentric coordinates gives 95.003): 0.2 deg covers the 0.13 deg between the digest's test
 # and the exact crossing.
-SEED_END_TOL_DEG = 0.2
+PUBLISHED_END_TOL_DEG = 0.2
 # Triangle crossing: an edge must pass GRAZE (barycentric, and along the edge) inside the other triangle; edges closer
 # to parallel to its plane than PARALLEL (m^3, a = 1 m) are skipped (no division by zero; no effect measured). Without
 # GRAZE, 25 more pairs count at the bottom of the range at alpha = 54.6 deg (97 instead of 72), pairs whose edges only
@@ -109,12 +109,12 @@ def test_tube_pattern_also_excludes_panels_that_meet_across_the_seam():
 
 
 @pytest.mark.slow
-def test_bare_triangles_cross_where_the_seed_says():
+def test_bare_triangles_cross_where_feng_ma_chen2020_says():
     """The digest's own test (triangle-triangle crossing, zero thickness): none at alpha = 54.5 deg, crossing at the
     bottom of the range at 54.6 deg; at 56 deg they cross up to 95.168 deg (seed 95.04)."""
     clear = interfering_scene(54.5).kinematics
     assert crossing_pairs(clear, theta_deg(clear.domain[0]) + 1e-7) == 0
-    onset = interfering_scene(SEED_ONSET_DEG).kinematics
+    onset = interfering_scene(PUBLISHED_ONSET_DEG).kinematics
     assert crossing_pairs(onset, theta_deg(onset.domain[0]) + 1e-7) == 72  # measured: 72 pairs in rows 2-4
     kinematics = interfering_scene(56.0).kinematics
     inside, outside = 92.0, 97.0
@@ -122,18 +122,18 @@ def test_bare_triangles_cross_where_the_seed_says():
         mid = 0.5 * (inside + outside)
         inside, outside = (mid, outside) if crossing_pairs(kinematics, mid) else (inside, mid)
     np.testing.assert_allclose(inside, 95.168, atol=1e-3)  # measured 95.16801
-    np.testing.assert_allclose(inside, SEED_END_DEG, atol=SEED_END_TOL_DEG)
+    np.testing.assert_allclose(inside, PUBLISHED_END_DEG, atol=PUBLISHED_END_TOL_DEG)
 
 
 @pytest.mark.slow
-def test_contact_onset_is_the_seed_middle_row_interference():
+def test_contact_onset_is_the_published_middle_row_interference():
     """Fig. 8c: no panel contact anywhere on the range at alpha = 54.5 deg; at 54.6 deg contact at the bottom of the
     range between rows -1, 0, 1 (rows 2-4 from the bottom), which the dihedral criteria do not see (digest B.4)."""
     clear = interfering_scene(54.5)
     contacts = Contacts(clear)
     lo, hi = theta_deg(clear.kinematics.domain)
     assert not any(contacts.at(t) for t in np.linspace(lo + 1e-7, hi - 1e-7, 41))
-    onset = interfering_scene(SEED_ONSET_DEG)
+    onset = interfering_scene(PUBLISHED_ONSET_DEG)
     contacts = Contacts(onset)
     lo, hi = theta_deg(onset.kinematics.domain)
     np.testing.assert_allclose(lo, 89.32, atol=5e-3)  # the seed's theta at the onset, 2 decimals; ours 89.3225
@@ -143,7 +143,7 @@ def test_contact_onset_is_the_seed_middle_row_interference():
     assert not any(contacts.at(t) for t in np.linspace(lo + 0.1, hi - 1e-7, 41))
 
 
-def test_contact_part_of_the_range_at_alpha_56_matches_the_seed():
+def test_contact_part_of_the_range_at_alpha_56_matches_feng_ma_chen2020():
     """alpha = 56 deg: contact from the bottom of the range (seed 88.79 deg) to 95.130 deg (seed 95.04)."""
     scene = interfering_scene(56.0)
     contacts = Contacts(scene)
@@ -151,7 +151,7 @@ def test_contact_part_of_the_range_at_alpha_56_matches_the_seed():
     np.testing.assert_allclose(lo, 88.79, atol=5e-3)  # ours 88.7859
     assert rows_of(contacts.at(lo + 1e-7), scene.mechanism.root) == {2, 3, 4}
     end = contacts.last(92.0, 97.0)
-    np.testing.assert_allclose(end, SEED_END_DEG, atol=SEED_END_TOL_DEG)
+    np.testing.assert_allclose(end, PUBLISHED_END_DEG, atol=PUBLISHED_END_TOL_DEG)
     assert all(contacts.at(t) for t in np.linspace(lo + 1e-7, end - 0.01, 21))
 
 
@@ -168,7 +168,7 @@ def test_force_limited_servo_stops_at_the_interference():
     result = assess(x, run.target, run.drive_force, 20.0, touch * DEG - np.pi, stop)
     assert result.stopped and run.contacts[-1] > 0
     assert result.error < TOLERANCES.blockage_rad
-    np.testing.assert_allclose(theta_deg(result.stop_input), SEED_END_DEG, atol=SEED_END_TOL_DEG)
+    np.testing.assert_allclose(theta_deg(result.stop_input), PUBLISHED_END_DEG, atol=PUBLISHED_END_TOL_DEG)
 
 
 @pytest.mark.slow

@@ -32,7 +32,7 @@ from sim_origami.validation import validate
 
 DEG = np.pi / 180
 TWIST_6X5 = feng_ma_chen2020.twist(6, 5, 40, 40)
-seed_angles = feng_ma_chen2020.twist_angles
+published_angles = feng_ma_chen2020.twist_angles
 
 
 @pytest.mark.parametrize("eta02", [60, 70, 80, 90, 100])
@@ -55,7 +55,7 @@ def test_case17_start_and_case18_limits():
     model = TWIST_6X5
     lo, hi = model.domain
     assert np.pi - hi == pytest.approx(0.0, abs=1e-12)  # measured 9.2e-14 (the domain's ends sit 1e-13 inside)
-    end = seed_angles(model, CW, np.rad2deg(np.pi - lo), ["A2_0_3", "A2_0_6"])
+    end = published_angles(model, CW, np.rad2deg(np.pi - lo), ["A2_0_3", "A2_0_6"])
     assert np.all(np.abs(end) <= 1e-9)  # eta03 = eta06 = 0 at the limit
     # start, limit, eta01 and eta_2,1 there, the end twist (2 decimals; ours 72.3493), r_A1, r_A2, the mirror end
     check_every(feng_ma_chen2020.NUMBERS, "test_case17_start_and_case18_limits")
@@ -79,19 +79,19 @@ def test_middle_row_limits(n, alpha, twist):
         assert abs(model.end_twist(CW, model.domain[0])[0] / DEG + twist) <= 1e-9  # measured 7.0e-12 deg
     # seed 000 eqn 6-51 at the eta02 = 0 end: tan(t/2) = (1 - cos eta06) / (tan(pi/n) (3 + cos eta06))
     hi = model.domain[1]
-    eta06 = seed_angles(model, CCW, np.rad2deg(np.pi - hi), ["A0_0_6"])[0] * DEG
+    eta06 = published_angles(model, CCW, np.rad2deg(np.pi - hi), ["A0_0_6"])[0] * DEG
     expected = 2 * np.arctan((1 - np.cos(eta06)) / (np.tan(np.pi / n) * (3 + np.cos(eta06))))
     assert abs(model.end_twist(CCW, hi)[0] - expected) <= 1e-12  # measured <= 1.4e-15 rad
 
 
-def test_seed000_square_tube_twist():
+def test_feng2018_square_tube_twist():
     """Seed 000 M13 / case 30 (n6 m3 alpha = beta = 45): eta02 in [0, 90]; at eta02 = 0 eta03 = eta06 = 90, eta01 =
     70.529 and the side edge tilted to zeta = 54.736 deg (atan sqrt 2), end twist 60; untwisted eta02 = 44.415."""
     model = WaterbombTwist(6, 3, 45 * DEG, 45 * DEG)
     np.testing.assert_allclose(np.rad2deg(np.pi - np.array(model.domain)), [90, 0], atol=1e-9, rtol=0)
     hi = model.domain[1]
     # untwisted eta02, the eta02 = 0 end and the table at zeta = 80 deg (3 decimals)
-    check_every(feng2018.NUMBERS, "test_seed000_square_tube_twist")
+    check_every(feng2018.NUMBERS, "test_feng2018_square_tube_twist")
     assert model.tilt(hi)[0] == pytest.approx(np.arctan(np.sqrt(2)), abs=1e-12)  # measured 9.9e-14 (the domain's
     assert model.end_twist(CCW, hi)[0] == pytest.approx(60 * DEG, abs=1e-12)  # end sits 1e-13 inside); 1.2e-13
 
