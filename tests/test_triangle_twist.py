@@ -158,7 +158,8 @@ def test_loop_gain_is_the_inverse_mu_product_and_locked_classes_never_reach_one(
 
 
 def test_case4_all_pleats_parallel_never_folds():
-    """gamma = delta = epsilon: eqn 3-16 (with the two non-zero factors its simplified form drops, restored here) and no scheme with gain 1."""
+    """gamma = delta = epsilon: eqn 3-16 (with the two non-zero factors its simplified form drops, restored here) and
+    no scheme with gain 1."""
     rng = np.random.default_rng(7)
     for _ in range(100):
         a, b = rng.uniform(5, 170, 2)

@@ -85,9 +85,9 @@ def test_volume_ratio(model):
 
 
 @pytest.mark.parametrize(
-    "entry", checked_by(yang2017.NUMBERS, "test_truncated_octahedron.py::test_path_matches_yang2017_table"), ids=str
+    "entry", checked_by(yang2017.NUMBERS, "test_truncated_octahedron.py::test_path_matches_the_worked_table"), ids=str
 )
-def test_path_matches_yang2017_table(entry):
+def test_path_matches_the_worked_table(entry):
     # measured agreement 0.02 deg or better
     entry.check()
 

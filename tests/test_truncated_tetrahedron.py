@@ -173,15 +173,15 @@ def test_scheme_ii_negative_delta_over_opens():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_scheme_ii_path_matches_yang2017_table"), ids=str)
-def test_scheme_ii_path_matches_yang2017_table(entry):
+@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_scheme_ii_path_matches_the_worked_table"), ids=str)
+def test_scheme_ii_path_matches_the_worked_table(entry):
     # measured agreement <= 0.0051 deg and <= 5e-5 m
     entry.check()
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_scheme_i_path_matches_yang2017_table"), ids=str)
-def test_scheme_i_path_matches_yang2017_table(entry):
+@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_scheme_i_path_matches_the_worked_table"), ids=str)
+def test_scheme_i_path_matches_the_worked_table(entry):
     # measured agreement <= 0.0050 deg and <= 1e-4 m
     entry.check()
 

@@ -202,7 +202,7 @@ CUBOCTAHEDRON = (
            lambda: np.array([cuboctahedron().domain[0], cuboctahedron().phi(cuboctahedron().domain[0])]) / DEG, 1e-4,
            _CO + "test_fold_case_10", unit="deg", in_text=False),
     *(Number(_PT + " (4 decimals)", f"BD, AI, EF, AC, EH, BJ where BD = {row[:6]} (truss tolerance)", row,
-             lambda row=row: path_row(float(row.split(",")[0])), 3e-4, _CO + "test_path_matches_yang2017_table",
+             lambda row=row: path_row(float(row.split(",")[0])), 3e-4, _CO + "test_path_matches_the_worked_table",
              unit="m", strict=True, in_text=False) for row in _PATH),
     *(Number(_PT, f"largest {key} on 20001 samples", peak, lambda key=key: path_maximum(key)[0], 1e-4,
              _CO + "test_path_maxima", unit="m", in_text=False)
@@ -366,7 +366,7 @@ TRUNCATED_OCTAHEDRON = (
     *(Number("ch. 5, path by the truss method (+/-0.1 deg)",
              f"rho1, rho2, delta_A, delta_D, Bricard 1 and 2's odd joint angles where rho1 = {row.split(',')[0]}",
              row, lambda row=row: octahedron_path_row(float(row.split(",")[0])), 0.1,
-             _TO + "test_path_matches_yang2017_table", unit="deg", in_text=False) for row in _TO_PATH),
+             _TO + "test_path_matches_the_worked_table", unit="deg", in_text=False) for row in _TO_PATH),
 )  # fmt: skip
 
 # --- chapter 6: the truncated tetrahedron ------------------------------------------------------------------------
@@ -417,8 +417,8 @@ _TABLE_I = (
     ("4.99", "10.90, 9.90, 120.92", "0.1883, 0.1899"),
 )
 _C16 = _TT + "test_bricard_parameters_match_case_16"
-_PATH_II = _TT + "test_scheme_ii_path_matches_yang2017_table"
-_PATH_I = _TT + "test_scheme_i_path_matches_yang2017_table"
+_PATH_II = _TT + "test_scheme_ii_path_matches_the_worked_table"
+_PATH_I = _TT + "test_scheme_i_path_matches_the_worked_table"
 _MISS = _TT + "test_scheme_i_misses_the_tetrahedron"
 
 TRUNCATED_TETRAHEDRON = (
