@@ -263,8 +263,8 @@ def test_mobility(model, mechanism):
 )
 def test_mobility_of_yang2017_variants(mechanism, revolute, dof):
     """Truss counts at the cuboctahedron (the thesis's design; the variants derived here): 1; only Bennett 1 as R
-    joints: 2; all S: 6 (not the 18 of Sec. 4.2); an R joint at E with its axis toward the centre: 0. A ball adds 3 joint coordinates, so the joint-space
-    mobility equals the truss m (no idle spins: no S-S bar)."""
+    joints: 2; all S: 6 (not the 18 of Sec. 4.2); an R joint at E with its axis toward the centre: 0. A ball adds 3
+    joint coordinates, so the joint-space mobility equals the truss m (no idle spins: no S-S bar)."""
     mech = assembly(revolute)
     loops = mech.loop_system()
     assert loops.mobility(np.zeros(len(mech.joints))) == dof  # smallest kept singular value >= 0.19 (measured)

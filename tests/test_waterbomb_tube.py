@@ -209,7 +209,8 @@ def test_twist_limits_and_thresholds_closed_forms():
 @pytest.mark.parametrize("alpha", [40, 45, 50])
 def test_equal_diameter_bifurcation_at_beta_max(alpha):
     """At beta_max (eqn 40) every row is fully folded at theta = 360/n (Feng, Ma and Chen 2020, Figs 15-16): all A's
-    on the axis and every vertical edge folded flat; slightly above beta_max row 1 passes through the axis (r_A1 < 0)."""
+    on the axis and every vertical edge folded flat; slightly above beta_max row 1 passes through the axis
+    (r_A1 < 0)."""
     beta = beta_max(alpha * DEG, 6)
     layout = tube_layout(6, 5, alpha * DEG, beta, 1.0)
     X = vertices(layout, np.array([60 * DEG]))[0]
