@@ -272,7 +272,7 @@ FABRICATION = (
     Number("§3.5, eqn 3-5", "output error at theta1 = 170, 179 deg, d_l = 1.5 mm, k = +1 (3 decimals)", "3.431, 0.394",
            lambda: output_error(nominal_rssr(), FABRICATION_ERRORS["d_l = 1.5 mm, k = +1"].built(nominal_rssr()),
                                 np.array([170.0, 179.0]) * DEG) / DEG, 5e-4,
-           _FAB + "test_output_error_near_half_turn_as_measured_here", unit="deg", in_text=False),
+           _FAB + "test_output_error_falls_towards_the_half_turn", unit="deg", in_text=False),
     *(Number("eqn 3-50 (corrected)", f"largest ball waggle, {name} (3 decimals; the thesis prints {thesis})",
              printed, lambda err=err: max_waggle(nominal_rssr(), err.built(nominal_rssr())).value / DEG, 5e-4,
              _FAB + "test_waggle_corrected_3_50", unit="deg", in_text=False)
