@@ -134,7 +134,8 @@ def test_scheme_ii_reaches_the_tetrahedron(two):
 
 def test_scheme_i_misses_the_tetrahedron(one):
     """Case 19 [NEW]: with s_G ∥ QG (Sec. 6.3.2 says it reaches 0) the path ends at the Bricard fold with
-    theta_G = 3.708 deg, |BK| = 0.0585, KLM height 0.0586 m, KLM rotation 29.66 deg; theta_G starts at the printed 146.44 deg."""
+    theta_G = 3.708 deg, |BK| = 0.0585, KLM height 0.0586 m, KLM rotation 29.66 deg; theta_G starts at the printed
+    146.44 deg."""
     lo = one.domain[0]
     # theta_G from 146.44269 to 3.70837 deg; |BK| 0.058534, height 0.058435, rotation 29.6617 (measured)
     check_every(yang2017.NUMBERS, "test_scheme_i_misses_the_tetrahedron")
