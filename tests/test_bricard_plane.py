@@ -430,11 +430,11 @@ def test_mujoco_validation_passes(case, capsys):
 
 
 # ---------------------------------------------------------------------------------------------
-# M7: A == B == C == 0
+# Feng 2018, §4.5.2: A == B == C == 0
 # ---------------------------------------------------------------------------------------------
 
 
-def test_m7_double_rocker_closes_and_meets_the_eqn_4_37ab_chains_at_plus_minus_60_deg():
+def test_special_case_double_rocker_closes_and_meets_the_eqn_4_37ab_chains_at_plus_minus_60_deg():
     kin = model(M7)
     c = kin.classification()
     assert c.a_identically_zero and c.delta == "zero"
@@ -458,7 +458,7 @@ def test_m7_double_rocker_closes_and_meets_the_eqn_4_37ab_chains_at_plus_minus_6
     np.testing.assert_allclose(wrap(rocker - np.deg2rad([0, 60, 120, 0, 120, 60])), 0.0, atol=1e-12)
 
 
-def test_m7_principal_arcsin_does_not_close():
+def test_eqn_4_37d_principal_arcsin_does_not_close():
     theta2 = np.linspace(-1.5, 1.5, 31)
     m = np.tan(theta2 / 2)
     t6 = 2 * np.arctan2(-4 * m + np.sqrt(3 * (7 * m * m + 3) * (7 - 5 * m * m)), 15 * m * m + 7)
