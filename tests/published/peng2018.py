@@ -212,7 +212,7 @@ CHAPTER_3 = (
     *(_w("Fig 3-15, alpha = 150 deg", f"edge multiplier of mode {mode}", printed,
          lambda mode=mode: edge_multipliers(5 * np.pi / 6)[mode], SIX_DECIMALS,
          _SQ + "test_multipliers_against_peng2018", unit="") for mode, printed in (("C", "1.732051"),
-                                                                                            ("S", "-0.577350"))),
+                                                                                   ("S", "-0.577350"))),
     *(_w(f"eqns 3-30 to 3-32, alpha = {a} deg", f"phi, L, S, H, nu_SL, nu_HL at theta = {t} deg (a = b = c = 1)",
          printed, lambda a=a, t=t: square_twist_unit(a, t), SIX_DECIMALS, _SQ + "test_case11_metamaterial_tables",
          unit="") for a, t, printed in _CASE11),
