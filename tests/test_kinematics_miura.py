@@ -10,7 +10,7 @@ from sim_origami.errors import DomainError, ParameterError
 from sim_origami.geometry import wrap
 from sim_origami.kinematics.miura import MiuraVertex, fold_limit, spinal_crease
 
-# Sector pairs (alpha1, alpha2) in degrees from the digest's verification list (A.6).
+# Sector pairs (alpha1, alpha2) in degrees: the paper's 30/60 (Fig. 5) and the pairs of a first check made here.
 ASYMMETRIC = [(30, 60), (60, 30), (50, 80), (20, 70), (70, 80), (40, 50)]
 SYMMETRIC = [(45, 45), (60, 60)]  # flat-foldable: the degree-4 vertex names the branch 'S'
 PAIRS = ASYMMETRIC + SYMMETRIC
@@ -75,7 +75,7 @@ def test_spinal_folds_are_twice_theta_with_opposite_assignment():
     vertex = miura(30, 60)
     theta = domain_grid(vertex, "miura")
     out = vertex.joint_angles("miura", theta)
-    # Collinear pair a, c: |rho_a| = |rho_c| = 2 theta (digest A.2); measured 4e-16; 1e-14 is 25x.
+    # Collinear pair a, c: |rho_a| = |rho_c| = 2 theta (derived here; eqns 9-10); measured 4e-16; 1e-14 is 25x.
     np.testing.assert_allclose(out[:, RHO_C], 2 * theta, atol=1e-14, rtol=0)
     np.testing.assert_allclose(out[:, RHO_A], -2 * theta, atol=1e-14, rtol=0)
 
@@ -133,7 +133,7 @@ def test_symmetric_vertex_has_zero_psi_and_closed_form_phi_case6(alpha):
     theta = np.linspace(-0.99, 0.99, 199) * np.deg2rad(35)  # phi < 90 deg here, so a_x > 0
     out = vertex.joint_angles("miura", theta)
     assert np.all(out[:, PSI] == 0.0)
-    # phi = 2 atan(sin theta tan alpha) (digest A.3, verified there to 4e-16); measured 4e-16 here.
+    # phi = 2 atan(sin theta tan alpha) (eqn 38 at alpha1 = alpha2, derived here); measured 4e-16.
     expected = 2 * np.arctan(np.sin(theta) * np.tan(np.deg2rad(alpha)))
     np.testing.assert_allclose(out[:, PHI], expected, atol=1e-14, rtol=0)
 

@@ -1,4 +1,4 @@
-"""Degree-4 vertex closed form (`sim_origami.kinematics.vertex4`) against seed 003 and the loop solver."""
+"""Degree-4 vertex closed form (`kinematics.vertex4`) against Peng 2018 (ch. 2, §3.2.1) and the loop solver."""
 
 import re
 
@@ -63,7 +63,7 @@ def fold_signs(rho: np.ndarray) -> np.ndarray:
 
 
 # ---------------------------------------------------------------------------------------------
-# Published numbers (seed 003)
+# Published numbers (Peng 2018)
 # ---------------------------------------------------------------------------------------------
 
 
@@ -225,8 +225,8 @@ def test_flat_foldable_closed_form_equals_general_closed_form_on_modes_s_and_c(a
         )
 
 
-def test_flat_foldable_modes_have_the_seed_sign_patterns():
-    # Seed 003 M6, theta1 > 0: mode S is (+, +, -, +), mode C is (+, +, +, -).
+def test_flat_foldable_modes_have_peng2018_sign_patterns():
+    # Peng 2018, §3.2.1, theta1 > 0: mode S is (+, +, -, +), mode C is (+, +, +, -).
     vertex = Vertex4(np.array(TYPE_I_ALPHA))
     x = np.linspace(0.05, 3.0, 50)
     assert np.all(fold_signs(vertex.joint_angles("S", x)) == [1, 1, -1, 1])
@@ -277,7 +277,7 @@ def test_unknown_branch_name_raises_parameter_error_listing_the_names():
 def test_joint_angles_raises_domain_error_naming_value_and_domain(x):
     vertex = Vertex4(np.array(CASE4_ALPHA))
     lo, hi = vertex.branch("odd3").domain
-    assert -2.0 < lo < -1.9 and 1.9 < hi < 2.0  # seed 003 case 4: odd3 locks at |rho1| = 1.925
+    assert -2.0 < lo < -1.9 and 1.9 < hi < 2.0  # the vertex (2-34): odd3 locks at |rho1| = 1.925
     with pytest.raises(DomainError) as error:
         vertex.joint_angles("odd3", [0.1, x])
     message = str(error.value)
@@ -350,9 +350,9 @@ def test_flat_input_is_valid_on_every_branch_and_exactly_flat():
 @pytest.mark.parametrize(
     "alpha, total_deg",
     [
-        ((np.pi / 9, 2 * np.pi / 9, 4 * np.pi / 9, 2 * np.pi / 3), 260),  # seed 003 case 1
-        ((np.pi / 9, 7 * np.pi / 9, 5 * np.pi / 9, 2 * np.pi / 3), 380),  # seed 003 case 2
-        ((2 * np.pi / 9, np.pi / 3, 13 * np.pi / 18, 5 * np.pi / 9), 330),  # seed 003 case 3
+        ((np.pi / 9, 2 * np.pi / 9, 4 * np.pi / 9, 2 * np.pi / 3), 260),  # Peng 2018, Fig 2-1
+        ((np.pi / 9, 7 * np.pi / 9, 5 * np.pi / 9, 2 * np.pi / 3), 380),  # Fig 2-1, dashed
+        ((2 * np.pi / 9, np.pi / 3, 13 * np.pi / 18, 5 * np.pi / 9), 330),  # Fig 2-5
     ],
     ids=["case1", "case2", "case3"],
 )

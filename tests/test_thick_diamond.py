@@ -1,5 +1,5 @@
 """Thick six-crease diamond vertex = plane-symmetric Bricard (`sim_origami.kinematics.thick_diamond`, scene
-`thick-diamond`) against seed 003 M13 / case 16, the loop solver and MuJoCo."""
+`thick-diamond`) against Peng 2018, §4.4.1 (eqns 4-29 to 4-50), the loop solver and MuJoCo."""
 
 import numpy as np
 import pytest
@@ -55,7 +55,7 @@ def test_case16_line_fold_is_impossible_thick_and_possible_with_zero_thickness()
     # (psi, 0, 0, psi, 0, 0): fold about the straight line of creases 1 and 4 only.
     q = np.array([0.5, 0.0, 0.0, 0.5, 0.0, 0.0])
     thick = case16().loop_system().residual_norm(q)
-    # the hinges 1 and 4 are |h4| = 1 m apart: residual |h4| sin(psi) = 0.479426 (digest: 0.48)
+    # the hinges 1 and 4 are |h4| = 1 m apart: residual |h4| sin(psi) = 0.479426 (a first check here: 0.48)
     assert thick == pytest.approx(np.sin(0.5), abs=1e-12)
     # measured 8.9e-17
     assert lifted_loop(sectors(np.pi / 6), np.zeros(6)).residual_norm(q) <= TOLERANCES.closed_form_residual
@@ -65,7 +65,7 @@ def test_case16_r_0_7_is_refused_and_moves_along_another_curve():
     with pytest.raises(ParameterError, match=r"r = 0\.7 m but p \+ q = 0\.8 m.*r = p \+ q.*misses closure by 0\.1 "):
         ThickDiamond(np.pi / 6, 0.3, 0.5, 0.7)
     # The r = 0.7 loop still moves (plane-symmetric Bricard); followed from near flat on the branch next to
-    # 'diamond', at phi1 = pi/2 it reaches the digest's non-equivalent (phi2, phi3, phi4).
+    # 'diamond', at phi1 = pi/2 it reaches a non-equivalent (phi2, phi3, phi4) (worked here).
     loops = lifted_loop(sectors(np.pi / 6), hinge_heights(0.3, 0.5, 0.7))
     x = np.linspace(0.02, np.pi / 2, 80)
     q = loops.follow(diamond_folds(np.pi / 6, x[0])[0], 0, x)[-1]

@@ -1,5 +1,5 @@
 """Thick five-crease vertex = Myard linkage (`sim_origami.kinematics.thick_vertex5`, scene `thick-vertex5`)
-against seed 003 M12 / case 15, the loop solver and MuJoCo."""
+against Peng 2018, §4.3 (eqns 4-10 to 4-28), the loop solver and MuJoCo."""
 
 import numpy as np
 import pytest
@@ -67,7 +67,7 @@ def test_closed_form_closes_the_lifted_loop_over_the_whole_branch(alpha, b):
     q = model.loop_angles(model.joint_angles(BRANCH, domain()))
     # measured worst 1.3e-15 over these (alpha, b), mirrored heights alike
     assert np.max(model.loop_system().residual_norm(q)) <= TOLERANCES.closed_form_residual
-    # the motion is odd in rho1, so the mirrored heights -h close the same angles (digest: "or its mirror")
+    # the motion is odd in rho1, so the mirrored heights -h close the same angles (derived here)
     mirrored = lifted_loop(model.sectors, -model.heights)
     assert np.max(mirrored.residual_norm(q)) <= TOLERANCES.closed_form_residual
 
@@ -137,7 +137,7 @@ def test_corrected_4_23c_and_4_28c_hold_and_printed_sign_fails(alpha):
 
 @pytest.mark.parametrize("alpha", [30.0, 50.0, 70.0])
 def test_4_26_holds_with_sector_alpha_not_alpha12_myard(alpha):
-    # Thesis frame theta^My = (q1 + pi, -q2, q3, q4 + pi, q5) (digest M12).
+    # Thesis frame theta^My = (q1 + pi, -q2, q3, q4 + pi, q5) (Peng 2018, §4.3, related here).
     al = alpha * DEG
     q = ThickVertex5(al, 1.0).joint_angles(BRANCH, np.linspace(0.2, 3.0, 57))
     th = np.column_stack([q[:, 0] + np.pi, -q[:, 1], q[:, 2], q[:, 3] + np.pi, q[:, 4]])
@@ -158,7 +158,7 @@ def test_4_26_holds_with_sector_alpha_not_alpha12_myard(alpha):
 
 
 @pytest.mark.parametrize("alpha", [30.0, 50.0, 70.0])
-def test_seed001_eqn_1_19_with_alpha12_180_minus_alpha_closes_at_the_thesis_angles(alpha):
+def test_yang2017_eqn_1_19_with_alpha12_180_minus_alpha_closes_at_the_thesis_angles(alpha):
     # (4-24) twists (pi - alpha, pi/2, pi + 2 alpha, pi/2, alpha) = eqn 1-19 with alpha12 = pi - alpha
     # (alpha34 = pi - 2 alpha12 = 2 alpha - pi, the same modulo 2 pi); a12 = a51 = a23 sin(alpha), a34 = 0.
     al = alpha * DEG
@@ -255,6 +255,6 @@ def test_validate_default_scene_passes_every_verdict(scene):
     assert measured["MuJoCo projection path error (rad)"] <= TOLERANCES.projection_rad
     assert measured["servo stop vs kinematic contact (rad)"] <= TOLERANCES.blockage_rad
     assert report.blockage.stopped and report.blockage.contact_input == pytest.approx(-2.0978594, abs=1e-6)
-    # truss method alike, with the Myard linkage's two states of self-stress (seed 001)
+    # truss method alike, with the Myard linkage's two states of self-stress (Yang 2017, Sec. 3.4)
     start = {"input_rad": -0.4, "numeric": 1, "mujoco": 1, "truss": 1, "truss_self_stress": 2}
     assert run.mobility["start"] == start

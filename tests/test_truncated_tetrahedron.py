@@ -1,6 +1,6 @@
 """Truncated tetrahedron -> tetrahedron, schemes I and II (`kinematics.truncated_tetrahedron`, assemblies in
-`scenes.truncated_tetrahedron`) against seed 001 ch. 6 (digest §2.8, validation cases 16-20) and the numeric loop
-closure of the whole assembly (9 R hinges, 3 spherical joints, 3 loops) and MuJoCo (ball joints)."""
+`scenes.truncated_tetrahedron`) against Yang 2017, ch. 6 and the numeric loop closure of the whole assembly (9 R
+hinges, 3 spherical joints, 3 loops) and MuJoCo (ball joints)."""
 
 import numpy as np
 import pytest
@@ -108,7 +108,7 @@ def test_delta_peak_of_the_bricard(two):
     m = two.monitors(x)
     k = int(np.argmax(m["delta"]))
     assert m["delta"][k] / DEG == pytest.approx(129.52, abs=0.02)  # sampled peak, measured 129.52
-    assert m["rho"][k] / DEG == pytest.approx(102.4, abs=1.0)  # the seed gives it to 0.1 deg; sampling 0.5 deg
+    assert m["rho"][k] / DEG == pytest.approx(102.4, abs=1.0)  # worked here to 0.1 deg; sampling 0.5 deg
     assert (m["delta"][0] / DEG, m["delta"][-1] / DEG) == pytest.approx((120.0, 60.0), abs=1e-9)
 
 
@@ -133,8 +133,9 @@ def test_scheme_ii_reaches_the_tetrahedron(two):
 
 
 def test_scheme_i_misses_the_tetrahedron(one):
-    """Case 19 [NEW in the digest]: with s_G ∥ QG the path ends at the Bricard fold with theta_G = 3.708 deg,
-    |BK| = 0.0585, KLM height 0.0586 m, KLM rotation 29.66 deg; theta_G starts at the printed 146.44 deg."""
+    """Case 19 [NEW]: with s_G ∥ QG (Sec. 6.3.2 says it reaches 0) the path ends at the Bricard fold with
+    theta_G = 3.708 deg, |BK| = 0.0585, KLM height 0.0586 m, KLM rotation 29.66 deg; theta_G starts at the printed
+    146.44 deg."""
     lo = one.domain[0]
     # theta_G from 146.44269 to 3.70837 deg; |BK| 0.058534, height 0.058435, rotation 29.6617 (measured)
     check_every(yang2017.NUMBERS, "test_scheme_i_misses_the_tetrahedron")
@@ -155,14 +156,15 @@ def test_scheme_i_turned_axis_reaches_the_tetrahedron(one_reaching):
 
 @pytest.mark.slow
 def test_scheme_i_threshold_near_minus_3_5_deg():
-    """Digest §2.8: the tetrahedron is reached for delta1 <~ -3.5 deg and missed above."""
+    """Found here: the tetrahedron is reached for delta1 <~ -3.5 deg and missed above (Sec. 6.5: "delta1 >= 0")."""
     assert SchemeI(-3.5 * DEG).end_gap < 1e-12  # measured 9.6e-16 m
     assert SchemeI(-3 * DEG).end_gap > 1e-3  # measured 0.0084 m
 
 
 @pytest.mark.slow
 def test_scheme_ii_negative_delta_over_opens():
-    """delta2 = -5 deg: rho first rises to 122.03 deg (digest truss), so theta turns back and cannot drive it."""
+    """delta2 = -5 deg: rho first rises to 122.03 deg (a first truss trace here), so theta turns back and cannot
+    drive it."""
     kinematics = SchemeII(-5 * DEG)
     P = kinematics.bricard_motion(kinematics.trace[1][:, 0])
     A, E, F = (P[:, k, :3, :3] @ VERTICES[v] + P[:, k, :3, 3] for k, v in ((0, "A"), (4, "E"), (4, "F")))
@@ -173,15 +175,15 @@ def test_scheme_ii_negative_delta_over_opens():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_scheme_ii_path_matches_seed_table"), ids=str)
-def test_scheme_ii_path_matches_seed_table(entry):
+@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_scheme_ii_path_matches_the_worked_table"), ids=str)
+def test_scheme_ii_path_matches_the_worked_table(entry):
     # measured agreement <= 0.0051 deg and <= 5e-5 m
     entry.check()
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_scheme_i_path_matches_seed_table"), ids=str)
-def test_scheme_i_path_matches_seed_table(entry):
+@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_scheme_i_path_matches_the_worked_table"), ids=str)
+def test_scheme_i_path_matches_the_worked_table(entry):
     # measured agreement <= 0.0050 deg and <= 1e-4 m
     entry.check()
 

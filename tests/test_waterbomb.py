@@ -1,5 +1,5 @@
 """Symmetric waterbomb cell (`kinematics.waterbomb`, scenes `waterbomb-vertex` and `waterbomb-thick`) against
-seed 000 ch. 5 (digest M8, M9, validation cases 17 to 21), the loop solver and MuJoCo."""
+Feng 2018, ch. 5 (§5.3, §5.4), the loop solver and MuJoCo."""
 
 import numpy as np
 import pytest
@@ -78,8 +78,8 @@ def test_closed_forms_close_the_cell_and_match_the_numeric_solve(alpha, beta, mu
 
 
 @pytest.mark.parametrize(("alpha", "beta", "mu"), [(35, 45, 0.5), (40, 40, 1.0), (20, 30, 2.0)])
-def test_thick_cell_matches_the_seed_dh_linkages(alpha, beta, mu):
-    """Eqns 5-11 and 5-12 (the seed's D-H Bricard loops of A and B) close at our path I through the seed's
+def test_thick_cell_matches_feng2018_dh_linkages(alpha, beta, mu):
+    """Eqns 5-11 and 5-12 (the thesis's D-H Bricard loops of A and B) close at our path I through the thesis's
     joint maps: the hinge heights of the cell are an independent, equivalent reconstruction."""
     a, b, ap = alpha * DEG, beta * DEG, 0.03
     A = (DHRow(0, (2 + mu) * ap, 2 * np.pi - a), DHRow(0, 0, np.pi - 2 * a), DHRow(0, (2 + mu) * ap, a),
@@ -182,8 +182,8 @@ def _closest_approach(alpha_deg: float, beta_deg: float) -> float:
 
 
 def test_thick_panels_interfere_only_for_alpha_above_45_degrees():
-    """Seed 000 section 5.4: "to avoid the interference at vertex A, 0 < alpha <= pi/4" (a collision claim
-    the digest could not test). Faces sharing no vertex, down to rho_A4 = -3.14 on path I: closest approach
+    """Feng 2018, §5.4: "to avoid the interference at vertex A, 0 < alpha <= pi/4" (a collision claim that needs
+    the panels' geometry to test). Faces sharing no vertex, down to rho_A4 = -3.14 on path I: closest approach
     measured 7.1e-2 m at the defaults (40/40), 1.35e-2 at 44.5/30, 5.7e-4 at 45/30, overlap -3.2e-3 at 45.5/30
     (faces A43 and B12), the same threshold for beta 20-40, mu 0.5-2 and a 0.005-0.05."""
     assert _closest_approach(40.0, 40.0) > 0.05

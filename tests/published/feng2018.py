@@ -194,8 +194,8 @@ def _tt(where, quantity, printed, ours, tol, test, unit="deg") -> Number:
 
 
 _VERTEX = "test_case1_2_spherical_4r_vertex_families"
-_EPS = "test_case3_compatible_epsilon_against_the_seed"
-_C5 = "test_case5_dh_data_and_motion_against_the_seed"
+_EPS = "test_compatible_epsilon_against_feng2018"
+_C5 = "test_dh_data_and_motion_against_feng2018"
 _C6 = "test_case6_parallel_pleats_the_new_6r"
 _HELD = "test_case5_one_held_joint_admits_one_configuration"
 _C5_PATH = (
@@ -378,14 +378,14 @@ def m7_state(theta: float) -> np.ndarray:
     return np.array([[rows[kind, i][c][0] for i in range(4)] for kind, c in (("A", 0), ("B", 0), ("A", 1))]).ravel()
 
 
-_M7 = "test_seed000_m7_events_against_the_thesis"
+_M7 = "test_feng2018_m7_events_against_the_thesis"
 _LIMITS = "test_twist_limits_and_thresholds_closed_forms"
 TUBE = (
     Number("ch. 6, eqn 6-18", "corner-to-corner length (eqn 6-18), n6 m3 45/45 at theta = 60, 100 deg",
            "4.28477, 4.78041", lambda: tube(6, 3, 45, 45).length(np.array([60, 100]) * DEG - np.pi, corners=True),
            5e-6, _TUBE + "test_case12_and_case14_radii_and_uniform_states", unit="m", in_text=False),
     *(Number("ch. 6, n6 m7 45/45", f"r_A, r_B, z_A of rows 0..3 from the equator outward at theta = {t} deg", printed,
-             lambda t=t: m7_state(t), 5e-6, _TUBE + "test_seed000_case23_m7_tube_states", unit="m", in_text=False)
+             lambda t=t: m7_state(t), 5e-6, _TUBE + "test_feng2018_m7_tube_states", unit="m", in_text=False)
       for t, printed in (
           (60, "0, 0.01361, 0.05118, 0.10327, 1.0, 1.0333, 1.08128, 1.13116, 0, 1.1644, 2.33061, 3.50043"),
           (100, "0.68404, 0.5642, 0.27854, -0.05363, 1.53209, 1.27821, 0.94061, 0.64657, "
@@ -423,7 +423,7 @@ def _square_twist_at_tilt(zeta: float, names: list[str]) -> np.ndarray:
     return twist_angles(twist(6, 3, 45, 45), TWIST_CCW, np.rad2deg(np.pi - x[0]), names)
 
 
-_TW = "test_waterbomb_twist.py::test_seed000_square_tube_twist"
+_TW = "test_waterbomb_twist.py::test_feng2018_square_tube_twist"
 SQUARE_TWIST = (
     Number("ch. 6, n6 m3 45/45", "eta02 where the tube is untwisted (3 decimals)", "44.415",
            lambda: 180 - twist(6, 3, 45, 45).start / DEG, 5e-4, _TW, unit="deg", in_text=False),

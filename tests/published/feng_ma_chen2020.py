@@ -130,12 +130,12 @@ TUBES = (
          lambda t=t: tube_dihedrals(6, 4, 45, 40, t, ["V1_0"]), TUBE_DEG, _C22)
       for t, k in ((80, "24.5376"), (100, "41.7897"), (120, "60.2994"))),
     *(Number("§2.1, Figs 6-7", f"end of the radial contraction, n6 m{m} {a}/{b}", printed,
-             lambda m=m, a=a, b=b: contraction_end(m, a, b), 0.1, _TUBE + "test_seed004_contraction_ranges",
+             lambda m=m, a=a, b=b: contraction_end(m, a, b), 0.1, _TUBE + "test_feng_ma_chen2020_contraction_ranges",
              unit="deg", truncated=True)
       for m, a, b, printed in ((3, 40, 35, "120.6"), (3, 45, 40, "139.8"), (5, 45, 40, "131.1"))),
     _w("§2.1, n6 m5 40/35", "the island where the chain is real (top diagonals reversed), 2 decimals", "119.98, 120.19",
        lambda: np.array(motion_range(tube_layout(6, 5, 40 * DEG, 35 * DEG, 1.0), strict=False)) / DEG, 0.005,
-       "test_seed004_model_that_cannot_fold_rigidly"),
+       "test_feng_ma_chen2020_model_that_cannot_fold_rigidly"),
     *(Number("eqn 40, Fig 15", f"beta_max at alpha = {a} deg, n = 6 (2 decimals)", printed,
              lambda a=a: beta_max(a * DEG, 6) / DEG, 0.005,
              _TUBE + "test_twist_limits_and_thresholds_closed_forms", unit="deg")
@@ -151,7 +151,7 @@ CHECKED_ELSEWHERE = (
     (
         "Fig 8c, 8d",
         "six thresholds in alpha or beta (1 decimal): the property switches within the printed precision",
-        _TUBE + "test_seed004_fig8_thresholds_within_printed_precision",
+        _TUBE + "test_feng_ma_chen2020_fig8_thresholds_within_printed_precision",
     ),
 )
 
@@ -231,7 +231,7 @@ CORRECTIONS: tuple[Correction, ...] = ()
 
 CHECKED_ELSEWHERE = (
     ("Fig 8c, 8d", "six thresholds in alpha or beta (1 decimal): the property switches within the printed precision",
-     _TUBE + "test_seed004_fig8_thresholds_within_printed_precision"),
+     _TUBE + "test_feng_ma_chen2020_fig8_thresholds_within_printed_precision"),
     ("Figs 14a, 14b", "twist ranges of n6 m7, m9, m11 and n5 m5 (2 decimals): ours contain them, within 0.11 deg",
      _TWIST + "test_fig14_twist_ranges_where_the_top_row_deploys"),
     ("Fig 14", "no twist for m = 13 or n = 4; the n6 m5 beta = 40 tube twists from alpha = 26.85 deg (worked)",

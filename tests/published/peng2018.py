@@ -211,14 +211,14 @@ def element_row(element: int, phi_deg: float) -> np.ndarray:
 CHAPTER_3 = (
     *(_w("Fig 3-15, alpha = 150 deg", f"edge multiplier of mode {mode}", printed,
          lambda mode=mode: edge_multipliers(5 * np.pi / 6)[mode], SIX_DECIMALS,
-         _SQ + "test_case10_multipliers_against_the_digest", unit="") for mode, printed in (("C", "1.732051"),
-                                                                                            ("S", "-0.577350"))),
+         _SQ + "test_multipliers_against_peng2018", unit="") for mode, printed in (("C", "1.732051"),
+                                                                                   ("S", "-0.577350"))),
     *(_w(f"eqns 3-30 to 3-32, alpha = {a} deg", f"phi, L, S, H, nu_SL, nu_HL at theta = {t} deg (a = b = c = 1)",
          printed, lambda a=a, t=t: square_twist_unit(a, t), SIX_DECIMALS, _SQ + "test_case11_metamaterial_tables",
          unit="") for a, t, printed in _CASE11),
     *(_w(f"eqns 3-24 to 3-28, element {e}", f"W, H, L at phi = {p} deg (sectors 135/60 deg)", printed,
          lambda e=e, p=p: element_row(e, p), SIX_DECIMALS,
-         "test_metamaterial.py::test_formulas_reproduce_the_digest_table", unit="m") for e, p, printed in _ELEMENTS),
+         "test_metamaterial.py::test_formulas_reproduce_the_element_table", unit="m") for e, p, printed in _ELEMENTS),
 )  # fmt: skip
 
 NUMBERS: tuple[Number, ...] = (*VERTEX4, *THICK, *CHAPTER_3)
@@ -227,7 +227,7 @@ CORRECTIONS: tuple[Correction, ...] = CORRECTIONS_4
 CHECKED_ELSEWHERE = (
     ("eqns 3-30 to 3-32", "L, S, H of the square twist at alpha = 150, 135, 120 deg measured on its vertices, "
      "and the Poisson's ratios as differences of the measured geometry (rows as above)",
-     "test_poisson.py::test_closed_form_geometry_reproduces_the_digest_tables"),
+     "test_poisson.py::test_closed_form_geometry_reproduces_the_poisson_tables"),
     ("eqn 3-26", "element 3's theta as printed (-0.189408, -0.326128, -0.555214) and the gain 0.614014 of the reading "
      "with gamma for alpha", "test_metamaterial.py::test_element_3_theta_is_the_printed_3_26_with_gamma_for_alpha"),
 )  # fmt: skip

@@ -105,7 +105,7 @@ THREEFOLD = (
            _B3 + "test_ch2_joint_coordinates_are_reproduced_up_to_a_rigid_motion", unit="m", strict=True),
     *(Number("ch. 2, Myard example", f"Myard theta1..theta5 at theta3 = 40 deg, alpha12 = {a:g} deg", printed,
              lambda a=a: np.rad2deg(Myard(1.0, a * DEG).joint_angles(MYARD_BRANCH, 40 * DEG)[0]), FOUR_DECIMALS_DEG,
-             "test_myard.py::test_seed001_example_theta3_40_deg", unit="deg", angle=True, in_text=False)
+             "test_myard.py::test_yang2017_example_theta3_40_deg", unit="deg", angle=True, in_text=False)
       for a, printed in ((50.0, "100, 90, 40, 220, 270"), (30.0, "100, 64.4559, 40, 220, 295.5441"),
                          (70.0, "100, 128.3039, 40, 220, 231.6961"))),
 )  # fmt: skip
@@ -202,7 +202,7 @@ CUBOCTAHEDRON = (
            lambda: np.array([cuboctahedron().domain[0], cuboctahedron().phi(cuboctahedron().domain[0])]) / DEG, 1e-4,
            _CO + "test_fold_case_10", unit="deg", in_text=False),
     *(Number(_PT + " (4 decimals)", f"BD, AI, EF, AC, EH, BJ where BD = {row[:6]} (truss tolerance)", row,
-             lambda row=row: path_row(float(row.split(",")[0])), 3e-4, _CO + "test_path_matches_seed_table",
+             lambda row=row: path_row(float(row.split(",")[0])), 3e-4, _CO + "test_path_matches_the_worked_table",
              unit="m", strict=True, in_text=False) for row in _PATH),
     *(Number(_PT, f"largest {key} on 20001 samples", peak, lambda key=key: path_maximum(key)[0], 1e-4,
              _CO + "test_path_maxima", unit="m", in_text=False)
@@ -245,7 +245,7 @@ def _peaks(name: str) -> np.ndarray:
     return np.array([s.exact.value, s.linearised.value]) / DEG
 
 
-_STUDY = _FAB + "test_seed_output_errors"
+_STUDY = _FAB + "test_yang2017_output_errors"
 _RSSR = (
     ((100, 70.72, 45), "30.0044", "-4.665482, 1.249732"),
     ((101.5, 69.22, 45), "28.8309", "-4.270901, 1.238316"),
@@ -272,7 +272,7 @@ FABRICATION = (
     Number("§3.5, eqn 3-5", "output error at theta1 = 170, 179 deg, d_l = 1.5 mm, k = +1 (3 decimals)", "3.431, 0.394",
            lambda: output_error(nominal_rssr(), FABRICATION_ERRORS["d_l = 1.5 mm, k = +1"].built(nominal_rssr()),
                                 np.array([170.0, 179.0]) * DEG) / DEG, 5e-4,
-           _FAB + "test_output_error_near_half_turn_matches_digest", unit="deg", in_text=False),
+           _FAB + "test_output_error_falls_towards_the_half_turn", unit="deg", in_text=False),
     *(Number("eqn 3-50 (corrected)", f"largest ball waggle, {name} (3 decimals; the thesis prints {thesis})",
              printed, lambda err=err: max_waggle(nominal_rssr(), err.built(nominal_rssr())).value / DEG, 5e-4,
              _FAB + "test_waggle_corrected_3_50", unit="deg", in_text=False)
@@ -366,7 +366,7 @@ TRUNCATED_OCTAHEDRON = (
     *(Number("ch. 5, path by the truss method (+/-0.1 deg)",
              f"rho1, rho2, delta_A, delta_D, Bricard 1 and 2's odd joint angles where rho1 = {row.split(',')[0]}",
              row, lambda row=row: octahedron_path_row(float(row.split(",")[0])), 0.1,
-             _TO + "test_path_matches_seed_table", unit="deg", in_text=False) for row in _TO_PATH),
+             _TO + "test_path_matches_the_worked_table", unit="deg", in_text=False) for row in _TO_PATH),
 )  # fmt: skip
 
 # --- chapter 6: the truncated tetrahedron ------------------------------------------------------------------------
@@ -417,7 +417,8 @@ _TABLE_I = (
     ("4.99", "10.90, 9.90, 120.92", "0.1883, 0.1899"),
 )
 _C16 = _TT + "test_bricard_parameters_match_case_16"
-_PATH_II, _PATH_I = _TT + "test_scheme_ii_path_matches_seed_table", _TT + "test_scheme_i_path_matches_seed_table"
+_PATH_II = _TT + "test_scheme_ii_path_matches_the_worked_table"
+_PATH_I = _TT + "test_scheme_i_path_matches_the_worked_table"
 _MISS = _TT + "test_scheme_i_misses_the_tetrahedron"
 
 TRUNCATED_TETRAHEDRON = (
