@@ -156,9 +156,9 @@ def _check_angles(phi: NDArray[np.float64], alpha: float, beta: float, element: 
     if not 0 < alpha < np.pi:
         raise ParameterError(f"alpha = {alpha:g} rad; a sector angle lies in (0, pi)")
     if element == 3 and not alpha > np.pi / 2:
-        raise ParameterError(f"alpha = {alpha:g} rad; the seed's arctan(PB4'/PB5) needs PB5 = -cos(alpha) > 0")
+        raise ParameterError(f"alpha = {alpha:g} rad; Peng 2018's arctan(PB4'/PB5) needs PB5 = -cos(alpha) > 0")
     if element != 3 and not 0 < beta < np.pi / 2:
-        raise ParameterError(f"beta = {beta:g} rad; the seed's arctan(PB2'/PA2) needs PA2 = cos(beta) > 0")
+        raise ParameterError(f"beta = {beta:g} rad; Peng 2018's arctan(PB2'/PA2) needs PA2 = cos(beta) > 0")
     if not 0 < beta < np.pi:
         raise ParameterError(f"beta = {beta:g} rad; a sector angle lies in (0, pi)")
     if np.any(~np.isfinite(phi)) or np.any((phi <= 0) | (phi >= np.pi)):
