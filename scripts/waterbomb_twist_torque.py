@@ -109,7 +109,7 @@ class VertexMap:
 
 
 def end_rings(scene: Scene) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
-    """Vertex keys of the top end ring (B, C of the top seed row) and of the bottom one (B, C of the row below)."""
+    """Vertex keys of the top end ring (B, C of the top row) and of the bottom one (B, C of the row below)."""
     keys = scene.kinematics.layout.keys
     top, bottom = max(k[1] for k in keys), min(k[1] for k in keys)
     ring = [np.array([v for v, (kind, i, _) in enumerate(keys) if i == row and kind in "BC"]) for row in (top, bottom)]

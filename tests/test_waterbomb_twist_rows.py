@@ -155,11 +155,11 @@ def test_mujoco_follows_the_twist_of_an_end_row(row, branch):
 @pytest.mark.parametrize(
     ("values", "match"),
     [
-        ({"row": 2}, r"row = 2; the 3-row tube twists in one of its seed rows -1, 0, 1"),
+        ({"row": 2}, r"row = 2; the 3-row tube twists in one of its rows -1, 0, 1"),
         ({"row": 0.5}, r"row = 0.5; it must be a whole number"),
-        ({"row": 1}, r"beta = 40 deg is not beta_max = 42.0105238 deg .*seed row 1 has r_A = 0.0581 a"),
+        ({"row": 1}, r"beta = 40 deg is not beta_max = 42.0105238 deg .*row 1 has r_A = 0.0581 a"),
         ({"row": -1, "beta": 42.01}, r"beta = 42.01 deg is not beta_max .*r_A = 1.48e-05 a"),  # Fig 16's rounding
-        ({"row": -2}, r"row = -2; the 3-row tube twists in one of its seed rows -1, 0, 1"),
+        ({"row": -2}, r"row = -2; the 3-row tube twists in one of its rows -1, 0, 1"),
     ],
 )
 def test_bad_row_or_beta_is_refused(values, match):

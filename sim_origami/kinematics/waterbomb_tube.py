@@ -1,12 +1,12 @@
 """Generalized waterbomb tube: radial contraction for odd and even m (Feng, Ma and Chen 2020, §2; Feng 2018,
 §6.1-6.3; "the sources" below).
 
-Pattern (reconstructed here from the lengths the sources quote, as `waterbomb.unit_cell` is). One unit of seed row i
+Pattern (reconstructed here from the lengths the sources quote, as `waterbomb.unit_cell` is). One unit of row i
 (the sources' row numbering, below) is centred on A_i with half-width a: top midpoint C_i at height L_m = a sin(beta) /
 (sin(alpha) sin(alpha + beta)) above A_i, top corners B_i at (+-a, a cot(alpha)), bottom midpoint B_(i-1) at -L_m,
 bottom corners C_(i-1) at (+-a, -a cot(alpha)); rows sit H = a cot(alpha) + L_m apart and are shifted by a. Flat
 coordinates are integer slots p (x = p a): A_i and C_i at p = i mod 2 (mod 2), B_i at p = i + 1 (mod 2). A tube has n
-units per row and m rows, seed rows i = -r0 .. m - 1 - r0 with r0 = (m - 1) // 2: for odd m row 0 is the equatorial row,
+units per row and m rows, rows i = -r0 .. m - 1 - r0 with r0 = (m - 1) // 2: for odd m row 0 is the equatorial row,
 for even m it is the row just below the equator (Feng, Ma and Chen 2020, §2.2). Names count rows from the bottom,
 r = i + r0, and units k = 0..n-1.
 
@@ -87,7 +87,7 @@ PLAN_PROBES = np.array([0.5, 0.1, 0.3819660113, 0.6180339887, 0.9])
 # Samples of theta in (0, pi) on which the domain's first interval is found, before its ends are bisected.
 GRID = 4097
 
-Key = tuple[str, int, int]  # (kind "A" / "B" / "C", seed row, slot p)
+Key = tuple[str, int, int]  # (kind "A" / "B" / "C", row, slot p)
 
 
 @dataclass(frozen=True)
@@ -126,7 +126,7 @@ def lengths(alpha: float, beta: float, a: float) -> Lengths:
 
 
 def row_range(m: int) -> tuple[int, int]:
-    """Seed row indices (bottom, top) of the rows, the sources' numbering: r0 = (m - 1) // 2 rows below row 0."""
+    """Row indices (bottom, top) of the rows, the sources' numbering: r0 = (m - 1) // 2 rows below row 0."""
     r0 = (m - 1) // 2
     return -r0, m - 1 - r0
 
@@ -147,7 +147,7 @@ class TubeLayout:
     """
     The tube's topology and flat strip (module docstring for names).
 
-    `keys` are the tube's vertices (kind, seed row, slot mod 2n) with flat positions `flat` (m); `creases` are the
+    `keys` are the tube's vertices (kind, row, slot mod 2n) with flat positions `flat` (m); `creases` are the
     tube's creases as (name, start, end, M/V) over `keys`, strip creases first (in `pattern` order), then `seam`.
     `left` / `right` give each crease's face names and `third_left` / `third_right` the vertex of each face off the
     crease. `strip_keys` maps the strip's vertices to `keys`.
@@ -301,7 +301,7 @@ def row_coordinates(
     n: int, m: int, alpha: float, beta: float, a: float, theta: ArrayLike
 ) -> dict[tuple[str, int], tuple[NDArray, NDArray]]:
     """
-    (r, z) in m of every vertex kind and seed row, {(kind, row): (r (N,), z (N,))}, at inputs theta = phi_0,1 (N,)
+    (r, z) in m of every vertex kind and row, {(kind, row): (r (N,), z (N,))}, at inputs theta = phi_0,1 (N,)
     (rad), on the contraction path (module docstring). NaN where the tube does not assemble.
     """
     theta = np.atleast_1d(np.asarray(theta, dtype=float))
@@ -482,7 +482,7 @@ def vertex_loops(layout: TubeLayout) -> tuple[Loop, ...]:
 
 def ring_loop(layout: TubeLayout, row: int = 0) -> Loop:
     """
-    The closure round seed row `row`, across the seam: from face 56 of unit k across creases 6, 1, 2 of A to face 23
+    The closure round row `row`, across the seam: from face 56 of unit k across creases 6, 1, 2 of A to face 23
     and across the vertical edge to face 56 of unit k + 1, n times. Hinge frames are taken in the unrolled flat sheet,
     so the last link carries the strip's width: T = prod_k Rz(s_k rho_k) L_k with L_k = inv(F_k) F_(k+1) and
     L_last = inv(F_last) Shift(2 n a) F_0; s_k = +1 where the face entered is the crease's left face.
@@ -751,7 +751,7 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
 
     # -- closed form -------------------------------------------------------------------------------------------
     def rows(self, x: ArrayLike) -> dict[tuple[str, int], tuple[NDArray, NDArray]]:
-        """(r, z) in m of every vertex kind and seed row at inputs x (rad), `row_coordinates`."""
+        """(r, z) in m of every vertex kind and row at inputs x (rad), `row_coordinates`."""
         with np.errstate(invalid="ignore", divide="ignore"):
             return row_coordinates(self.n, self.m, self.alpha, self.beta, self.a, np.pi + np.asarray(x, dtype=float))
 
@@ -857,7 +857,7 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
             for x in sign_changes(lambda x, i=i: self.radii(x)[:, i - bottom], lo, hi):
                 crossings.setdefault(round(x, 9), []).append(i)
         for x, rows in crossings.items():
-            names = ", ".join(f"{i - bottom} (seed row {i})" for i in rows)
+            names = ", ".join(f"{i - bottom} (the sources' row {i})" for i in rows)
             detail = (f"rows {names}: r_A = 0, the vertical edges fold flat onto each other (kappa_Bi,4 = 0, Feng, Ma "
                       "and Chen 2020, eqn 15); where r_A < 0 the rigid tube penetrates itself: the "
                       "mechanism-structure-mechanism transition (Feng 2018, §6.2.2)")  # fmt: skip

@@ -7,7 +7,7 @@ seen from the flat sheet's +z, which ends up outside the tube); the sources' dih
 valley, -1 mountain). Every fold angle is reported in (s pi/2 - pi, s pi/2 + pi] (`unwrapped`): the middle row's
 vertical edges sit at rho = -pi all along the twist, and a fully folded crease must not flip between -pi and +pi.
 
-Input. x = rho of A<r0>_0_2, the upper-right diagonal of unit 0 of the middle row (seed row 0): the sources' input eta02
+Input. x = rho of A<r0>_0_2, the upper-right diagonal of unit 0 of the middle row (row 0): the sources' input eta02
 = pi - x (Feng, Ma and Chen 2020, §3, Table 1). The tube axis is +z, slot p at azimuth p pi / n as in `waterbomb_tube`.
 
 Model (an explicit construction of the twist of Feng 2018, §6.4, derived here; checked against the worked twist states
@@ -30,7 +30,7 @@ measures one crease per symmetry class (`waterbomb_tube.FoldPlan`) and copies it
 
 Symmetry of the twist (which creases are equal along it). The tube keeps the dihedral group D_n: the n-fold turn about
 the axis (units of a row alike) and the half-turns about the horizontal radii through each A_0 midline and each row-0
-vertical edge (seed row i <-> -i; A creases 1 <-> 4, 2 <-> 5, 3 <-> 6; vertical edges of rows i <-> -i; the row
+vertical edge (row i <-> -i; A creases 1 <-> 4, 2 <-> 5, 3 <-> 6; vertical edges of rows i <-> -i; the row
 boundaries above row i <-> those below row -i). On top, each half is plane-symmetric about its meridians: in every row
 but the middle one, creases 2 = 6 and 3 = 5 of A and the two row boundaries of a unit are equal, as are the two row
 boundaries on each side of the middle row (kappa_B0,2 = kappa_B0,6). The middle row's A is line- but not
@@ -54,10 +54,10 @@ keep it too): with beta > beta_max (eqn 40) rows +-1 already start through the a
 
 Other rows (Feng, Ma and Chen 2020, §3 and Fig 16 paths I and III). At beta = beta_max the contraction ends in the fully
 folded equal-diameter cylinder (configuration iii: every row's A's on the axis), from which any row may twist (`row` =
-seed row k: +1 top, path I; -1 bottom, path III; 0 the middle, path II). The construction above builds each side of the
+row k: +1 top, path I; -1 bottom, path III; 0 the middle, path II). The construction above builds each side of the
 twisting row outward by the chain, so a row's place does not depend on the rows farther out (as for the contraction,
 Feng, Ma and Chen 2020, Fig 7): the twist of row k in the m-row tube is the middle-row twist of the m + 2 |k| row tube,
-its seed rows i - k kept as rows i (`twist_rows`; slots shift by k, which turns the whole tube by k pi / n and leaves
+its rows i - k kept as rows i (`twist_rows`; slots shift by k, which turns the whole tube by k pi / n and leaves
 every fold angle as it is). Checked, not assumed: every vertex loop and the ring closes to 5.4e-15 along both senses,
 and the start equals the contraction's end at theta = 2 pi / n (configuration iii) to 8.9e-16 rad (n6 m3 alpha 40, rows
 -1, 0, 1; tests/test_waterbomb_twist_rows.py). The input is then the twisting row's A<k + r0>_0_2; the limits (a), (b)
@@ -151,9 +151,9 @@ def twist_rows(
     n: int, m: int, alpha: float, beta: float, a: float, zeta: ArrayLike, row: int = 0
 ) -> tuple[dict[tuple[str, int], tuple[NDArray, NDArray]], NDArray[np.float64]]:
     """
-    (r, z) in m of every vertex kind and seed row, {(kind, row): (r (N,), z (N,))}, and the upper half's azimuth
-    offset delta (N,) (rad), at side-edge tilts zeta (N,) (rad), seed row `row` twisting; NaN where a vertex cannot
-    be placed. Row `row` != 0: the middle-row twist of the m + 2 |row| row tube, its seed rows i - row kept as rows
+    (r, z) in m of every vertex kind and row, {(kind, row): (r (N,), z (N,))}, and the upper half's azimuth
+    offset delta (N,) (rad), at side-edge tilts zeta (N,) (rad), row `row` twisting; NaN where a vertex cannot
+    be placed. Row `row` != 0: the middle-row twist of the m + 2 |row| row tube, its rows i - row kept as rows
     i (module docstring, "Other rows").
     """
     if row:
@@ -215,13 +215,13 @@ def expanded_middle_input(n: int, alpha: float, beta: float, a: float, zeta: Arr
 
 
 def upper_half(layout: TubeLayout, row: int = 0) -> NDArray[np.bool_]:
-    """Per vertex key: in the upper half of the twist of seed row `row` (B_i, C_i with i >= row, A_i with i >= row +
+    """Per vertex key: in the upper half of the twist of row `row` (B_i, C_i with i >= row, A_i with i >= row +
     1; the A_row are on the axis)."""
     return np.array([i >= row + (1 if kind == "A" else 0) for kind, i, _ in layout.keys])
 
 
 def twist_vertices(layout: TubeLayout, zeta: ArrayLike, row: int = 0) -> NDArray[np.float64]:
-    """3-D vertices (N, len(layout.keys), 3) in m at side-edge tilts zeta (N,) (rad) of the twist of seed row `row`,
+    """3-D vertices (N, len(layout.keys), 3) in m at side-edge tilts zeta (N,) (rad) of the twist of row `row`,
     axis +z (module docstring)."""
     rows, delta = twist_rows(layout.n, layout.m, layout.alpha, layout.beta, layout.a, zeta, row)
     names = list(rows)
@@ -283,14 +283,14 @@ def twist_folds(
     layout: TubeLayout, zeta: ArrayLike, creases: ArrayLike | None = None, row: int = 0
 ) -> NDArray[np.float64]:
     """Fold angles (N, n) of all creases (or the indices `creases`) at side-edge tilts zeta (N,) (rad) of the twist
-    of seed row `row`, `unwrapped`; NaN where the tube does not assemble."""
+    of row `row`, `unwrapped`; NaN where the tube does not assemble."""
     with np.errstate(invalid="ignore", divide="ignore"):
         q = fold_angles(layout, twist_vertices(layout, zeta, row), creases)
     return unwrapped(layout, q, creases)
 
 
 def middle_diagonals(layout: TubeLayout, row: int = 0) -> tuple[int, int]:
-    """Indices of A<r>_0_2 (the input, eta02) and A<r>_0_3 (eta03 = eta06) of seed row `row` (named r = row + r0)
+    """Indices of A<r>_0_2 (the input, eta02) and A<r>_0_3 (eta03 = eta06) of row `row` (named r = row + r0)
     in layout.creases."""
     r = row - row_range(layout.m)[0]
     return layout.index(f"A{r}_0_2"), layout.index(f"A{r}_0_3")
@@ -298,7 +298,7 @@ def middle_diagonals(layout: TubeLayout, row: int = 0) -> tuple[int, int]:
 
 def twist_checks(layout: TubeLayout, zeta: ArrayLike, row: int = 0) -> dict[str, NDArray[np.bool_]]:
     """
-    The domain's conditions (N,) at side-edge tilts zeta (N,) of the twist of seed row `row` (module docstring):
+    The domain's conditions (N,) at side-edge tilts zeta (N,) of the twist of row `row` (module docstring):
     'placed' (every vertex), 'diagonals' (the twisting row's eta02, eta03 >= 0), 'unreversed' (no crease reversed
     through flat). Unit 0 of each row stands for its row.
     """
@@ -314,7 +314,7 @@ def twist_checks(layout: TubeLayout, zeta: ArrayLike, row: int = 0) -> dict[str,
 
 
 def valid_tilts(layout: TubeLayout, zeta: ArrayLike, strict: bool = True, row: int = 0) -> NDArray[np.bool_]:
-    """Where the twist of seed row `row` is a rigid motion (N,) at side-edge tilts zeta (N,) (rad): every
+    """Where the twist of row `row` is a rigid motion (N,) at side-edge tilts zeta (N,) (rad): every
     `twist_checks` holds; `strict=False` drops 'unreversed', the sources' criterion (the chain real, Feng, Ma and
     Chen 2020, §3)."""
     checks = twist_checks(layout, zeta, row)
@@ -324,7 +324,7 @@ def valid_tilts(layout: TubeLayout, zeta: ArrayLike, strict: bool = True, row: i
 
 
 def tilt_range(layout: TubeLayout, strict: bool = True, row: int = 0) -> tuple[float, float] | None:
-    """The range of side-edge tilts zeta (rad) of the twist of seed row `row`: the interval around pi/2 where
+    """The range of side-edge tilts zeta (rad) of the twist of row `row`: the interval around pi/2 where
     `valid_tilts` holds, its ends bisected to about 1e-13 (`base.domain_of`); None where the start is not valid."""
     try:
         return domain_of(lambda z: valid_tilts(layout, z, strict, row), 1e-9, np.pi - 1e-9, np.pi / 2, GRID)
@@ -333,12 +333,12 @@ def tilt_range(layout: TubeLayout, strict: bool = True, row: int = 0) -> tuple[f
 
 
 def twisting_row(m: int, row: float) -> int:
-    """The seed row `row` of an m-row tube as an int; ParameterError unless it is one of the tube's seed rows."""
+    """The row `row` of an m-row tube as an int; ParameterError unless it is one of the tube's rows."""
     bottom, top = row_range(m)
     if row != int(row) or not bottom <= row <= top:
         rows = ", ".join(str(i) for i in range(bottom, top + 1))
         raise ParameterError(
-            f"row = {row:g}; the {m}-row tube twists in one of its seed rows {rows} (0 the middle row, {top} the top)"
+            f"row = {row:g}; the {m}-row tube twists in one of its rows {rows} (0 the middle row, {top} the top)"
         )
     return int(row)
 
@@ -360,7 +360,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
     a : float
       Half-width of a unit (m).
     row : int
-      Seed row that twists (0 the middle row, +1 the one above it, ...; module docstring, "Other rows"); a row other
+      Row that twists (0 the middle row, +1 the one above it, ...; module docstring, "Other rows"); a row other
       than 0 only at beta = beta_max (|r_A| <= FOLDED_TOL a where the contraction ends), without the contraction
       branch. The input is that row's A<row + r0>_0_2.
 
@@ -368,7 +368,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
     ------
     ParameterError
       For a geometry out of range, one whose middle row cannot fully fold or twist rigidly, a row that is not one of
-      the tube's seed rows, or a row other than 0 that is not fully folded where the contraction ends.
+      the tube's rows, or a row other than 0 that is not fully folded where the contraction ends.
     """
 
     def __init__(self, n: int, m: int, alpha: float, beta: float, a: float = 1.0, row: int = 0):
@@ -412,7 +412,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
             raise ParameterError(
                 f"beta = {np.rad2deg(self.beta):.10g} deg is not beta_max = "
                 f"{np.rad2deg(beta_max(self.alpha, self.n)):.10g} deg (Feng, Ma and Chen 2020, eqn 40): "
-                f"seed row {self.row} "
+                f"row {self.row} "
                 f"has r_A = {radius / self.a:.3g} a where the contraction ends (theta = 360/n), not fully folded "
                 f"(|r_A| <= {FOLDED_TOL:g} a), so its twist does not start from the contraction; only the middle row "
                 "(row 0) twists from there unless beta = beta_max (Fig 16)"
@@ -509,10 +509,10 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         if self.row:
             which = "top" if self.row > 0 else "bottom"
             return (
-                Branch(CCW, f"seed row {self.row} ({which} side) twists from the equal-diameter cylinder (Feng, Ma "
+                Branch(CCW, f"row {self.row} ({which} side) twists from the equal-diameter cylinder (Feng, Ma "
                        "and Chen 2020, Fig 16), the rows above it turn counter-clockwise about +z against those "
                        "below: x rises, its eta02 falls to 0 or the domain's end", (self.start, hi)),
-                Branch(CW, f"seed row {self.row} twists, the rows above it turn clockwise: x falls, its eta02 rises "
+                Branch(CW, f"row {self.row} twists, the rows above it turn clockwise: x falls, its eta02 rises "
                        "and eta03 = eta06 falls to 0 or the domain's end", (lo, self.start)),
             )  # fmt: skip
         c_lo = float(self.contraction_input(np.pi + self.tube.domain[1]))
@@ -575,7 +575,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
             return Event("turning_point", x, (branch,), detail)
         if not checks["diagonals"]:
             crease = "eta02" if branch == CCW else "eta03 = eta06"
-            units = "middle units" if not self.row else f"units of seed row {self.row}"
+            units = "middle units" if not self.row else f"units of row {self.row}"
             detail = (f"{crease} = 0 ({where}): the big and small triangles of the {units} coincide (Feng, Ma "
                       "and Chen 2020, Fig 13, limits (a)/(b); the double root of eqn 41 with W5 corrected here: the "
                       "c(2 pi/n) coefficient of W5 gains 2 sin^2(alpha), and the printed W5 puts the limit at "
@@ -591,7 +591,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         return np.stack([rows["A", i][0] for i in range(bottom, top + 1)], -1)
 
     def _row_radius(self, zeta: NDArray[np.float64], row: int, touching: bool) -> NDArray[np.float64]:
-        """r_A (N,) in m of seed row `row` at tilts zeta (N,); for a row `touching` the axis at the start (beta =
+        """r_A (N,) in m of row `row` at tilts zeta (N,); for a row `touching` the axis at the start (beta =
         beta_max) |r_A| <= FOLDED_TOL a reads 0: there r_A = c (zeta - pi/2)^2 (c = 0.93, 1.73 m for the rows next
         to and two from the twisting one, n6 alpha 40, measured) touches 0 with round-off of either sign (6.7e-16 m)
         and is no crossing."""
@@ -613,7 +613,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
                     crossings.setdefault(round(zeta, 9), []).append(i)
         out = []
         for zeta, rows in crossings.items():
-            names = ", ".join(f"{i - bottom} (seed row {i})" for i in rows)
+            names = ", ".join(f"{i - bottom} (row {i})" for i in rows)
             detail = (f"rows {names}: r_A = 0, the vertical edges fold flat onto each other (kappa_Bi,4 = 0, Feng, Ma "
                       "and Chen 2020, limit (d), eqn 15); where r_A < 0 the rigid tube penetrates itself")  # fmt: skip
             x = float(self.input_of(np.array([zeta]))[0])
@@ -649,7 +649,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         """`events` of the twist of a row other than the middle one (module docstring, "Other rows")."""
         lo, hi = self.tilts
         meet_detail = (f"the fully folded equal-diameter cylinder (configuration iii, beta = beta_max, eqn 40): every "
-                       f"row's A's on the axis; seed row {self.row}'s twist (Fig 16 path "
+                       f"row's A's on the axis; row {self.row}'s twist (Fig 16 path "
                        f"{'I' if self.row > 0 else 'III'}) branches off where the radial contraction and the other "
                        "rows' twists end or start; the coupled closure's mobility is 2 here")  # fmt: skip
         out = [

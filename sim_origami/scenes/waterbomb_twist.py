@@ -8,7 +8,7 @@ of the twisted tube plus the plane symmetry of each half; 163 on the 6 x 5 tube,
 contraction keeps those symmetries too, so the coupled mechanism carries both motions; the scene's branches are the
 two twist senses and the contraction, which meet at the fully folded middle row (the sweeps stay clear of it).
 `tube_mechanism` reads only pattern, layout, input_crease and couplings, which `WaterbombTwist` has as well.
-With `row` != 0 (at beta = beta_max, e.g. `-p row=1 -p beta=42.0105238`) that seed row twists instead, driven at its
+With `row` != 0 (at beta = beta_max, e.g. `-p row=1 -p beta=42.0105238`) that row twists instead, driven at its
 own A<row + r0>_0_2 (Feng, Ma and Chen 2020, Fig 16 paths I, III; `WaterbombTwist`, "Other rows"), on the two
 twist senses only.
 """
@@ -30,7 +30,7 @@ PARAMS = (
     Param("a", "m", 0.5, "half-width of a unit"),
     # rows other than 0 twist from the contraction's end only at beta = beta_max (Feng, Ma and Chen 2020, Fig 16
     # paths I, III)
-    Param("row", "", 0.0, "seed row that twists: 0 the middle row, +1 .. (m-1)/2 above, -1 .. below",
+    Param("row", "", 0.0, "row that twists: 0 the middle row, +1 .. (m-1)/2 above, -1 .. below",
           lo=-TUBE_ROWS["hi"], hi=TUBE_ROWS["hi"], integer=True),
 )
 # The symmetry couplings are soft (MuJoCo joint equalities) and set the path error, which falls as the square of
@@ -62,7 +62,7 @@ def build(n: float, m: float, alpha: float, beta: float, a: float, row: float) -
         kinematics=kinematics, mechanism=tube_mechanism(kinematics), loop_joints=kinematics.crease_names,
         drive_joint=kinematics.input_crease, drive_scale=1.0, path=(lo, hi),
         sweep_time_scale=SWEEP_TIME_SCALE, preset=PRESET, fast_step_scale=FAST_STEP_SCALE, pattern=kinematics.pattern,
-        notes=f"{int(n)} x {int(m)} tube, seed row {kinematics.row} twisting; {len(kinematics.couplings)} "
+        notes=f"{int(n)} x {int(m)} tube, row {kinematics.row} twisting; {len(kinematics.couplings)} "
         "twist-symmetry couplings; "
         f"{len(kinematics.layout.seam)} seam creases closed by connects",
     )  # fmt: skip
