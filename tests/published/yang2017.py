@@ -493,9 +493,9 @@ CHECKED_ELSEWHERE = (
     ("ch. 2 example", "the closed path sampled by the truss continuation (2 decimals, tolerance scaled by the slope)",
      _B3 + "test_sampled_closed_path_crosses_to_the_other_branch_at_each_bundle"),
     *(("ch. 1-2", f"truss counts j, b, r, m, s of the {what}", f"test_truss.py::{test}")
-      for what, test in (("Bennett linkage, and with a tilted axis", "test_seed001_bennett_counts_tilt_and_release"),
-                         ("RSSR", "test_seed001_rssr_truss"),
+      for what, test in (("Bennett linkage, and with a tilted axis", "test_yang2017_bennett_counts_tilt_and_release"),
+                         ("RSSR", "test_yang2017_rssr_truss"),
                          ("Myard linkage and its non-overconstrained forms",
-                          "test_seed001_myard_counts_and_non_overconstrained_forms"),
-                         ("threefold-symmetric Bricard linkage", "test_seed001_threefold_bricard_counts"))),
+                          "test_yang2017_myard_counts_and_non_overconstrained_forms"),
+                         ("threefold-symmetric Bricard linkage", "test_yang2017_threefold_bricard_counts"))),
 )  # fmt: skip
