@@ -1,5 +1,6 @@
 """Plane-symmetric Bricard 6R (`sim_origami.kinematics.bricard_plane`, scene `bricard-plane`) against Feng 2018,
-ch. 4 (§4.2 to §4.5, Table 4-1), the numeric loop solver and MuJoCo."""
+ch. 4 (§4.2 to §4.5, Table 4-1), the numeric loop solver and MuJoCo. "Case 5" to "case 10" (test names too) are
+the thesis's own cases of Table 4-1 (§4.2); the special case of §4.5.2 is `SPECIAL_CASE_4_36`."""
 
 import numpy as np
 import pytest
@@ -11,7 +12,7 @@ from sim_origami.errors import AssemblyError, ConvergenceError, DomainError, Par
 from sim_origami.geometry import wrap
 from sim_origami.kinematics.bricard_plane import (
     FIG_4_5,
-    M7,
+    SPECIAL_CASE_4_36,
     TABLE_4_1,
     Geometry,
     PlaneSymmetricBricard,
@@ -435,7 +436,7 @@ def test_mujoco_validation_passes(case, capsys):
 
 
 def test_special_case_double_rocker_closes_and_meets_the_eqn_4_37ab_chains_at_plus_minus_60_deg():
-    kin = model(M7)
+    kin = model(SPECIAL_CASE_4_36)
     c = kin.classification()
     assert c.a_identically_zero and c.delta == "zero"
     names = sorted(b.name for b in kin.branches())
@@ -450,7 +451,7 @@ def test_special_case_double_rocker_closes_and_meets_the_eqn_4_37ab_chains_at_pl
     multi = sorted((e for e in kin.events() if e.kind == "bifurcation"), key=lambda e: e.input)
     assert [round(np.rad2deg(e.input), 9) for e in multi] == [-60.0, 60.0]
     loops = kin.loop_system()
-    for s in (0.3, -2.0, np.pi):  # eqn 4-37a: theta1 = -theta4 free (validation case 16)
+    for s in (0.3, -2.0, np.pi):  # eqn 4-37a: theta1 = -theta4 free
         q = np.deg2rad([np.rad2deg(s), 60, 120, -np.rad2deg(s), 120, 60])
         # Measured 1.1e-15.
         assert loops.residual_norm(q) <= TOLERANCES.closed_form_residual
@@ -466,7 +467,7 @@ def test_eqn_4_37d_principal_arcsin_does_not_close():
     q = np.stack([0 * m, theta2, t3, 0 * m, -(theta2 + t3 + t6), t6], -1)
     # Feng 2018, eqn 4-37d with the principal arcsin: measured 16.0 (a first check here gave "about 15"); the
     # supplementary branch closes (above).
-    assert np.max(model(M7).loop_system().residual_norm(q)) > 1.0
+    assert np.max(model(SPECIAL_CASE_4_36).loop_system().residual_norm(q)) > 1.0
 
 
 def _local_dof(g: Geometry, held: tuple[int, ...], seed: int = 1) -> int:

@@ -51,10 +51,10 @@ def lean(m: BricardThreefold, q: np.ndarray) -> float:
 
 
 @pytest.mark.parametrize("alpha", [300.0, 60.0])
-def test_case8_phi_roots(alpha):
+def test_threefold_bricard_phi_of_the_chapter_2_example(alpha):
     # 300/60 as printed; 60/300 gives the same closure (only cos alpha and sin^2 alpha enter).
     # measured worst 4.9e-5 deg (rounding of the 4th decimal)
-    for entry in checked_by(yang2017.NUMBERS, "test_case8_phi_roots"):
+    for entry in checked_by(yang2017.NUMBERS, "test_threefold_bricard_phi_of_the_chapter_2_example"):
         theta = float(entry.quantity.split("theta = ")[1].split(" deg")[0])
         assert entry.difference(yang2017.threefold_phi(alpha, theta)) <= entry.tol, entry
 

@@ -134,7 +134,7 @@ def test_pattern_is_nine_parallelograms_twelve_creases_four_vertices_with_assign
         unit_pattern("P", FIG_3_2, assignment={"zz": "M"})
 
 
-def test_case8_oracles_of_unit_p_at_one_radian():
+def test_unit_p_of_fig_3_2_at_one_radian():
     model = CorrugatedUnit("P", FIG_3_2)
     for branch, rows in P_ORACLES.items():
         q = model.at(branch, 1.0)
@@ -197,7 +197,7 @@ def _servo_from_flat(unit: float, modes: str | None):
 
 @pytest.mark.parametrize(("unit", "modes"), [(0.0, "CCCC"), (0.0, "CCSC"), (1.0, "SSSS")])
 def test_locked_class_stays_flat_under_the_servo(unit, modes):
-    """Each vertex held in its mode (couplings rho3 = -+rho1): a locked class cannot leave flat (case 8)."""
+    """Each vertex held in its mode (couplings rho3 = -+rho1): a locked class cannot leave flat."""
     _, run, x = _servo_from_flat(unit, modes)
     assert np.max(np.abs(x)) <= 1e-3  # measured 9.0e-5 (P CCCC), 2.2e-4 (P CCSC), 1.5e-4 (Q SSSS)
     assert np.max(np.abs(run.drive_force)) >= 0.999 * SERVO_LIMIT  # saturated at 20 N m

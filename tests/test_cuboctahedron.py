@@ -76,8 +76,9 @@ def overlap(T1: np.ndarray, T2: np.ndarray) -> float:
 # --- Yang 2017's numbers (tests/published/yang2017.py) --------------------------------------------------
 
 
-def test_bennett_parameters_match_case_10(model):
-    """Case 10 and (4-7): the thesis's D-H procedure (eqn 1-2) on the printed axes (4-8); exact values derived here."""
+def test_cuboctahedron_bennett_parameters_match_eqn_4_7(model):
+    """The ch. 4 Bennett linkage ABCD and (4-7): the thesis's D-H procedure (eqn 1-2) on the printed axes (4-8);
+    exact values derived here."""
     alpha = np.arccos(0.4)  # (4-25)
     for k, row in enumerate(model.rows):
         assert row.a == pytest.approx(np.sqrt(3 / 14), abs=1e-15)  # thesis 0.46; measured exact to 5.6e-17 m
@@ -94,7 +95,7 @@ def test_bennett_parameters_match_case_10(model):
     assert model.rows[0].a ** 2 + ext["A"] ** 2 + ext["B"] ** 2 - 2 * ext["A"] * ext["B"] * 0.4 == pytest.approx(1.0)
     # (4-7): gamma1 = angle(s_C, CB) = 71.57 deg (cos = 1/sqrt 10), gamma2 = angle(s_C, CF) = 50.77 deg, printed
     # to 0.01 deg; (4-29): theta_d, phi_d = -154.79, -58.41 deg in the thesis, +154.7912, +58.4119 with the printed axes
-    check_every(yang2017.NUMBERS, "test_bennett_parameters_match_case_10")
+    check_every(yang2017.NUMBERS, "test_cuboctahedron_bennett_parameters_match_eqn_4_7")
     g1, g2 = yang2017.axis_angles_at_c() * DEG
     assert (np.cos(g1), np.cos(g2)) == pytest.approx((1 / np.sqrt(10), np.sqrt(0.4)), abs=1e-15)
     assert model.theta_d == pytest.approx(THETA_D, abs=1e-14)  # tan(theta_d/2) = 2 sqrt 5 (4-28, printed axes' signs)
@@ -119,19 +120,19 @@ def test_deployed_design_equations(model):
     assert (c, d) == pytest.approx((3 * np.sqrt(10) / 14, 2 * np.sqrt(10) / 7), abs=1e-13)
 
 
-@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_bennett_samples_case_10"), ids=str)
-def test_bennett_samples_case_10(entry):
-    """Case 10: lengths to its 1e-5 (measured <= 4.4e-6 m); phi is given to 1e-3 deg, so half of that (measured
-    1.8e-4 deg at 90 deg, the rounding of the value)."""
+@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_cuboctahedron_bennett_samples"), ids=str)
+def test_cuboctahedron_bennett_samples(entry):
+    """The ch. 4 Bennett linkage ABCD: lengths to 1e-5 (measured <= 4.4e-6 m); phi is given to 1e-3 deg, so half
+    of that (measured 1.8e-4 deg at 90 deg, the rounding of the value)."""
     entry.check()
 
 
-def test_fold_case_10(model):
+def test_cuboctahedron_bennett_fold_of_eqn_4_41_corrected(model):
     """B = D at theta_f = 58.4119 deg, phi_f = 154.7912 deg (4-42: theta_f = phi_d, phi_f = theta_d), AC = sqrt 2,
     angle ABC = 90 deg; (4-41) corrected: tan(theta_f/2) = -sqrt(5)/4 in the thesis's sign."""
     lo, hi = model.domain
     assert (lo, hi) == (THETA_F, THETA_D)
-    check_every(yang2017.NUMBERS, "test_fold_case_10")
+    check_every(yang2017.NUMBERS, "test_cuboctahedron_bennett_fold_of_eqn_4_41_corrected")
     assert (lo, model.phi(lo)) == pytest.approx((model.phi_d, model.theta_d), abs=1e-14)
     assert -np.tan(lo / 2) == pytest.approx(-np.sqrt(5) / 4, abs=1e-15)
     P = model.vertices(lo)[0]
@@ -178,7 +179,7 @@ def test_volume_ratio(model):
     "entry", checked_by(yang2017.NUMBERS, "test_cuboctahedron.py::test_path_matches_the_worked_table"), ids=str
 )
 def test_path_matches_the_worked_table(model, entry):
-    entry.check()  # < 3e-4: measured 1.5e-4 (4 decimals, truss tolerance; case 11's tolerance is 2e-3)
+    entry.check()  # < 3e-4: measured 1.5e-4 (4 decimals, truss tolerance)
     theta = yang2017.theta_at_bd(entry.value[0])
     d = model.diagonals(theta)
     P = model.vertices(theta)[0]

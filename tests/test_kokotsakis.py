@@ -84,7 +84,7 @@ def test_example2_and_two_fold_central_panels():
     ("branch", "published"), [("odd2", (-0.084225, 0.443379, 0.109452)), ("odd3", (0.849175, -0.443379, 1.129539))]
 )
 def test_example1_every_vertex_carries_the_published_fold_vector(branch, published):
-    """Validation cases 4 and 5: rho1 = 0.5 at a vertex of (2-34), driven through rho_AB = its rho2."""
+    """rho1 = 0.5 at a vertex of (2-34), driven through rho_AB = its rho2."""
     x = Vertex4(np.array(GENERIC) * DEG, 1).at(branch, 0.5)["rho2"]
     mesh = Kokotsakis(example(1))
     folds = mesh.vertex_folds(branch, x)[0]
@@ -117,7 +117,7 @@ def test_example2_mixed_modes_do_not_close():
     assert [b.name for b in mesh.branches()] == ["C", "S"]
     mixed = [m for m in itertools.product("SC", repeat=4) if len(set(m)) > 1]
     mismatch = np.array([loop_mismatch(mesh.vertices, m, 0.5)[0] for m in mixed])
-    # rho_DA from D against from A after the loop (validation case 6): measured >= 0.0472 rad (S-S-C-S)
+    # rho_DA from D against from A after the loop: measured >= 0.0472 rad (S-S-C-S)
     assert np.min(np.abs(mismatch)) >= 0.04
     for mode in ("S", "C"):
         closed = loop_mismatch(mesh.vertices, (mode,) * 4, np.linspace(-2.5, 2.5, 101))

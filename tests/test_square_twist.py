@@ -156,9 +156,9 @@ def test_events_mobility_and_kutzbach():
 
 
 @pytest.mark.parametrize("alpha", [5 * np.pi / 6, 3 * np.pi / 4, 2 * np.pi / 3])
-def test_case11_metamaterial_tables(alpha):
+def test_square_twist_metamaterial_tables_of_eqns_3_30_to_3_32(alpha):
     # phi, L, S, H, nu_SL, nu_HL at a = b = c = 1, 6 decimals
-    for entry in checked_by(peng2018.NUMBERS, "test_case11_metamaterial_tables"):
+    for entry in checked_by(peng2018.NUMBERS, "test_square_twist_metamaterial_tables_of_eqns_3_30_to_3_32"):
         if entry.where.endswith(f"alpha = {round(np.rad2deg(alpha))} deg"):
             entry.check()
     theta = np.deg2rad([30.0, 60.0, 90.0, 120.0, 150.0])
@@ -190,7 +190,7 @@ def height_peak(alpha: float) -> float:
     [(5 * np.pi / 6, 1.2999, 0.9634, 1.299533, True), (3 * np.pi / 4, 1.1437, 1.2872, 1.143718, False),
      (2 * np.pi / 3, 0.9548, 1.4142, np.arccos(1 / np.sqrt(3)), True)],
 )  # fmt: skip
-def test_case11_height_peak(alpha, theta_sampled, h_sampled, theta_ours, corrected):
+def test_square_twist_metamaterial_height_peak(alpha, theta_sampled, h_sampled, theta_ours, corrected):
     theta = height_peak(alpha)
     assert theta == pytest.approx(theta_ours, abs=5e-7)
     # the text: nu_SL < 0 always; nu_HL > 0 before H peaks and < 0 after

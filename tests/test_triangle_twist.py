@@ -68,19 +68,19 @@ def vertex_folds(q: np.ndarray, v: str) -> np.ndarray:
 
 
 @pytest.mark.parametrize("mode", ["S", "C"])
-def test_case1_2_spherical_4r_vertex_families(mode):
+def test_spherical_4r_vertex_i_and_ii_of_eqn_3_3(mode):
     """Vertex-I (eqn 3-3a) is our mode S, Vertex-II (3-3b) mode C: same D-H twists, same signs."""
     # 4 decimals (rad): measured <= 4.8e-5
     [entry] = [
         e
-        for e in checked_by(feng2018.NUMBERS, "test_case1_2_spherical_4r_vertex_families")
+        for e in checked_by(feng2018.NUMBERS, "test_spherical_4r_vertex_i_and_ii_of_eqn_3_3")
         if f"mode {mode}" in e.quantity
     ]
     entry.check()
     # eqn 3-4a, fourth ratio corrected: tan(phi4/2)/tan(phi1/2) = s-/s+ with phi = pi - |theta| (measured 2.2e-16),
     # not the printed s-/s- = 1
     if mode == "S":
-        check_every(feng2018.CORRECTIONS, "test_case1_2_spherical_4r_vertex_families")
+        check_every(feng2018.CORRECTIONS, "test_spherical_4r_vertex_i_and_ii_of_eqn_3_3")
 
 
 # --- the pattern, its schemes and verdicts (Feng 2018, §3.2, §3.3) ---------------------------------------------------
@@ -157,7 +157,7 @@ def test_loop_gain_is_the_inverse_mu_product_and_locked_classes_never_reach_one(
     assert checked > 300
 
 
-def test_case4_all_pleats_parallel_never_folds():
+def test_triangle_twist_with_all_pleats_parallel_never_folds():
     """gamma = delta = epsilon: eqn 3-16 (with the two non-zero factors its simplified form drops, restored here) and
     no scheme with gain 1."""
     rng = np.random.default_rng(7)
@@ -256,22 +256,22 @@ def test_dh_data_and_motion_against_feng2018():
 
 
 @pytest.mark.parametrize("joint", [0, 1, 2, 5])
-def test_case5_one_held_joint_admits_one_configuration(joint):
+def test_derived_6r_with_one_held_joint_admits_one_configuration(joint):
     model = feng2018.twist_6r(*FIG_3_5)
     found = model.loop_system().assemblies(joint, 0.3, starts=32, seed=1)
     assert len(found) == 1  # a single branch: every random start lands on the same pose
     # 2 decimals: measured <= 0.0043 deg
-    entries = checked_by(feng2018.NUMBERS, "test_case5_one_held_joint_admits_one_configuration")
+    entries = checked_by(feng2018.NUMBERS, "test_derived_6r_with_one_held_joint_admits_one_configuration")
     [entry] = [e for e in entries if f"joint {joint + 1} held" in e.quantity]
     assert entry.difference(np.rad2deg(found[0])) <= entry.tol
     # and it is the closed form's pose at the theta1 it has
     assert np.max(np.abs(wrap(model.joint_angles("SSP", found[0][0])[0] - found[0]))) <= 1e-12
 
 
-def test_case6_parallel_pleats_the_new_6r():
+def test_new_6r_of_eqn_3_40_with_parallel_pleats():
     model = feng2018.twist_6r(55, 50, 45, 45)
     # epsilon, D-H data (a12, eqn 2-14's sum with R1 = 0), Ka, Ka Kb and theta at theta1 = 0.5 rad
-    check_every(feng2018.NUMBERS, "test_case6_parallel_pleats_the_new_6r")
+    check_every(feng2018.NUMBERS, "test_new_6r_of_eqn_3_40_with_parallel_pleats")
     np.testing.assert_allclose(model.joint_angles("SSP", -np.pi / 2)[0], np.array([-90, 90, 0, 0, 0, 0]) * DEG,
                                atol=1e-15)  # fmt: skip
 

@@ -43,12 +43,12 @@ def edge_errors(P: np.ndarray) -> np.ndarray:
 # --- Yang 2017, chapter 5 (tests/published/yang2017.py) --------------------------------------------------
 
 
-def test_bricard_parameters_match_case_12(model):
-    # Case 12: a, alpha, theta_d, phi_d, theta_f, phi_f; the example's tolerance is 1e-3 deg (measured within
-    # 5e-5 deg of every value)
-    check_every(yang2017.NUMBERS, "test_bricard_parameters_match_case_12")
+def test_truncated_octahedron_bricard_parameters(model):
+    # the ch. 5 Bricard linkage: a, alpha, theta_d, phi_d, theta_f, phi_f; the example's tolerance is 1e-3 deg
+    # (measured within 5e-5 deg of every value)
+    check_every(yang2017.NUMBERS, "test_truncated_octahedron_bricard_parameters")
     [alpha] = [
-        e for e in checked_by(yang2017.NUMBERS, "test_bricard_parameters_match_case_12") if "alpha" in e.quantity
+        e for e in checked_by(yang2017.NUMBERS, "test_truncated_octahedron_bricard_parameters") if "alpha" in e.quantity
     ]
     assert alpha.difference(360 - model.rows[1].alpha % (2 * np.pi) / DEG) <= alpha.tol  # the even twists
     assert max(abs(r.R) for r in model.rows) < 1e-12  # offsets 0 (measured 4.6e-16 m)
@@ -62,7 +62,7 @@ def test_deployed_state_is_the_truncated_octahedron(model):
 
 
 def test_end_state_is_the_cube(model):
-    """Case 20: the end is (5-2) up to a rigid motion; case 14: A1B1, A2E3, C3D2, D1E1 reach 0 together."""
+    """The end is the cube (5-2) up to a rigid motion; A1B1, A2E3, C3D2, D1E1 reach 0 together."""
     P = model.vertices(model.theta_f)[0]
     Q = np.array([CUBE[v] for v in NAMES])
     U, _, Vt = np.linalg.svd((P - P.mean(0)).T @ (Q - Q.mean(0)))

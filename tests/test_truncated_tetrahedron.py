@@ -73,7 +73,7 @@ def kabsch_error(P: np.ndarray, target: dict[str, np.ndarray]) -> float:
 # --- Yang 2017, chapter 6 (tests/published/yang2017.py) --------------------------------------------------
 
 
-def test_bricard_parameters_match_case_16(two):
+def test_truncated_tetrahedron_bricard_parameters(two):
     """a = 2√69/23, alpha 231.0378/128.9622 deg, R = 0, c = 17√22/92, d = 5√166/92; deployed and folded angles."""
     for k, row in enumerate(two.rows):
         assert row.a == pytest.approx(2 * np.sqrt(69) / 23, abs=1e-14)  # measured 2.2e-16
@@ -85,7 +85,7 @@ def test_bricard_parameters_match_case_16(two):
     assert (invert(frame_2) @ np.append(VERTICES["B"], 1))[2] == pytest.approx(-5 * np.sqrt(166) / 92, abs=1e-14)
     # alpha12; (6-28) 2G and corrected (6-33) 2s_G to 5-6 digits; deployed and folded angles and theta -> phi
     # samples to 1e-4 deg (measured 3e-5)
-    check_every(yang2017.NUMBERS, "test_bricard_parameters_match_case_16")
+    check_every(yang2017.NUMBERS, "test_truncated_tetrahedron_bricard_parameters")
 
 
 def test_corrected_axes():
@@ -123,7 +123,8 @@ def test_deployed_state_is_the_truncated_tetrahedron(case):
 
 
 def test_scheme_ii_reaches_the_tetrahedron(two):
-    """Case 18: |AE|, |BK|, |FG|, |FM| -> 0, KLM height 1.633 -> 0, net rotation 30 deg; the end is (6-3)."""
+    """Scheme II (s_K ∥ QK, delta2 = 0): |AE|, |BK|, |FG|, |FM| -> 0, KLM height 1.633 -> 0, net rotation 30 deg;
+    the end is (6-3)."""
     end = two.domain[1]
     assert end == pytest.approx(two.theta_f, abs=1e-15)
     assert kabsch_error(two.vertices(end)[0], TETRAHEDRON) < 1e-12  # measured 1.5e-15 m
@@ -133,7 +134,7 @@ def test_scheme_ii_reaches_the_tetrahedron(two):
 
 
 def test_scheme_i_misses_the_tetrahedron(one):
-    """Case 19 [NEW]: with s_G ∥ QG (Sec. 6.3.2 says it reaches 0) the path ends at the Bricard fold with
+    """Scheme I [NEW]: with s_G ∥ QG (Sec. 6.3.2 says it reaches 0) the path ends at the Bricard fold with
     theta_G = 3.708 deg, |BK| = 0.0585, KLM height 0.0586 m, KLM rotation 29.66 deg; theta_G starts at the printed
     146.44 deg."""
     lo = one.domain[0]
@@ -145,7 +146,7 @@ def test_scheme_i_misses_the_tetrahedron(one):
 
 
 def test_scheme_i_turned_axis_reaches_the_tetrahedron(one_reaching):
-    """Case 19: delta1 = -5 deg reaches the tetrahedron after rho over-opens to 120.08 deg."""
+    """Scheme I with delta1 = -5 deg reaches the tetrahedron after rho over-opens to 120.08 deg."""
     lo, _ = one_reaching.domain
     assert kabsch_error(one_reaching.vertices(lo)[0], TETRAHEDRON) < 1e-11  # measured 1.5e-15 m
     assert abs(lo) < 1e-9  # theta_G -> 0 (measured exactly 0: the path ends on the tetrahedron state)

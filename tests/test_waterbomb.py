@@ -34,27 +34,31 @@ DEG = np.pi / 180
 dihedrals = feng2018.dihedrals
 
 
-# Worked values of Feng 2018, chapter 5 (cases 17 to 20): tests/published/feng2018.py
+# Worked values of Feng 2018, chapter 5 (§5.3, §5.4): tests/published/feng2018.py
 
 
-@pytest.mark.parametrize("entry", checked_by(feng2018.NUMBERS, "test_case18_vertex_b_dihedrals"), ids=str)
-def test_case18_vertex_b_dihedrals(entry):
+@pytest.mark.parametrize(
+    "entry", checked_by(feng2018.NUMBERS, "test_waterbomb_vertex_b_dihedrals_on_paths_i_and_ii"), ids=str
+)
+def test_waterbomb_vertex_b_dihedrals_on_paths_i_and_ii(entry):
     entry.check()
 
 
-@pytest.mark.parametrize("entry", checked_by(feng2018.NUMBERS, "test_case17_vertex_a"), ids=str)
-def test_case17_vertex_a(entry):
+@pytest.mark.parametrize("entry", checked_by(feng2018.NUMBERS, "test_waterbomb_vertex_a_of_section_5_3"), ids=str)
+def test_waterbomb_vertex_a_of_section_5_3(entry):
     entry.check()
 
 
-@pytest.mark.parametrize("entry", checked_by(feng2018.NUMBERS, "test_case18b_sweeps_including_blocked_phi4"), ids=str)
-def test_case18b_sweeps_including_blocked_phi4(entry):
+@pytest.mark.parametrize(
+    "entry", checked_by(feng2018.NUMBERS, "test_waterbomb_vertex_b_sweeps_including_blocked_phi4"), ids=str
+)
+def test_waterbomb_vertex_b_sweeps_including_blocked_phi4(entry):
     entry.check()
 
 
-def test_case19_blockage_onsets_of_path_two():
+def test_waterbomb_blockage_onsets_of_path_two():
     # phi1* = pi + x* (deg) for 35/45, 50/50, 40/55 (alpha + beta = 90 is outside the model, formula only)
-    check_every(feng2018.NUMBERS, "test_case19_blockage_onsets_of_path_two")
+    check_every(feng2018.NUMBERS, "test_waterbomb_blockage_onsets_of_path_two")
     assert plane_blockage(40 * DEG, 40 * DEG) is None  # (a): alpha = beta < 45 deg, path II smooth
     events = [e for e in Waterbomb(35 * DEG, 45 * DEG, 0.5).events() if e.branches == (PLANE,)]
     assert [e.kind for e in events] == ["lock", "lock"] and events[0].input == -events[1].input
@@ -96,14 +100,14 @@ def test_thick_cell_matches_feng2018_dh_linkages(alpha, beta, mu):
         assert dh_loop(B).residual_norm(omega) <= 1e-14
 
 
-def test_case20_thick_b_dh_angles():
-    check_every(feng2018.NUMBERS, "test_case20_thick_b_dh_angles")
+def test_thick_waterbomb_vertex_b_dh_angles_of_eqn_5_12():
+    check_every(feng2018.NUMBERS, "test_thick_waterbomb_vertex_b_dh_angles_of_eqn_5_12")
 
 
 def test_branches_by_thickness():
     assert [b.name for b in Waterbomb(0.7, 0.7, 0.5).branches()] == [LINE, PLANE, DEGREE4, STRAIGHT]
     assert [b.name for b in Waterbomb(0.7, 0.7, 0.5, 0.5, 0.05).branches()] == [LINE]
-    # eqn 5-22b: alpha = beta and mu = 1 keeps path II in the thick cell (case 21)
+    # eqn 5-22b: alpha = beta and mu = 1 keeps path II in the thick cell (Fig 5-13)
     model = Waterbomb(40 * DEG, 40 * DEG, 0.5, 1.0, 0.05)
     assert [b.name for b in model.branches()] == [LINE, PLANE]
     q = model.joint_angles(PLANE, np.linspace(-3.0, -0.1, 50))

@@ -34,37 +34,39 @@ from sim_origami.tolerances import TOLERANCES
 DEG = np.pi / 180
 
 
-# Worked values at Feng, Ma and Chen 2020's tubes (cases 9-14, 22) and Feng 2018's (case 23): tests/published/
+# Worked values at Feng, Ma and Chen 2020's tubes (§2) and Feng 2018's (§6.2): tests/published/
 
 
-def test_case9_dihedrals_and_radii():
+def test_tube_n6_m3_40_35_dihedrals_and_radii():
     """n6 m3 alpha 40 beta 35, eta01 = 90 deg: A0, B0, C0, A1 and radii (m = 3: rows 0, 1, 2 from the bottom are the
     paper's rows -1, 0, 1)."""
-    check_every(feng_ma_chen2020.NUMBERS, "test_case9_dihedrals_and_radii")
+    check_every(feng_ma_chen2020.NUMBERS, "test_tube_n6_m3_40_35_dihedrals_and_radii")
 
 
-@pytest.mark.parametrize("entry", checked_by(feng_ma_chen2020.NUMBERS, "test_case10_row1_against_eta01"), ids=str)
-def test_case10_row1_against_eta01(entry):
-    """Case 10 (n6 m3 alpha 40 beta 35): kappa_B1,4 (row 1's vertical edges) and eta_1,1, 3 decimals."""
+@pytest.mark.parametrize(
+    "entry", checked_by(feng_ma_chen2020.NUMBERS, "test_tube_n6_m3_40_35_row1_against_eta01"), ids=str
+)
+def test_tube_n6_m3_40_35_row1_against_eta01(entry):
+    """n6 m3 alpha 40 beta 35: kappa_B1,4 (row 1's vertical edges) and eta_1,1, 3 decimals."""
     entry.check()
 
 
-def test_case11_alpha45_beta40():
-    check_every(feng_ma_chen2020.NUMBERS, "test_case11_alpha45_beta40")
+def test_tube_n6_m3_45_40_dihedrals_and_radius():
+    check_every(feng_ma_chen2020.NUMBERS, "test_tube_n6_m3_45_40_dihedrals_and_radius")
 
 
-def test_case12_and_case14_radii_and_uniform_states():
-    """Case 12: n6 m5 alpha 45 beta 40 at eta01 = 100 (A2 and radii); case 14: n6 m5 40/40 uniform states (every row
-    alike) and axial lengths (top free-edge midpoint to bottom one); Feng 2018's case 23 measures between the
-    corners (eqn 6-18)."""
-    check_every(feng_ma_chen2020.NUMBERS, "test_case12_and_case14_radii_and_uniform_states")
-    check_every(feng2018.NUMBERS, "test_case12_and_case14_radii_and_uniform_states")
+def test_tube_radii_uniform_states_and_axial_lengths():
+    """n6 m5 alpha 45 beta 40 at eta01 = 100 (A2 and radii); n6 m5 40/40 uniform states (every row alike) and axial
+    lengths (top free-edge midpoint to bottom one); Feng 2018's n6 m3 45/45 length is measured between the corners
+    (eqn 6-18)."""
+    check_every(feng_ma_chen2020.NUMBERS, "test_tube_radii_uniform_states_and_axial_lengths")
+    check_every(feng2018.NUMBERS, "test_tube_radii_uniform_states_and_axial_lengths")
 
 
-def test_case22_even_tube_equator():
-    """Case 22 (m even, n6 alpha 45 beta 40): the corrected eqn 18 radius and the equatorial vertices (m = 4: rows
+def test_even_tube_equator_with_eqn_18_corrected():
+    """m even (n6 m4 alpha 45 beta 40): the corrected eqn 18 radius and the equatorial vertices (m = 4: rows
     0..3 from the bottom are the paper's rows -1..2; its row 0, below the equator, is row 1)."""
-    check_every(feng_ma_chen2020.NUMBERS, "test_case22_even_tube_equator")
+    check_every(feng_ma_chen2020.NUMBERS, "test_even_tube_equator_with_eqn_18_corrected")
     for theta in (80, 100, 120):
         rows = row_coordinates(6, 4, 45 * DEG, 40 * DEG, 1.0, theta * DEG)
         assert rows["A", 1][0][0] == rows["A", 0][0][0]  # the half-turn maps A_0 to A_1

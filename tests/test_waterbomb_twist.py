@@ -36,10 +36,10 @@ published_angles = feng_ma_chen2020.twist_angles
 
 
 @pytest.mark.parametrize("eta02", [60, 70, 80, 90, 100])
-def test_case17_twist_states(eta02):
+def test_clockwise_twist_states_of_fig_13b(eta02):
     """n6 m5 alpha = beta = 40: eta02 rising from its start is the clockwise twist (Feng, Ma and Chen 2020 Fig 13b);
     the dihedrals to 4 decimals (measured <= 4.9e-5 deg, rounding), the end twist to 3 (measured <= 4.8e-4)."""
-    entries = checked_by(feng_ma_chen2020.NUMBERS, "test_case17_twist_states")
+    entries = checked_by(feng_ma_chen2020.NUMBERS, "test_clockwise_twist_states_of_fig_13b")
     for entry in [e for e in entries if f"eta02 = {eta02} deg" in e.quantity]:
         entry.check()
     # kappa_B0,4 = 0 on every unit and every A_0 on the axis throughout (measured 0 and 0)
@@ -49,7 +49,7 @@ def test_case17_twist_states(eta02):
     assert np.max(np.abs(TWIST_6X5.radii(CW, np.pi - eta02 * DEG)[0, 2])) == 0.0
 
 
-def test_case17_start_and_case18_limits():
+def test_twist_start_and_limits_of_the_n6_m5_40_40_tube():
     """Start eta02 = eta06 = 47.7173 at eta01 = 60 (eqn 39a); limit eta02 = 100.8002, eta01 = 76.5459, end twist
     72.35, r_A1 = 0.4191, r_A2 = 0.9194, eta_2,1 = 149.522 (m = 5); mirror end eta02 = 0 with eta06 = 100.8002."""
     model = TWIST_6X5
@@ -58,7 +58,7 @@ def test_case17_start_and_case18_limits():
     end = published_angles(model, CW, np.rad2deg(np.pi - lo), ["A2_0_3", "A2_0_6"])
     assert np.all(np.abs(end) <= 1e-9)  # eta03 = eta06 = 0 at the limit
     # start, limit, eta01 and eta_2,1 there, the end twist (2 decimals; ours 72.3493), r_A1, r_A2, the mirror end
-    check_every(feng_ma_chen2020.NUMBERS, "test_case17_start_and_case18_limits")
+    check_every(feng_ma_chen2020.NUMBERS, "test_twist_start_and_limits_of_the_n6_m5_40_40_tube")
     assert model.end_twist(CCW, hi)[0] == pytest.approx(-model.end_twist(CW, lo)[0], abs=1e-12)
     # at the start the three branches are one configuration (measured 1.8e-15 rad)
     q = [model.joint_angles(b, model.start)[0] for b in (CCW, CW, CONTRACTION)]
@@ -213,7 +213,7 @@ def test_events():
     ends = {e.branches[0]: e for e in events if e.kind == "lock"}
     assert ends[CCW].input == TWIST_6X5.domain[1] and "eta02 = 0" in ends[CCW].detail
     assert ends[CW].input == TWIST_6X5.domain[0] and "eta03 = eta06 = 0" in ends[CW].detail
-    # the contraction's uniform states (case 14) seen from eta02 (eqn 9)
+    # the contraction's uniform states (n6 m5 40/40) seen from eta02 (eqn 9)
     check_every(feng_ma_chen2020.NUMBERS, "test_events")
     # beta above beta_max (eqn 40): rows 1 and 3 start through the axis and leave it during the twist
     interfering = WaterbombTwist(6, 5, 35.73 * DEG, 40 * DEG)

@@ -35,7 +35,7 @@ FOUR_DECIMALS_DEG = 5e-5
 _B3 = "test_bricard_threefold.py::"
 
 
-# --- §2.5 and §6 case 8: the threefold-symmetric Bricard linkage -------------------------------------------------
+# --- ch. 2 example (eqns 2-8 to 2-11): the threefold-symmetric Bricard linkage -----------------------------------
 
 
 @cache
@@ -81,7 +81,7 @@ def ch2_fitted_points() -> tuple[np.ndarray, float]:
     return fitted.ravel(), d
 
 
-_CASE8 = (
+_THREEFOLD_PHI = (
     (0.0, "120.0, -120.0"),
     (30.0, "103.0036, -133.5265"),
     (60.0, "80.4156, -144.8241"),
@@ -94,8 +94,9 @@ _CASE8 = (
 
 THREEFOLD = (
     *(Number("ch. 2 example (twists 300/60)", f"phi on the branches along and against at theta = {t:g} deg", printed,
-             lambda t=t: threefold_phi(300.0, t), FOUR_DECIMALS_DEG, _B3 + "test_case8_phi_roots", unit="deg",
-             angle=True, in_text=False) for t, printed in _CASE8),
+             lambda t=t: threefold_phi(300.0, t), FOUR_DECIMALS_DEG,
+             _B3 + "test_threefold_bricard_phi_of_the_chapter_2_example", unit="deg", angle=True, in_text=False)
+      for t, printed in _THREEFOLD_PHI),
     Number("eqn 2-9 (axes at B, D, F reversed: twists 120/240)",
            "phi on the branches against and along at theta = 129.31 deg", "19.9903, 166.2084",
            lambda: threefold_phi(120.0, 129.31)[::-1], FOUR_DECIMALS_DEG,
@@ -178,7 +179,7 @@ _PATH = (
     "0.0100, 0.0084, 0.0050, 1.4159, 1.4175, 1.4209",
     "0.0010, 0.0008, 0.0005, 1.4144, 1.4145, 1.4149",
 )
-_BEN = _CO + "test_bennett_parameters_match_case_10"
+_BEN = _CO + "test_cuboctahedron_bennett_parameters_match_eqn_4_7"
 _PT = "ch. 4, path by the truss method"
 _MAXIMA = (("AC", "1.5492", "1.02"), ("EH", "1.5492", "0.78"), ("BJ", "1.7836", "0.90"))
 
@@ -192,15 +193,15 @@ CUBOCTAHEDRON = (
            "1.951800, 0.243975, 5.25, -4.860556, 1.125", design_terms, 1e-6,
            _CO + "test_deployed_design_equations", in_text=False),
     *(Number("ch. 4 example", f"phi at theta = {t} deg (3 decimals)", phi,
-             lambda t=t: cuboctahedron().phi(t * DEG) / DEG, 5e-4, _CO + "test_bennett_samples_case_10", unit="deg",
-             in_text=False) for t, phi in ((120, "110.570"), (90, "136.397"))),
+             lambda t=t: cuboctahedron().phi(t * DEG) / DEG, 5e-4, _CO + "test_cuboctahedron_bennett_samples",
+             unit="deg", in_text=False) for t, phi in ((120, "110.570"), (90, "136.397"))),
     *(Number("ch. 4 example", f"diagonals AC, BD at theta = {t} deg (tolerance 1e-5)", d,
              lambda t=t: [cuboctahedron().diagonals(t * DEG)[k][0] for k in ("AC", "BD")], 1e-5,
-             _CO + "test_bennett_samples_case_10", unit="m", in_text=False)
+             _CO + "test_cuboctahedron_bennett_samples", unit="m", in_text=False)
       for t, d in ((120, "1.54826, 0.97136"), (90, "1.49712, 0.51643"))),
     Number("eqns 4-41 (corrected), 4-42", "theta_f and phi at the fold (B = D)", "58.4119, 154.7912",
            lambda: np.array([cuboctahedron().domain[0], cuboctahedron().phi(cuboctahedron().domain[0])]) / DEG, 1e-4,
-           _CO + "test_fold_case_10", unit="deg", in_text=False),
+           _CO + "test_cuboctahedron_bennett_fold_of_eqn_4_41_corrected", unit="deg", in_text=False),
     *(Number(_PT + " (4 decimals)", f"BD, AI, EF, AC, EH, BJ where BD = {row[:6]} (truss tolerance)", row,
              lambda row=row: path_row(float(row.split(",")[0])), 3e-4, _CO + "test_path_matches_the_worked_table",
              unit="m", strict=True, in_text=False) for row in _PATH),
@@ -352,7 +353,7 @@ _TO_PATH = (
     "30.01, 68.06, 113.55, 139.87, 138.78, 98.63",
     "9.97, 37.09, 97.75, 119.12, 157.38, 131.83",
 )
-_TO_CASE = _TO + "test_bricard_parameters_match_case_12"
+_TO_CASE = _TO + "test_truncated_octahedron_bricard_parameters"
 
 TRUNCATED_OCTAHEDRON = (
     Number("ch. 5, Bricard linkage", "link length a (6 decimals)", "0.713234", lambda: truncated_octahedron().bricard.a,
@@ -416,7 +417,7 @@ _TABLE_I = (
     ("59.94", "50.29, 26.98, 143.12", "0.7416, 0.8498"),
     ("4.99", "10.90, 9.90, 120.92", "0.1883, 0.1899"),
 )
-_C16 = _TT + "test_bricard_parameters_match_case_16"
+_C16 = _TT + "test_truncated_tetrahedron_bricard_parameters"
 _PATH_II = _TT + "test_scheme_ii_path_matches_the_worked_table"
 _PATH_I = _TT + "test_scheme_i_path_matches_the_worked_table"
 _MISS = _TT + "test_scheme_i_misses_the_tetrahedron"
