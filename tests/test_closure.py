@@ -9,10 +9,10 @@ from sim_origami.geometry import rot_x, transform, wrap
 from sim_origami.kinematics.vertex4 import Vertex4
 
 # Peng 2018, Eq. 2-34: the generic developable vertex.
-CASE4_ALPHA = (np.pi / 2, 7 * np.pi / 18, np.pi / 3, 7 * np.pi / 9)
+GENERIC_ALPHA = (np.pi / 2, 7 * np.pi / 18, np.pi / 3, 7 * np.pi / 9)
 # Peng 2018, Fig. 2-1 (the basic linkage, not developable) and Fig. 2-5 (a linkage).
-CASE1_ALPHA = (np.pi / 9, 2 * np.pi / 9, 4 * np.pi / 9, 2 * np.pi / 3)
-CASE3_ALPHA = (2 * np.pi / 9, np.pi / 3, 13 * np.pi / 18, 5 * np.pi / 9)
+FIG_2_1_ALPHA = (np.pi / 9, 2 * np.pi / 9, 4 * np.pi / 9, 2 * np.pi / 3)
+FIG_2_5_ALPHA = (2 * np.pi / 9, np.pi / 3, 13 * np.pi / 18, 5 * np.pi / 9)
 # Peng 2018, Sec. 3.2.1, Fig. 3-2: the flat-foldable type I vertex.
 TYPE_I_ALPHA = (3 * np.pi / 4, np.pi / 3, np.pi / 4, 2 * np.pi / 3)
 
@@ -41,7 +41,7 @@ def assert_same_configurations(found, expected, atol: float) -> None:
 
 @pytest.fixture(scope="module")
 def case4():
-    return Vertex4(np.array(CASE4_ALPHA))
+    return Vertex4(np.array(GENERIC_ALPHA))
 
 
 def test_flat_state_closes_the_loop(case4):
@@ -96,9 +96,9 @@ def test_assemblies_finds_exactly_the_closed_form_roots(case4, x):
     "alpha, x, expected",
     [
         # Peng 2018, Fig. 2-1 linkage: theta1 = 2.0 on both branches (roots computed here from Eqs. 2-2 to 2-5)
-        (CASE1_ALPHA, 2.0, [(0.241470, 0.711098, 2.339965), (1.751285, -0.711098, -3.015852)]),
+        (FIG_2_1_ALPHA, 2.0, [(0.241470, 0.711098, 2.339965), (1.751285, -0.711098, -3.015852)]),
         # Peng 2018, Fig. 2-5 linkage: theta1 = 1.0 on both branches (computed here likewise)
-        (CASE3_ALPHA, 1.0, [(-0.217664, 1.337066, 1.201753), (-2.237818, -1.337066, -2.525692)]),
+        (FIG_2_5_ALPHA, 1.0, [(-0.217664, 1.337066, 1.201753), (-2.237818, -1.337066, -2.525692)]),
     ],
     ids=["case1", "case3"],
 )
@@ -111,17 +111,17 @@ def test_assemblies_reproduces_published_non_developable_roots(alpha, x, expecte
 
 def test_assemblies_is_empty_where_the_linkage_cannot_assemble():
     # Peng 2018, Fig. 2-1 linkage: no solution for |theta1| < 1.468817 (computed here).
-    assert spherical_loop(CASE1_ALPHA).assemblies(0, 1.0, starts=8).shape == (0, 4)
+    assert spherical_loop(FIG_2_1_ALPHA).assemblies(0, 1.0, starts=8).shape == (0, 4)
 
 
 def test_solve_raises_convergence_error_on_impossible_target():
     with pytest.raises(ConvergenceError, match=r"residual .* > tolerance"):
-        spherical_loop(CASE1_ALPHA).solve([1.0, 0.3, 0.2, 0.1], INPUT_FIXED)
+        spherical_loop(FIG_2_1_ALPHA).solve([1.0, 0.3, 0.2, 0.1], INPUT_FIXED)
 
 
 @pytest.mark.parametrize(
     "alpha, branches, x",
-    [(CASE4_ALPHA, ("odd2", "odd3"), 0.5), (TYPE_I_ALPHA, ("S", "C"), 1.0)],
+    [(GENERIC_ALPHA, ("odd2", "odd3"), 0.5), (TYPE_I_ALPHA, ("S", "C"), 1.0)],
     ids=["generic", "flat_foldable"],
 )
 def test_mobility_is_two_at_flat_state_and_one_when_folded(alpha, branches, x):
