@@ -128,10 +128,13 @@ class SelfContact:
         n = len(self.pattern.faces)
         R = np.broadcast_to(np.eye(3), (n, 3, 3)).copy()
         p = np.zeros((n, 3))
+        turn = rotation(self.axes, q)  # every hinge at once; a child on the right turns by -rho (the transpose)
+        shift = self.origins - np.einsum("kij,kj->ki", turn, self.origins)  # rotation about the line through o
         for child, parent, crease, sign in self.levels:
-            H = rotation(self.axes[crease], sign * q[crease])
-            o = self.origins[crease]
-            h = o - np.einsum("kij,kj->ki", H, o)  # rotation about the hinge line through o
+            H, h = turn[crease], shift[crease]
+            back = sign < 0
+            H[back] = H[back].transpose(0, 2, 1)
+            h[back] = -np.einsum("kij,kj->ki", H[back], h[back])
             R[child] = R[parent] @ H
             p[child] = p[parent] + np.einsum("kij,kj->ki", R[parent], h)
         return R, p

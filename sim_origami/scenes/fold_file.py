@@ -25,7 +25,6 @@ import numpy as np
 from ..creases import CreasePattern
 from ..errors import ParameterError
 from ..fold import read_fold
-from ..graph import spanning_edges
 from ..kinematics.numeric_pattern import TARGET_TOL, PatternPath, assignment_signs, lock_flat
 from ..origami import pattern_mechanism
 from ..path import independent_joints
@@ -115,10 +114,10 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
         else FRAMES_TOL  # fmt: skip
     # MuJoCo locks the F creases of a spanning forest of them: one closing a cycle of F creases (four round a
     # vertex, as the bird base's diagonal marks) is held flat by the others, and a cut joint cannot be coupled
-    flat = [names[c.joint] for c in lock_flat(pattern)]
-    held = spanning_edges(pattern.face_names, [pattern.crease_faces(pattern.crease(n)) for n in flat])
+    flat = tuple(names[c.joint] for c in lock_flat(pattern))
+    held = [names[k] for k in pattern.spanning_creases(prefer=flat) if names[k] in flat]
     mechanism = pattern_mechanism(pattern, root=pattern.crease_faces(pattern.crease(inputs[0]))[0], keep=inputs,
-                                  couplings=tuple((flat[k], flat[k], 0.0) for k in held))  # fmt: skip
+                                  couplings=tuple((n, n, 0.0) for n in held))  # fmt: skip
     lo, hi = kinematics.branches()[0].domain
     # a state on the rigid motion is what the file asks about: sweep up to it; a direction: as far as the trace went
     end = kinematics.target_input if kinematics.target_input is not None else hi if abs(hi) >= abs(lo) else lo
