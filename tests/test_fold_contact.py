@@ -138,7 +138,8 @@ def test_contact_is_reported_and_validated_three_ways_up_to_it(tmp_path, capsys)
     doc = json.loads((tmp_path / "out" / "report.json").read_text())
     contact = [e for e in doc["events"] if e["kind"] == "contact"]
     assert code == 0, text
-    assert len(contact) == 1 and "faces f0 and f2 touch" in contact[0]["detail"]  # FOLD faces f<index>
+    assert "contact at 2.96192 rad: faces f0 and f2 touch" in text  # FOLD faces are f<index>
+    assert len(contact) == 1 and "faces f0 and f2 touch" in contact[0]["detail"]
     assert contact[0]["input_rad"] == pytest.approx(np.sqrt(2) * 2 * np.pi / 3, abs=1e-8)
     lo, hi = doc["branches"][0]["input_range_rad"]
     assert 0.9 * contact[0]["input_rad"] < hi < contact[0]["input_rad"] and hi - lo > 1.0  # the scene's margin
