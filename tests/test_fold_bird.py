@@ -60,8 +60,9 @@ def write(tmp_path, doc: dict):
 def test_with_its_marks_flat_the_letters_stop_the_bird_base_at_once(tmp_path):
     """Marks F (locked flat): 3 freedoms (inputs by rank). Driving the three inputs to +-180 deg together, crease e24
     (an M diagonal) would turn valley at the first step; other straight directions of the inputs that keep every
-    letter at first (found by closing random small states) end within 0.13 rad, where a midline half (e20 or e21)
-    would change sign. No rigid motion from flat with these letters was found: not rigidly foldable this way."""
+    letter at first (54, found by closing random small states) end within 0.127 rad, where a midline half (e20 or
+    e21) would change sign; the three that went farthest are traced here. No rigid motion from flat with these
+    letters was found."""
     scene = fold_scene(write(tmp_path, bird()))
     kin = scene.kinematics
     assert len(scene.drives) == 3 and set(kin.mobility.tolist()) == {3}
@@ -70,11 +71,11 @@ def test_with_its_marks_flat_the_letters_stop_the_bird_base_at_once(tmp_path):
     pattern = kin.pattern
     names = [c.name for c in pattern.creases]
     inputs = ("e8", "e10", "e25")
-    for rates in ([1.0, 0.998, -0.637], [0.946, 1.0, -0.577], [1.0, 0.766, -0.59]):  # the three that went farthest
+    for rates in ([0.956, 1.0, -0.738], [1.0, 0.998, -0.637], [0.946, 1.0, -0.577]):
         target = np.full(len(names), np.nan)
         target[[names.index(n) for n in inputs]] = 3.0 * np.array(rates)
         path = PatternPath(pattern, inputs, target, signs=assignment_signs(pattern))
-        assert path.stops[0].kind == "bound" and np.max(np.abs(path.nodes[-1])) < 0.13  # measured 0.125 at most
+        assert path.stops[0].kind == "bound" and np.max(np.abs(path.nodes[-1])) < 0.13  # measured 0.127 at most
         assert names[path.stops[0].joint] in ("e20", "e21")
 
 
