@@ -3,20 +3,20 @@
 A configuration (crease angles rho, radians, the signs of `sim_origami.creases`) places every face by composing
 the crease rotations along a breadth-first spanning tree of the faces from a central face; with closed loops any
 tree gives the same placement. Faces are triangulated (ear clipping, so non-convex faces are allowed) and two
-triangles of different faces are in contact when an edge of one passes through the other's interior
-(`geometry.triangles_cross`, both ways).
+triangles of different faces are in contact when they meet along a segment longer than OVERLAP (`triangles_meet`):
+an edge through the other's interior, and also rims crossing edge on edge, as mirror-symmetric folds do.
 
-Which pairs count. Faces that share a crease touch along it in every pose and are never tested. Faces that share
-only a vertex touch there legitimately, so the test excludes that vertex: each triangle is taken relative to its
-own copy of the shared vertex (the copies differ by rounding of the placement, ~1e-14 of the size on a 480-crease
-sheet, which near a flat fold would otherwise read as an edge just through the other face). Their penetration
-(a segment from the vertex) still shows as the far edge of one crossing the other. Faces that lie on each other
-exactly (a fold of +-pi) are coplanar and not reported by the crossing test: the trace stops before, at a lock.
+Which pairs count. Faces that share a crease touch along it in every pose and are never tested (nor triangles of
+faces that share two vertices without a crease, across a slit). Faces that share only a vertex touch there
+legitimately, so each triangle is taken relative to its own copy of that vertex (the copies differ by rounding of
+the placement, ~1e-14 of the size on a 480-crease sheet, which near a flat fold would otherwise read as a crossing
+right at the vertex); a penetration still shows as a segment from the vertex. Faces that lie on each other exactly
+(a fold of +-pi) are coplanar and not reported: the trace stops before, at a lock.
 
-Cost: a sweep over the triangles' bounding boxes along the longest axis (broad phase), then the crossing test on
-the overlapping pairs only. Lengths are scaled to the pattern's longest extent, so the tolerances are relative.
-Patterns with thick panels (hinges off the mid-plane) are not tested: their panels are not the zero-thickness
-faces this test places.
+Cost: a sweep over the faces' bounding boxes along the longest axis, then the boxes of their triangles and each
+triangle's plane (all three corners of the other on one side: apart), and the interval test on what is left.
+Lengths are scaled to the pattern's longest extent, so the tolerances are relative. Patterns with thick panels
+(hinges off the mid-plane) are not tested: their panels are not the zero-thickness faces placed here.
 """
 
 from collections import deque
@@ -145,7 +145,7 @@ class SelfContact:
         return np.einsum("kij,kj->ki", R[self.corner_face], self.flat) + p[self.corner_face]
 
     def crossing(self, q: ArrayLike) -> NDArray[np.int_]:
-        """Face index pairs (m, 2) (smaller first, sorted) whose triangles cross at angles q (rad)."""
+        """Face index pairs (m, 2) (smaller first, sorted) whose triangles meet at angles q (rad)."""
         if not self.active or len(self.triangles) < 2:
             return np.zeros((0, 2), dtype=int)
         xyz = self.corners(q)
@@ -168,7 +168,7 @@ class SelfContact:
             return np.zeros((0, 2), dtype=int)
         # faces whose triangles lie wholly on one side of the other's plane do not meet
         n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-        n /= np.linalg.norm(n, axis=1)[:, None]
+        n /= np.maximum(np.linalg.norm(n, axis=1), 1e-300)[:, None]  # a sliver (zero area) is never apart
         offset = np.sum(n * tri[:, 0], axis=1)
         apart = np.zeros(len(i), dtype=bool)
         for a, b in ((i, j), (j, i)):
