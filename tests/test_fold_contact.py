@@ -96,7 +96,7 @@ def test_no_false_contact_on_built_in_motions_up_to_their_ends(name, values):
     scene = scenes.get(name).build(**values)
     sc = SelfContact(scene.pattern)
     for branch in scene.kinematics.branches():
-        x = np.linspace(max(branch.domain[0], -np.pi + 1e-3), min(branch.domain[1], np.pi - 1e-3), 101)
+        x = np.linspace(max(branch.domain[0], -np.pi + 1e-3), min(branch.domain[1], np.pi - 1e-3), 41)
         for q in scene.kinematics.joint_angles(branch.name, x):
             assert sc(q) is None, (branch.name, q)
 
