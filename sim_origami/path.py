@@ -23,7 +23,9 @@ Where `trace` stops, and why (`PathStop.kind`):
   fell below `min_step`: no rigid configuration beyond, with the driven joints moved that way;
 - "bound": a joint would leave its bounds (a crease reaching +-pi, a crease whose sign would flip), `joint` says
   which; the path ends at the last node inside them;
-- "bifurcation": the mobility rose above the path's (only with `stop_at_bifurcation`).
+- "bifurcation": the mobility rose above the path's (only with `stop_at_bifurcation`);
+- "contact": `stop_when` (e.g. a self-contact test) gave a reason at a node; the first such configuration is
+  located by bisection on s between that node and the last one to STOP_WHEN_TOL, and the path ends just before it.
 Along the path `trace` records the instantaneous mobility (joints minus the numerical rank of the closure
 Jacobian) at every node; a change is reported as an event (a bifurcation or the end of one). Open chains (no
 loops, no couplings) close trivially: every node is exact and the mobility is the joint count.
@@ -61,6 +63,8 @@ RANK_RTOL = 1e-6
 # Sparse (large) systems rank every this many nodes and the last (480 creases: one rank 0.1-1 s, a corrector step
 # a few ms); a mobility change is then placed between two ranked nodes.
 SPARSE_RANK_STRIDE = 10
+# A `stop_when` reason is located to this (path parameter, rad) by bisection between two nodes.
+STOP_WHEN_TOL = 1e-9
 
 # -- follow_arc --
 # Newton corrector: at most this many iterations to bring every residual component below `ArcSystem.tol`.
@@ -360,6 +364,7 @@ def trace(
     stop_at_bifurcation: bool = False,
     names: tuple[str, ...] | None = None,
     previous: tuple[float, ArrayLike] | None = None,
+    stop_when: Callable[[NDArray[np.float64]], str | None] | None = None,
 ) -> TracedPath:
     """
     Follow the closed configurations of `loops` from q0 (closed, or nearly, at `path.at(s0)`) while the driven
@@ -367,8 +372,9 @@ def trace(
 
     Steps are in path parameter (rad); `lower`/`upper` (n_joints,) bound the joints (default +-inf); `names`
     label joints in the details; `previous` (s, q) is a closed configuration behind the start that the first
-    step's secant predictor uses (e.g. the flat state, when the start lies just off it on the wanted branch).
-    See the module docstring for the stops.
+    step's secant predictor uses (e.g. the flat state, when the start lies just off it on the wanted branch);
+    `stop_when(q)` returns why the path must end at configuration q (a contact), or None; it is asked at every
+    node. See the module docstring for the stops.
     """
     driven = np.atleast_1d(np.asarray(driven, dtype=int))
     if len(driven) != path.k:
@@ -392,6 +398,8 @@ def trace(
     if r0 > 100 * tol:
         why = f"no rigid configuration beyond: the start does not close (residual {r0:.3g})"
         stop = PathStop("stall", s, None, why)
+    elif stop_when is not None and (why := stop_when(q)) is not None:
+        stop = PathStop("contact", s, None, f"{why} already at the start")
     while stop is None:
         if (end - s) * direction <= 1e-15:
             stop = PathStop("end", s, None, "the path's end")
@@ -423,7 +431,14 @@ def trace(
                 stop = PathStop("bound", s, j, f"{names[j]} reaches its bound {bound:.6g} rad")
             continue
         failures = 0
-        ranked = not loops.sparse or len(nodes_s) % SPARSE_RANK_STRIDE == 0 or abs(end - s_new) <= 1e-15
+        why = None if stop_when is None else stop_when(q_new)
+        if why is not None:
+            s_new, q_new, s_hit, why = _first(loops, stop_when, driven, path, fixed, tol, (s, q), (s_new, q_new, why))
+            stop = PathStop("contact", s_new, None, f"{why} (at s = {s_hit:.10g})")
+            if s_new == s:
+                break
+        last = abs(end - s_new) <= 1e-15 or stop is not None
+        ranked = not loops.sparse or len(nodes_s) % SPARSE_RANK_STRIDE == 0 or last
         m = mobility(loops, q_new) if ranked else mob[-1]
         if m != mob[-1]:
             kind = "bifurcation" if m > mob[-1] else "rank"
@@ -438,6 +453,37 @@ def trace(
         s, q = s_new, q_new
         step.accept()
     return TracedPath(np.array(nodes_s), np.array(nodes_q), np.array(mob), np.array(res), stop, tuple(events))
+
+
+def _first(
+    loops: ClosureSystem,
+    stop_when: Callable,
+    driven: NDArray,
+    path: Polyline,
+    fixed: NDArray,
+    tol: float,
+    before: tuple[float, NDArray],
+    hit: tuple[float, NDArray, str],
+) -> tuple[float, NDArray, float, str]:
+    """
+    Bisection on s between a node without a `stop_when` reason (`before`: s, q) and one with (`hit`: s, q, why),
+    each midpoint closed by the corrector from the chord between them. Returns (s, q) of the last configuration
+    without a reason and (s, why) of the first with one, STOP_WHEN_TOL apart (or where the corrector fails).
+    """
+    (s0, q0), (s1, q1, why) = before, hit
+    while abs(s1 - s0) > STOP_WHEN_TOL:
+        sm = 0.5 * (s0 + s1)
+        guess = q0 + (q1 - q0) * 0.5
+        guess[driven] = path.at(sm)
+        qm, r, _ = correct(loops, guess, fixed, tol)
+        if r > 100 * tol:
+            break
+        reason = stop_when(qm)
+        if reason is None:
+            s0, q0 = sm, qm
+        else:
+            s1, q1, why = sm, qm, reason
+    return s0, q0, s1, why
 
 
 # -- follow_arc: along the mechanism mode, through turning points and bifurcations ------------------------------

@@ -31,7 +31,8 @@ ANALYTIC_SAMPLES = 200
 MIN_SWEEP_RAD = 1e-3
 # Events of a numerically traced reference (`kinematics.numeric_pattern`): where and why its trace ended, its
 # mobility changes, an open chain. Reported with every run, inside the sweep or not.
-REFERENCE_EVENTS = ("stall", "lock", "branch-point", "mobility-change", "open-chain", "off-target", "frame")
+REFERENCE_EVENTS = ("stall", "lock", "contact", "branch-point", "mobility-change", "open-chain", "off-target",
+                    "frame")
 # Free runs (scenes with gravity) last this long (s), as the IFToMM A04 benchmark.
 FREE_DURATION = 10.0
 # Bifurcation study: seed offsets (rad of input) tried in turn, and the length of each run (rad).

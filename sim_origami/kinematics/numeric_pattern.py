@@ -9,8 +9,9 @@ with k driven creases (the inputs) moved along a path in their space. Two ways t
 - directed: anything else (several inputs, frames, a state with NaN (free) entries, creases at +-180 deg, a state
   off the rigid path, M/V letters only): the inputs move from flat along a straight line to the state's inputs
   (or through the frames' inputs), and the trace goes as far as the rigid motion does. It stops at the path's
-  end, at a stall (no rigid configuration beyond), where a crease reaches +-(pi - LOCK_MARGIN), or, with
-  `signs`, where a crease would take the other sign than its M/V letter. With one input x is its angle;
+  end, at a stall (no rigid configuration beyond), where a crease reaches +-(pi - LOCK_MARGIN), with
+  `signs` where a crease would take the other sign than its M/V letter, or at the first self-contact of two
+  faces (`self_contact`, zero thickness). With one input x is its angle;
   with several, the arc length (rad) along the inputs' path from flat.
 
 `evaluate` polishes an interpolated guess with the solver at each input, so values close the loops to the
@@ -33,6 +34,7 @@ from ..creases import CreasePattern
 from ..errors import ParameterError
 from ..path import PathStop, Polyline, TracedPath, correct, trace
 from .base import Branch, Event, JointSpaceKinematics
+from .self_contact import SelfContact
 
 BRANCH = "through-target"
 # Patterns with more creases than this solve with sparse normal equations (16 x 16 Miura, 480 creases: a corrector
@@ -94,6 +96,8 @@ class PatternPath(JointSpaceKinematics):
     signs : (n_creases,) float, optional
       M/V letters as -1/+1 (0: free): the trace keeps each crease on its letter's side and, without a target,
       heads for +-pi in every driven crease.
+    contact : bool
+      Stop each trace at the first self-contact of two faces (default); False traces through it.
     """
 
     def __init__(
@@ -104,6 +108,7 @@ class PatternPath(JointSpaceKinematics):
         *,
         frames: ArrayLike | None = None,
         signs: ArrayLike | None = None,
+        contact: bool = True,
     ):
         names = [c.name for c in pattern.creases]
         inputs = (inputs,) if isinstance(inputs, str) else tuple(inputs)
@@ -119,6 +124,7 @@ class PatternPath(JointSpaceKinematics):
         self.input_index = int(self.driven[0])
         self.input_name = f"rho_{inputs[0]}" if len(inputs) == 1 else "s (arc length of the inputs' path, rad)"
         self._loops = replace(pattern.loop_system(lock_flat(pattern)), sparse=len(names) > SPARSE_FROM)
+        self._contact = SelfContact(pattern) if contact else None
         for k in self.driven:
             if pattern.creases[k].assignment == "F":
                 raise ParameterError(f"input crease {names[k]!r} is an F crease (kept flat): it cannot be driven")
@@ -178,7 +184,7 @@ class PatternPath(JointSpaceKinematics):
         span = abs(path.s[-1] - path.s[0])
         return trace(self._loops, q0, self.driven, path, lower=self.lower, upper=self.upper, first_step=first,
                      max_step=MAX_STEP, min_step=STALL_STEP * span, tol=CLOSE_TOL,
-                     names=tuple(c.name for c in self.pattern.creases))  # fmt: skip
+                     names=tuple(c.name for c in self.pattern.creases), stop_when=self._contact)  # fmt: skip
 
     def _trace_anchored(self, q_target: NDArray) -> None:
         x = self.target_input = float(q_target[self.input_index])
@@ -243,7 +249,7 @@ class PatternPath(JointSpaceKinematics):
         traced = trace(self._loops, self._start(path, s1), self.driven, path, s0=s1, lower=self.lower,
                        upper=self.upper, first_step=FIRST_STEP * span, max_step=MAX_STEP,
                        min_step=STALL_STEP * span, tol=CLOSE_TOL, names=tuple(c.name for c in self.pattern.creases),
-                       previous=(path.s[0], np.zeros(len(self.joint_names))))  # fmt: skip
+                       previous=(path.s[0], np.zeros(len(self.joint_names))), stop_when=self._contact)  # fmt: skip
         self.path = path
         self.stops = [traced.stop]
         self.rank_events = list(traced.events)
@@ -291,7 +297,7 @@ class PatternPath(JointSpaceKinematics):
         if self.open_chain:
             parts.append("an open chain: no closed loop, the closure check is empty")
         for e in self.events():
-            if e.kind in ("stall", "lock", "branch-point", "off-target"):
+            if e.kind in ("stall", "lock", "contact", "branch-point", "off-target"):
                 parts.append(f"{e.kind} at {e.input:.6g} rad: {e.detail}")
         return "; ".join(parts)
 
@@ -363,7 +369,7 @@ class PatternPath(JointSpaceKinematics):
         for stop in self.stops:
             if stop.kind == "end":
                 continue
-            what = {"stall": "stall", "bound": "lock", "bifurcation": "branch-point"}[stop.kind]
+            what = {"stall": "stall", "bound": "lock", "bifurcation": "branch-point", "contact": "contact"}[stop.kind]
             detail = stop.detail
             if stop.kind == "bound" and stop.joint is not None:
                 j = stop.joint

@@ -112,8 +112,12 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     from_coords = getattr(fold, "frames_from_coords", False)
     kinematics.frames_tolerance = frames_tolerance if frames_tolerance is not None else None if from_coords \
         else FRAMES_TOL  # fmt: skip
+    # MuJoCo locks the F creases of a spanning forest of them: one closing a cycle of F creases (four round a
+    # vertex, as the bird base's diagonal marks) is held flat by the others, and a cut joint cannot be coupled
+    flat = tuple(names[c.joint] for c in lock_flat(pattern))
+    held = [names[k] for k in pattern.spanning_creases(prefer=flat) if names[k] in flat]
     mechanism = pattern_mechanism(pattern, root=pattern.crease_faces(pattern.crease(inputs[0]))[0], keep=inputs,
-                                  couplings=tuple((names[c.joint], names[c.joint], 0.0) for c in lock_flat(pattern)))
+                                  couplings=tuple((n, n, 0.0) for n in held))  # fmt: skip
     lo, hi = kinematics.branches()[0].domain
     # a state on the rigid motion is what the file asks about: sweep up to it; a direction: as far as the trace went
     end = kinematics.target_input if kinematics.target_input is not None else hi if abs(hi) >= abs(lo) else lo
@@ -136,7 +140,8 @@ def _choose_inputs(pattern: CreasePattern, target, frames, signs) -> tuple[str, 
     along its motion than one (the mobility at the middle of a one-input trace), as many as it has, by rank.
     """
     names = [c.name for c in pattern.creases]
-    state = frames[-1] if frames is not None else target if target is not None else signs
+    # letters only: a U crease has no direction to be driven in (free, as a null angle)
+    state = frames[-1] if frames is not None else target if target is not None else np.where(signs != 0, signs, np.nan)
     usable = np.array([c.assignment != "F" for c in pattern.creases]) & np.isfinite(state) & (np.nan_to_num(state) != 0)
     if not np.any(usable):
         raise ParameterError("every crease is flat, free (null) or F in the folded state: no crease to drive")
