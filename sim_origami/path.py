@@ -26,6 +26,7 @@ Where `trace` stops, and why (`PathStop.kind`):
 - "bifurcation": the mobility rose above the path's (only with `stop_at_bifurcation`);
 - "contact": `stop_when` (e.g. a self-contact test) gave a reason at a node; the first such configuration is
   located by bisection on s between that node and the last one to STOP_WHEN_TOL, and the path ends just before it.
+
 Along the path `trace` records the instantaneous mobility (joints minus the numerical rank of the closure
 Jacobian) at every node; a change is reported as an event (a bifurcation or the end of one). Open chains (no
 loops, no couplings) close trivially: every node is exact and the mobility is the joint count.
