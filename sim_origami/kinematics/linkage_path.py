@@ -1,0 +1,255 @@
+"""A linkage without a closed form: its numeric paths are the reference (numpy only).
+
+The loops are closed at one input value (the start): either from a given start configuration, or from random
+starts (`LoopSystem.assemblies`), every distinct assembly found there being a branch. Each branch is traced from its
+start to both ends of the input range by `path.trace` (predictor-corrector, step control, stall and rank
+monitoring) and named generically, `path-1`, `path-2`, ... (the given start, or the first assembly in a fixed
+order, is `path-1`). A branch's domain is what its trace reached: the whole range, or up to a stall (a turning
+point or a lock, where no closed configuration lies beyond with the input moved on).
+
+Events: where a trace stalled, where the mobility changed along it, and, where two branches meet at a pose whose
+mobility rises, a bifurcation naming both (so the validation seeds MuJoCo on each of them there).
+
+`evaluate` polishes an interpolated guess with the solver at each input, so values close the loops to 1e-15 where
+the path is regular. Angles in radians; translations in the loops' length unit.
+"""
+
+from collections.abc import Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.optimize import minimize_scalar
+
+from ..closure import LoopSystem
+from ..errors import ConvergenceError, ParameterError
+from ..geometry import wrap
+from ..path import Polyline, TracedPath, correct, trace
+from .base import Branch, Event, JointSpaceKinematics
+from .numeric_pattern import CLOSE_TOL, POLISH_TOL
+
+# Random starts of the assembly search at the start input; two assemblies closer than SAME_ASSEMBLY (rad, every
+# joint, modulo 2 pi) are one.
+ASSEMBLY_STARTS = 64
+SAME_ASSEMBLY = 1e-6
+# A given start configuration may be this far (rad) from the closed one it stands for: hand-written angles are
+# rounded (10 decimals of a degree are 2e-12 rad; 0.01 deg is 1.7e-4 rad).
+START_TOL = 1e-2
+# Continuation: first and largest step (rad of input), and the smallest before a stall is declared.
+FIRST_STEP = 0.01
+MAX_STEP = 0.05
+STALL_STEP = 1e-7
+# Two branches meet at a bifurcation where their poses differ by less than MEET_RAD (rad, every joint): searched
+# near the local minima below MEET_GRID of their distance on MEET_SAMPLES inputs of the interpolated traces.
+MEET_RAD = 1e-4
+MEET_GRID = 0.05
+MEET_SAMPLES = 2001
+
+
+class LinkagePath(JointSpaceKinematics):
+    """
+    Every branch through the start input of a linkage, traced numerically over the input range.
+
+    Parameters
+    ----------
+    loops : the linkage's loop system (joints in `joint_names` order).
+    joint_names : one name per loop joint.
+    input_joint : index of the driven joint; the input x is its angle (rad).
+    input_range : (lo, hi), rad: the traces run from the start to both ends.
+    start : a closed (or nearly closed) configuration (rad), or None to assemble at `start_input`.
+    start_input : the input at which to assemble when no `start` is given (default the range's middle).
+    idle_spins : trivial freedoms the loops have and the motion does not (spins of bars between two spherical
+      joints), subtracted from the mobility along the path.
+
+    Raises
+    ------
+    ParameterError
+      A start that does not close (with its residual), no assembly at the start input (with the smallest residual
+      found), or a start outside the range.
+    """
+
+    def __init__(
+        self,
+        loops: LoopSystem,
+        joint_names: Sequence[str],
+        input_joint: int,
+        input_range: tuple[float, float],
+        start: ArrayLike | None = None,
+        *,
+        start_input: float | None = None,
+        idle_spins: int = 0,
+    ):
+        self._loops = loops
+        self.joint_names = tuple(joint_names)
+        self.input_index = int(input_joint)
+        self.input_name = self.joint_names[self.input_index]
+        self.lo, self.hi = float(min(input_range)), float(max(input_range))
+        self.idle_spins = int(idle_spins)
+        fixed = np.zeros(loops.n_joints, dtype=bool)
+        fixed[self.input_index] = True
+        if start is not None:
+            given = np.asarray(start, dtype=float)
+            x0 = float(given[self.input_index])
+            if not self.lo <= x0 <= self.hi:
+                raise ParameterError(f"start: the input {self.input_name} = {np.rad2deg(x0):.6g} deg lies outside "
+                                     f"input.range [{np.rad2deg(self.lo):.6g}, {np.rad2deg(self.hi):.6g}] deg")
+            q, residual, _ = correct(loops, given, fixed, CLOSE_TOL, max_iter=200)
+            gap = float(np.max(np.abs(q - given), initial=0.0))
+            if residual > 100 * CLOSE_TOL or gap > START_TOL:
+                raise ParameterError(
+                    f"start: the loops cannot be closed at the start configuration: closure residual {residual:.3g} "
+                    f"with the input held, nearest closed pose {gap:.3g} rad away (allowed {START_TOL:g})")
+            starts = [q] + [a for a in self._assemble(x0) if np.max(np.abs(wrap(a - q))) > SAME_ASSEMBLY]
+            self.assembly = f"the given start configuration (closed to {residual:.2g}, moved {gap:.2g} rad)"
+        else:
+            x0 = 0.5 * (self.lo + self.hi) if start_input is None else float(start_input)
+            starts = self._assemble(x0)
+            if not starts:
+                raise ParameterError(
+                    f"joints: the loops cannot be assembled at {self.input_name} = {np.rad2deg(x0):.6g} deg: the "
+                    f"smallest closure residual from {ASSEMBLY_STARTS} random starts is {self._best_miss(x0):.3g}")
+            shown = ", ".join(f"{v:.4g}" for v in np.rad2deg(starts[0]))
+            self.assembly = (f"assembled at {self.input_name} = {np.rad2deg(x0):.6g} deg: {len(starts)} "
+                             f"assembl{'y' if len(starts) == 1 else 'ies'} found, path-1 starts at ({shown}) deg")
+        self.start_input = x0
+        self.traces: dict[str, tuple[TracedPath, TracedPath]] = {}
+        self.nodes: dict[str, tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.int64]]] = {}
+        for k, q in enumerate(starts):
+            self._trace(f"path-{k + 1}", q)
+        self.mobility = np.concatenate([m for _, _, m in self.nodes.values()])
+        self._events = self._find_events()
+
+    def _assemble(self, x: float) -> list[NDArray[np.float64]]:
+        """Distinct closed configurations at input x, in a fixed order (lexicographic in the wrapped angles)."""
+        found = self._loops.assemblies(self.input_index, x, starts=ASSEMBLY_STARTS, tol=CLOSE_TOL)
+        return sorted((np.asarray(q) for q in found), key=lambda q: tuple(np.round(q, 6)))
+
+    def _best_miss(self, x: float) -> float:
+        """The smallest closure residual reached from random starts at input x (no assembly there)."""
+        rng = np.random.default_rng(0)
+        fixed = np.zeros(self._loops.n_joints, dtype=bool)
+        fixed[self.input_index] = True
+        best = np.inf
+        for _ in range(ASSEMBLY_STARTS):
+            guess = rng.uniform(-np.pi, np.pi, self._loops.n_joints)
+            guess[self.input_index] = x
+            best = min(best, correct(self._loops, guess, fixed, CLOSE_TOL, max_iter=200)[1])
+        return float(best)
+
+    def _trace(self, name: str, q0: NDArray[np.float64]) -> None:
+        x0 = q0[self.input_index]
+        runs = []
+        for end in (self.lo, self.hi):
+            if abs(end - x0) <= 1e-15:
+                runs.append(None)
+                continue
+            path = Polyline(np.array([x0, end]), np.array([[x0], [end]]))
+            runs.append(trace(self._loops, q0, [self.input_index], path, first_step=FIRST_STEP, max_step=MAX_STEP,
+                              min_step=STALL_STEP, tol=CLOSE_TOL, names=self.joint_names))
+        down, up = runs
+        parts = [(r.s[::-1], r.q[::-1], r.mobility[::-1]) for r in (down,) if r is not None]
+        parts += [(r.s[1:] if down is not None else r.s, r.q[1:] if down is not None else r.q,
+                   r.mobility[1:] if down is not None else r.mobility) for r in (up,) if r is not None]
+        s = np.concatenate([p[0] for p in parts])
+        q = np.vstack([p[1] for p in parts])
+        m = np.concatenate([p[2] for p in parts]) - self.idle_spins
+        if len(s) < 2:
+            raise ParameterError(f"input.range: the linkage does not move from its start ({self.input_name} = "
+                                 f"{np.rad2deg(x0):.6g} deg): {(down or up).stop.detail}")
+        self.traces[name] = (down, up)
+        self.nodes[name] = (s, q, m)
+
+    def _find_events(self) -> tuple[Event, ...]:
+        out = []
+        for name, runs in self.traces.items():
+            for run in runs:
+                if run is None:
+                    continue
+                if run.stop.kind != "end":
+                    out.append(Event("stall", float(run.stop.s), (name,), run.stop.detail))
+                for e in run.events:
+                    out.append(Event("mobility-change", float(e.s), (name,), e.detail))
+        names = list(self.nodes)
+        for i, a in enumerate(names):
+            for b in names[i + 1 :]:
+                for x in self._meetings(a, b):
+                    out.append(Event("bifurcation", x, (a, b), f"branches {a} and {b} meet"))
+        return tuple(out)
+
+    def _meetings(self, a: str, b: str) -> list[float]:
+        """Inputs (rad) where branches a and b pass through one pose: local minima of their distance (every joint,
+        modulo 2 pi) on a grid of the traced nodes below MEET_GRID, refined on polished poses to MEET_RAD."""
+        lo = max(self.nodes[a][0][0], self.nodes[b][0][0])
+        hi = min(self.nodes[a][0][-1], self.nodes[b][0][-1])
+        if hi <= lo:
+            return []
+        grid = np.linspace(lo, hi, MEET_SAMPLES)
+        gap = np.max(np.abs(wrap(self._interp(a, grid) - self._interp(b, grid))), axis=1)
+        out = []
+        for k in np.flatnonzero(gap < MEET_GRID):
+            if (k > 0 and gap[k - 1] < gap[k]) or (k < len(grid) - 1 and gap[k + 1] < gap[k]):
+                continue
+
+            def distance(x: float) -> float:
+                return float(np.max(np.abs(wrap(self.evaluate(a, x)[0][0] - self.evaluate(b, x)[0][0]))))
+
+            found = minimize_scalar(distance, bounds=(grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]),
+                                    method="bounded", options={"xatol": 1e-12})
+            if found.fun < MEET_RAD:
+                out.append(float(found.x))
+        return out
+
+    def _covers(self, branch: str, x: float) -> bool:
+        s = self.nodes[branch][0]
+        return bool(s[0] - 1e-12 <= x <= s[-1] + 1e-12)
+
+    def _interp(self, branch: str, x: ArrayLike) -> NDArray[np.float64]:
+        """Linear interpolation of a branch's nodes at inputs x, (..., n_joints)."""
+        s, q, _ = self.nodes[branch]
+        return np.stack([np.interp(x, s, q[:, j]) for j in range(q.shape[1])], axis=-1)
+
+    # -- Kinematics -------------------------------------------------------------------------------------------
+
+    def summary(self) -> str:
+        """One line: the assembly taken, the branches and their domains, the stops."""
+        parts = [self.assembly]
+        for name, (s, _, m) in self.nodes.items():
+            parts.append(f"{name} over [{np.rad2deg(s[0]):.6g}, {np.rad2deg(s[-1]):.6g}] deg, mobility "
+                         f"{int(m.min())}" + (f"-{int(m.max())}" if m.max() != m.min() else ""))
+        for e in self._events:
+            if e.kind in ("stall", "bifurcation"):
+                parts.append(f"{e.kind} at {np.rad2deg(e.input):.6g} deg on {', '.join(e.branches)}: {e.detail}")
+        return "; ".join(parts)
+
+    def branches(self) -> tuple[Branch, ...]:
+        return tuple(Branch(name, "traced by continuation from " + ("the start configuration" if k == 0 and
+                                                                    "given" in self.assembly else
+                                                                    f"assembly {k + 1} at the start input"),
+                            (float(s[0]), float(s[-1])))
+                     for k, (name, (s, _, _)) in enumerate(self.nodes.items()))  # fmt: skip
+
+    def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        x, valid = self.in_domain(branch, x)
+        values = np.full((len(x), len(self.joint_names)), np.nan)
+        fixed = np.zeros(len(self.joint_names), dtype=bool)
+        fixed[self.input_index] = True
+        for k in np.flatnonzero(valid):
+            guess = self._interp(branch, x[k])
+            guess[self.input_index] = x[k]
+            try:
+                values[k] = self._loops.solve(guess, fixed, tol=POLISH_TOL)
+            except ConvergenceError:  # at a singular pose Newton converges only linearly: keep the corrector's
+                values[k] = correct(self._loops, guess, fixed, CLOSE_TOL, max_iter=200)[0]
+        return values, valid
+
+    def events(self) -> tuple[Event, ...]:
+        return self._events
+
+    def gruebler(self) -> int:
+        """Kutzbach: joint freedoms (a spherical joint's three hinges count three) - 6 per independent loop."""
+        return self._loops.n_joints - 6 * len(self._loops.loops)
+
+    def loop_system(self) -> LoopSystem:
+        return self._loops
+
+    def loop_input(self) -> tuple[int, float]:
+        return self.input_index, 1.0
