@@ -1,0 +1,174 @@
+"""Linkage files (`validate --linkage FILE`): readers, the two forms, the seed linkages, the Goldberg 5R example
+with its reference curves, and bad input (one line, exit 2, the field named)."""
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from sim_origami import scenes
+from sim_origami.checks.reference import compare_reference, read_reference
+from sim_origami.cli import main
+from sim_origami.errors import ParameterError
+from sim_origami.geometry import wrap
+from sim_origami.linkage_file import read_linkage
+from sim_origami.linkage_forms import chain_poses
+from sim_origami.scenes.linkage_file import linkage_scene
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "docs" / "examples" / "linkages"
+BENNETT = {
+    "sim_origami_linkage": 1,
+    "form": "dh",
+    "name": "bennett-json",
+    "joints": [{"name": f"theta{k + 1}", "a": a, "alpha": alpha}
+               for k, (a, alpha) in enumerate([(1.0, 30.0), (1.5, 48.590377890729144)] * 2)],
+    "input": {"joint": "theta1", "range": [20.0, 140.0]},
+}  # fmt: skip
+
+
+def write(tmp_path: Path, doc: dict, name: str = "linkage.json") -> Path:
+    path = tmp_path / name
+    path.write_text(json.dumps(doc))
+    return path
+
+
+def numeric_path(scene, branch: str, x: np.ndarray) -> np.ndarray:
+    """A scene's numeric loop solve followed from its closed form's first pose (as validation's closure check)."""
+    kin = scene.kinematics
+    q = kin.loop_angles(kin.joint_angles(branch, x))
+    joints, held = kin.loop_inputs(x)
+    return kin.loop_system().follow(q[0], joints[0], held[:, 0])
+
+
+@pytest.mark.parametrize(
+    ("builtin", "file"),
+    [("bennett", "bennett.toml"), ("myard", "myard.toml"), ("bricard-plane", "bricard-plane.json"),
+     ("bricard-threefold", "bricard-threefold.json")],
+)  # fmt: skip
+def test_seed_linkage_files_give_the_builtin_numeric_paths(builtin, file):
+    """Each built-in branch is one file branch, to 1e-12 rad at the built-in sweep's inputs; the others are far."""
+    scene, linkage = scenes.get(builtin).build(), linkage_scene(EXAMPLES / file)
+    assert len(linkage.kinematics.branches()) == len(scene.kinematics.branches())
+    for branch in scene.kinematics.branches():
+        x = np.linspace(*scene.branch_path(branch.name), 40)
+        truth = numeric_path(scene, branch.name, x)
+        errors = sorted(float(np.max(np.abs(wrap(linkage.kinematics.evaluate(b.name, x)[0] - truth))))
+                        for b in linkage.kinematics.branches())  # fmt: skip
+        assert errors[0] < 1e-12
+        assert all(e > 0.1 for e in errors[1:])
+
+
+def test_toml_and_json_readers_give_one_mechanism(tmp_path):
+    toml = read_linkage(EXAMPLES / "bennett.toml")
+    doc = broken(lambda d: d["input"].update(range=[-150.0, 150.0]))
+    from_json = read_linkage(write(tmp_path, doc))
+    assert from_json.joint_names == toml.joint_names and from_json.input_range == toml.input_range
+    q = np.array([0.3, 2.0, -0.3, -2.0])
+    assert np.array_equal(from_json.mechanism.loop_system().residual(q), toml.mechanism.loop_system().residual(q))
+
+
+def test_axes_form_gives_the_dh_forms_motion(tmp_path):
+    """The Bennett linkage drawn as axis lines at one of its poses (theta0 = that pose's D-H angles) traces the D-H
+    file's path to 1e-12 rad: the hinge angle is the D-H theta in both forms."""
+    dh = linkage_scene(write(tmp_path, BENNETT, "dh.json"))
+    rows = scenes.get("bennett").build().kinematics.rows
+    x0 = 1.2
+    q0 = dh.kinematics.evaluate("path-1", [x0])[0][0]
+    poses = chain_poses(rows, q0)
+    joints = []
+    for k in range(4):
+        T = poses[f"link_{k + 1}"][0]
+        joints.append({"name": f"theta{k + 1}", "bodies": [f"link_{(k - 1) % 4 + 1}", f"link_{k + 1}"],
+                       "point": T[:3, 3].tolist(), "direction": T[:3, 2].tolist(),
+                       "theta0": float(np.rad2deg(q0[k]))})  # fmt: skip
+    doc = {"sim_origami_linkage": 1, "form": "axes", "ground": "link_4", "joints": joints,
+           "input": {"joint": "theta1", "range": [20.0, 140.0]}, "units": {"angle": "deg"}}  # fmt: skip
+    axes = linkage_scene(write(tmp_path, doc, "axes.json"))
+    x = np.linspace(0.4, 2.4, 30)
+    gap = wrap(axes.kinematics.evaluate("path-1", x)[0] - dh.kinematics.evaluate("path-1", x)[0])
+    assert np.max(np.abs(gap)) < 1e-12
+    assert "given start" in axes.notes and "assembled at theta1 = 80 deg" in dh.notes
+
+
+def test_goldberg_reference_passes_and_a_perturbed_one_fails(tmp_path):
+    """The Goldberg 5R's curves from the two Bennett closed forms agree with the numeric path to < 1e-11 rad; one
+    value moved by 1e-6 rad fails at exactly that sample."""
+    scene = linkage_scene(EXAMPLES / "goldberg-5r.json")
+    assert scene.kinematics.gruebler() == -1 and int(np.max(scene.kinematics.mobility)) == 1
+    csv = EXAMPLES / "goldberg-5r_curves.csv"
+    good = compare_reference(read_reference(csv, scene.kinematics), scene)
+    assert all(v.passed for v in good.verdicts)
+    assert good.doc["reference_vs_numeric_max_rad"] < 1e-11
+    lines = csv.read_text().splitlines()
+    cells = lines[10].split(",")
+    cells[2] = f"{float(cells[2]) + np.rad2deg(1e-6):.10f}"
+    lines[10] = ",".join(cells)
+    bad = tmp_path / "perturbed.csv"
+    bad.write_text("\n".join(lines) + "\n")
+    check = compare_reference(read_reference(bad, scene.kinematics), scene)
+    assert not all(v.passed for v in check.verdicts)
+    assert check.doc["over_tolerance"]["samples"] == 1
+
+
+@pytest.mark.slow
+def test_validate_linkage_with_reference_passes_and_writes_the_report(capsys, tmp_path):
+    """The documented example end to end (docs/extending.md, 'A linkage file')."""
+    code = main(["validate", "--linkage", str(EXAMPLES / "goldberg-5r.json"), "--reference",
+                 str(EXAMPLES / "goldberg-5r_curves.csv"), "--out", str(tmp_path / "g")])  # fmt: skip
+    out = capsys.readouterr().out
+    assert code == 0, out
+    doc = json.loads((tmp_path / "g" / "report.json").read_text())
+    assert doc["scene"] == "linkage-goldberg-5r" and doc["passed"]
+    assert doc["reference"]["numeric_vs_mujoco_max_rad"] < 1e-6
+    assert (tmp_path / "g" / "curves.png").exists()
+
+
+def broken(change) -> dict:
+    doc = json.loads(json.dumps(BENNETT))
+    change(doc)
+    return doc
+
+
+def _unassemblable(doc: dict) -> None:
+    doc["joints"][1]["a"] = 5.0  # a 4R whose links cannot meet
+
+
+def _open_axes(doc: dict) -> None:
+    doc.clear()
+    doc.update({"sim_origami_linkage": 1, "form": "axes", "ground": "g",
+                "joints": [{"bodies": ["g", "l1"], "point": [0, 0, 0], "direction": [0, 0, 1]},
+                           {"bodies": ["l1", "l2"], "point": [1, 0, 0], "direction": [0, 1, 0]}],
+                "input": {"joint": "joint_1", "range": [0, 90]}})  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("change", "needle"),
+    [
+        (lambda d: d["joints"][2].update(type="prismatic"), "joints[2].type = 'prismatic': unknown joint type"),
+        (lambda d: d["joints"][1].pop("alpha"), "joints[1].alpha: missing"),
+        (lambda d: d.update(sim_origami_linkage=2), "sim_origami_linkage = 2"),
+        (lambda d: d.pop("sim_origami_linkage"), "sim_origami_linkage: missing"),
+        (lambda d: d["joints"][3].update(alpha=float("nan")), "joints[3].alpha = nan: it must be a finite number"),
+        (lambda d: d["joints"][0].update(alhpa=3), "joints[0].alhpa: unknown field"),
+        (lambda d: d["input"].update(joint="theta9"), "input.joint = 'theta9'"),
+        (lambda d: d["input"].update(range=[90, 10]), "input.range"),
+        (_unassemblable, "joints: the loops cannot be assembled at theta1 = 80 deg: no closed pose from 24 random "
+                         "starts, the smallest closure residual reached is 1.34"),
+        (_open_axes, "joints: the axes form no closed loop"),
+    ],
+)
+def test_bad_linkage_files_exit_2_naming_the_field(capsys, tmp_path, change, needle):
+    path = write(tmp_path, broken(change))
+    code = main(["validate", "--linkage", str(path), "--out", str(tmp_path / "out")])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert len(err.strip().splitlines()) == 1
+    assert needle in err, err
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_start_that_does_not_close_is_refused_with_its_residual(tmp_path):
+    doc = broken(lambda d: [j.update(theta0=30.0 + 10.0 * k) for k, j in enumerate(d["joints"])])
+    with pytest.raises(ParameterError, match=r"start: the loops cannot be closed .* closure residual"):
+        linkage_scene(write(tmp_path, doc))
