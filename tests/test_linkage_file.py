@@ -172,3 +172,18 @@ def test_a_start_that_does_not_close_is_refused_with_its_residual(tmp_path):
     doc = broken(lambda d: [j.update(theta0=30.0 + 10.0 * k) for k, j in enumerate(d["joints"])])
     with pytest.raises(ParameterError, match=r"start: the loops cannot be closed .* closure residual"):
         linkage_scene(write(tmp_path, doc))
+
+
+def test_branches_meeting_inside_the_range_are_a_bifurcation():
+    """The plane-symmetric Bricard over theta2 = -60 .. 60 deg: its two motions cross at 0 (Feng 2018, Table 4-1
+    case 10); the file's two paths meet there, the poses there match both closed forms, the sweep stays clear."""
+    scene = linkage_scene(EXAMPLES / "bricard-plane-crossing.json")
+    builtin = scenes.get("bricard-plane").build().kinematics
+    (event,) = [e for e in scene.kinematics.events() if e.kind == "bifurcation"]
+    assert abs(event.input) < 1e-9 and set(event.branches) == {"path-1", "path-2"}
+    for branch in event.branches:
+        pose = scene.kinematics.evaluate(branch, [event.input])[0][0]
+        assert min(float(np.max(np.abs(wrap(pose - builtin.evaluate(b.name, [event.input])[0][0]))))
+                   for b in builtin.branches()) < 1e-9  # fmt: skip
+    lo, hi = scene.path
+    assert hi < event.input - 0.05 or lo > event.input + 0.05
