@@ -2,6 +2,9 @@
 with its reference curves, and bad input (one line, exit 2, the field named)."""
 
 import json
+import shutil
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -187,3 +190,21 @@ def test_branches_meeting_inside_the_range_are_a_bifurcation():
                    for b in builtin.branches()) < 1e-9  # fmt: skip
     lo, hi = scene.path
     assert hi < event.input - 0.05 or lo > event.input + 0.05
+
+
+def test_goldberg_files_are_what_their_script_writes(tmp_path):
+    source = EXAMPLES / "make_goldberg.py"
+    shutil.copy(source, tmp_path / source.name)
+    subprocess.run([sys.executable, source.name], cwd=tmp_path, check=True)
+    for name in ("goldberg-5r.json", "goldberg-5r_curves.csv"):
+        assert (tmp_path / name).read_text() == (EXAMPLES / name).read_text()
+
+
+def test_spherical_joints_read_as_three_hinges_and_a_spinning_link_is_refused(tmp_path):
+    """A ball at joint 3 of the Bennett rows reads as theta3_x, _y, _z; balls at 3 and 4 (an RSSR) leave link 3
+    spinning about the line through their centres, which no input drives: refused, naming the joints."""
+    one = read_linkage(write(tmp_path, broken(lambda d: d["joints"][2].update(type="spherical")), "one.json"))
+    assert one.joint_names == ("theta1", "theta2", "theta3_x", "theta3_y", "theta3_z", "theta4")
+    two = write(tmp_path, broken(lambda d: [d["joints"][k].update(type="spherical") for k in (2, 3)]), "two.json")
+    with pytest.raises(ParameterError, match="joints: a link between two spherical joints spins freely"):
+        linkage_scene(two)

@@ -76,6 +76,10 @@ class LinkagePath(JointSpaceKinematics):
     start_input : the input at which to assemble when no `start` is given (default the range's middle).
     idle_spins : trivial freedoms the loops have and the motion does not (spins of bars between two spherical
       joints), subtracted from the mobility along the path.
+    ball_middles : the middle (y) hinge of each spherical joint: its x-y-z angles have two sets per rotation, and
+      assemblies are taken with every middle angle within +-pi/2 where one is (the set MuJoCo's poses give back).
+    compared : joints (bool mask) by which two assemblies are told apart (default all; a spherical joint's angles
+      follow from the others').
 
     Raises
     ------
@@ -94,6 +98,8 @@ class LinkagePath(JointSpaceKinematics):
         *,
         start_input: float | None = None,
         idle_spins: int = 0,
+        ball_middles: Sequence[int] = (),
+        compared: ArrayLike | None = None,
     ):
         self._loops = loops
         self.joint_names = tuple(joint_names)
@@ -101,6 +107,8 @@ class LinkagePath(JointSpaceKinematics):
         self.input_name = self.joint_names[self.input_index]
         self.lo, self.hi = float(min(input_range)), float(max(input_range))
         self.idle_spins = int(idle_spins)
+        self.ball_middles = np.asarray(ball_middles, dtype=int)
+        self.compared = np.ones(loops.n_joints, dtype=bool) if compared is None else np.asarray(compared, dtype=bool)
         fixed = np.zeros(loops.n_joints, dtype=bool)
         fixed[self.input_index] = True
         if start is not None:
@@ -115,7 +123,7 @@ class LinkagePath(JointSpaceKinematics):
                 raise ParameterError(
                     f"start: the loops cannot be closed at the start configuration: closure residual {residual:.3g} "
                     f"with the input held, nearest closed pose {gap:.3g} rad away (allowed {START_TOL:g})")
-            starts = [q] + [a for a in self._assemble(x0) if np.max(np.abs(wrap(a - q))) > SAME_ASSEMBLY]
+            starts = [q] + [a for a in self._assemble(x0) if not self._same(a, q)]
             self.assembly = f"the given start configuration (closed to {residual:.2g}, moved {gap:.2g} rad)"
         else:
             x0 = self.lo + START_SHARE * (self.hi - self.lo) if start_input is None else float(start_input)
@@ -138,9 +146,22 @@ class LinkagePath(JointSpaceKinematics):
         self._events = self._find_events()
 
     def _assemble(self, x: float) -> list[NDArray[np.float64]]:
-        """Distinct closed configurations at input x, in a fixed order (lexicographic in the wrapped angles)."""
+        """
+        Distinct closed configurations at input x, in a fixed order (lexicographic in the wrapped angles), each
+        spherical joint's angles taken with the middle one inside +-pi/2 where an assembly has that set too.
+        """
         found = self._loops.assemblies(self.input_index, x, starts=ASSEMBLY_STARTS, tol=CLOSE_TOL)
-        return sorted((np.asarray(q) for q in found), key=lambda q: tuple(np.round(q, 6)))
+        order = sorted((np.asarray(q) for q in found),
+                       key=lambda q: (bool(np.any(np.abs(q[self.ball_middles]) > np.pi / 2)), tuple(np.round(q, 6))))
+        out: list[NDArray[np.float64]] = []
+        for q in order:
+            if not any(self._same(q, other) for other in out):
+                out.append(q)
+        return out
+
+    def _same(self, q: NDArray[np.float64], other: NDArray[np.float64]) -> bool:
+        """One assembly: the compared joints agree within SAME_ASSEMBLY (rad, modulo 2 pi)."""
+        return bool(np.max(np.abs(wrap(q - other))[self.compared], initial=0.0) <= SAME_ASSEMBLY)
 
     def _best_miss(self, x: float) -> float:
         """The smallest closure residual reached from random starts at input x (no assembly there)."""
@@ -176,7 +197,8 @@ class LinkagePath(JointSpaceKinematics):
                                  f"{np.rad2deg(x0):.6g} deg): {(down or up).stop.detail}")
         for other, (s2, _, _) in self.nodes.items():
             # an assembly on a branch already traced (two starts on one curve, or the same pose): not a new branch
-            if s2[0] <= s[0] and s[-1] <= s2[-1] and np.max(np.abs(wrap(self._interp(other, s) - q))) < MEET_RAD:
+            gap = np.max(np.abs(wrap(self._interp(other, s) - q))[:, self.compared], initial=0.0)
+            if s2[0] <= s[0] and s[-1] <= s2[-1] and gap < MEET_RAD:
                 return
         self.traces[name] = (down, up)
         self.nodes[name] = (s, q, m)

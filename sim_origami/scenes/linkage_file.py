@@ -41,10 +41,16 @@ def linkage_scene(path: str | Path) -> Scene:
     if not LENGTH_RANGE[0] <= size <= LENGTH_RANGE[1]:
         raise ParameterError(f"units.length: the linkage is {size:.3g} m across; sim_origami simulates "
                              f"{LENGTH_RANGE[0]:g} .. {LENGTH_RANGE[1]:g} m (give the right unit)")  # fmt: skip
+    if mechanism.idle_spins:
+        raise ParameterError("joints: a link between two spherical joints spins freely about the line through their "
+                             "centres, a freedom no input drives and the comparison cannot pin; make one of them "
+                             "revolute")  # fmt: skip
     names = tuple(j.name for j in mechanism.joints)
+    balls = mechanism.balls.values()
     kinematics = LinkagePath(mechanism.loop_system(), spec.joint_names, names.index(spec.input_joint),
                              spec.input_range, spec.start, start_input=spec.start_input,
-                             idle_spins=mechanism.idle_spins)  # fmt: skip
+                             ball_middles=[iy for _, iy, _ in balls],
+                             compared=[not j.ball for j in mechanism.joints])  # fmt: skip
     lo, hi = sweep(kinematics, *spec.input_range)
     notes = f"from {Path(path).name} ({spec.form} form); {kinematics.summary()}"
     return Scene(
