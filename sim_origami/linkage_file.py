@@ -116,8 +116,8 @@ def read_linkage(source: str | Path) -> LinkageSpec:
     if not isinstance(joints, list) or not joints:
         raise ParameterError("joints: missing or empty; give a list of joints (a table each)")
     build = _dh if form == "dh" else _axes
-    mechanism, names, starts, input_names = build(doc, [_table(j, f"joints[{k}]") for k, j in enumerate(joints)],
-                                                  read)
+    mechanism, names, starts, input_names, meshes = build(doc, [_table(j, f"joints[{k}]")
+                                                                for k, j in enumerate(joints)], read)
     given = _table(doc.get("input"), "input")
     _known(given, {"joint", "range", "start"}, "input")
     joint = given.get("joint")
@@ -140,6 +140,7 @@ def read_linkage(source: str | Path) -> LinkageSpec:
             raise ParameterError("input.start: the start configuration (theta0) already fixes the start input")
     contact = tuple(_pair(p, f"contact[{k}]", {b.name for b in mechanism.bodies if not b.spacer})
                     for k, p in enumerate(_list(doc.get("contact", []), "contact")))  # fmt: skip
+    mechanism = _with_solids(mechanism, meshes, {b for pair in contact for b in pair})
     scale = read.positive(doc.get("sweep_time_scale", SWEEP_TIME_SCALE), "sweep_time_scale", length=False)
     notes = doc.get("notes", "")
     if not isinstance(notes, str):
@@ -326,7 +327,6 @@ def _dh(doc: dict, joints: list[dict], read: _Reader):
     given = _table(doc.get("input"), "input")
     driven = int(inputs.get(given.get("joint"), f"joint_{hinges[0]}").split("_")[1])
     mechanism = reduced_form(tuple(rows), tuple(spherical), width=width, anchor=anchor, input_joint=driven)
-    mechanism = _with_meshes(mechanism, meshes)
     joint_names = []
     for j in mechanism.joints:
         k = int(j.name.split("_")[1])
@@ -335,7 +335,7 @@ def _dh(doc: dict, joints: list[dict], read: _Reader):
     starts = None
     if theta0 is not None:  # a ball turns about its former axis only: angles (0, 0, theta0) in its D-H triad
         starts = {(f"joint_{k + 1}" if k + 1 not in spherical else f"ball_{k + 1}_z"): t for k, t in enumerate(theta0)}
-    return mechanism, tuple(joint_names), starts, inputs
+    return mechanism, tuple(joint_names), starts, inputs, meshes
 
 
 def _axes(doc: dict, joints: list[dict], read: _Reader):
@@ -390,7 +390,7 @@ def _axes(doc: dict, joints: list[dict], read: _Reader):
     body_list = []
     for k, b in enumerate(bodies):
         ends = [points[i] for i, p in enumerate(pairs) if b in p]
-        body_list.append(Body(b, meshes.get(b, _solid(ends, width)), None, PALETTE[k % len(PALETTE)]))
+        body_list.append(Body(b, _solid(ends, width), None, PALETTE[k % len(PALETTE)]))
     mech_joints, starts, inputs = [], {}, {}
     for k, name in enumerate(names):
         if kinds[k] == "spherical":
@@ -410,7 +410,7 @@ def _axes(doc: dict, joints: list[dict], read: _Reader):
         mechanism.tree  # noqa: B018  (a body left out of the graph is found here, before anything is traced)
     except ParameterError as err:
         raise ParameterError(f"joints: {err}") from err
-    return mechanism, tuple(j.name for j in mech_joints), starts, inputs
+    return mechanism, tuple(j.name for j in mech_joints), starts, inputs, meshes
 
 
 def _frame(point: NDArray[np.float64], direction: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -441,9 +441,13 @@ def _solid(ends: list[NDArray[np.float64]], width: float) -> trimesh.Trimesh:
     return trimesh.convex.convex_hull(np.vstack([b.vertices for b in bars]))
 
 
-def _with_meshes(mechanism: Mechanism, meshes: dict[str, trimesh.Trimesh]) -> Mechanism:
-    """The mechanism with the named bodies' solids replaced by mesh solids."""
-    if not meshes:
+def _with_solids(mechanism: Mechanism, meshes: dict[str, trimesh.Trimesh], colliding: set[str]) -> Mechanism:
+    """The mechanism with the named bodies' solids replaced by mesh solids, and the colliding bodies' solids as their
+    collision solids too (MuJoCo collides only what has one)."""
+    if not meshes and not colliding:
         return mechanism
-    bodies = tuple(Body(b.name, meshes[b.name], None, b.rgba) if b.name in meshes else b for b in mechanism.bodies)
-    return Mechanism(bodies, mechanism.joints, mechanism.root, mechanism.keep)
+    bodies = []
+    for b in mechanism.bodies:
+        solid = meshes.get(b.name, b.solid)
+        bodies.append(Body(b.name, solid, solid if b.name in colliding else None, b.rgba, b.spacer))
+    return Mechanism(tuple(bodies), mechanism.joints, mechanism.root, mechanism.keep)

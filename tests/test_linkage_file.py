@@ -207,3 +207,50 @@ def test_spherical_joints_read_as_three_hinges_and_a_spinning_link_is_refused(tm
     two = write(tmp_path, broken(lambda d: [d["joints"][k].update(type="spherical") for k in (2, 3)]), "two.json")
     with pytest.raises(ParameterError, match="joints: a link between two spherical joints spins freely"):
         linkage_scene(two)
+
+
+def test_meshes_and_contact_pairs_become_solids_and_collision_solids(tmp_path):
+    import trimesh
+
+    trimesh.creation.box(extents=(100.0, 10.0, 10.0)).export(tmp_path / "crank.stl")  # millimetres, as the file
+    doc = broken(lambda d: d.update(units={"length": "mm"}, shapes={"meshes": {"link_1": "crank.stl"}, "width": 20},
+                                    contact=[["link_1", "link_3"]]))  # fmt: skip
+    for joint in doc["joints"]:
+        joint["a"] *= 1000.0
+    spec = read_linkage(write(tmp_path, doc))
+    bodies = {b.name: b for b in spec.mechanism.bodies}
+    assert np.allclose(bodies["link_1"].solid.extents, [0.1, 0.01, 0.01])
+    assert np.allclose(bodies["link_2"].solid.extents[1:], [0.02, 0.02])  # a bar of the given width (mm)
+    assert bodies["link_3"].collision is bodies["link_3"].solid and bodies["link_2"].collision is None
+    assert spec.contact_pairs == (("link_1", "link_3"),)
+    bad = write(tmp_path, broken(lambda d: d.update(contact=[["link_1", "link_9"]])), "bad.json")
+    with pytest.raises(ParameterError, match=r"contact\[0\]: unknown body 'link_9'"):
+        read_linkage(bad)
+
+
+def test_two_loops_as_axes_move_as_the_goldberg_5r(tmp_path):
+    """The Goldberg construction before its common link is removed: both Bennett linkages, sharing link DA and
+    joints A and D, with AB and AE fixed together (six bodies, seven hinges, two loops; Kutzbach -5). It moves with
+    one freedom, and its hinges B, C, E, F follow the Goldberg 5R's numeric path to 1e-12 rad."""
+    goldberg = json.loads((EXAMPLES / "goldberg-5r.json").read_text())
+    joints = {j["name"]: j for j in goldberg["joints"]}
+    joints["D"]["bodies"] = ["CD", "DA"]  # Bennett 1's hinge D, and Bennett 2's (FD to DA) beside it
+    start = {j["name"]: j["theta0"] for j in goldberg["joints"]}
+    beta = np.arcsin(0.75)
+    joints["D2"] = {"name": "D2", "bodies": ["DF", "DA"], "point": [0.0, 0.0, 0.0], "direction": [0.0, 0.0, 1.0],
+                    "theta0": -start["E"]}  # Bennett 2's angle at D is -E
+    joints["D"].update(point=[0.0, 0.0, 0.0], direction=[0.0, 0.0, 1.0], theta0=-start["B"])
+    joints["A"] = {"name": "A", "bodies": ["DA", "EB"], "point": [1.5, 0.0, 0.0],
+                   "direction": [0.0, -np.sin(beta), np.cos(beta)], "theta0": -start["C"]}  # fmt: skip
+    doc = goldberg | {"name": "two-bennett", "ground": "DA", "joints": list(joints.values())}
+    scene = linkage_scene(write(tmp_path, doc))
+    assert len(scene.kinematics.loop_system().loops) == 2 and scene.kinematics.gruebler() == -5
+    assert set(np.unique(scene.kinematics.mobility)) == {1}
+    five = linkage_scene(EXAMPLES / "goldberg-5r.json")
+    x = np.deg2rad(np.linspace(45.0, 135.0, 19))
+    names = scene.kinematics.joint_names
+    two = scene.kinematics.evaluate("path-1", x)[0]
+    one = five.kinematics.evaluate("path-1", x)[0]
+    for k, name in enumerate(five.kinematics.joint_names):
+        if name != "D":
+            assert np.max(np.abs(wrap(two[:, names.index(name)] - one[:, k]))) < 1e-12
