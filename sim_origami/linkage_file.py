@@ -54,6 +54,13 @@ ANCHOR_SHARE = 0.5
 # The default sweep lasts this many times the preset's duration (the FOLD route's choice: MuJoCo's lag behind the
 # driven path falls as 1/T^2, and the built-in linkages need 3-4x to stay below 1e-7 rad).
 SWEEP_TIME_SCALE = 4.0
+# Lengths beyond this (m) are refused as they are read, before any solid is built (1e308 overflowed trimesh); the
+# scene then holds the linkage's size to the simulated range (`scenes.base.LENGTH_RANGE`, 1e-4 .. 1e4 m).
+LENGTH_LIMIT = 1e9
+# The input range lies within +-RANGE_LIMIT (rad): a turn either way (the trace steps at most 0.05 rad, so a range
+# of 1e308 deg would never end); the sweep lasts at most SWEEP_SCALE_LIMIT times the preset's duration.
+RANGE_LIMIT = 2 * math.pi
+SWEEP_SCALE_LIMIT = 100.0
 
 TOP_FIELDS = {VERSION_KEY, "form", "name", "units", "joints", "bodies", "ground", "input", "shapes", "contact",
               "anchor", "sweep_time_scale", "notes"}  # fmt: skip
@@ -107,9 +114,9 @@ def read_linkage(source: str | Path) -> LinkageSpec:
     units = _table(doc.get("units", {}), "units")
     _known(units, {"length", "angle"}, "units")
     length_unit, angle_unit = units.get("length", "m"), units.get("angle", "deg")
-    if length_unit not in LENGTH_UNITS:
+    if not isinstance(length_unit, str) or length_unit not in LENGTH_UNITS:
         raise ParameterError(f"units.length = {length_unit!r}: it must be one of {', '.join(LENGTH_UNITS)}")
-    if angle_unit not in ANGLE_UNITS:
+    if not isinstance(angle_unit, str) or angle_unit not in ANGLE_UNITS:
         raise ParameterError(f"units.angle = {angle_unit!r}: it must be one of {', '.join(ANGLE_UNITS)}")
     read = _Reader(LENGTH_UNITS[length_unit], ANGLE_UNITS[angle_unit], path.parent)
     joints = doc.get("joints")
@@ -121,13 +128,16 @@ def read_linkage(source: str | Path) -> LinkageSpec:
     given = _table(doc.get("input"), "input")
     _known(given, {"joint", "range", "start"}, "input")
     joint = given.get("joint")
-    if joint not in input_names:
+    if not isinstance(joint, str) or joint not in input_names:
         raise ParameterError(f"input.joint = {joint!r}: it must name a revolute joint, one of "
                              f"{', '.join(input_names)}")
     mech_input = input_names[joint]
     span = read.angles(given.get("range"), "input.range", 2)
     if not span[0] < span[1]:
         raise ParameterError("input.range: give [low, high] with low < high")
+    if max(abs(span[0]), abs(span[1])) > RANGE_LIMIT + 1e-12:
+        raise ParameterError(f"input.range = {given['range']!r}: it must lie within one turn either way "
+                             f"(+-{RANGE_LIMIT / read.rad:g} {angle_unit})")
     start_input = read.angle(given["start"], "input.start") if "start" in given else None
     if start_input is not None and not span[0] <= start_input <= span[1]:
         raise ParameterError("input.start: it must lie inside input.range")
@@ -142,6 +152,8 @@ def read_linkage(source: str | Path) -> LinkageSpec:
                     for k, p in enumerate(_list(doc.get("contact", []), "contact")))  # fmt: skip
     mechanism = _with_solids(mechanism, meshes, {b for pair in contact for b in pair})
     scale = read.positive(doc.get("sweep_time_scale", SWEEP_TIME_SCALE), "sweep_time_scale", length=False)
+    if scale > SWEEP_SCALE_LIMIT:
+        raise ParameterError(f"sweep_time_scale = {scale:g}: it must be at most {SWEEP_SCALE_LIMIT:g}")
     notes = doc.get("notes", "")
     if not isinstance(notes, str):
         raise ParameterError(f"notes = {notes!r}: it must be a string")
@@ -166,16 +178,19 @@ class _Reader:
         return float(value)
 
     def length(self, value: Any, field: str) -> float:
-        return self.number(value, field) * self.length_m
+        out = self.number(value, field) * self.length_m
+        if abs(out) > LENGTH_LIMIT:
+            raise ParameterError(f"{field} = {value!r}: lengths beyond {LENGTH_LIMIT:g} m are not simulated")
+        return out
 
     def angle(self, value: Any, field: str) -> float:
         return self.number(value, field) * self.rad
 
     def positive(self, value: Any, field: str, length: bool = True) -> float:
-        out = self.number(value, field)
+        out = self.length(value, field) if length else self.number(value, field)
         if not out > 0:
             raise ParameterError(f"{field} = {value!r}: it must be > 0")
-        return out * (self.length_m if length else 1.0)
+        return out
 
     def vector(self, value: Any, field: str) -> NDArray[np.float64]:
         if not isinstance(value, list) or len(value) != 3:
@@ -228,7 +243,8 @@ def _known(table: dict, fields: set[str], where: str) -> None:
 
 
 def _pair(value: Any, field: str, bodies: set[str]) -> tuple[str, str]:
-    if not isinstance(value, list) or len(value) != 2 or value[0] == value[1]:
+    if not isinstance(value, list) or len(value) != 2 or not all(isinstance(v, str) for v in value) or \
+            value[0] == value[1]:
         raise ParameterError(f"{field} = {value!r}: give two different body names")
     for name in value:
         if name not in bodies:
@@ -325,7 +341,8 @@ def _dh(doc: dict, joints: list[dict], read: _Reader):
         raise ParameterError("joints: every joint is spherical; the input must be a revolute joint")
     inputs = {names[k - 1]: f"joint_{k}" for k in hinges}
     given = _table(doc.get("input"), "input")
-    driven = int(inputs.get(given.get("joint"), f"joint_{hinges[0]}").split("_")[1])
+    joint = given.get("joint")
+    driven = int(inputs.get(joint, f"joint_{hinges[0]}").split("_")[1]) if isinstance(joint, str) else hinges[0]
     mechanism = reduced_form(tuple(rows), tuple(spherical), width=width, anchor=anchor, input_joint=driven)
     joint_names = []
     for j in mechanism.joints:
@@ -372,12 +389,14 @@ def _axes(doc: dict, joints: list[dict], read: _Reader):
         if "point" not in j:
             raise ParameterError(f"{field}.point: missing; a joint is a line through a point (its centre for a "
                                  "spherical joint)")
-        p = read.vector(j["point"], f"{field}.point") * read.length_m
+        p = np.array([read.length(v, f"{field}.point[{i}]") for i, v in enumerate(read.vector(j["point"],
+                                                                                        f"{field}.point"))])
         if kind == "revolute" and "direction" not in j:
             raise ParameterError(f"{field}.direction: missing; a revolute joint turns about a direction")
         d = read.vector(j.get("direction", [0.0, 0.0, 1.0]), f"{field}.direction")
-        if not np.linalg.norm(d) > 0:
+        if not np.max(np.abs(d)) > 0:
             raise ParameterError(f"{field}.direction = {j['direction']!r}: it must be a nonzero vector")
+        d = d / np.max(np.abs(d))  # any length is read, 1e308 included, without overflowing its norm
         if kind == "spherical" and "theta0" in j:
             raise ParameterError(f"{field}.theta0: a spherical joint's angles are 0 in the drawn pose")
         points.append(p)
@@ -404,7 +423,7 @@ def _axes(doc: dict, joints: list[dict], read: _Reader):
             starts[name] = theta0[k]
             inputs[name] = name
     given = _table(doc.get("input"), "input")
-    keep = (given["joint"],) if given.get("joint") in inputs else ()
+    keep = (given["joint"],) if isinstance(given.get("joint"), str) and given["joint"] in inputs else ()
     try:
         mechanism = Mechanism(tuple(body_list), tuple(mech_joints), root=ground, keep=keep)
         mechanism.tree  # noqa: B018  (a body left out of the graph is found here, before anything is traced)

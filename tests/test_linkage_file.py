@@ -254,3 +254,47 @@ def test_two_loops_as_axes_move_as_the_goldberg_5r(tmp_path):
     for k, name in enumerate(five.kinematics.joint_names):
         if name != "D":
             assert np.max(np.abs(wrap(two[:, names.index(name)] - one[:, k]))) < 1e-12
+
+
+def _leaves(doc, path=()):
+    """Every value's path in a parsed file (tables and lists included)."""
+    yield path
+    children = doc.items() if isinstance(doc, dict) else enumerate(doc) if isinstance(doc, list) else ()
+    for key, value in children:
+        yield from _leaves(value, (*path, key))
+
+
+JUNK = (None, True, "x", [], {}, [1], -1, 0, 1e308, float("nan"), [[1]], {"a": 1}, [["a"], "b"])
+
+
+@pytest.mark.parametrize("source", ["bennett.toml", pytest.param("goldberg-5r.json", marks=pytest.mark.slow)])
+def test_any_field_replaced_by_junk_reads_or_is_refused_in_one_line(tmp_path, source):
+    """Every field of an example, replaced in turn by each JSON value of JUNK: a clean read or one ParameterError."""
+    import tomllib
+
+    text = (EXAMPLES / source).read_text()
+    base = tomllib.loads(text) if source.endswith(".toml") else json.loads(text)
+    for path in list(_leaves(base))[1:]:
+        for junk in JUNK:
+            doc = json.loads(json.dumps(base))
+            target = doc
+            for key in path[:-1]:
+                target = target[key]
+            target[path[-1]] = junk
+            try:
+                read_linkage(write(tmp_path, doc))
+            except ParameterError as err:
+                assert "\n" not in str(err)
+
+
+@pytest.mark.parametrize(
+    ("change", "needle"),
+    [(lambda d: d["input"].update(range=[0, 1e308]), "input.range = [0, 1e+308]: it must lie within one turn"),
+     (lambda d: d.update(sweep_time_scale=1e6), "sweep_time_scale = 1e+06: it must be at most 100"),
+     (lambda d: d["joints"][0].update(a=1e308), "joints[0].a = 1e+308: lengths beyond 1e+09 m are not simulated"),
+     (lambda d: d.update(units={"length": "um"}), "units.length: the linkage is 1.5e-06 m across")],
+)  # fmt: skip
+def test_values_that_would_run_forever_or_overflow_are_refused(tmp_path, change, needle):
+    with pytest.raises(ParameterError) as err:
+        linkage_scene(write(tmp_path, broken(change)))
+    assert needle in str(err.value)
