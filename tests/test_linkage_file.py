@@ -172,7 +172,7 @@ def test_bad_linkage_files_exit_2_naming_the_field(capsys, tmp_path, change, nee
 
 def test_a_start_that_does_not_close_is_refused_with_its_residual(tmp_path):
     doc = broken(lambda d: [j.update(theta0=30.0 + 10.0 * k) for k, j in enumerate(d["joints"])])
-    with pytest.raises(ParameterError, match=r"start: the loops cannot be closed .* closure residual"):
+    with pytest.raises(ParameterError, match=r"joints\[\]\.theta0: the loops cannot be closed .* closure residual"):
         linkage_scene(write(tmp_path, doc))
 
 

@@ -7,11 +7,12 @@ monitoring) and named generically, `path-1`, `path-2`, ... (the given start, or 
 order, is `path-1`). A branch's domain is what its trace reached: the whole range, or up to a stall (a turning
 point or a lock, where no closed configuration lies beyond with the input moved on).
 
-Events: where a trace stalled, where the mobility changed along it, and, where two branches meet at a pose whose
-mobility rises, a bifurcation naming both (so the validation seeds MuJoCo on each of them there).
+Events: where a trace stalled, where the mobility changed along it, and, where two branches pass through one pose,
+a bifurcation naming both (so the validation seeds MuJoCo on each of them there).
 
-`evaluate` polishes an interpolated guess with the solver at each input, so values close the loops to 1e-15 where
-the path is regular. Angles in radians; translations in the loops' length unit.
+`evaluate` closes interpolated poses by chord steps (all inputs at once) and the full solve where those do not
+close, so values close the loops to 1e-15 where the path is regular; within SINGULAR_ZONE of a meeting it
+extrapolates from regular poses either side. Angles in radians; translations in the loops' length unit.
 """
 
 from collections.abc import Sequence
@@ -33,7 +34,8 @@ from .numeric_pattern import CLOSE_TOL, POLISH_TOL
 ASSEMBLY_STARTS = 24
 SAME_ASSEMBLY = 1e-6
 # When none closes, the smallest residual reported is the least of MISS_STARTS damped-Newton runs of MISS_ITER steps
-# (a 4R that cannot close: 1.37 from 64 runs of 200 steps in 4.2 s of CPU, 1.34 from 8 of 60 in 0.16 s).
+# (a 4R that cannot close, at theta1 = 80 deg: 1.37 from 64 runs of 200 steps in 4.2 s of CPU, 1.34 from 8 of 60
+# in 0.16 s).
 MISS_STARTS = 8
 MISS_ITER = 60
 # A given start configuration may be this far (rad) from the closed one it stands for: hand-written angles are
@@ -77,9 +79,7 @@ class LinkagePath(JointSpaceKinematics):
     input_joint : index of the driven joint; the input x is its angle (rad).
     input_range : (lo, hi), rad: the traces run from the start to both ends.
     start : a closed (or nearly closed) configuration (rad), or None to assemble at `start_input`.
-    start_input : the input at which to assemble when no `start` is given (default the range's middle).
-    idle_spins : trivial freedoms the loops have and the motion does not (spins of bars between two spherical
-      joints), subtracted from the mobility along the path.
+    start_input : the input at which to assemble when no `start` is given (default START_SHARE of the range).
     ball_middles : the middle (y) hinge of each spherical joint: its x-y-z angles have two sets per rotation, and
       assemblies are taken with every middle angle within +-pi/2 where one is (the set MuJoCo's poses give back).
     compared : joints (bool mask) by which two assemblies are told apart (default all; a spherical joint's angles
@@ -101,7 +101,6 @@ class LinkagePath(JointSpaceKinematics):
         start: ArrayLike | None = None,
         *,
         start_input: float | None = None,
-        idle_spins: int = 0,
         ball_middles: Sequence[int] = (),
         compared: ArrayLike | None = None,
     ):
@@ -110,7 +109,6 @@ class LinkagePath(JointSpaceKinematics):
         self.input_index = int(input_joint)
         self.input_name = self.joint_names[self.input_index]
         self.lo, self.hi = float(min(input_range)), float(max(input_range))
-        self.idle_spins = int(idle_spins)
         self.ball_middles = np.asarray(ball_middles, dtype=int)
         self.compared = np.ones(loops.n_joints, dtype=bool) if compared is None else np.asarray(compared, dtype=bool)
         fixed = np.zeros(loops.n_joints, dtype=bool)
@@ -119,14 +117,16 @@ class LinkagePath(JointSpaceKinematics):
             given = np.asarray(start, dtype=float)
             x0 = float(given[self.input_index])
             if not self.lo <= x0 <= self.hi:
-                raise ParameterError(f"start: the input {self.input_name} = {np.rad2deg(x0):.6g} deg lies outside "
-                                     f"input.range [{np.rad2deg(self.lo):.6g}, {np.rad2deg(self.hi):.6g}] deg")
+                raise ParameterError(f"joints[].theta0: the start angle of the input {self.input_name}, "
+                                     f"{np.rad2deg(x0):.6g} deg, lies outside input.range [{np.rad2deg(self.lo):.6g}, "
+                                     f"{np.rad2deg(self.hi):.6g}] deg")  # fmt: skip
             q, residual, _ = correct(loops, given, fixed, CLOSE_TOL, max_iter=200)
             gap = float(np.max(np.abs(q - given), initial=0.0))
             if residual > 100 * CLOSE_TOL or gap > START_TOL:
                 raise ParameterError(
-                    f"start: the loops cannot be closed at the start configuration: closure residual {residual:.3g} "
-                    f"with the input held, nearest closed pose {gap:.3g} rad away (allowed {START_TOL:g})")
+                    f"joints[].theta0: the loops cannot be closed at the start configuration: closure residual "
+                    f"{residual:.3g} with the input held, nearest closed pose {gap:.3g} rad away (allowed "
+                    f"{START_TOL:g})")
             starts = [q] + [a for a in self._assemble(x0) if not self._same(a, q)]
             self.assembly = f"the given start configuration (closed to {residual:.2g}, moved {gap:.2g} rad)"
         else:
@@ -196,7 +196,7 @@ class LinkagePath(JointSpaceKinematics):
                    r.mobility[1:] if down is not None else r.mobility) for r in (up,) if r is not None]
         s = np.concatenate([p[0] for p in parts])
         q = np.vstack([p[1] for p in parts])
-        m = np.concatenate([p[2] for p in parts]) - self.idle_spins
+        m = np.concatenate([p[2] for p in parts])
         if len(s) < 2:
             raise ParameterError(f"input.range: the linkage does not move from its start ({self.input_name} = "
                                  f"{np.rad2deg(x0):.6g} deg): {(down or up).stop.detail}")
