@@ -298,3 +298,13 @@ def test_values_that_would_run_forever_or_overflow_are_refused(tmp_path, change,
     with pytest.raises(ParameterError) as err:
         linkage_scene(write(tmp_path, broken(change)))
     assert needle in str(err.value)
+
+
+def test_describe_linkage_prints_the_reference_header_of_the_example_curves(capsys):
+    assert main(["describe", "--linkage", str(EXAMPLES / "goldberg-5r.json")]) == 0
+    out = capsys.readouterr().out
+    header = (EXAMPLES / "goldberg-5r_curves.csv").read_text().splitlines()[1]
+    assert f"reference CSV header (validate --reference): {header}" in out
+    assert "path-1     C in [40.0000, 140.0000] deg" in out
+    assert main(["describe", "bennett", "--linkage", str(EXAMPLES / "bennett.toml")]) == 2
+    assert "give a SCENE or --linkage FILE" in capsys.readouterr().err
