@@ -308,3 +308,16 @@ def test_describe_linkage_prints_the_reference_header_of_the_example_curves(caps
     assert "path-1     C in [40.0000, 140.0000] deg" in out
     assert main(["describe", "bennett", "--linkage", str(EXAMPLES / "bennett.toml")]) == 2
     assert "give a SCENE or --linkage FILE" in capsys.readouterr().err
+
+
+def test_branches_meeting_at_the_range_ends_are_bifurcations(tmp_path):
+    """The threefold Bricard over a whole turn: its two motions meet at theta1 = +-180 deg (Yang 2017, section 2.5),
+    the ends of the range; found there to 1e-12 rad, with closed poses (one-sided extrapolation)."""
+    doc = json.loads((EXAMPLES / "bricard-threefold.json").read_text())
+    doc["input"]["range"] = [-180.0, 180.0]
+    kin = linkage_scene(write(tmp_path, doc)).kinematics
+    meetings = sorted(e.input for e in kin.events() if e.kind == "bifurcation")
+    assert np.allclose(meetings, [-np.pi, np.pi], atol=1e-12, rtol=0)
+    for x in meetings:
+        for branch in ("path-1", "path-2"):
+            assert kin.loop_system().residual_norm(kin.evaluate(branch, [x])[0])[0] < 1e-13

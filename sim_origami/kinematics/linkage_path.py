@@ -226,8 +226,9 @@ class LinkagePath(JointSpaceKinematics):
         return tuple(out)
 
     def _meetings(self, a: str, b: str) -> list[float]:
-        """Inputs (rad) where branches a and b pass through one pose: local minima of their distance (every joint,
-        modulo 2 pi) on a grid of the traced nodes below MEET_GRID, refined on polished poses to MEET_RAD."""
+        """Inputs (rad) where branches a and b pass through one pose: the smallest distance (every joint, modulo
+        2 pi) of each stretch of a grid of the interpolated traces where it is below MEET_GRID, refined on polished
+        poses to MEET_RAD."""
         lo = max(self.nodes[a][0][0], self.nodes[b][0][0])
         hi = min(self.nodes[a][0][-1], self.nodes[b][0][-1])
         if hi <= lo:
@@ -235,9 +236,10 @@ class LinkagePath(JointSpaceKinematics):
         grid = np.linspace(lo, hi, MEET_SAMPLES)
         gap = np.max(np.abs(wrap(self._interp(a, grid) - self._interp(b, grid))), axis=1)
         out = []
-        for k in np.flatnonzero(gap < MEET_GRID):
-            if (k > 0 and gap[k - 1] < gap[k]) or (k < len(grid) - 1 and gap[k + 1] < gap[k]):
-                continue
+        close = np.r_[False, gap < MEET_GRID, False]
+        edges = np.flatnonzero(np.diff(close.astype(int)))  # each stretch below MEET_GRID: [start, stop)
+        for first, stop in zip(edges[::2], edges[1::2], strict=True):
+            k = first + int(np.argmin(gap[first:stop]))  # one candidate per stretch, however long
 
             def distance(x: float) -> float:
                 return float(np.max(np.abs(wrap(self.evaluate(a, x)[0][0] - self.evaluate(b, x)[0][0]))))
@@ -255,12 +257,19 @@ class LinkagePath(JointSpaceKinematics):
         square root of its residual, 5e-7 rad on the plane-symmetric Bricard's crossing), which bounded the distance's
         minimiser to 6.6e-7 rad there; the secant from regular poses gives 7.5e-11 rad.
         """
-        ends = np.array([x - MEET_BRACKET, x + MEET_BRACKET])
+        lo = max(self.nodes[a][0][0], self.nodes[b][0][0])
+        hi = min(self.nodes[a][0][-1], self.nodes[b][0][-1])
+        if lo <= x - MEET_BRACKET and x + MEET_BRACKET <= hi:
+            ends = np.array([x - MEET_BRACKET, x + MEET_BRACKET])
+        else:  # a meeting at the end of the traces: the secant from the side they cover, extrapolated
+            side = 1.0 if x - lo < hi - x else -1.0
+            ends = x + side * MEET_BRACKET * np.array([1.0, 2.0])
         parting = wrap(self.evaluate(a, ends)[0] - self.evaluate(b, ends)[0])
         j = int(np.argmax(np.abs(parting[1] - parting[0])))
-        if not np.all(np.isfinite(parting)) or parting[0, j] * parting[1, j] >= 0:
+        if not np.all(np.isfinite(parting)) or parting[1, j] == parting[0, j]:
             return x
-        return float(ends[0] - parting[0, j] * (ends[1] - ends[0]) / (parting[1, j] - parting[0, j]))
+        root = float(ends[0] - parting[0, j] * (ends[1] - ends[0]) / (parting[1, j] - parting[0, j]))
+        return min(max(root, lo), hi) if abs(root - x) <= MEET_BRACKET else x  # on the traces, ends included
 
     def _covers(self, branch: str, x: float) -> bool:
         s = self.nodes[branch][0]
@@ -296,11 +305,15 @@ class LinkagePath(JointSpaceKinematics):
         values = self._polished(branch, x, valid)
         for xb in (e.input for e in self._events if e.kind == "bifurcation" and branch in e.branches):
             near = valid & (np.abs(x - xb) < SINGULAR_ZONE)
-            if np.any(near):  # the branch is smooth through the meeting: extrapolate from regular poses either side
-                h = SINGULAR_STEP * np.array([-2.0, -1.0, 1.0, 2.0])
-                for k in np.flatnonzero(near):
-                    q = self._polished(branch, x[k] + h, np.ones(4, dtype=bool))
-                    values[k] = (2.0 * (q[1] + q[2]) - 0.5 * (q[0] + q[3])) / 3.0
+            lo, hi = self.branch(branch).domain
+            for k in np.flatnonzero(near):  # the branch is smooth through the meeting: extrapolate from regular poses
+                if lo <= x[k] - 2 * SINGULAR_STEP and x[k] + 2 * SINGULAR_STEP <= hi:  # either side
+                    offsets, weights = np.array([-2.0, -1.0, 1.0, 2.0]), np.array([-1.0, 4.0, 4.0, -1.0]) / 6.0
+                else:  # on the side the domain lies (a meeting at its end): cubic through four poses, O(h^4)
+                    side = 1.0 if x[k] - lo < hi - x[k] else -1.0
+                    offsets, weights = side * np.arange(1.0, 5.0), np.array([4.0, -6.0, 4.0, -1.0])
+                q = self._polished(branch, x[k] + SINGULAR_STEP * offsets, np.ones(4, dtype=bool))
+                values[k] = weights @ q
         return values, valid
 
     def _polished(self, branch: str, x: NDArray[np.float64], valid: NDArray[np.bool_]) -> NDArray[np.float64]:
