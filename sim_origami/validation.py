@@ -130,7 +130,7 @@ def path_events(
 def mobility_report(scene: Scene, branch: str, start: float) -> dict:
     """
     Grubler-Kutzbach count next to the numerical rank of the closure Jacobian, from the numeric
-    loop and from MuJoCo's efc_J, and the truss method's mobility and states of self-stress (seed 001),
+    loop and from MuJoCo's efc_J, and the truss method's mobility and states of self-stress (Yang 2017, ch. 2),
     at the path start and at each bifurcation point of the branch. The idle spins of bars held by two
     spherical joints are left out of every count (the truss method has none).
     """
