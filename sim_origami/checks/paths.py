@@ -32,9 +32,9 @@ class PathComparison:
 def compare(scene: Scene, branch: str, q: NDArray[np.float64]) -> PathComparison:
     """
     Outputs measured from mechanism angles q (n, n_joints) against `branch`. With several driven joints, the
-    reference holds them where q has them: their dynamic lags differ, so they leave the drive path a little (the
-    waterbomb cell read back from its FOLD file, five inputs: up to 2.7e-3 rad at a corner of the path), and the
-    reference at the path's nearest point would count that tracking gap, times the pattern's gearing, as error.
+    reference holds them where q has them: their dynamic lags differ, so they leave the drive path a little, and
+    the reference at the path's nearest point would count that tracking gap, geared up by the mechanism, as error
+    (docs/fold_motion.md, the waterbomb cell driven by five creases).
     """
     x = scene.input_of(q)
     if scene.drive_path is None:

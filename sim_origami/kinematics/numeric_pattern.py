@@ -8,7 +8,8 @@ with k driven creases (the inputs) moved along a path in their space. Two ways t
   folds flat; the input x is the driven crease's angle;
 - directed: anything else (several inputs, frames, a state with NaN (free) entries, creases at +-180 deg, a state
   off the rigid path, M/V letters only): the inputs move from flat along a straight line to the state's inputs
-  (or through the frames' inputs), and the trace goes as far as the rigid motion does. It stops at the path's
+  (or through the frames' inputs; from the first frame, back to flat and on, when it is an exact rigid state),
+  and the trace goes as far as the rigid motion does. It stops at the path's
   end, at a stall (no rigid configuration beyond), where a crease reaches +-(pi - LOCK_MARGIN), or, with
   `signs`, where a crease would take the other sign than its M/V letter. With one input x is its angle;
   with several, the arc length (rad) along the inputs' path from flat.
@@ -90,7 +91,8 @@ class PatternPath(JointSpaceKinematics):
     target : (n_creases,) float, optional
       A folded state (rad); NaN entries are free. Not needed with `frames` or `signs`.
     frames : (n_frames, n_creases) float, optional
-      States the motion passes through in turn (NaN free): the inputs move from flat through theirs.
+      States the motion passes through in turn (NaN free): the inputs move from flat through theirs, traced from
+      the first folded frame when it closes with the inputs held (`_frame_anchor`).
     signs : (n_creases,) float, optional
       M/V letters as -1/+1 (0: free): the trace keeps each crease on its letter's side and, without a target,
       heads for +-pi in every driven crease.
@@ -272,8 +274,8 @@ class PatternPath(JointSpaceKinematics):
         """
         (its parameter, the closed state) of the first folded frame, closed with the inputs held, when it is an
         exact rigid state (every angle given, within TARGET_TOL of the closed one, inside the bounds); else None.
-        Traced from flat instead, the inputs alone may pick another branch at flat, a branch point: the thick
-        waterbomb cell driven by e1 did, 0.79 rad from the file's frames.
+        Traced from flat instead, the inputs alone may pick another branch at flat, a branch point (the thick
+        waterbomb cell driven by e1 did, 0.79 rad from its frames).
         """
         if self.frames is None:
             return None

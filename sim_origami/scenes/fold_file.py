@@ -1,20 +1,22 @@
 """A scene from a FOLD 1.2 file: any crease pattern, with the numeric loop closure as the reference.
 
 What the motion is (`kinematics.numeric_pattern` for the trace and its stops):
-- the file's frames, when it has several: the inputs move from flat through each frame's inputs in turn;
+- the file's frames, when it has several: the inputs move through each frame's inputs in turn (traced from the first
+  frame, back to flat and on through the others);
 - else its folded state (the last frame, or the key frame's `edges_foldAngle`; null = free): anchored at it when
   it is an exact rigid state with one input, otherwise a direction traced from flat as far as the rigid motion goes
   (+-180 deg targets, free entries, states off the rigid path);
 - else its M/V letters: from flat with every crease on its letter's side, towards +-180 deg.
 The inputs are the creases named (`--input e1,e5`), or as many as the pattern has freedoms along the motion,
-picked by rank (`path.independent_joints`), the most folded crease first. F creases are locked flat.
+picked by rank (`path.independent_joints`), the steadiest crease first (`steadiest`: the one whose rate stays the
+largest fraction of the fastest crease's). F creases are locked flat.
 
 Scale. The pattern is simulated at unit size: lengths divided by its longest edge L (`params["size_m"]`), so the
 same pattern at 1 mm, 1 m or 1000 "unit" gives the same verdict and angle errors; closure residuals in the report
 are then in units of L (multiply by L for metres).
 
 The sweep runs from SWEEP_FROM of the target's input to the target when the target is a state on the rigid motion,
-else from SWEEP_FROM of the traced motion's end to that end, or over the frames' whole span.
+else from SWEEP_FROM of the traced motion's end to that end, or from the first frame to the last.
 """
 
 from dataclasses import replace
@@ -174,8 +176,8 @@ def steadiest(states: np.ndarray, usable: np.ndarray, default: int, swept: np.nd
     The usable crease whose rate stays the largest fraction of the fastest crease's along `states` (m, n_creases)
     (rad, in the motion's order), over the steps `swept` (m - 1, n_creases) marks for each crease (default all);
     `default` when nothing moves. Driven, it gears every other crease up the least, so MuJoCo's lag behind the
-    drive is amplified the least; a crease near a turning point (rate -> 0) scores 0. The thick waterbomb cell's
-    motion read back: the most folded crease e10 scores 0.28 and lags 2.2e-6 rad, e3 0.52 (3.8e-8), e9 0.65.
+    drive is amplified the least; a crease near a turning point (rate -> 0) scores 0 (measured scores and lags:
+    docs/fold_motion.md).
     """
     steps = np.nan_to_num(np.abs(np.diff(states, axis=0)))  # a free (null) entry has no rate: 0
     fastest = np.max(steps, axis=1, initial=0.0)
