@@ -118,14 +118,11 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
         else FRAMES_TOL  # fmt: skip
     mechanism = pattern_mechanism(pattern, root=pattern.crease_faces(pattern.crease(inputs[0]))[0], keep=inputs,
                                   couplings=tuple((names[c.joint], names[c.joint], 0.0) for c in lock_flat(pattern)))
-    lo, hi = kinematics.branches()[0].domain
-    # a state on the rigid motion is what the file asks about: sweep up to it; a direction: as far as the trace went;
     # frames: the motion they describe, from the first to the last (the trace from flat to the first only finds it)
-    end = kinematics.target_input if kinematics.target_input is not None else hi if abs(hi) >= abs(lo) else lo
     if several is not None:
         sweep = (kinematics.frame_distances[0]["input"], kinematics.frame_distances[-1]["input"])
     else:
-        sweep = (SWEEP_FROM * end, end)
+        sweep = (SWEEP_FROM * motion_end(kinematics), motion_end(kinematics))
     multi = not kinematics.path_is_input
     source = "frames" if several is not None else "M/V letters" if letters_only else "folded state"
     return Scene(
@@ -136,6 +133,15 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
         f"{', '.join(inputs)}; {kinematics.summary()}",
         pattern=pattern, drive_joints=tuple(inputs) if multi else (), drive_path=kinematics.path if multi else None,
     )  # fmt: skip
+
+
+def motion_end(kinematics: PatternPath) -> float:
+    """
+    The input (rad) a state or letters sweep ends at: a state on the rigid motion is what the file asks about, so
+    its input; a direction, as far as the trace went.
+    """
+    lo, hi = kinematics.branches()[0].domain
+    return kinematics.target_input if kinematics.target_input is not None else hi if abs(hi) >= abs(lo) else lo
 
 
 def _choose_inputs(pattern: CreasePattern, target, frames, signs) -> tuple[str, ...]:
@@ -155,8 +161,7 @@ def _choose_inputs(pattern: CreasePattern, target, frames, signs) -> tuple[str, 
         first = steadiest(frames, usable, first)
     trial = PatternPath(pattern, names[first], target, frames=frames, signs=signs)
     if frames is None:
-        lo, hi = trial.branches()[0].domain
-        end = trial.target_input if trial.target_input is not None else hi if abs(hi) >= abs(lo) else lo
+        end = motion_end(trial)
         on = (trial.s_nodes * np.sign(end) >= 0) & (np.abs(trial.s_nodes) <= abs(end))
         nodes = trial.nodes[on][np.argsort(np.abs(trial.s_nodes[on]))]  # from flat to the end
         # driven, crease j would sweep from SWEEP_FROM of its end angle to its end angle
