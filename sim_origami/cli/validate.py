@@ -32,7 +32,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--all", action="store_true", help="every scene with its defaults, plus a summary")
     parser.add_argument("--fold", type=Path, help="a FOLD 1.2 file with a folded state: numeric reference")
     parser.add_argument("--input", help="with --fold: the driven crease(s), e<edge index>[,e<edge index>...] "
-                        "(default: as many as the pattern has freedoms, picked by rank, the most folded first)")
+                        "(default: as many as the pattern has freedoms, picked by rank, the steadiest first)")
     parser.add_argument("--frames-tolerance", type=float, metavar="DEG",
                         help="with --fold: fail frames farther than this from the rigid motion (default 0.573 deg "
                         "for exact angles; frames measured from 3-D coordinates are reported only)")
