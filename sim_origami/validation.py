@@ -148,7 +148,7 @@ def mobility_report(scene: Scene, branch: str, start: float) -> dict:
                 "truss": truss.mobility, "truss_self_stress": truss.self_stress}  # fmt: skip
 
     points = [e.input for e in kin.events() if e.kind == "bifurcation" and branch in e.branches]
-    out = {"gruebler": kin.gruebler(), "inputs": len(scene.drives), "start": at(start),
+    out = {"gruebler": kin.gruebler(), "idle_spins": idle, "inputs": len(scene.drives), "start": at(start),
            "bifurcations": [at(x) for x in points]}  # fmt: skip
     along = getattr(kin, "mobility", None)  # a traced reference's mobility at each of its nodes
     if along is not None and not callable(along):
@@ -243,7 +243,9 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
         Verdict(f"{branch}: branch followed", float(labels.followed != branch or labels.flips > 0), 0.0,
                 f"followed {labels.followed or 'none'}, {labels.flips} flips"),
         Verdict(f"{branch}: mobility, numeric rank vs MuJoCo rank vs truss (poses that differ)", float(disagree), 0.0,
-                f"Kutzbach {mobility['gruebler']}, instantaneous {mobility['start']['numeric']} at the start"),
+                f"Kutzbach {mobility['gruebler']}"
+                + (f" (+{mobility['idle_spins']} idle spin, taken off every count)" if mobility["idle_spins"] else "")
+                + f", instantaneous {mobility['start']['numeric']} at the start"),
         *_input_count_verdict(scene, branch, mobility),
     )  # fmt: skip
     return BranchRun(

@@ -15,6 +15,7 @@ from sim_origami.checks.reference import compare_reference, read_reference
 from sim_origami.cli import main
 from sim_origami.errors import ParameterError
 from sim_origami.geometry import wrap
+from sim_origami.kinematics.rssr import RSSR
 from sim_origami.linkage_file import read_linkage
 from sim_origami.linkage_forms import chain_poses
 from sim_origami.scenes.linkage_file import linkage_scene
@@ -199,14 +200,47 @@ def test_goldberg_files_are_what_their_script_writes(tmp_path):
         assert (tmp_path / name).read_text() == (EXAMPLES / name).read_text()
 
 
-def test_spherical_joints_read_as_three_hinges_and_a_spinning_link_is_refused(tmp_path):
+def test_spherical_joints_read_as_three_hinges_and_a_spinning_link_is_pinned(tmp_path):
     """A ball at joint 3 of the Bennett rows reads as theta3_x, _y, _z; balls at 3 and 4 (an RSSR) leave link 3
-    spinning about the line through their centres, which no input drives: refused, naming the joints."""
+    spinning about the line through their centres: one idle freedom, held by theta4_x = 0 in the trace (the far
+    ball's x axis is that line), and the outputs are the two revolute joints."""
     one = read_linkage(write(tmp_path, broken(lambda d: d["joints"][2].update(type="spherical")), "one.json"))
     assert one.joint_names == ("theta1", "theta2", "theta3_x", "theta3_y", "theta3_z", "theta4")
-    two = write(tmp_path, broken(lambda d: [d["joints"][k].update(type="spherical") for k in (2, 3)]), "two.json")
-    with pytest.raises(ParameterError, match="joints: a link between two spherical joints spins freely"):
-        linkage_scene(two)
+    two = linkage_scene(write(tmp_path, broken(lambda d: [d["joints"][k].update(type="spherical") for k in (2, 3)]),
+                              "two.json"))  # fmt: skip
+    kin = two.kinematics
+    assert kin.joint_names == ("theta1", "theta2") and [kin.loop_joint_names[j] for j in kin.gauge] == ["theta4_x"]
+    assert kin.gruebler() == 1 and two.mechanism.idle_spins == 1 and "Kutzbach 2 = 1 + 1 idle spin" in two.notes
+    q = kin.loop_angles(kin.evaluate("path-1", [1.0])[0])
+    assert np.array_equal(kin.observe(q), kin.evaluate("path-1", [1.0])[0])
+    assert kin.loop_system().mobility(q[0]) == 2  # the mechanism's own loops count the spin; the report takes it off
+
+
+def test_rssr_file_gives_the_builtin_closed_form_on_both_roots():
+    """docs/examples/linkages/rssr.json: path-1 is the built-in rssr scene's closed form (Yang 2017, eqn 3-5, root
+    3-6a) to 1e-12 rad, every loop angle included (the pinned spin is the closed form's: balls at (0, 0, theta));
+    path-2 is the other root (3-6b). Measured 3.3e-15 and 4.0e-15 rad."""
+    builtin, linkage = scenes.get("rssr").build(), linkage_scene(EXAMPLES / "rssr.json")
+    kin = linkage.kinematics
+    assert [b.name for b in kin.branches()] == ["path-1", "path-2"] and kin.joint_names == ("theta1", "theta2")
+    x = np.linspace(*builtin.branch_path("bennett"), 40)
+    assert np.max(np.abs(kin.evaluate("path-1", x)[0] - builtin.kinematics.evaluate("bennett", x)[0])) < 1e-12
+    assert np.max(np.abs(kin.loop_angles(kin.evaluate("path-1", x)[0]) - builtin.kinematics.angles(x))) < 1e-12
+    truth = numeric_path(builtin, "bennett", x)  # the built-in scene's numeric solve (its idle spin free)
+    assert np.max(np.abs(kin.evaluate("path-1", x)[0] - builtin.kinematics.observe(truth))) < 1e-12
+    other = RSSR(1.0, 0.7072, np.deg2rad(45.0), root=-1)
+    assert np.max(np.abs(wrap(kin.evaluate("path-2", x)[0][:, 1] - other.theta2(x)))) < 1e-12
+
+
+@pytest.mark.slow
+def test_validate_rssr_file_passes_with_mujoco(capsys, tmp_path):
+    """The RSSR file through the whole validation (fast preset): both roots pass, the idle spin reported."""
+    status = main(["validate", "--linkage", str(EXAMPLES / "rssr.json"), "--preset", "fast", "--out", str(tmp_path)])
+    assert status == 0, capsys.readouterr().out
+    report = json.loads((tmp_path / "report.json").read_text())
+    for run in report["branches"]:
+        assert run["angle_error_max_rad"] < 1e-6 and run["mobility"]["idle_spins"] == 1
+        assert run["mobility"]["gruebler"] == 1 and run["mobility"]["start"]["numeric"] == 1
 
 
 def test_meshes_and_contact_pairs_become_solids_and_collision_solids(tmp_path):
