@@ -1,6 +1,7 @@
 """Linkage files (`validate --linkage FILE`): readers, the two forms, the seed linkages, the Goldberg 5R example
 with its reference curves, and bad input (one line, exit 2, the field named)."""
 
+import dataclasses
 import json
 import shutil
 import subprocess
@@ -19,6 +20,7 @@ from sim_origami.kinematics.rssr import RSSR
 from sim_origami.linkage_file import read_linkage
 from sim_origami.linkage_forms import chain_poses
 from sim_origami.scenes.linkage_file import linkage_scene
+from sim_origami.validation import run_branch
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "docs" / "examples" / "linkages"
 BENNETT = {
@@ -355,3 +357,37 @@ def test_branches_meeting_at_the_range_ends_are_bifurcations(tmp_path):
     for x in meetings:
         for branch in ("path-1", "path-2"):
             assert kin.loop_system().residual_norm(kin.evaluate(branch, [x])[0])[0] < 1e-13
+
+
+def test_myard_rsrrr_file_follows_the_myard_on_one_of_its_two_motions():
+    """myard-rsrrr.toml (the Myard with a ball at joint 2): path-2 is the built-in myard scene's numeric path to
+    1e-12 rad, its ball turning about joint 2's former axis only; path-1 tilts the ball; they meet at theta3 = 90 deg
+    (a bifurcation) and the sweep stops short of it."""
+    builtin, linkage = scenes.get("myard").build(), linkage_scene(EXAMPLES / "myard-rsrrr.toml")
+    kin = linkage.kinematics
+    x = np.linspace(np.deg2rad(30.0), np.deg2rad(85.0), 30)
+    truth = numeric_path(builtin, builtin.kinematics.branches()[0].name, x)
+    ball = [kin.joint_names.index(f"theta2_{a}") for a in "xyz"]
+    myard = kin.evaluate("path-2", x)[0]
+    hinges = [k for k in range(len(kin.joint_names)) if k not in ball]
+    assert np.max(np.abs(wrap(myard[:, hinges] - np.delete(truth, 1, axis=1)))) < 1e-12
+    assert np.max(np.abs(wrap(myard[:, ball[2]] - truth[:, 1]))) < 1e-12 and np.max(np.abs(myard[:, ball[:2]])) < 1e-12
+    (meeting,) = [e.input for e in kin.events() if e.kind == "bifurcation"]
+    assert abs(meeting - np.pi / 2) < 1e-9 and linkage.path[1] < meeting
+
+
+def test_a_sweep_through_the_rsrrr_singular_pose_fails_naming_it():
+    """The same file swept through theta3 = 90 deg: MuJoCo's path error on the Myard motion peaks just past the
+    meeting (measured 1.1e-3 rad at 90.32 deg, 2.6e-8 rad beyond 100 deg), where the closure constraints lose rank
+    (mobility 2); the failing verdict names the singular pose it crossed."""
+    scene = linkage_scene(EXAMPLES / "myard-rsrrr.toml")
+    crossing = dataclasses.replace(scene, path=(np.deg2rad(25.0), np.deg2rad(155.0)))
+    run = run_branch(crossing, "path-2", "fast", "closed")
+    failed = {v.name.split(": ")[1]: v for v in run.verdicts if not v.passed}
+    error = failed["MuJoCo fast path error (rad)"]
+    assert error.measured > 1e-4 and set(failed) <= {"MuJoCo fast path error (rad)", "MuJoCo fast closure residual (m)",
+                                                     "MuJoCo projection path error (rad)"}  # fmt: skip
+    for verdict in [v for name, v in failed.items() if "path error" in name]:  # the path checks say why they failed
+        assert "the sweep crosses a singular pose: the bifurcation at 1.5708 rad (branches path-1 and path-2 meet; " \
+               "mobility 2 there by the closure rank, 2 by MuJoCo's)" in verdict.detail  # fmt: skip
+    assert float(error.detail.split("the largest error lies ")[1].split(" rad")[0]) < 0.02
