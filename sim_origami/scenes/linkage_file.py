@@ -7,8 +7,10 @@ named path-1, path-2, ...). The sweep is the input range (kept clear of each bra
 that stretch kept clear of them (as the built-in scenes' default sweeps avoid their bifurcations: there the solve
 pins the joints only to the square root of its residual and MuJoCo's soft closures lag). The bifurcation study
 still seeds MuJoCo at every meeting. The sweep lasts the file's `sweep_time_scale` times the preset's duration.
-Lengths are in metres (the file's unit converted); a linkage whose size lies outside `LENGTH_RANGE` is refused as a
-scene's length would be.
+A link between two spherical joints spins freely about the line through their centres (an idle freedom, as the
+built-in rssr scene's coupler): MuJoCo leaves it free, the trace holds it by one ball hinge (`idle_spin_gauge`), the
+angles it moves are not outputs and the Kutzbach count leaves it out. Lengths are in metres (the file's unit
+converted); a linkage whose size lies outside `LENGTH_RANGE` is refused as a scene's length would be.
 """
 
 from pathlib import Path
