@@ -235,14 +235,25 @@ def test_rssr_file_gives_the_builtin_closed_form_on_both_roots():
 
 
 @pytest.mark.slow
-def test_validate_rssr_file_passes_with_mujoco(capsys, tmp_path):
-    """The RSSR file through the whole validation (fast preset): both roots pass, the idle spin reported."""
-    status = main(["validate", "--linkage", str(EXAMPLES / "rssr.json"), "--preset", "fast", "--out", str(tmp_path)])
+def test_validate_rssr_file_with_its_closed_form_curves_passes(capsys, tmp_path):
+    """The RSSR file through the whole validation (fast preset) with Yang 2017's eqn 3-5 as reference curves: the
+    three-way check of a built-in scene (measured: reference vs numeric 8.5e-13 rad, vs MuJoCo 7.4e-8 rad), both
+    roots pass, the idle spin reported and left out of the counts."""
+    status = main(["validate", "--linkage", str(EXAMPLES / "rssr.json"), "--reference",
+                   str(EXAMPLES / "rssr_curves.csv"), "--preset", "fast", "--out", str(tmp_path)])  # fmt: skip
     assert status == 0, capsys.readouterr().out
     report = json.loads((tmp_path / "report.json").read_text())
+    assert report["reference"]["reference_vs_numeric_max_rad"] < 1e-11
     for run in report["branches"]:
         assert run["angle_error_max_rad"] < 1e-6 and run["mobility"]["idle_spins"] == 1
         assert run["mobility"]["gruebler"] == 1 and run["mobility"]["start"]["numeric"] == 1
+
+
+def test_rssr_curves_are_what_their_script_writes(tmp_path):
+    source = EXAMPLES / "make_rssr_curves.py"
+    shutil.copy(source, tmp_path / source.name)
+    subprocess.run([sys.executable, source.name], cwd=tmp_path, check=True)
+    assert (tmp_path / "rssr_curves.csv").read_text() == (EXAMPLES / "rssr_curves.csv").read_text()
 
 
 def test_meshes_and_contact_pairs_become_solids_and_collision_solids(tmp_path):
