@@ -234,6 +234,28 @@ def test_rssr_file_gives_the_builtin_closed_form_on_both_roots():
     assert np.max(np.abs(wrap(kin.evaluate("path-2", x)[0][:, 1] - other.theta2(x)))) < 1e-12
 
 
+def test_rssr_as_axis_lines_gives_the_closed_form(tmp_path):
+    """The RSSR drawn as axis lines at theta1 = 80 deg (balls at C and D, no direction given: triads along +z): the
+    spin of CD is held by a ball hinge all the same, and path-1 is eqn 3-5 to 1e-12 rad (measured 8.9e-16)."""
+    rssr = RSSR(1.0, 0.7072, np.deg2rad(45.0))
+    q0 = rssr.loop_angles([np.deg2rad(80.0)])
+    poses = chain_poses(rssr.bennett_rows(), q0)
+    joints = []
+    for k in range(4):
+        T = poses[f"link_{k + 1}"][0]
+        joint = {"name": f"theta{k + 1}", "bodies": [f"link_{(k - 1) % 4 + 1}", f"link_{k + 1}"],
+                 "point": T[:3, 3].tolist()}  # fmt: skip
+        joint |= {"direction": T[:3, 2].tolist(), "theta0": float(np.rad2deg(q0[0, k]))} if k < 2 else \
+            {"type": "spherical"}  # fmt: skip
+        joints.append(joint)
+    doc = {"sim_origami_linkage": 1, "form": "axes", "ground": "link_4", "joints": joints,
+           "input": {"joint": "theta1", "range": [25.0, 175.0]}}  # fmt: skip
+    kin = linkage_scene(write(tmp_path, doc, "rssr-axes.json")).kinematics
+    assert kin.joint_names == ("theta1", "theta2") and len(kin.gauge) == 1 and kin.gruebler() == 1
+    x = np.linspace(0.5, 2.9, 50)
+    assert np.max(np.abs(wrap(kin.evaluate("path-1", x)[0][:, 1] - rssr.theta2(x)))) < 1e-12
+
+
 @pytest.mark.slow
 def test_validate_rssr_file_with_its_closed_form_curves_passes(capsys, tmp_path):
     """The RSSR file through the whole validation (fast preset) with Yang 2017's eqn 3-5 as reference curves: the
