@@ -10,6 +10,10 @@ point or a lock, where no closed configuration lies beyond with the input moved 
 Events: where a trace stalled, where the mobility changed along it, and, where two branches pass through one pose,
 a bifurcation naming both (so the validation seeds MuJoCo on each of them there).
 
+A link between two spherical joints spins freely about the line through their centres (an idle spin): the traced
+system holds one hinge per spin at 0 (`gauge`), so it has the mechanism's true mobility, and the outputs leave out
+the angles the spin moves (`observed`; `loop_angles` fills them back in by closing the loops).
+
 `evaluate` closes interpolated poses by chord steps (all inputs at once) and the full solve where those do not
 close, so values close the loops to 1e-15 where the path is regular; within SINGULAR_ZONE of a meeting it
 extrapolates from regular poses either side. Angles in radians; translations in the loops' length unit.
