@@ -1,6 +1,7 @@
 """Linkage files (`validate --linkage FILE`): readers, the two forms, the seed linkages, the Goldberg 5R example
 with its reference curves, and bad input (one line, exit 2, the field named)."""
 
+import dataclasses
 import json
 import shutil
 import subprocess
@@ -15,9 +16,11 @@ from sim_origami.checks.reference import compare_reference, read_reference
 from sim_origami.cli import main
 from sim_origami.errors import ParameterError
 from sim_origami.geometry import wrap
+from sim_origami.kinematics.rssr import RSSR
 from sim_origami.linkage_file import read_linkage
 from sim_origami.linkage_forms import chain_poses
 from sim_origami.scenes.linkage_file import linkage_scene
+from sim_origami.validation import run_branch
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "docs" / "examples" / "linkages"
 BENNETT = {
@@ -199,14 +202,80 @@ def test_goldberg_files_are_what_their_script_writes(tmp_path):
         assert (tmp_path / name).read_text() == (EXAMPLES / name).read_text()
 
 
-def test_spherical_joints_read_as_three_hinges_and_a_spinning_link_is_refused(tmp_path):
+def test_spherical_joints_read_as_three_hinges_and_a_spinning_link_is_pinned(tmp_path):
     """A ball at joint 3 of the Bennett rows reads as theta3_x, _y, _z; balls at 3 and 4 (an RSSR) leave link 3
-    spinning about the line through their centres, which no input drives: refused, naming the joints."""
+    spinning about the line through their centres: one idle freedom, held by theta4_x = 0 in the trace (the far
+    ball's x axis is that line), and the outputs are the two revolute joints."""
     one = read_linkage(write(tmp_path, broken(lambda d: d["joints"][2].update(type="spherical")), "one.json"))
     assert one.joint_names == ("theta1", "theta2", "theta3_x", "theta3_y", "theta3_z", "theta4")
-    two = write(tmp_path, broken(lambda d: [d["joints"][k].update(type="spherical") for k in (2, 3)]), "two.json")
-    with pytest.raises(ParameterError, match="joints: a link between two spherical joints spins freely"):
-        linkage_scene(two)
+    two = linkage_scene(write(tmp_path, broken(lambda d: [d["joints"][k].update(type="spherical") for k in (2, 3)]),
+                              "two.json"))  # fmt: skip
+    kin = two.kinematics
+    assert kin.joint_names == ("theta1", "theta2") and [kin.loop_joint_names[j] for j in kin.gauge] == ["theta4_x"]
+    assert kin.gruebler() == 1 and two.mechanism.idle_spins == 1 and "Kutzbach 2 = 1 + 1 idle spin" in two.notes
+    q = kin.loop_angles(kin.evaluate("path-1", [1.0])[0])
+    assert np.array_equal(kin.observe(q), kin.evaluate("path-1", [1.0])[0])
+    assert kin.loop_system().mobility(q[0]) == 2  # the mechanism's own loops count the spin; the report takes it off
+
+
+def test_rssr_file_gives_the_builtin_closed_form_on_both_roots():
+    """docs/examples/linkages/rssr.json: path-1 is the built-in rssr scene's closed form (Yang 2017, eqn 3-5, root
+    3-6a) to 1e-12 rad, every loop angle included (the pinned spin is the closed form's: balls at (0, 0, theta));
+    path-2 is the other root (3-6b). Measured 4.4e-15 and 4.0e-15 rad."""
+    builtin, linkage = scenes.get("rssr").build(), linkage_scene(EXAMPLES / "rssr.json")
+    kin = linkage.kinematics
+    assert [b.name for b in kin.branches()] == ["path-1", "path-2"] and kin.joint_names == ("theta1", "theta2")
+    x = np.linspace(*builtin.branch_path("bennett"), 40)
+    assert np.max(np.abs(kin.evaluate("path-1", x)[0] - builtin.kinematics.evaluate("bennett", x)[0])) < 1e-12
+    assert np.max(np.abs(kin.loop_angles(kin.evaluate("path-1", x)[0]) - builtin.kinematics.angles(x))) < 1e-12
+    truth = numeric_path(builtin, "bennett", x)  # the built-in scene's numeric solve (its idle spin free)
+    assert np.max(np.abs(kin.evaluate("path-1", x)[0] - builtin.kinematics.observe(truth))) < 1e-12
+    other = RSSR(1.0, 0.7072, np.deg2rad(45.0), root=-1)
+    assert np.max(np.abs(wrap(kin.evaluate("path-2", x)[0][:, 1] - other.theta2(x)))) < 1e-12
+
+
+def test_rssr_as_axis_lines_gives_the_closed_form(tmp_path):
+    """The RSSR drawn as axis lines at theta1 = 80 deg (balls at C and D, no direction given: triads along +z): the
+    spin of CD is held by a ball hinge all the same, and path-1 is eqn 3-5 to 1e-12 rad (measured 8.9e-16)."""
+    rssr = RSSR(1.0, 0.7072, np.deg2rad(45.0))
+    q0 = rssr.loop_angles([np.deg2rad(80.0)])
+    poses = chain_poses(rssr.bennett_rows(), q0)
+    joints = []
+    for k in range(4):
+        T = poses[f"link_{k + 1}"][0]
+        joint = {"name": f"theta{k + 1}", "bodies": [f"link_{(k - 1) % 4 + 1}", f"link_{k + 1}"],
+                 "point": T[:3, 3].tolist()}  # fmt: skip
+        joint |= {"direction": T[:3, 2].tolist(), "theta0": float(np.rad2deg(q0[0, k]))} if k < 2 else \
+            {"type": "spherical"}  # fmt: skip
+        joints.append(joint)
+    doc = {"sim_origami_linkage": 1, "form": "axes", "ground": "link_4", "joints": joints,
+           "input": {"joint": "theta1", "range": [25.0, 175.0]}}  # fmt: skip
+    kin = linkage_scene(write(tmp_path, doc, "rssr-axes.json")).kinematics
+    assert kin.joint_names == ("theta1", "theta2") and len(kin.gauge) == 1 and kin.gruebler() == 1
+    x = np.linspace(0.5, 2.9, 50)
+    assert np.max(np.abs(wrap(kin.evaluate("path-1", x)[0][:, 1] - rssr.theta2(x)))) < 1e-12
+
+
+@pytest.mark.slow
+def test_validate_rssr_file_with_its_closed_form_curves_passes(capsys, tmp_path):
+    """The RSSR file through the whole validation (fast preset) with Yang 2017's eqn 3-5 as reference curves: the
+    three-way check of a built-in scene (measured: reference vs numeric 8.5e-13 rad, vs MuJoCo 7.4e-8 rad), both
+    roots pass, the idle spin reported and left out of the counts."""
+    status = main(["validate", "--linkage", str(EXAMPLES / "rssr.json"), "--reference",
+                   str(EXAMPLES / "rssr_curves.csv"), "--preset", "fast", "--out", str(tmp_path)])  # fmt: skip
+    assert status == 0, capsys.readouterr().out
+    report = json.loads((tmp_path / "report.json").read_text())
+    assert report["reference"]["reference_vs_numeric_max_rad"] < 1e-11
+    for run in report["branches"]:
+        assert run["angle_error_max_rad"] < 1e-6 and run["mobility"]["idle_spins"] == 1
+        assert run["mobility"]["gruebler"] == 1 and run["mobility"]["start"]["numeric"] == 1
+
+
+def test_rssr_curves_are_what_their_script_writes(tmp_path):
+    source = EXAMPLES / "make_rssr_curves.py"
+    shutil.copy(source, tmp_path / source.name)
+    subprocess.run([sys.executable, source.name], cwd=tmp_path, check=True)
+    assert (tmp_path / "rssr_curves.csv").read_text() == (EXAMPLES / "rssr_curves.csv").read_text()
 
 
 def test_meshes_and_contact_pairs_become_solids_and_collision_solids(tmp_path):
@@ -321,3 +390,37 @@ def test_branches_meeting_at_the_range_ends_are_bifurcations(tmp_path):
     for x in meetings:
         for branch in ("path-1", "path-2"):
             assert kin.loop_system().residual_norm(kin.evaluate(branch, [x])[0])[0] < 1e-13
+
+
+def test_myard_rsrrr_file_follows_the_myard_on_one_of_its_two_motions():
+    """myard-rsrrr.toml (the Myard with a ball at joint 2): path-2 is the built-in myard scene's numeric path to
+    1e-12 rad, its ball turning about joint 2's former axis only; path-1 tilts the ball; they meet at theta3 = 90 deg
+    (a bifurcation) and the sweep stops short of it."""
+    builtin, linkage = scenes.get("myard").build(), linkage_scene(EXAMPLES / "myard-rsrrr.toml")
+    kin = linkage.kinematics
+    x = np.linspace(np.deg2rad(30.0), np.deg2rad(85.0), 30)
+    truth = numeric_path(builtin, builtin.kinematics.branches()[0].name, x)
+    ball = [kin.joint_names.index(f"theta2_{a}") for a in "xyz"]
+    myard = kin.evaluate("path-2", x)[0]
+    hinges = [k for k in range(len(kin.joint_names)) if k not in ball]
+    assert np.max(np.abs(wrap(myard[:, hinges] - np.delete(truth, 1, axis=1)))) < 1e-12
+    assert np.max(np.abs(wrap(myard[:, ball[2]] - truth[:, 1]))) < 1e-12 and np.max(np.abs(myard[:, ball[:2]])) < 1e-12
+    (meeting,) = [e.input for e in kin.events() if e.kind == "bifurcation"]
+    assert abs(meeting - np.pi / 2) < 1e-9 and linkage.path[1] < meeting
+
+
+def test_a_sweep_through_the_rsrrr_singular_pose_fails_naming_it():
+    """The same file swept through theta3 = 90 deg: MuJoCo's path error on the Myard motion peaks just past the
+    meeting (measured 1.1e-3 rad at 90.32 deg, 2.6e-8 rad beyond 100 deg), where the closure constraints lose rank
+    (mobility 2); the failing verdict names the singular pose it crossed."""
+    scene = linkage_scene(EXAMPLES / "myard-rsrrr.toml")
+    crossing = dataclasses.replace(scene, path=(np.deg2rad(25.0), np.deg2rad(155.0)))
+    run = run_branch(crossing, "path-2", "fast", "closed")
+    failed = {v.name.split(": ")[1]: v for v in run.verdicts if not v.passed}
+    error = failed["MuJoCo fast path error (rad)"]
+    assert error.measured > 1e-4 and set(failed) <= {"MuJoCo fast path error (rad)", "MuJoCo fast closure residual (m)",
+                                                     "MuJoCo projection path error (rad)"}  # fmt: skip
+    for verdict in [v for name, v in failed.items() if "path error" in name]:  # the path checks say why they failed
+        assert "the sweep crosses a singular pose: the bifurcation at 1.5708 rad (branches path-1 and path-2 meet; " \
+               "mobility 2 there by the closure rank, 2 by MuJoCo's)" in verdict.detail  # fmt: skip
+    assert float(error.detail.split("the largest error lies ")[1].split(" rad")[0]) < 0.02

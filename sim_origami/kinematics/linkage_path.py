@@ -10,22 +10,27 @@ point or a lock, where no closed configuration lies beyond with the input moved 
 Events: where a trace stalled, where the mobility changed along it, and, where two branches pass through one pose,
 a bifurcation naming both (so the validation seeds MuJoCo on each of them there).
 
+A link between two spherical joints spins freely about the line through their centres (an idle spin): the traced
+system holds one hinge per spin at 0 (`gauge`), so it has the mechanism's true mobility, and the outputs leave out
+the angles the spin moves (`observed`; `loop_angles` fills them back in by closing the loops).
+
 `evaluate` closes interpolated poses by chord steps (all inputs at once) and the full solve where those do not
 close, so values close the loops to 1e-15 where the path is regular; within SINGULAR_ZONE of a meeting it
 extrapolates from regular poses either side. Angles in radians; translations in the loops' length unit.
 """
 
 from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import minimize_scalar
 
-from ..closure import LoopSystem
+from ..closure import Coupling, LoopSystem
 from ..errors import ConvergenceError, ParameterError
 from ..geometry import wrap
 from ..path import Polyline, TracedPath, correct, trace
-from .base import Branch, Event, JointSpaceKinematics
+from .base import Branch, Event, Kinematics
 from .numeric_pattern import CLOSE_TOL, POLISH_TOL
 
 # Random starts of the assembly search at the start input; two assemblies closer than SAME_ASSEMBLY (rad, every
@@ -68,14 +73,14 @@ SINGULAR_ZONE = 1e-5
 SINGULAR_STEP = 1e-3
 
 
-class LinkagePath(JointSpaceKinematics):
+class LinkagePath(Kinematics):
     """
     Every branch through the start input of a linkage, traced numerically over the input range.
 
     Parameters
     ----------
-    loops : the linkage's loop system (joints in `joint_names` order).
-    joint_names : one name per loop joint.
+    loops : the linkage's loop system (joints in `loop_joint_names` order).
+    joint_names : one name per loop joint (`loop_joint_names`); the outputs (`joint_names`) are the `observed` ones.
     input_joint : index of the driven joint; the input x is its angle (rad).
     input_range : (lo, hi), rad: the traces run from the start to both ends.
     start : a closed (or nearly closed) configuration (rad), or None to assemble at `start_input`.
@@ -84,6 +89,12 @@ class LinkagePath(JointSpaceKinematics):
       assemblies are taken with every middle angle within +-pi/2 where one is (the set MuJoCo's poses give back).
     compared : joints (bool mask) by which two assemblies are told apart (default all; a spherical joint's angles
       follow from the others').
+    gauge : one hinge per idle spin (a link between two spherical joints turning freely about the line through their
+      centres), held at 0 while tracing: the traced system then has the mechanism's true mobility, its corrector
+      converges quadratically and the ball angles stay where the start put them. `loop_system()` stays the
+      mechanism's own (the mobility report counts the idle spins and takes them off).
+    observed : joints (bool mask) that are outputs (default all): the angles an idle spin moves are not, since
+      MuJoCo leaves the spin free and only the pinned trace fixes it.
 
     Raises
     ------
@@ -103,11 +114,19 @@ class LinkagePath(JointSpaceKinematics):
         start_input: float | None = None,
         ball_middles: Sequence[int] = (),
         compared: ArrayLike | None = None,
+        gauge: Sequence[int] = (),
+        observed: ArrayLike | None = None,
     ):
-        self._loops = loops
-        self.joint_names = tuple(joint_names)
+        self._mechanism_loops = loops
         self.input_index = int(input_joint)
-        self.input_name = self.joint_names[self.input_index]
+        self.gauge = tuple(int(j) for j in gauge)
+        pins = tuple(Coupling(j, self.input_index, 0.0) for j in self.gauge)  # q[j] = 0 q[input]: j held at 0
+        loops = replace(loops, couplings=loops.couplings + pins)
+        self._loops = loops  # the traced system: the mechanism's loops, each idle spin pinned
+        self.loop_joint_names = tuple(joint_names)
+        self.observed = np.ones(loops.n_joints, dtype=bool) if observed is None else np.asarray(observed, dtype=bool)
+        self.joint_names = tuple(n for n, seen in zip(joint_names, self.observed, strict=True) if seen)
+        self.input_name = self.loop_joint_names[self.input_index]
         self.lo, self.hi = float(min(input_range)), float(max(input_range))
         self.ball_middles = np.asarray(ball_middles, dtype=int)
         self.compared = np.ones(loops.n_joints, dtype=bool) if compared is None else np.asarray(compared, dtype=bool)
@@ -121,7 +140,8 @@ class LinkagePath(JointSpaceKinematics):
                                      f"{np.rad2deg(x0):.6g} deg, lies outside input.range [{np.rad2deg(self.lo):.6g}, "
                                      f"{np.rad2deg(self.hi):.6g}] deg")  # fmt: skip
             q, residual, _ = correct(loops, given, fixed, CLOSE_TOL, max_iter=200)
-            gap = float(np.max(np.abs(q - given), initial=0.0))
+            # an idle spin's angles may move to its pinned value: the start is judged by the outputs
+            gap = float(np.max(np.abs(q - given)[self.observed], initial=0.0))
             if residual > 100 * CLOSE_TOL or gap > START_TOL:
                 raise ParameterError(
                     f"joints[].theta0: the loops cannot be closed at the start configuration: closure residual "
@@ -189,7 +209,7 @@ class LinkagePath(JointSpaceKinematics):
                 continue
             path = Polyline(np.array([x0, end]), np.array([[x0], [end]]))
             runs.append(trace(self._loops, q0, [self.input_index], path, first_step=FIRST_STEP, max_step=MAX_STEP,
-                              min_step=STALL_STEP, tol=CLOSE_TOL, names=self.joint_names))
+                              min_step=STALL_STEP, tol=CLOSE_TOL, names=self.loop_joint_names))
         down, up = runs
         parts = [(r.s[::-1], r.q[::-1], r.mobility[::-1]) for r in (down,) if r is not None]
         parts += [(r.s[1:] if down is not None else r.s, r.q[1:] if down is not None else r.q,
@@ -301,6 +321,11 @@ class LinkagePath(JointSpaceKinematics):
                      for k, (name, (s, _, _)) in enumerate(self.nodes.items()))  # fmt: skip
 
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        values, valid = self._full(branch, x)
+        return values[:, self.observed], valid
+
+    def _full(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        """Every loop joint's angle (n, n_joints) (rad) on `branch` at inputs x, and the validity mask."""
         x, valid = self.in_domain(branch, x)
         values = self._polished(branch, x, valid)
         for xb in (e.input for e in self._events if e.kind == "bifurcation" and branch in e.branches):
@@ -322,11 +347,11 @@ class LinkagePath(JointSpaceKinematics):
         (the pseudo-inverse of the Jacobian at each input's nearest trace node, one batched residual per step),
         then the full solve for any input the chord has not closed in CHORD_ITER steps.
         """
-        values = np.full((len(x), len(self.joint_names)), np.nan)
+        values = np.full((len(x), self._loops.n_joints), np.nan)
         if not np.any(valid):
             return values
         s, _, _ = self.nodes[branch]
-        fixed = np.zeros(len(self.joint_names), dtype=bool)
+        fixed = np.zeros(self._loops.n_joints, dtype=bool)
         fixed[self.input_index] = True
         guess = self._interp(branch, x[valid])
         guess[:, self.input_index] = x[valid]
@@ -359,7 +384,7 @@ class LinkagePath(JointSpaceKinematics):
         """The pseudo-inverse (free joints x residual rows) of the closure Jacobian's free columns at a node."""
         key = (branch, node)
         if key not in self._chords:
-            free = np.arange(len(self.joint_names)) != self.input_index
+            free = np.arange(self._loops.n_joints) != self.input_index
             self._chords[key] = np.linalg.pinv(self._loops.jacobian(self.nodes[branch][1][node])[:, free],
                                                rcond=CHORD_RCOND)  # fmt: skip
         return self._chords[key]
@@ -368,11 +393,39 @@ class LinkagePath(JointSpaceKinematics):
         return self._events
 
     def gruebler(self) -> int:
-        """Kutzbach: joint freedoms (a spherical joint's three hinges count three) - 6 per independent loop."""
-        return self._loops.n_joints - 6 * len(self._loops.loops)
+        """Kutzbach: joint freedoms (a spherical joint's three hinges count three) - 6 per independent loop, less the
+        idle spins (as `scenes.polyhedra.kutzbach`)."""
+        return self._loops.n_joints - 6 * len(self._loops.loops) - len(self.gauge)
 
     def loop_system(self) -> LoopSystem:
-        return self._loops
+        """The mechanism's loops, idle spins free (the mobility report counts them and takes them off)."""
+        return self._mechanism_loops
+
+    def observe(self, q_loop: ArrayLike) -> NDArray[np.float64]:
+        return np.asarray(q_loop, dtype=float).reshape(-1, self._loops.n_joints)[:, self.observed]
+
+    def loop_angles(self, values: ArrayLike) -> NDArray[np.float64]:
+        """
+        Loop angles (n, n_joints) of outputs (n, k): the outputs as given, the angles an idle spin moves from the
+        nearest branch's pose at the same input (by the outputs), closed with the outputs held and the spins pinned.
+        """
+        values = np.asarray(values, dtype=float).reshape(-1, len(self.joint_names))
+        if np.all(self.observed):
+            return values
+        column = self.joint_names.index(self.input_name)
+        out = np.empty((len(values), self._loops.n_joints))
+        for k, v in enumerate(values):
+            x = v[column]
+            poses = [self._full(b, x)[0][0] for b in self.nodes if self._covers(b, x)]
+            if not poses:  # outside every domain: the nearest node of any branch
+                poses = [q[int(np.argmin(np.abs(s - x)))] for s, q, _ in self.nodes.values()]
+            gaps = [float(np.max(np.abs(wrap(q[self.observed] - v)))) for q in poses]
+            q = poses[int(np.argmin(gaps))].copy()
+            if min(gaps) > 0.0:
+                q[self.observed] = v
+                q = correct(self._loops, q, self.observed, CLOSE_TOL, max_iter=200)[0]
+            out[k] = q
+        return out
 
     def loop_input(self) -> tuple[int, float]:
         return self.input_index, 1.0

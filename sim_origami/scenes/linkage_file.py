@@ -7,16 +7,22 @@ named path-1, path-2, ...). The sweep is the input range (kept clear of each bra
 that stretch kept clear of them (as the built-in scenes' default sweeps avoid their bifurcations: there the solve
 pins the joints only to the square root of its residual and MuJoCo's soft closures lag). The bifurcation study
 still seeds MuJoCo at every meeting. The sweep lasts the file's `sweep_time_scale` times the preset's duration.
-Lengths are in metres (the file's unit converted); a linkage whose size lies outside `LENGTH_RANGE` is refused as a
-scene's length would be.
+A link between two spherical joints spins freely about the line through their centres (an idle freedom, as the
+built-in rssr scene's coupler): MuJoCo leaves it free, the trace holds it by one ball hinge (`idle_spin_gauge`), the
+angles it moves are not outputs and the Kutzbach count leaves it out. Lengths are in metres (the file's unit
+converted); a linkage whose size lies outside `LENGTH_RANGE` is refused as a scene's length would be.
 """
 
 from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
 
 from ..errors import ParameterError
 from ..kinematics.base import Kinematics
 from ..kinematics.linkage_path import LinkagePath
 from ..linkage_file import read_linkage
+from ..mechanism import Mechanism
 from .base import LENGTH_RANGE, Scene
 
 # Share of the sweep's stretch kept clear of a bifurcation at each end it meets one. Measured on the plane-symmetric
@@ -41,24 +47,55 @@ def linkage_scene(path: str | Path) -> Scene:
     if not LENGTH_RANGE[0] <= size <= LENGTH_RANGE[1]:
         raise ParameterError(f"units.length: the linkage is {size:.3g} m across; sim_origami simulates "
                              f"{LENGTH_RANGE[0]:g} .. {LENGTH_RANGE[1]:g} m (give the right unit)")  # fmt: skip
-    if mechanism.idle_spins:
-        raise ParameterError("joints: a link between two spherical joints spins freely about the line through their "
-                             "centres, a freedom no input drives and the comparison cannot pin; make one of them "
-                             "revolute")  # fmt: skip
     names = tuple(j.name for j in mechanism.joints)
     balls = mechanism.balls.values()
+    gauge, spinning = idle_spin_gauge(mechanism)
     kinematics = LinkagePath(mechanism.loop_system(), spec.joint_names, names.index(spec.input_joint),
                              spec.input_range, spec.start, start_input=spec.start_input,
-                             ball_middles=[iy for _, iy, _ in balls],
-                             compared=[not j.ball for j in mechanism.joints])  # fmt: skip
+                             ball_middles=[iy for _, iy, _ in balls], compared=[not j.ball for j in mechanism.joints],
+                             gauge=gauge, observed=~spinning)  # fmt: skip
     lo, hi = sweep(kinematics, *spec.input_range)
     notes = f"from {Path(path).name} ({spec.form} form); {kinematics.summary()}"
+    if gauge:
+        notes += (f"; Kutzbach {kinematics.gruebler() + len(gauge)} = {kinematics.gruebler()} + {len(gauge)} idle "
+                  f"spin{'s' if len(gauge) > 1 else ''} (held by {', '.join(spec.joint_names[j] for j in gauge)} = 0 "
+                  "in the trace; the angles it moves are not outputs)")
     return Scene(
         name=f"linkage-{spec.name}", params={"length_unit_m": spec.length_m}, kinematics=kinematics,
         mechanism=mechanism, loop_joints=names, drive_joint=spec.input_joint, drive_scale=1.0, path=(lo, hi),
         contact_pairs=spec.contact_pairs, sweep_time_scale=spec.sweep_time_scale,
         notes=f"{spec.notes}; {notes}" if spec.notes else notes,
     )  # fmt: skip
+
+
+def idle_spin_gauge(mechanism: Mechanism) -> tuple[tuple[int, ...], NDArray[np.bool_]]:
+    """
+    For each link held only by two spherical joints (an idle spin about the line through their centres, Yang 2017,
+    section 2.2): the hinge that holds the spin in the trace, and the joints (bool mask) whose angles the spin moves.
+
+    The hinge is the ball hinge next to the link whose axis lies closest to that line: a ball's x hinge where the
+    link is the ball's first body (the spin turns the ball's triad about the line from the parent side), its z hinge
+    where it is the second. In the D-H form with no offset on the link, the far ball's x axis is the line itself,
+    so that hinge is the spin exactly and its angle is 0 on the motion the rows describe.
+    """
+    spinning = np.zeros(len(mechanism.joints), dtype=bool)
+    ends: dict[str, list[tuple[int, NDArray[np.float64], NDArray[np.float64]]]] = {}
+    held_by_hinge = {b for j in mechanism.joints if not j.ball for b in (j.parent, j.child)}
+    for name, (ix, _, iz) in mechanism.balls.items():
+        parent_side, child_side = mechanism.ball_frames(name)
+        ends.setdefault(mechanism.joints[ix].parent, []).append((ix, parent_side[:3, 3], parent_side[:3, 0]))
+        ends.setdefault(mechanism.joints[iz].child, []).append((iz, child_side[:3, 3], child_side[:3, 2]))
+    gauge = []
+    for body, held in ends.items():
+        if body in held_by_hinge or len(held) != 2:
+            continue
+        line = held[1][1] - held[0][1]
+        line = line / max(float(np.linalg.norm(line)), 1e-300)
+        gauge.append(max(held, key=lambda end: abs(float(end[2] @ line)))[0])
+        for hinge, _, _ in held:
+            ball = mechanism.joints[hinge].name[:-2]
+            spinning[list(mechanism.balls[ball])] = True
+    return tuple(gauge), spinning
 
 
 def sweep(kinematics: Kinematics, lo: float, hi: float) -> tuple[float, float]:
