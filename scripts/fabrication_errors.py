@@ -1,4 +1,8 @@
-"""Seed 001 ch. 3 fabrication-error study (digest §2.2, §2.3): seed value, ours and the difference.
+"""Yang 2017, ch. 3 fabrication-error study (§3.3 to §3.5): the reference value, ours and the difference.
+
+The reference is the thesis's printed number where it prints one (the headers quote those it prints to fewer places)
+and otherwise a worked value of its equations at its own example, computed independently of this package; rows
+marked [NEW] are results the thesis does not state.
 
 The RSSR's output errors (exact (3-5) and linearised (3-41...3-45)), its ball-joint waggle (corrected (3-50)),
 the overconstrained Bennett with the same errors (closure gap, mobility forced together), and the Myard against
@@ -31,27 +35,27 @@ from sim_origami.studies.fabrication import (
 from sim_origami.truss import analyse, truss_of
 
 
-def row(name: str, seed: float | str, ours: float, digits: int = 3) -> None:
-    """One table line: seed value (number or text), ours, difference when the seed gives a number."""
-    diff = f"{ours - seed:+.{digits}f}" if isinstance(seed, float) else ""
-    shown = f"{seed:.{digits}f}" if isinstance(seed, float) else seed
+def row(name: str, reference: float | str, ours: float, digits: int = 3) -> None:
+    """One table line: reference value (number or text), ours, difference when the reference is a number."""
+    diff = f"{ours - reference:+.{digits}f}" if isinstance(reference, float) else ""
+    shown = f"{reference:.{digits}f}" if isinstance(reference, float) else reference
     print(f"  {name:<58} {shown:>12} {ours:>12.{digits}f} {diff:>10}")
 
 
-def counts(name: str, seed: tuple[int, ...], c) -> None:
-    """Truss counts j, b, r, m, s (seed, ours) on five lines."""
+def counts(name: str, reference: tuple[int, ...], c) -> None:
+    """Truss counts j, b, r, m, s (reference, ours) on five lines."""
     ours = (c.nodes, c.bars, c.rank, c.mobility, c.self_stress)
-    for key, s, o in zip("jbrms", seed, ours, strict=True):
+    for key, s, o in zip("jbrms", reference, ours, strict=True):
         row(f"{name} {key}" if key == "j" else f"  {key}", float(s), o, 0)
 
 
 def header(title: str) -> None:
-    print(f"\n{title}\n  {'quantity':<58} {'seed':>12} {'ours':>12} {'diff':>10}")
+    print(f"\n{title}\n  {'quantity':<58} {'reference':>12} {'ours':>12} {'diff':>10}")
 
 
 def rssr_tables(nominal: RSSR) -> None:
     d_alpha, d_l = VERY_COARSE
-    header("RSSR implied Bennett (digest §2.2 table)")
+    header("RSSR implied Bennett (eqns 3-3 to 3-6, 3-38; worked values)")
     for (a1, a2, alpha), beta, k_a, k_b in [
         ((100, 70.72, 45 * DEG), 30.0044, -4.665482, 1.249732),
         ((101.5, 69.22, 45 * DEG), 28.8309, -4.270901, 1.238316),
@@ -61,7 +65,7 @@ def rssr_tables(nominal: RSSR) -> None:
         row(f"a1 {a1}, a2 {a2}, alpha {alpha / DEG:g}: implied beta (deg)", beta, r.beta / DEG, 4)
         row("  K (3-6a)", k_a, r.K, 6)
         row("  K (3-6b)", k_b, other.K, 6)
-    header("RSSR max |d theta2| over theta1 (deg; seed [T] 0.58 / 5.06 / 0.53; digest verified values)")
+    header("RSSR max |d theta2| over theta1 (deg; thesis 0.58 / 5.06 / 0.53; worked values of (3-5), (3-41))")
     cases = [
         ("twist 1 deg, k = +1", FabricationError(d_alpha, 0.0, 1), 0.584, 155.7, 0.577),
         ("length 1.5 mm, k = +1", FabricationError(0.0, d_l, 1), 5.061, 154.7, 5.447),
@@ -76,21 +80,21 @@ def rssr_tables(nominal: RSSR) -> None:
         row("  linearised max (3-41)", linear, s.linearised.value / DEG)
         row("  built implied beta", "", s.beta / DEG, 4)
     built = FabricationError(0.0, d_l, 1).built(nominal)
-    for theta, seed in ((170.0, 3.431), (179.0, 0.394)):
+    for theta, reference in ((170.0, 3.431), (179.0, 0.394)):
         row(
             f"length 1.5 mm, k = +1: d theta2 at theta1 = {theta:g}",
-            seed,
+            reference,
             output_error(nominal, built, theta * DEG) / DEG,
         )
     header("Ball-joint waggle max |90 - angle(CD, z_D)| (deg; thesis 0.58 / 1.22, printed (3-50): 0.821 / 1.669)")
-    for name, error, seed in [
+    for name, error, reference in [
         ("twist -1 deg", FabricationError(-d_alpha, 0.0, 1), 0.581),
         ("a1 - 1.5 mm, a2 + 1.5 mm", FabricationError(0.0, d_l, -1), 1.224),
     ]:
         built = error.built(nominal)
         w = max_waggle(nominal, built)
-        row(f"{name}: corrected (3-50)", seed, w.value / DEG)
-        row("  |beta_R - beta| [NEW: equals the max]", seed, abs(built.beta - nominal.beta) / DEG)
+        row(f"{name}: corrected (3-50)", reference, w.value / DEG)
+        row("  |beta_R - beta| [NEW: equals the max]", reference, abs(built.beta - nominal.beta) / DEG)
         row("  at theta1", "", w.theta1 / DEG, 1)
 
 
@@ -126,7 +130,7 @@ def bennett_tables(nominal: RSSR) -> None:
 
 
 def myard_tables() -> None:
-    header("Myard 5R (alpha12 = 50 deg, theta3 = 40 deg) and its non-overconstrained forms")
+    header("Myard 5R (alpha12 = 50 deg, theta3 = 40 deg) and its non-overconstrained forms (§3.4)")
     model = Myard(1.0, 50 * DEG)
     q = model.loop_angles(model.joint_angles(BRANCH, 40 * DEG))[0]
     c = analyse(truss_of(dh_mechanism(model.rows, anchor=0.5, input_joint=3), q))

@@ -1,4 +1,4 @@
-"""Reproduce Fig. 5 of seed 002 (Kamrava et al.): phi(theta) and psi(theta) of the asymmetric Miura
+"""Reproduce Fig. 5 of Kamrava et al. 2021: phi(theta) and psi(theta) of the asymmetric Miura
 vertex (30, 60 deg), three ways and at many more points than the paper's 11 CAD samples.
 
 Closed form (corrected eqns 38-39), the numeric loop closure followed by continuation, and MuJoCo
@@ -59,7 +59,7 @@ def main() -> None:
     ax.axvline(-np.rad2deg(lim), color="0.5", ls=":", lw=1)
     ax.set_xlabel("theta (deg)")
     ax.set_ylabel("angle (deg)")
-    ax.set_title("Asymmetric Miura vertex 30/60 deg (seed 002 Fig. 5); dotted: theta_limit")
+    ax.set_title("Asymmetric Miura vertex 30/60 deg (Kamrava et al. 2021, Fig. 5); dotted: theta_limit")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     with atomic_path(args.out / "fig5.png") as tmp:

@@ -3,6 +3,7 @@
 - a 16 x 16 Miura-ori given only as M/V letters: the numeric trace from flat, 200 polished reference inputs, and
   with --validate the whole `sim-origami validate --fold FILE --preset fast` (no --render) in a child process, its
   CPU (user + system, every thread) and the stages of its report.json;
+- the same sheet's trace with and without the self-contact test at every node (its cost);
 - a 480-crease non-rigid pattern (the same sheet with jittered vertices): time to its stall verdict.
 """
 
@@ -24,6 +25,7 @@ import numpy as np
 from sim_origami.fold import write_fold
 from sim_origami.kinematics.miura_sheet import MiuraSheet
 from sim_origami.kinematics.numeric_pattern import BRANCH, PatternPath, assignment_signs
+from sim_origami.kinematics.self_contact import SelfContact
 from sim_origami.scenes.fold_file import fold_scene
 
 
@@ -67,6 +69,16 @@ def main() -> None:
         values, t_eval = cpu(lambda: kin.joint_angles(BRANCH, x))
         rows.append(("16 x 16 Miura: 200 reference inputs polished", len(sheet.creases), t_eval,
                      f"residual <= {np.max(kin.loop_system().residual_norm(values)):.2g}"))
+        pattern, signs = kin.pattern, assignment_signs(kin.pattern)
+        first = pattern.creases[0].name
+        for contact in (False, True):
+            traced, t_trace = cpu(lambda c=contact: PatternPath(pattern, first, signs=signs, contact=c))
+            rows.append((f"16 x 16 Miura: trace {'with' if contact else 'without'} the self-contact test",
+                         len(sheet.creases), t_trace, f"{len(traced.s_nodes)} nodes, {traced.stops[0].kind}"))
+        test = SelfContact(pattern)
+        hits, t_test = cpu(lambda: [test(q) for q in traced.nodes])
+        rows.append((f"16 x 16 Miura: the self-contact test alone at those {len(hits)} nodes", len(sheet.creases),
+                     t_test, f"{sum(h is not None for h in hits)} contacts"))
         if args.validate:
             rows += validate_cli(path, Path(tmp) / "out", len(sheet.creases))
     rng = np.random.default_rng(1)

@@ -23,10 +23,10 @@ PAGE = ROOT / "docs" / "architecture.md"
 LAYERS = (
     ("base", "errors, units, atomic files, geometry, graphs, tolerances, GL backend",
      ("__init__", "errors", "conventions", "files", "geometry", "graph", "tolerances", "gl")),
-    ("kinematics", "closed forms (numpy only), the numeric loop closure, crease patterns, FOLD files",
+    ("kinematics", "closed forms (numpy only), the numeric loop closure and path engine, crease patterns, FOLD files",
      ("kinematics", "closure", "path", "creases", "fold", "fold_mesh")),
-    ("mechanism", "bodies, joints, spanning trees, panel and link solids",
-     ("mechanism", "origami", "linkage", "linkage_forms", "solids")),
+    ("mechanism", "bodies, joints, spanning trees, panel and link solids, linkage files",
+     ("mechanism", "origami", "linkage", "linkage_forms", "linkage_file", "solids")),
     ("mjcf", "MJCF text from a mechanism and options", ("mjcf", "mjcf_tidy")),
     ("scenes", "a kinematics model wired to a mechanism and a drive; the registry", ("scenes",)),
     ("simulation", "MuJoCo runs and their stabilised steps; the truss method", ("stabilize", "simulate", "truss")),
@@ -122,6 +122,17 @@ by `scripts/import_graph.py`; `tests/test_docs.py` fails when an import points u
 ## Imports pointing upward
 
 {verdict}
+
+## One numeric path engine
+
+Every numeric path is followed by `sim_origami.path` (layer 1, numpy and scipy only), which holds the predictor
+(secant or tangent), the correctors (damped Gauss-Newton; Newton with the rank-truncated pseudo-inverse), step
+control, the numerical rank, and three modes: `sweep` (given input values: `LoopSystem.follow`, so validation's
+closed-form-vs-numeric verdict, the user-curve check and the rigid-foldability test), `trace` (driven joints along
+a polyline with stall, bound and mobility reports: the crease-pattern path `PatternPath`) and `follow_arc`
+(pseudo-arc length through turning points, bifurcation detection, location, branch directions and switching: the
+truss method's `truss.follow`). Callers give the system (a `LoopSystem` in joint angles, or an `ArcSystem` such as
+the truss in node coordinates) and keep no stepping code of their own.
 """
 
 

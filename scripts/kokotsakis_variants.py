@@ -1,19 +1,19 @@
-"""Census of Kokotsakis meshes built from variants of one base vertex (seed 003 Tables A2-A4; digest M2, M4, M5).
+"""Census of Kokotsakis meshes built from variants of one base vertex (Peng 2018, §2.4, §2.5, Tables A2-A4).
 
     python scripts/kokotsakis_variants.py [n_random]      (n_random extra random bases, default 2; 9 s of CPU)
 
-What it does. For a base degree-4 vertex (sectors alpha_12 .. alpha_41) every sector set of the seed's twist
-variants that is an origami vertex is listed (`variants`: each sector alpha or pi - alpha, sum 2 pi). For each
-transmission type (two-fold = Path1, plane-symmetric = Path3, rotation = Path4, laid out as `kokotsakis.example`
+What it does. For a base degree-4 vertex (sectors alpha_12 .. alpha_41) every sector set of Peng 2018's twist
+variants (Table 2-1) that is an origami vertex is listed (`variants`: each sector alpha or pi - alpha, sum 2 pi). For
+each transmission type (two-fold = Path1, plane-symmetric = Path3, rotation = Path4, laid out as `kokotsakis.example`
 cases 3, 4 and 1 lay them out) every choice of variant at A, B, C, D is built, kept when `check_vertices` passes
 (developable, sectors in (0, pi), planar central panel), and tried on every combination of vertex branches
 (`kokotsakis.branch_mismatches` at the module's PROBES): a combination closes when the largest |mismatch| is <=
 CLOSE_TOL (what `Kokotsakis` does; it raises AssemblyError when none closes). A closing mesh is labelled by its
-flat-sheet angles up to rotation and mirror image (`signature`): congruent to a known construction with a variant
-of the base ('case 1/3/4 type': four identical vertices laid out as that case; 'example 2': congruent to eqn 2-38;
-'example 2 type': Example 2's layout A = C = v, B = D = all-supplement variant of v), else 'mirror-symmetric'
-(the crease pattern has a reflection symmetry, which makes the loop close on its own: each vertex's mirror image
-repeats its folds), else 'new'. 'ff' marks meshes whose four vertices are flat-foldable (Kawasaki).
+flat-sheet angles up to rotation and mirror image (`signature`): congruent to a known construction with a variant of
+the base ('case 1/3/4 type': four identical vertices laid out as that case; 'example 2': congruent to eqn 2-38;
+'example 2 type': Example 2's layout A = C = v, B = D = all-supplement variant of v), else 'mirror-symmetric' (the
+crease pattern has a reflection symmetry, which makes the loop close on its own: each vertex's mirror image repeats its
+folds), else 'new'. 'ff' marks meshes whose four vertices are flat-foldable (Kawasaki).
 
 Measured (CLOSE_TOL = 1e-12 rad). Every closing combination closes to <= 2.3e-14 rad at every probe; every other
 combination of a planar mesh misses by >= 0.036 rad at its worst probe (>= 0.308 rad for the generic vertex).
@@ -27,7 +27,7 @@ combination of a planar mesh misses by >= 0.036 rad at its worst probe (>= 0.308
                                    rotation    256     64     24     4 case 1 type, 4 example 2 (1 class), 16 new
     collinear 1-3 (40,140,80,100)  rotation    256     64     16     4 case 1 type, 12 new
     collinear 2-4 (100,40,140,80)  rotation    256     64     16     4 case 1 type, 12 new; 48 more close only
-                                                                     through a straight crease line (excluded, M5)
+                                                                     through a straight crease line (excluded, §2.5)
     random 1, 2 (generic)          two-fold     16      6      6     4 mirror-symmetric, 2 new (1 class)
                                    plane-sym    16      4      4     4 new (2 classes)
                                    rotation     16      2      2     2 case 1 type (aaaa and pppp)
@@ -41,24 +41,24 @@ Findings.
    flat-foldable like Example 2: 19 classes). For every generic base the two-fold type closes with A = C = base,
    B = D = the (mirrored) all-supplement variant pppp: a parallelogram, 6 branches; the plane-symmetric type with
    A = B = base, C = D = pppp (mirrored), 4 branches, and its relabellings. The rotation type closes only with
-   identical vertices, as the thesis says, except for the seed's own vertex: its alpha_12 = 90 deg makes
+   identical vertices, as the thesis says, except for its own vertex (eqn 2-34): alpha_12 = 90 deg makes
    pi - alpha_12 = alpha_12 and adds A = base, B = C = D = pppp (and the reverse). They are rigid origami with one
    DOF per branch: `validate` passed on generic-vertex examples of all three types (closed-form residual <= 2.1e-14,
    closed form vs numeric <= 3.6e-14 rad, MuJoCo fast path error 2.1e-9 to 4.5e-8 rad, numeric = MuJoCo = truss
    mobility 1 folded and 4 at flat); the plane-symmetric one is in the tests.
-3. Every vertex of these meshes lies on the same four crease lines as the base (Example 1 too): the seed's M2
-   reading (variants = the same linkage with reversed axes) seen in the flat sheet.
+3. Every vertex of these meshes lies on the same four crease lines as the base (Example 1 too): the reading of
+   Table A1 derived here (a pure variant is the same linkage with reversed axes) seen in the flat sheet.
 4. Table A4's legible conditions are the developability conditions of the variants beyond aaaa / pppp
    (`variant_conditions`): alpha12 + alpha23 = pi, alpha12 + alpha34 = pi (flat-foldable), alpha12 + alpha41 = pi.
    Each admits closing non-identical rotation meshes (12, 20, 12 here). Row R3R16 with 'Sigma = 2 pi' alone is no
    origami mesh for a generic base: its A = appa (eqn 2-30b) sums to 2 pi + 2 (alpha12 + alpha41 - pi), 460 deg for
    2-34, so it needs alpha12 + alpha41 = pi like R3R15R5.
 
-Limits. The collinear bases break seed M5's rule (no collinear non-adjacent creases) at every vertex; they are here
-only because A4's conditions name them. Branches are probed at rho_AB in PROBES (|x| = 0.1 to 0.6 rad): a branch
-that exists only below 0.1 rad, or a family with rho_AB = 0 (the straight crease lines of case 4), is not seen.
-Sectors in (0, pi) admit only alpha and pi - alpha per sector, so the census covers every origami mesh that the 256
-twist variants give with these three layouts.
+Limits. The collinear bases break Peng 2018's rule (§2.5: no collinear non-adjacent creases) at every vertex; they are
+here only because A4's conditions name them. Branches are probed at rho_AB in PROBES (|x| = 0.1 to 0.6 rad): a branch
+that exists only below 0.1 rad, or a family with rho_AB = 0 (the straight crease lines of case 4), is not seen. Sectors
+in (0, pi) admit only alpha and pi - alpha per sector, so the census covers every origami mesh that the 256 twist
+variants give with these three layouts.
 """
 
 import itertools
@@ -86,7 +86,7 @@ LAYOUTS = {
     "plane-sym": tuple((v.previous, v.mirrored) for v in example(4)),  # Path3, eqn 2-19
     "rotation": tuple((v.previous, v.mirrored) for v in example(1)),  # Path4, eqn 2-23
 }
-# Base vertices (deg, seed numbering alpha_12 .. alpha_41).
+# Base vertices (deg, Peng 2018's numbering alpha_12 .. alpha_41).
 BASES = {
     "generic 2-34": (90.0, 70.0, 60.0, 140.0),
     "example 2": (80.0, 70.0, 100.0, 110.0),  # flat-foldable (eqn 2-38)
@@ -95,10 +95,11 @@ BASES = {
 }
 # Sector angles are rounded to this many decimals (deg) when meshes are compared for congruence.
 DECIMALS = 6
-# Table A1 (digest Appendix A): the class Ri of each all-sector variant code on the pair (theta_1, theta_2).
+# Peng 2018, Table A1 (regenerated here over the 256 variants): the class Ri of each all-sector variant code on the
+# pair (theta_1, theta_2).
 R_CLASS = {"aaaa": "R1", "paap": "R2", "appa": "R3", "pppp": "R4", "ppaa": "R5", "apap": "R6", "papa": "R7",
            "aapp": "R8"}  # fmt: skip
-# Legible rotation-case (Table A4) rows (digest M5): transmission -> printed condition on the base.
+# Legible rotation-case rows of Peng 2018, Table A4: transmission -> printed condition on the base.
 A4_ROWS = {
     "R2R5, R4R12, R3R13R12": "alpha12 + alpha23 = alpha34 + alpha41 = pi",
     "R3R16": "Sigma = 2 pi",
@@ -125,12 +126,12 @@ def random_bases(count: int, seed: int = 3) -> dict[str, tuple[float, ...]]:
 
 def variants(base_deg: tuple[float, ...]) -> tuple[tuple[str, Sectors], ...]:
     """
-    Every developable sector set (rad) reachable from the base by the seed's twist variants (digest M2), with its
-    code ('a' = alpha, 'p' = pi - alpha per sector, seed order alpha_12 .. alpha_41), distinct sets only; a set
-    reached by several codes keeps the one with an even number of 'p' (a pure variant, Table A1), then fewest 'p'.
+    Every developable sector set (rad) reachable from the base by Peng 2018's twist variants (Table 2-1), with
+    its code ('a' = alpha, 'p' = pi - alpha per sector, the thesis's order alpha_12 .. alpha_41), distinct sets only; a
+    set reached by several codes keeps the one with an even number of 'p' (a pure variant, Table A1), then fewest 'p'.
 
     As origami sectors lie in (0, pi), so of alpha, pi - alpha, -pi + alpha, -alpha only alpha and pi - alpha are
-    sectors (-alpha and -pi + alpha are the same sectors with the link's x axis reversed, seed M2). Supplementing
+    sectors (-alpha and -pi + alpha are the same sectors with the link's x axis reversed). Supplementing
     sector k changes the sum by pi - 2 alpha_k: two supplements keep 2 pi iff the pair sums to pi, all four always,
     one or three only when a sector is pi/2 (then the set equals an even one).
     """
@@ -161,8 +162,8 @@ def closing(tried: dict[tuple[str, ...], float], straight: bool = False) -> tupl
     """
     Names of the closing combinations (mismatch <= CLOSE_TOL), as `Kokotsakis` names its branches: those with no
     vertex on a straight-line branch (`vertex4` 'straight<i><j>'), or with one if `straight`. A straight-line branch
-    folds a crease line running straight across the mesh, a family of its own that seed M5 excludes ("more than
-    1 DOF"; `kokotsakis.straight_lines`).
+    folds a crease line running straight across the mesh, a family of its own that Peng 2018, §2.5, excludes ("more
+    than 1 DOF"; `kokotsakis.straight_lines`).
     """
     names = (combination_name(c) for c, m in tried.items() if m <= CLOSE_TOL)
     return tuple(sorted(n for n in names if ("straight" in n) == straight))
@@ -198,7 +199,8 @@ def mirror_symmetric(vertices: tuple[MeshVertex, ...]) -> bool:
     """
     True when the flat crease pattern's angles are those of its mirror image (some relabelling): a reflection
     through two opposite corners or through the midpoints of two opposite inner creases. Each vertex's mirror image
-    then carries the same folds, so the loop closes by symmetry (a plane-symmetric Kokotsakis mesh, seed M3 Path3).
+    then carries the same folds, so the loop closes by symmetry (a plane-symmetric Kokotsakis mesh, Peng 2018, §2.3,
+    Path3).
     """
     corners, mirror = _images(vertices)
     return any(mirror[k:] + mirror[:k] == corners for k in range(4))
@@ -236,7 +238,7 @@ class Row:
 
     transmission: str
     base: str
-    codes: tuple[str, ...]  # variant code of A, B, C, D ('a' / 'p' per sector, seed order)
+    codes: tuple[str, ...]  # variant code of A, B, C, D ('a' / 'p' per sector, thesis order)
     planar: bool  # `check_vertices` passes
     closing: tuple[str, ...]  # closing branch combinations, no vertex on a straight-line branch
     straight: tuple[str, ...]  # closing combinations with a vertex on a straight-line branch
@@ -330,7 +332,7 @@ def main() -> None:
     for name in bases:
         new = set().union(*(s for n, _, _, s in totals if n == name))
         print(f"  {name}: {len(new)} congruence classes of new closing meshes over the three types")
-    print("Table A4 legible rows (digest M5):", A4_ROWS)
+    print("Peng 2018, Table A4, legible rows:", A4_ROWS)
 
 
 if __name__ == "__main__":

@@ -1,10 +1,10 @@
-"""Interference of the transformable polyhedra's designs (seed 001 §2.7 zeta study, §2.8 delta study, §5).
+"""Interference of the transformable polyhedra's designs (Yang 2017, §5.5 zeta study, §6.5 delta study).
 
 For each design it decides, two ways, whether the motion from the Archimedean solid reaches the Platonic one:
 (a) the closed form (`TruncatedOctahedronCube.outcome`: pseudo-arclength to the first fold; the tetrahedron
 models' traced path and its end), (b) MuJoCo with the collision plates on and a force-limited servo on the input
 (`simulate(..., drive="servo", contact=True)` from the deployed pose to the end of the path): where the motion
-stops and the shape there. Prints the seed's feasible ranges against ours. Angles printed in degrees.
+stops and the shape there. Prints the thesis's feasible ranges against ours. Angles printed in degrees.
 
 Run: /work/venv/bin/python scripts/polyhedra_interference.py [--quick]
 (--quick: a few designs per scene, about 40 s of CPU; the full grid takes a few minutes.)
@@ -30,7 +30,7 @@ ZETAS = (-89.9, -85, -80, -75, -70, -65, -63, -62, -61.5, -61, -60.9, -60.7, -60
 ZETAS_MUJOCO = (-89.9, -80, -70, -63, -62, -60.7, -40, -20, 0, 15, 18.9, 19.5, 22, 30, 40)
 QUICK = (-70, 0, 30, 40)
 DELTAS = {"I": (-30, -10, -5, -4, -3.5, -3, 0, 5, 15), "II": (-10, -5, 0, 5, 10)}
-SEED_RANGE = (-60.9, 19.5)  # deg, seed 001 §2.7 [T]
+PRINTED_RANGE = (-60.9, 19.5)  # deg, Yang 2017 §5.5
 CORNERS = tuple(tuple(v for v in NAMES if np.allclose(CUBE[v], c)) for c in {tuple(CUBE[v]) for v in NAMES})
 INDEX = {v: k for k, v in enumerate(NAMES)}
 
@@ -85,7 +85,7 @@ def octahedron_stop(zeta_deg: float) -> Stop:
 
 def octahedron_table(zetas: tuple[float, ...], mujoco: tuple[float, ...]) -> list[tuple[float, PathOutcome]]:
     """Print one row per zeta (deg): closed-form outcome, and MuJoCo's stop for those in `mujoco`."""
-    print("truncated octahedron -> cube (seed 001 §2.7): zeta study")
+    print("truncated octahedron -> cube (Yang 2017 §5.5): zeta study")
     print(f"{'zeta':>6} {'closed form':>14} {'rho1/rho2 at fold':>18} {'turns of theta':>16} {'rho1 max':>8} "
           f"{'max|rho1-rho2|':>14} | MuJoCo servo + contact: {'stop A1':>8} {'/ target':>8} {'contact':>8} "
           f"{'rho1':>6} {'rho2':>6} {'gap m':>7} {'CPU s':>5}")  # fmt: skip
@@ -119,7 +119,7 @@ def feasible_band(rows: list[tuple[float, PathOutcome]], key: str) -> tuple[floa
 
 def tetrahedron_table(scheme: str, deltas: tuple[float, ...]) -> None:
     """Print one row per delta (deg) of a truncated-tetrahedron scheme: closed form, then MuJoCo with contact."""
-    print(f"\ntruncated tetrahedron -> tetrahedron, scheme {scheme} (seed 001 §2.8): delta{len(scheme)} study")
+    print(f"\ntruncated tetrahedron -> tetrahedron, scheme {scheme} (Yang 2017 §6.5): delta{len(scheme)} study")
     print(f"{'delta':>6} {'closed form end':>34} {'rho max':>8} | MuJoCo servo + contact: {'stop':>8} "
           f"{'/ end':>8} {'contact':>8} {'rho':>7} {'|BK| m':>7} {'|AE| m':>7} {'CPU s':>5}")  # fmt: skip
     for d in deltas:
@@ -152,7 +152,7 @@ def main() -> None:
     t0 = time.process_time()
     rows = octahedron_table(QUICK if quick else ZETAS, QUICK if quick else ZETAS_MUJOCO)
     if not quick:
-        print(f"\nseed: feasible {SEED_RANGE[0]} <= zeta <= {SEED_RANGE[1]} deg")
+        print(f"\nYang 2017: feasible {PRINTED_RANGE[0]} <= zeta <= {PRINTED_RANGE[1]} deg")
         lo, hi = feasible_band(rows, "feasible")
         print(f"ours on the grid: reaches the cube for {lo} <= zeta <= {hi} deg (turning points allowed)")
         lo, hi = feasible_band(rows, "drivable")

@@ -1,4 +1,4 @@
-"""Seed 000 ch. 5 by simulation: the thick waterbomb cell is kinematically the zero-thickness path I, and
+"""Feng 2018, ch. 5, by simulation: the thick waterbomb cell is kinematically the zero-thickness path I, and
 it follows that one path where the zero-thickness cell has four.
 
 For each branch of the zero-thickness cell (scene waterbomb-vertex): MuJoCo seeded on it follows it (fast

@@ -1,4 +1,4 @@
-"""The seed's kind of parameter map for the waterbomb tube (seed 004 Fig. 8): over (alpha, beta), the largest
+"""The kind of parameter map of Feng, Ma and Chen 2020, Fig. 8, for the waterbomb tube: over (alpha, beta), the largest
 contraction angle theta_max of the rigid radial motion, and where the tube cannot contract rigidly at all;
 computed from the closed form (`kinematics.waterbomb_tube.motion_range`) in parallel over the machine's cores.
 

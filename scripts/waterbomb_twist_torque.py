@@ -1,5 +1,5 @@
-"""The free waterbomb tube twisted by a torque about its axis, without imposed symmetry (seed 000 §6.4.2, digest
-seed000.md "Non-rigid twist" / "Simulation").
+"""The free waterbomb tube twisted by a torque about its axis, without imposed symmetry (Feng 2018, §6.4:
+the twist branches off the contraction's end; §6.4.2, eqns 6-53, 6-54: a twist from any other state is non-rigid).
 
 The 6 x 3 tube of scene `waterbomb-tube` with its symmetry couplings removed (4n - 6 = 18 DOF), posed by the closed
 form on the radial contraction at theta = eta01 (default: its lower end 2 pi / n, the fully folded middle row, where
@@ -109,7 +109,7 @@ class VertexMap:
 
 
 def end_rings(scene: Scene) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
-    """Vertex keys of the top end ring (B, C of the top seed row) and of the bottom one (B, C of the row below)."""
+    """Vertex keys of the top end ring (B, C of the top row) and of the bottom one (B, C of the row below)."""
     keys = scene.kinematics.layout.keys
     top, bottom = max(k[1] for k in keys), min(k[1] for k in keys)
     ring = [np.array([v for v, (kind, i, _) in enumerate(keys) if i == row and kind in "BC"]) for row in (top, bottom)]

@@ -1,6 +1,7 @@
 """Independent numeric loop closure: the second truth for every model.
 
-A loop is a closed chain of revolute joints written in the seeds' Denavit-Hartenberg form
+A loop is a closed chain of revolute joints written in the Denavit-Hartenberg form of the sources (Yang 2017,
+Eq. 1-2; Peng 2018, Eqs. 1-1, 1-2)
 
     T(q) = Rz(s_0 q[j_0]) L_0 Rz(s_1 q[j_1]) L_1 ... Rz(s_(n-1) q[j_(n-1)]) L_(n-1),
 
@@ -8,7 +9,8 @@ which closes when T(q) = I. `L_k` is the constant transform from joint k's frame
 frame at zero angle and `s_k = +/-1` is the direction in which the loop traverses joint k. The
 residual of a loop is (rotation vector of T, translation of T): radians and the mechanism's length
 unit. Nothing here knows a closed form; the solver is damped Newton (Levenberg-Marquardt, which
-tolerates the rank-deficient Jacobians of overconstrained loops) with continuation in the input.
+tolerates the rank-deficient Jacobians of overconstrained loops) with continuation in the input; both
+are the path engine's (`path.levenberg_marquardt`, `path.sweep`).
 """
 
 from dataclasses import dataclass
@@ -17,10 +19,10 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy import sparse as sp
-from scipy.sparse.linalg import spsolve
 
 from .errors import ConvergenceError
 from .geometry import left_jacobian_inverse, rotation_vector, transform_z, wrap
+from .path import levenberg_marquardt, rank, sweep
 
 
 @dataclass(frozen=True)
@@ -38,36 +40,6 @@ class Loop:
         for j, s, L in zip(self.joints, self.signs, self.links, strict=True):
             T = T @ transform_z(s * q[..., j]) @ L
         return T
-
-
-def _levenberg_marquardt(residual, jacobian, u: NDArray[np.float64], tol: float, max_iter: int):
-    """
-    Damped Gauss-Newton (Levenberg-Marquardt, tolerant of rank-deficient Jacobians) on residual(u), from u; stops
-    below `tol` (largest component), after `max_iter` steps, or when the damping needed exceeds 1e8.
-    Returns (u, residual).
-    """
-    damping = 1e-6
-    r = residual(u)
-    for _ in range(max_iter):
-        if np.max(np.abs(r), initial=0.0) < tol:  # an open chain (no residual) is closed
-            break
-        J = jacobian(u)
-        if sp.issparse(J):  # large patterns: a few nonzeros per row, so the normal equations stay sparse
-            JtJ = (J.T @ J).tocsc()
-            step = spsolve(JtJ + damping * sp.diags(JtJ.diagonal() + 1e-12, format="csc"), -(J.T @ r))
-            trial = u + np.atleast_1d(step)
-        else:
-            JtJ = J.T @ J
-            trial = u + np.linalg.solve(JtJ + damping * np.diag(np.diag(JtJ) + 1e-12), -J.T @ r)
-        r_trial = residual(trial)
-        if np.sum(r_trial**2) < np.sum(r**2):
-            u, r = trial, r_trial
-            damping = max(damping * 0.1, 1e-12)
-        else:
-            damping *= 10.0
-            if damping > 1e8:
-                break
-    return u, r
 
 
 def _scale_rows(J, w: NDArray[np.float64]):
@@ -236,7 +208,7 @@ class LoopSystem:
             return out
 
         jacobian = self.jacobian_sparse if self.sparse else self.jacobian
-        u, r = _levenberg_marquardt(
+        u, r = levenberg_marquardt(
             lambda u: w * self.residual(q_of(u)), lambda u: _scale_rows(jacobian(q_of(u))[:, free], w), q[free], tol,
             max_iter,
         )  # fmt: skip
@@ -274,40 +246,35 @@ class LoopSystem:
             return self.jacobian(q)[:, free] * rate
 
         u0 = np.full(int(np.sum(free)), np.log(abs(x) / (np.pi - abs(x))))
-        u, r = _levenberg_marquardt(lambda u: self.residual(q_of(u)), jacobian, u0, tol, max_iter)
+        u, r = levenberg_marquardt(lambda u: self.residual(q_of(u)), jacobian, u0, tol, max_iter)
         return q_of(u), float(np.max(np.abs(r), initial=0.0))
 
     def follow(
         self, q_start: ArrayLike, input_joint: int | tuple[int, ...], values: ArrayLike, *, tol: float = 1e-14
     ) -> NDArray[np.float64]:
         """
-        Follow one branch by continuity: solve at each input value in turn.
+        Follow one branch by continuity: solve at each input value in turn (`path.sweep`).
 
         Each solve starts from a secant prediction through the two previous solutions, so the
         branch is kept through crossings. `q_start` must be closed (or nearly) at `values[0]`. Several
-        input joints (a tuple) take rows of `values` (n, k).
+        input joints (a tuple) take rows of `values` (n, k); the secant's parameter is then the arc length of
+        the inputs' path.
 
         Returns
         -------
         q : (len(values), n_joints) float
         """
         values = np.asarray(values, dtype=float)
+        inputs = np.atleast_1d(input_joint)
         fixed = np.zeros(self.n_joints, dtype=bool)
-        fixed[np.atleast_1d(input_joint)] = True
-        out = np.empty((len(values), self.n_joints))
-        q = np.array(q_start, dtype=float)
-        for k, x in enumerate(values):
-            guess = q.copy()
-            if values.ndim == 1 and k >= 2 and values[k - 1] != values[k - 2]:
-                rate = (out[k - 1] - out[k - 2]) / (values[k - 1] - values[k - 2])
-                guess = out[k - 1] + rate * (x - values[k - 1])
-            elif values.ndim == 2 and k >= 2 and np.any(values[k - 1] != values[k - 2]):
-                ratio = np.linalg.norm(x - values[k - 1]) / np.linalg.norm(values[k - 1] - values[k - 2])
-                guess = out[k - 1] + (out[k - 1] - out[k - 2]) * ratio
-            guess[np.atleast_1d(input_joint)] = x
-            q = self.solve(guess, fixed, tol=tol)
-            out[k] = q
-        return out
+        fixed[inputs] = True
+        s = values if values.ndim == 1 else np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(values, axis=0), axis=1))]
+
+        def close(guess: NDArray[np.float64], k: int) -> NDArray[np.float64]:
+            guess[inputs] = values[k]
+            return self.solve(guess, fixed, tol=tol)
+
+        return sweep(close, q_start, s)
 
     def assemblies(
         self,
@@ -344,10 +311,9 @@ class LoopSystem:
 
     def mobility(self, q: ArrayLike, rtol: float = 1e-6) -> int:
         """
-        Instantaneous mobility: joints minus the numerical rank of the closure Jacobian.
+        Instantaneous mobility: joints minus the numerical rank of the closure Jacobian (`path.rank`).
 
         Singular values below rtol times the largest count as zero (the Jacobian is exact, so only rounding
         is below it; a regular pose keeps O(0.1) values).
         """
-        s = np.linalg.svd(self.jacobian(q), compute_uv=False)
-        return self.n_joints - int(np.sum(s > rtol * max(s.max(initial=0.0), 1.0)))
+        return self.n_joints - rank(self.jacobian(q), rtol)

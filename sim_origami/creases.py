@@ -3,7 +3,7 @@
 Frames. The flat sheet lies in the world XY plane, normal +z, lengths in metres. Faces are
 counter-clockwise vertex loops seen from +z. A crease joins two faces along the edge from vertex
 `start` to vertex `end`; its hinge is the line through (x_start, y_start, height) along that edge
-(height != 0 for thick panels whose hinges sit on a panel surface, seed 003 ch. 4).
+(height != 0 for thick panels whose hinges sit on a panel surface, Peng 2018, ch. 4).
 
 Signs (`sim_origami.conventions`). The crease angle rho is the right-handed rotation about
 start -> end of the face on its left (counter-clockwise side) relative to the face on its right;

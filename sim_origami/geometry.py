@@ -286,7 +286,8 @@ def triangles_cross(
     Whether each pair of triangles (..., 3, 3) (vertices in m) crosses: an edge of one passes through the other's
     interior (Moller-Trumbore, both ways). An edge must reach `graze` (barycentric, and along the edge) inside, so
     edges that only end on each other to rounding do not count; edges closer to parallel to the other's plane than
-    `parallel` (m^3) are skipped. The zero-thickness panels' collision test (seed 004's "physical interference").
+    `parallel` (m^3) are skipped. The zero-thickness panels' collision test (Feng, Ma and Chen 2020's "physical
+    interference").
     """
     first, second = np.asarray(first, dtype=float), np.asarray(second, dtype=float)
     hit = np.zeros(np.broadcast_shapes(first.shape, second.shape)[:-2], dtype=bool)

@@ -1,5 +1,5 @@
 """Non-overconstrained forms of single-loop linkages as mechanisms: some revolute joints of a D-H loop replaced by
-spherical joints (seed 001 ch. 3, digest §1.7: Bennett -> RSSR with balls at joints 3 and 4, Myard -> RRSRR with
+spherical joints (Yang 2017, ch. 3: Bennett -> RSSR with balls at joints 3 and 4, Myard -> RRSRR with
 a ball at joint 1, RSRRR with a ball at joint 2).
 
 Bodies and frames as in `linkage.dh_mechanism`: link k (k = 1..n) joins joint k to joint k+1, its frame is joint

@@ -279,7 +279,7 @@ class Mechanism:
     def idle_spins(self) -> int:
         """
         Bodies held only by two spherical joints (S-S bars): each spins freely about the line through the two
-        centres, a trivial mode that loop ranks and MuJoCo count and the truss method does not (seed 001 §1.1).
+        centres, a trivial mode that loop ranks and MuJoCo count and the truss method does not (Yang 2017, §2.2).
         """
         ends: dict[str, list[str]] = {}
         for j in self.joints:

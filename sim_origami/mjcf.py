@@ -8,9 +8,9 @@ geoms sit on the world body), hinges as the mechanism's joints, meshes `<body>_s
 
 A hinge's qpos equals the mechanism's joint angle: a joint traversed from its child to its parent
 in the spanning tree gets the reversed axis. Each cut joint is closed by one site-based `connect`
-per anchor on its axis (sites need not coincide at qpos0, spec mujoco.md §2.1), unless the mechanism marks it
-implied (closed by its couplings and the other loops): then only its sites are written. Contact, gravity
-and render assets enter only the models that use them.
+per anchor on its axis (sites need not coincide at qpos0: MuJoCo documentation, equality/connect), unless the
+mechanism marks it implied (closed by its couplings and the other loops): then only its sites are written.
+Contact, gravity and render assets enter only the models that use them.
 """
 
 import xml.etree.ElementTree as ET

@@ -71,7 +71,7 @@ def vertex_mechanism(
     names : tuple of str, optional
       Crease names (default crease_1 ... crease_n); panels are panel_1 ... panel_n.
     heights : (n,) float, optional
-      Thick-panel origami (seed 003 ch. 4): hinge i lies on the line through (0, 0, heights[i]) along
+      Thick-panel origami (Peng 2018, ch. 4): hinge i lies on the line through (0, 0, heights[i]) along
       d_i, and panel i is a slab filling the gap between the planes of its two hinges (thickness =
       link length). Panels then carry collision solids inset by `inset` from both creases.
     anchors : tuple of float

@@ -1,32 +1,56 @@
-"""Numeric path following over any `LoopSystem`: k driven joints moved along a polyline in their space.
+"""The one numeric path engine: every numeric path of the package is followed here.
 
-The follower is a predictor-corrector: a secant predictor through the last two closed configurations, a damped
-Newton (Levenberg-Marquardt) corrector with the driven joints held, and step control (halving on failure,
-growth by 1.5 on success). Along the path it records the instantaneous mobility (joints minus the numerical rank
-of the closure Jacobian) at every node; a change is reported as an event (a bifurcation or the end of one).
+Three modes share one set of parts (predictor, correctors, step control, numerical rank):
 
-Where it stops, and why (`PathStop.kind`):
+- `sweep`: natural-parameter continuation at given parameter values, a secant predictor through the last two
+  solutions and the caller's corrector at each value (`LoopSystem.follow`: validation's numeric reference, the
+  user-curve check, the rigid-foldability test of `kinematics.numeric_pattern`);
+- `trace`: natural-parameter continuation of a `ClosureSystem` while k driven joints move along a `Polyline`, with
+  step control, stall, bound and mobility-change reports (`kinematics.numeric_pattern.PatternPath`);
+- `follow_arc`: pseudo-arc-length continuation of an `ArcSystem` along its mechanism mode (Yang 2017, §1.4-1.5),
+  through turning points of the input, with bifurcation detection (the second singular value of the Jacobian and
+  the orientation of its bordered form), location (golden section), branch directions at second order and branch
+  switching (`truss.follow`).
+
+Correctors: damped Gauss-Newton (`levenberg_marquardt`, tolerant of the rank-deficient Jacobians of overconstrained
+loops) for `sweep` and `trace`; Newton with the rank-truncated pseudo-inverse (`ArcSystem.correct`) for
+`follow_arc`. Step control (`Step`): halving on a rejected step, growth by GROWTH on an accepted one.
+
+Where `trace` stops, and why (`PathStop.kind`):
 - "end": the polyline's end was reached;
 - "stall": the corrector converges to a stationary point of the residual that is not closed (a least-squares
   minimum above the tolerance, |J^T r| << |J| |r|) at STALL_CONFIRM successively halved steps, or the step
   fell below `min_step`: no rigid configuration beyond, with the driven joints moved that way;
 - "bound": a joint would leave its bounds (a crease reaching +-pi, a crease whose sign would flip), `joint` says
   which; the path ends at the last node inside them;
-- "bifurcation": the mobility rose above the path's (only with `stop_at_bifurcation`).
+- "bifurcation": the mobility rose above the path's (only with `stop_at_bifurcation`);
+- "contact": `stop_when` (e.g. a self-contact test) gave a reason at a node; the first such configuration is
+  located by bisection on s between that node and the last one to STOP_WHEN_TOL, and the path ends just before it.
 
-Open chains (no loops, no couplings) close trivially: every node is exact and the mobility is the joint count.
-Units: radians for joints and the path parameter s; the residual in radians and the loops' length unit.
+Along the path `trace` records the instantaneous mobility (joints minus the numerical rank of the closure
+Jacobian) at every node; a change is reported as an event (a bifurcation or the end of one). Open chains (no
+loops, no couplings) close trivially: every node is exact and the mobility is the joint count.
+
+Units: radians for joints and `trace`'s path parameter s; residuals in radians and the system's length unit;
+`follow_arc`'s arc length in the system's length unit (steps given in units of `ArcSystem.scale`).
 """
 
-from dataclasses import dataclass
+from abc import ABC, abstractmethod
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from typing import Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy import sparse as sp
+from scipy.sparse.linalg import spsolve
 
-from .closure import LoopSystem, _levenberg_marquardt
-from .errors import ParameterError
+from .errors import AssemblyError, ConvergenceError, ParameterError
 
+# Step control: an accepted step grows by this factor (up to the mode's largest step).
+GROWTH = 1.5
+
+# -- trace --
 # Corrector iterations per step, and a failed corrector's |J^T r| / (|J| |r|) below which it sits at a stationary
 # point of the residual (a least-squares minimum that does not close), not merely short of iterations.
 CORRECTOR_ITER = 40
@@ -40,6 +64,150 @@ RANK_RTOL = 1e-6
 # Sparse (large) systems rank every this many nodes and the last (480 creases: one rank 0.1-1 s, a corrector step
 # a few ms); a mobility change is then placed between two ranked nodes.
 SPARSE_RANK_STRIDE = 10
+# A `stop_when` reason is located to this (path parameter, rad) by bisection between two nodes.
+STOP_WHEN_TOL = 1e-9
+
+# -- follow_arc --
+# Newton corrector: at most this many iterations to bring every residual component below `ArcSystem.tol`.
+ARC_CORRECTOR_ITER = 12
+# Step control on the arc length (x `ArcSystem.scale`): first step, largest step, smallest before giving up.
+# A step is rejected (and halved) when the corrector fails, moves the point by more than MAX_CORRECTION x the
+# step, or the tangent turns by more than MAX_TURN rad; a step that converged in <= FAST_ITER iterations grows.
+FIRST_STEP = 0.02
+MAX_STEP = 0.25
+MIN_STEP = 1e-9
+MAX_CORRECTION = 0.3
+MAX_TURN = 0.4
+FAST_ITER = 3
+# Bifurcations. A branch crosses one between two points when the orientation sign (`ArcSystem.orientation`)
+# flips; it touches one near a point that is a local minimum of sigma_2 below DIP x the larger of its two
+# neighbours. The minimum of sigma_2 is then located on the path (golden-section rounds over spans shrinking
+# REFINE_SHRINK times, down to REFINE_FLOOR x scale); it is a bifurcation, and its mobility is counted, with
+# BIFURCATION_RTOL x sigma_max as zero. A double point is only located to about the square root of the
+# corrector tolerance: located sigma_2 measured 3.7e-13 .. 3.7e-9, input within 5.5e-7 rad, on 44 crossings of
+# the registered scenes' simple bifurcations (Bricard bundle, plane-symmetric Bricard, Miura, vertex4, thick
+# diamond), against sigma_2 >= 3.5e-5 anywhere on every scene's default paths (triangle-twist-6r).
+DIP = 0.5
+REFINE_SHRINK = 4.0
+REFINE_FLOOR = 1e-10
+BIFURCATION_RTOL = 1e-6
+# Second differences of the residual along a branch direction, step in units of `ArcSystem.scale`.
+CURVATURE_STEP = 1e-3
+# A golden-section search stops when its bracket is this fraction of the first.
+GOLDEN_STOP = 0.05
+
+
+# -- parts shared by the modes ---------------------------------------------------------------------------------
+
+
+def levenberg_marquardt(residual, jacobian, u: NDArray[np.float64], tol: float, max_iter: int):
+    """
+    Damped Gauss-Newton (Levenberg-Marquardt, tolerant of rank-deficient Jacobians) on residual(u), from u; stops
+    below `tol` (largest component), after `max_iter` steps, or when the damping needed exceeds 1e8. A sparse
+    Jacobian keeps the normal equations sparse. Returns (u, residual).
+    """
+    damping = 1e-6
+    r = residual(u)
+    for _ in range(max_iter):
+        if np.max(np.abs(r), initial=0.0) < tol:  # an open chain (no residual) is closed
+            break
+        J = jacobian(u)
+        if sp.issparse(J):  # large patterns: a few nonzeros per row, so the normal equations stay sparse
+            JtJ = (J.T @ J).tocsc()
+            step = spsolve(JtJ + damping * sp.diags(JtJ.diagonal() + 1e-12, format="csc"), -(J.T @ r))
+            trial = u + np.atleast_1d(step)
+        else:
+            JtJ = J.T @ J
+            trial = u + np.linalg.solve(JtJ + damping * np.diag(np.diag(JtJ) + 1e-12), -J.T @ r)
+        r_trial = residual(trial)
+        if np.sum(r_trial**2) < np.sum(r**2):
+            u, r = trial, r_trial
+            damping = max(damping * 0.1, 1e-12)
+        else:
+            damping *= 10.0
+            if damping > 1e8:
+                break
+    return u, r
+
+
+def secant(s_prev: float, x_prev: NDArray, s: float, x: NDArray, s_new: float) -> NDArray[np.float64]:
+    """Secant predictor: the line through (s_prev, x_prev) and (s, x), at parameter s_new."""
+    return x + (x - x_prev) / (s - s_prev) * (s_new - s)
+
+
+@dataclass
+class Step:
+    """Step control: `size` halves on a rejected step and grows by GROWTH (up to `largest`) on an accepted one."""
+
+    size: float
+    largest: float
+    smallest: float
+
+    def reject(self) -> bool:
+        """Halve the step; True when it fell below `smallest` (give up)."""
+        self.size /= 2
+        return self.size < self.smallest
+
+    def accept(self) -> None:
+        self.size = min(GROWTH * self.size, self.largest)
+
+
+def rank(J, rtol: float = RANK_RTOL) -> int:
+    """Numerical rank of a Jacobian, dense or sparse (rows may be empty): singular values above rtol times the
+    largest (at least 1). A sparse one is ranked by the eigenvalues of its Gram matrix J^T J (n_joints square, far
+    smaller than J for big patterns; eigenvalue errors of 1e-16 |J|^2 leave singular values near rtol = 1e-6
+    resolved)."""
+    if not J.shape[0] or not J.shape[1]:
+        return 0
+    if sp.issparse(J):
+        sv = np.sqrt(np.clip(np.linalg.eigvalsh((J.T @ J).toarray()), 0.0, None))
+    else:
+        sv = np.linalg.svd(J, compute_uv=False)
+    return int(np.sum(sv > rtol * max(sv.max(initial=0.0), 1.0)))
+
+
+def padded_svd(M: NDArray) -> tuple[NDArray, NDArray, NDArray]:
+    """Full SVD with the singular values padded by zeros to the column count: (U, s (n,), Vt)."""
+    U, s, Vt = np.linalg.svd(M, full_matrices=True)
+    return U, np.concatenate([s, np.zeros(M.shape[1] - len(s))]), Vt
+
+
+# -- sweep: given parameter values -----------------------------------------------------------------------------
+
+
+def sweep(close: Callable[[NDArray[np.float64], int], NDArray[np.float64]], x0: ArrayLike,
+          s: ArrayLike) -> NDArray[np.float64]:  # fmt: skip
+    """
+    Natural-parameter continuation at the parameter values s (n,) in turn: at each, the secant through the last
+    two solutions predicts (the last solution alone at the first two values and after a repeated value), and
+    close(guess, k) corrects, setting the driven coordinates of value k itself (and raising when it cannot).
+    The branch is so kept through crossings. x0 (dim,) starts the first prediction. Returns (n, dim).
+    """
+    s = np.asarray(s, dtype=float)
+    x = np.array(x0, dtype=float)
+    out = np.empty((len(s), len(x)))
+    for k in range(len(s)):
+        guess = secant(s[k - 2], out[k - 2], s[k - 1], out[k - 1], s[k]) if k >= 2 and s[k - 1] != s[k - 2] \
+            else x.copy()  # fmt: skip
+        x = close(guess, k)
+        out[k] = x
+    return out
+
+
+# -- trace: driven joints along a polyline ---------------------------------------------------------------------
+
+
+class ClosureSystem(Protocol):
+    """What `trace` follows (a `closure.LoopSystem` is one): residual and Jacobian over `n_joints` coordinates."""
+
+    n_joints: int
+    sparse: bool  # solve with sparse normal equations; then `jacobian_sparse` is used
+
+    def residual(self, q: ArrayLike) -> NDArray[np.float64]: ...
+
+    def jacobian(self, q: ArrayLike) -> NDArray[np.float64]: ...
+
+    def jacobian_sparse(self, q: ArrayLike) -> sp.csc_matrix: ...
 
 
 @dataclass(frozen=True)
@@ -112,30 +280,17 @@ class TracedPath:
     events: tuple[PathStop, ...]
 
 
-def rank(J, rtol: float = RANK_RTOL) -> int:
-    """Numerical rank of a Jacobian, dense or sparse (rows may be empty). A sparse one is ranked by the eigenvalues
-    of its Gram matrix J^T J (n_joints square, far smaller than J for big patterns; eigenvalue errors of
-    1e-16 |J|^2 leave singular values near rtol = 1e-6 resolved)."""
-    if not J.shape[0] or not J.shape[1]:
-        return 0
-    if sp.issparse(J):
-        sv = np.sqrt(np.clip(np.linalg.eigvalsh((J.T @ J).toarray()), 0.0, None))
-    else:
-        sv = np.linalg.svd(J, compute_uv=False)
-    return int(np.sum(sv > rtol * max(sv.max(initial=0.0), 1.0)))
-
-
-def jacobian(loops: LoopSystem, q: ArrayLike):
+def jacobian(loops: ClosureSystem, q: ArrayLike):
     """The closure Jacobian, sparse when the loop system solves sparse."""
     return loops.jacobian_sparse(q) if loops.sparse else loops.jacobian(q)
 
 
-def mobility(loops: LoopSystem, q: ArrayLike) -> int:
+def mobility(loops: ClosureSystem, q: ArrayLike) -> int:
     """Instantaneous mobility at q: joints minus the closure Jacobian's numerical rank."""
     return loops.n_joints - rank(jacobian(loops, q))
 
 
-def independent_joints(loops: LoopSystem, q: ArrayLike, k: int | None = None, among: ArrayLike | None = None,
+def independent_joints(loops: ClosureSystem, q: ArrayLike, k: int | None = None, among: ArrayLike | None = None,
                        first: tuple[int, ...] = ()) -> tuple[int, ...]:  # fmt: skip
     """
     Joints that can be driven independently at q: k (default: the mobility) rows of the closure Jacobian's null
@@ -167,7 +322,7 @@ def independent_joints(loops: LoopSystem, q: ArrayLike, k: int | None = None, am
     return tuple(picked)
 
 
-def correct(loops: LoopSystem, guess: NDArray[np.float64], fixed: NDArray[np.bool_], tol: float,
+def correct(loops: ClosureSystem, guess: NDArray[np.float64], fixed: NDArray[np.bool_], tol: float,
             max_iter: int = CORRECTOR_ITER) -> tuple[NDArray[np.float64], float, bool]:  # fmt: skip
     """
     Close the loops from `guess` moving the joints not `fixed`. Returns (q, largest |residual|, stationary): the
@@ -181,8 +336,8 @@ def correct(loops: LoopSystem, guess: NDArray[np.float64], fixed: NDArray[np.boo
         out[free] = u
         return out
 
-    u, r = _levenberg_marquardt(lambda u: loops.residual(q_of(u)), lambda u: jacobian(loops, q_of(u))[:, free],
-                                guess[free], tol, max_iter)  # fmt: skip
+    u, r = levenberg_marquardt(lambda u: loops.residual(q_of(u)), lambda u: jacobian(loops, q_of(u))[:, free],
+                               guess[free], tol, max_iter)  # fmt: skip
     q = q_of(u)
     worst = float(np.max(np.abs(r), initial=0.0))
     if worst <= tol:
@@ -194,7 +349,7 @@ def correct(loops: LoopSystem, guess: NDArray[np.float64], fixed: NDArray[np.boo
 
 
 def trace(
-    loops: LoopSystem,
+    loops: ClosureSystem,
     q0: ArrayLike,
     driven: ArrayLike,
     path: Polyline,
@@ -210,6 +365,7 @@ def trace(
     stop_at_bifurcation: bool = False,
     names: tuple[str, ...] | None = None,
     previous: tuple[float, ArrayLike] | None = None,
+    stop_when: Callable[[NDArray[np.float64]], str | None] | None = None,
 ) -> TracedPath:
     """
     Follow the closed configurations of `loops` from q0 (closed, or nearly, at `path.at(s0)`) while the driven
@@ -217,8 +373,9 @@ def trace(
 
     Steps are in path parameter (rad); `lower`/`upper` (n_joints,) bound the joints (default +-inf); `names`
     label joints in the details; `previous` (s, q) is a closed configuration behind the start that the first
-    step's secant predictor uses (e.g. the flat state, when the start lies just off it on the wanted branch).
-    See the module docstring for the stops.
+    step's secant predictor uses (e.g. the flat state, when the start lies just off it on the wanted branch);
+    `stop_when(q)` returns why the path must end at configuration q (a contact), or None; it is asked at every
+    node. See the module docstring for the stops.
     """
     driven = np.atleast_1d(np.asarray(driven, dtype=int))
     if len(driven) != path.k:
@@ -237,20 +394,22 @@ def trace(
     direction = 1.0 if end >= s else -1.0
     nodes_s, nodes_q, mob, res = [s], [q], [mobility(loops, q)], [r0]
     events: list[PathStop] = []
-    h, failures, stop = first_step, 0, None
+    step, failures, stop = Step(first_step, max_step, min_step), 0, None
     behind = None if previous is None else (float(previous[0]), np.asarray(previous[1], dtype=float))
     if r0 > 100 * tol:
         why = f"no rigid configuration beyond: the start does not close (residual {r0:.3g})"
         stop = PathStop("stall", s, None, why)
+    elif stop_when is not None and (why := stop_when(q)) is not None:
+        stop = PathStop("contact", s, None, f"{why} already at the start")
     while stop is None:
         if (end - s) * direction <= 1e-15:
             stop = PathStop("end", s, None, "the path's end")
             break
-        s_new = s + direction * min(h, abs(end - s))
+        s_new = s + direction * min(step.size, abs(end - s))
         if len(nodes_q) >= 2:
-            guess = q + (q - nodes_q[-2]) * (s_new - s) / (s - nodes_s[-2])
+            guess = secant(nodes_s[-2], nodes_q[-2], s, q, s_new)
         elif behind is not None and behind[0] != s:
-            guess = q + (q - behind[1]) * (s_new - s) / (s - behind[0])
+            guess = secant(behind[0], behind[1], s, q, s_new)
         else:
             guess = q.copy()
         guess[driven] = path.at(s_new)
@@ -258,22 +417,29 @@ def trace(
         jumped = r <= 100 * tol and np.max(np.abs(q_new - q)) > JUMP
         if r > 100 * tol or jumped:
             failures = failures + 1 if stationary else 0
-            h /= 2
-            if failures >= STALL_CONFIRM or h < min_step:
-                why = (f"the residual stops at {r:.3g} (a least-squares minimum) as the steps shrink to {2 * h:.3g}"
-                       if stationary else f"no closing step down to {2 * h:.3g} rad (last residual {r:.3g})")
+            small = step.reject()
+            if failures >= STALL_CONFIRM or small:
+                h = 2 * step.size
+                why = (f"the residual stops at {r:.3g} (a least-squares minimum) as the steps shrink to {h:.3g}"
+                       if stationary else f"no closing step down to {h:.3g} rad (last residual {r:.3g})")
                 stop = PathStop("stall", s, None, f"no rigid configuration beyond: {why}")
             continue
         out = np.flatnonzero((q_new < lower) | (q_new > upper))
         if len(out):
-            h /= 2
-            if h < min_step:
+            if step.reject():
                 j = int(out[0])
                 bound = upper[j] if q_new[j] > upper[j] else lower[j]
                 stop = PathStop("bound", s, j, f"{names[j]} reaches its bound {bound:.6g} rad")
             continue
         failures = 0
-        ranked = not loops.sparse or len(nodes_s) % SPARSE_RANK_STRIDE == 0 or abs(end - s_new) <= 1e-15
+        why = None if stop_when is None else stop_when(q_new)
+        if why is not None:
+            s_new, q_new, s_hit, why = _first(loops, stop_when, driven, path, fixed, tol, (s, q), (s_new, q_new, why))
+            stop = PathStop("contact", s_new, None, f"{why} (at s = {s_hit:.10g})")
+            if s_new == s:
+                break
+        last = abs(end - s_new) <= 1e-15 or stop is not None
+        ranked = not loops.sparse or len(nodes_s) % SPARSE_RANK_STRIDE == 0 or last
         m = mobility(loops, q_new) if ranked else mob[-1]
         if m != mob[-1]:
             kind = "bifurcation" if m > mob[-1] else "rank"
@@ -286,5 +452,337 @@ def trace(
         mob.append(m)
         res.append(r)
         s, q = s_new, q_new
-        h = min(1.5 * h, max_step)
+        step.accept()
     return TracedPath(np.array(nodes_s), np.array(nodes_q), np.array(mob), np.array(res), stop, tuple(events))
+
+
+def _first(
+    loops: ClosureSystem,
+    stop_when: Callable,
+    driven: NDArray,
+    path: Polyline,
+    fixed: NDArray,
+    tol: float,
+    before: tuple[float, NDArray],
+    hit: tuple[float, NDArray, str],
+) -> tuple[float, NDArray, float, str]:
+    """
+    Bisection on s between a node without a `stop_when` reason (`before`: s, q) and one with (`hit`: s, q, why),
+    each midpoint closed by the corrector from the chord between them. Returns (s, q) of the last configuration
+    without a reason and (s, why) of the first with one, STOP_WHEN_TOL apart (or where the corrector fails).
+    """
+    (s0, q0), (s1, q1, why) = before, hit
+    while abs(s1 - s0) > STOP_WHEN_TOL:
+        sm = 0.5 * (s0 + s1)
+        guess = q0 + (q1 - q0) * 0.5
+        guess[driven] = path.at(sm)
+        qm, r, _ = correct(loops, guess, fixed, tol)
+        if r > 100 * tol:
+            break
+        reason = stop_when(qm)
+        if reason is None:
+            s0, q0 = sm, qm
+        else:
+            s1, q1, why = sm, qm, reason
+    return s0, q0, s1, why
+
+
+# -- follow_arc: along the mechanism mode, through turning points and bifurcations ------------------------------
+
+
+class ArcSystem(ABC):
+    """
+    Equations F(x) = 0 of a one-degree-of-freedom motion, followed by `follow_arc`: x is the system's coordinate
+    array, moved over `n_free` free coordinates; `chart` observes it (e.g. joint angles, continued along the path
+    next to a reference). Subclasses give the residual, its Jacobian (rows, n_free), the move and the chart; the
+    corrector, spectrum, self-stresses, orientation and tangent are the engine's.
+
+    `scale` is the characteristic length (arc lengths are in its units), `tol` the residual the corrector reaches,
+    `rtol` the relative singular value below which the corrector does not invert.
+    """
+
+    def __init__(self, n_free: int, n_rows: int, scale: float, tol: float, rtol: float):
+        self.n_free, self.scale, self.tol, self.rtol = n_free, scale, tol, rtol
+        # a fixed generic projection of the rows onto n_free - 1 (the Jacobian may have more, redundant rows)
+        self.projection = np.random.default_rng(0).standard_normal((n_free - 1, n_rows)) / np.sqrt(n_rows)
+
+    @abstractmethod
+    def residual(self, x: NDArray, ref: NDArray) -> NDArray:
+        """F(x), with `ref` the chart of a nearby point (angles are continued next to it)."""
+
+    @abstractmethod
+    def jacobian(self, x: NDArray) -> NDArray:
+        """dF/dx over the free coordinates, (rows, n_free)."""
+
+    @abstractmethod
+    def move(self, x: NDArray, d: NDArray) -> NDArray:
+        """x displaced by d (n_free,) over the free coordinates."""
+
+    @abstractmethod
+    def chart(self, x: NDArray, ref: NDArray) -> NDArray:
+        """The observed coordinates at x, continued next to `ref`."""
+
+    @abstractmethod
+    def chart_rate(self, x: NDArray, k: int) -> NDArray:
+        """The gradient (n_free,) of chart coordinate k at x over the free coordinates."""
+
+    def correct(self, x: NDArray, ref: NDArray) -> tuple[NDArray, int] | None:
+        """
+        Newton with the rank-truncated pseudo-inverse (Yang 2017, Eq. 2-18), which never inverts the smallest
+        singular value of the full-column system (the path's own mechanism mode): (x, iterations), None if it fails.
+        """
+        for it in range(ARC_CORRECTOR_ITER):
+            F = self.residual(x, ref)
+            if np.max(np.abs(F)) < self.tol:
+                return x, it
+            U, s, Vt = np.linalg.svd(self.jacobian(x), full_matrices=False)
+            keep = (s > self.rtol * s.max()) & (np.arange(len(s)) < self.n_free - 1)
+            x = self.move(x, -Vt[keep].T @ ((U[:, keep].T @ F) / s[keep]))
+        return None
+
+    def spectrum(self, x: NDArray) -> tuple[NDArray, NDArray]:
+        """(singular values ascending, relative to the largest, padded with zeros; matching right vectors as rows)."""
+        _, s, Vt = padded_svd(self.jacobian(x))
+        order = np.argsort(s)
+        return s[order] / s.max(), Vt[order]
+
+    def stresses(self, x: NDArray, mobility: int) -> NDArray:
+        """Orthonormal self-stresses (rows, columns): the left null space at a point of this mobility."""
+        U = np.linalg.svd(self.jacobian(x), full_matrices=True)[0]
+        return U[:, self.n_free - mobility :]
+
+    def orientation(self, x: NDArray, t: NDArray) -> float:
+        """
+        Sign of det [P J(x); t^T], P the fixed projection onto n_free - 1 rows: constant along a smooth branch with
+        a continuously oriented tangent t, it flips where the branch crosses a simple bifurcation (Allgower and
+        Georg, Numerical Continuation Methods, ch. 8).
+        """
+        return float(np.sign(np.linalg.det(np.vstack([self.projection @ self.jacobian(x), t]))))
+
+    def tangent(self, x: NDArray, near: NDArray) -> tuple[NDArray, float]:
+        """(unit mechanism mode at x oriented along `near`, relative sigma_2)."""
+        s, V = self.spectrum(x)
+        return V[0] * (np.sign(V[0] @ near) or 1.0), float(s[1])
+
+
+@dataclass(frozen=True)
+class ArcPoint:
+    """A point of an arc path: coordinates x, chart, relative sigma_2, unit tangent, the step that reached it."""
+
+    x: NDArray[np.float64]
+    chart: NDArray[np.float64]
+    sigma2: float
+    tangent: NDArray[np.float64]  # over the free coordinates
+    arc: float
+
+
+@dataclass(frozen=True)
+class ArcEvent:
+    """A located bifurcation: its index in the path, the point, the mobility there, real branch directions found."""
+
+    index: int
+    point: ArcPoint
+    mobility: int
+    directions: int
+
+
+@dataclass(frozen=True)
+class ArcPath:
+    """`follow_arc`'s points, the bifurcations met, and whether chart coordinate k reached the target."""
+
+    points: tuple[ArcPoint, ...]
+    events: tuple[ArcEvent, ...]
+    reached: bool
+
+
+def _arc_step(f: ArcSystem, p: ArcPoint, eta: float) -> tuple[ArcPoint, int] | None:
+    """Predictor eta along the tangent, corrector; None when step control rejects it."""
+    guess = f.move(p.x, eta * p.tangent)
+    got = f.correct(guess, p.chart)
+    if got is None or np.linalg.norm(got[0] - guess) > MAX_CORRECTION * eta:
+        return None
+    t, s2 = f.tangent(got[0], p.tangent)
+    if t @ p.tangent < np.cos(MAX_TURN):
+        return None
+    return ArcPoint(got[0], f.chart(got[0], p.chart), s2, t, eta), got[1]
+
+
+def _land(f: ArcSystem, p: ArcPoint, eta: float, k: int, target: float) -> ArcPoint:
+    """The point at which chart coordinate k equals `target`, between p and p + eta (secant on the predictor step)."""
+    lo, g_lo = 0.0, p.chart[k] - target
+    hi, point = eta, None
+    for _ in range(60):
+        got = _arc_step(f, p, hi)
+        if got is None:
+            raise ConvergenceError(f"corrector failed landing on the stop input {target:.6g} rad")
+        point = got[0]
+        g = point.chart[k] - target
+        if abs(g) < 1e-14 * max(1.0, abs(target)):
+            break
+        lo, g_lo, hi = hi, g, hi - g * (hi - lo) / (g - g_lo)
+    return point
+
+
+def _golden(f: ArcSystem, p: ArcPoint, lo: float, hi: float) -> ArcPoint:
+    """Golden-section search (to GOLDEN_STOP of the bracket) for the minimum of sigma_2 over the predictor steps h
+    in [lo, hi] from p; a step the corrector cannot close counts as no minimum."""
+    g = (np.sqrt(5.0) - 1) / 2
+    span = hi - lo
+
+    def at(h: float) -> ArcPoint:
+        got = f.correct(f.move(p.x, h * p.tangent), p.chart)
+        if got is None:
+            return ArcPoint(p.x, p.chart, np.inf, p.tangent, h)
+        t, s2 = f.tangent(got[0], p.tangent)
+        return ArcPoint(got[0], f.chart(got[0], p.chart), s2, t, h)
+
+    a, b = at(hi - g * span), at(lo + g * span)
+    while hi - lo > GOLDEN_STOP * span:
+        if a.sigma2 < b.sigma2:
+            hi, b = b.arc, a
+            a = at(hi - g * (hi - lo))
+        else:
+            lo, a = a.arc, b
+            b = at(lo + g * (hi - lo))
+    return min(a, b, key=lambda q: q.sigma2)
+
+
+def _locate(f: ArcSystem, p: ArcPoint, before: float, after: float) -> ArcPoint:
+    """
+    The minimum of sigma_2 on the path from `before` (arc length) behind p to `after` ahead of it. Near a
+    crossing the corrector, started about curvature x h^2 off the branch, may land on the other branch, which
+    hides a gap of that size around the bifurcation; so the search is repeated around the best point so far,
+    with predictor steps from it, over a span REFINE_SHRINK times shorter each round, down to the rounding
+    floor (REFINE_FLOOR x scale).
+    """
+    best = _golden(f, p, -before, after)
+    span = before + after
+    while span > REFINE_FLOOR * f.scale:
+        span /= REFINE_SHRINK
+        best = min(best, _golden(f, best, -span / 2, span / 2), key=lambda q: q.sigma2)
+    return best
+
+
+def _branch_directions(f: ArcSystem, p: ArcPoint, null: NDArray) -> list[NDArray]:
+    """
+    Branch tangents at a simple bifurcation p (null space of dimension 2, rows of `null`): t = cos(a) n1 +
+    sin(a) n2 with w . d2F(t) = 0 for every state of self-stress w (no second-order strain that the
+    self-stress would resist), d2F the second derivative of the residual along t (central differences).
+    None real (an isolated point at second order): an empty list.
+    """
+    W = f.stresses(p.x, 2)
+    h = CURVATURE_STEP * f.scale
+    F0 = f.residual(p.x, p.chart)
+
+    def form(t: NDArray) -> NDArray:
+        return W.T @ (f.residual(f.move(p.x, h * t), p.chart) - 2 * F0 + f.residual(f.move(p.x, -h * t), p.chart))
+
+    n1, n2 = null
+    A, C = form(n1), form(n2)
+    B = (form(n1 + n2) - A - C) / 2
+    a, b, c = np.linalg.svd(np.stack([A, B, C], axis=1))[2][0]  # the dominant quadratic a x^2 + 2 b x y + c y^2
+    R = np.hypot((a - c) / 2, b)
+    if R < 1e-12 or abs(a + c) / 2 > R:
+        return []
+    psi, spread = np.arctan2(b, (a - c) / 2), np.arccos(-(a + c) / (2 * R))
+    return [np.cos(u) * n1 + np.sin(u) * n2 for u in ((psi + spread) / 2, (psi - spread) / 2)]
+
+
+def _leave(f: ArcSystem, p: ArcPoint, t_in: NDArray, rate: NDArray, choice: str) -> tuple[ArcPoint, int, int]:
+    """
+    Step off the bifurcation p along the chosen branch: 'keep' = the direction closest to the incoming
+    tangent t_in, 'switch' = the other, oriented so the drive keeps its sense (`rate`: the drive's rate).
+    Returns (p with that direction as its tangent, mobility at p, number of branch directions found).
+    """
+    s, V = f.spectrum(p.x)
+    m = int(np.sum(s < BIFURCATION_RTOL))
+    directions = _branch_directions(f, p, V[:2]) if m == 2 else []
+    if len(directions) == 2:
+        closest = int(np.argmax([abs(d @ t_in) for d in directions]))
+        if choice == "keep":
+            t = directions[closest] * np.sign(directions[closest] @ t_in)
+        else:
+            t = directions[1 - closest]
+            t = t * (np.sign(t @ rate) * np.sign(t_in @ rate) or np.sign(t @ t_in) or 1.0)
+    elif choice == "keep":
+        t = V[:m].T @ (V[:m] @ t_in)
+        t /= np.linalg.norm(t)
+    else:
+        raise AssemblyError(f"cannot switch branch where the mobility jumps to {m} "
+                            f"({len(directions)} real branch directions at second order)")  # fmt: skip
+    return replace(p, tangent=t), m, len(directions)
+
+
+def _is_dip(points: list[ArcPoint], events: list[ArcEvent]) -> bool:
+    """Whether the second-last point is a deep local minimum of sigma_2 (not at an event)."""
+    if len(points) < 3 or (events and events[-1].index >= len(points) - 3):
+        return False
+    a, b, c = (p.sigma2 for p in points[-3:])
+    return b < a and b < c and b < DIP * max(a, c)
+
+
+def follow_arc(f: ArcSystem, x0: NDArray, ref: NDArray, k: int, target: float, *, step: float | None = None,
+               choice: str = "keep", max_points: int = 20000, unit: float = 1.0) -> ArcPath:  # fmt: skip
+    """
+    Follow the one-degree-of-freedom motion of `f` from x0 (chart continued next to `ref`) until chart coordinate
+    k reaches `target`: predictor along the mechanism mode (the Jacobian's null vector), corrector `f.correct`,
+    step control on the arc length (`step`: first step, length units, default FIRST_STEP x scale). The arc
+    length is the natural parameter, so the path passes turning points of every chart coordinate.
+
+    At a dip of sigma_2, or where the orientation flips, its minimum is located on the path; where the mobility
+    jumps there (a bifurcation) the branch directions are found at second order and `choice` picks one: 'keep'
+    (closest to the incoming tangent: straight through a transversal crossing) or 'switch' (the other branch,
+    with the drive's sense kept). The path ends early, with reached = False, after `max_points` points. `unit`
+    divides chart coordinate k in messages (rad of the input). ConvergenceError when the step falls below
+    MIN_STEP x scale (a stall: the corrector closes no step).
+    """
+    if choice not in ("keep", "switch"):
+        raise ParameterError(f"branch choice {choice!r}; it must be 'keep' or 'switch'")
+    eta = FIRST_STEP * f.scale if step is None else float(step)
+    if not (np.isfinite(eta) and eta > 0):
+        raise ParameterError(f"step = {step!r}; it must be a positive length")
+    chart = f.chart(x0, ref)
+    sense = np.sign(target - chart[k]) or 1.0
+    s, V = f.spectrum(x0)
+    if s[1] < f.rtol:
+        raise ParameterError(f"path following needs mobility 1 at the start; sigma_2 = {s[1]:.3g} (mobility >= 2)")
+    rate = f.chart_rate(x0, k)
+    points = [ArcPoint(x0.copy(), chart, float(s[1]), V[0] * (np.sign(V[0] @ rate) * sense or 1.0), 0.0)]
+    events: list[ArcEvent] = []
+    signs = [f.orientation(points[0].x, points[0].tangent)]
+    control = Step(eta, MAX_STEP * f.scale, MIN_STEP * f.scale)
+    landed = False
+    while len(points) < max_points and not landed:
+        got = _arc_step(f, points[-1], control.size)
+        if got is None:
+            if control.reject():
+                raise ConvergenceError(f"step fell below {MIN_STEP:g} x scale at input "
+                                       f"{points[-1].chart[k] / unit:.6g} rad")  # fmt: skip
+            continue
+        new, iterations = got
+        landed = (new.chart[k] - target) * sense >= 0
+        if landed:
+            new = _land(f, points[-1], control.size, k, target)
+        points.append(new)
+        signs.append(f.orientation(new.x, new.tangent))
+        if iterations <= FAST_ITER:
+            control.accept()
+        if signs[-1] != signs[-2]:  # crossed between the last two points
+            found, replace_from = _locate(f, points[-2], 0.0, new.arc), -1
+        elif _is_dip(points, events):  # touched near the second-last point
+            found, replace_from = _locate(f, points[-2], points[-2].arc, new.arc), -2
+        else:
+            continue
+        if found.sigma2 < BIFURCATION_RTOL:
+            leaving, m, n_dir = _leave(f, found, points[replace_from - 1].tangent, f.chart_rate(found.x, k), choice)
+            got = _arc_step(f, leaving, control.size)
+            if got is None:
+                raise ConvergenceError(f"corrector failed stepping off the bifurcation at {found.chart[k]:.6g} rad")
+            after = got[0]
+            landed = (after.chart[k] - target) * sense >= 0
+            if landed:
+                after = _land(f, leaving, control.size, k, target)
+            points[replace_from:] = [found, after]
+            signs[replace_from:] = [f.orientation(after.x, after.tangent)] * 2
+            events.append(ArcEvent(len(points) - 2, found, m, n_dir))
+    return ArcPath(tuple(points), tuple(events), landed)

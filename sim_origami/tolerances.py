@@ -61,7 +61,8 @@ class Tolerances:
     projection_residual_m: float = 1e-13
     # Blockage: servo stop vs kinematic contact angle (stiff contacts, kp 50, +-20 N m, held 3 s): measured
     # 9.8e-6 rad on the thick Miura vertex (t = 0.02; 3.2e-4 held 1 s), 2.5e-5 on the truncated octahedron at
-    # zeta = 15 deg (3.1e-3 held 1 s); spec mujoco.md 6.2 saw 2e-3 with default contacts.
+    # zeta = 15 deg (3.1e-3 held 1 s); a Miura vertex folding onto itself stopped 2e-3 past its blocking angle
+    # with default contacts (measured here).
     blockage_rad: float = 3e-3
     # Free motion under gravity (IFToMM A04, 10 s from rest, E0 = -29.43 J): total-energy drift (J)
     # measured 5.9e-5 J with fast (RK4 8 ms; 1.5e-5 J at 5 ms), 2.9e-9 J with accurate (RK4 0.1 ms; 1.3e-8 J

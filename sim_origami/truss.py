@@ -1,29 +1,28 @@
-"""The truss method (seed 001 ch. 2-3): a linkage as a pin-jointed truss, its mobility, states of
-self-stress and redundant bars, and a predictor-corrector path follower with bifurcation handling.
+"""The truss method (Yang 2017, ch. 2-3): a linkage as a pin-jointed truss, its mobility, states of self-stress and
+redundant bars, and its path, followed by the path engine (`path.follow_arc`) with bifurcation handling.
 
-Construction (seed 001 §1.1). Every revolute joint gives two nodes on its axis, shared by its two
-bodies: its frame origin P (the D-H foot, or the crease's start vertex) and P' = P + l z with l the
-joint's largest |anchor|, so z points from P to P' (the seed's "A, A'"). A spherical joint gives one
-node at its frame origin. Points of one body that coincide are one node (Myard: joints 3 and 4 meet,
-link 34 becomes the triangle C C' C''); points of different bodies are never merged, even where they
-coincide at some pose (the Bricard bundle). A body whose nodes are collinear gets an auxiliary node
-(unless it is a plain bar between two spherical joints, whose idle spin the seed does not count), and
-one with four or more coplanar nodes gets one off its plane, AUX_OFFSET times its size from its
-centroid. Each body is then braced minimally: the bars already present between its nodes (a joint
-bar is counted once for both its bodies) and further bars, in node order, while they raise the rank,
-up to 3k - 6 for k nodes. So each body is isostatic and b - r counts only the loops' overconstraint.
+Construction (Yang 2017, Sec. 2.2, Figs. 2-1 to 2-3). Every revolute joint gives two nodes on its axis, shared by its
+two bodies: its frame origin P (the D-H foot, or the crease's start vertex) and P' = P + l z with l the joint's largest
+|anchor|, so z points from P to P' (Yang 2017's "A, A'", Fig. 2-2). A spherical joint gives one node at its frame
+origin. Points of one body that coincide are one node (Myard: joints 3 and 4 meet, link 34 becomes the triangle C C'
+C''); points of different bodies are never merged, even where they coincide at some pose (the Bricard bundle). A body
+whose nodes are collinear gets an auxiliary node (unless it is a plain bar between two spherical joints, whose idle spin
+Yang 2017 does not count), and one with four or more coplanar nodes gets one off its plane, AUX_OFFSET times its size
+from its centroid. Each body is then braced minimally: the bars already present between its nodes (a joint bar is
+counted once for both its bodies) and further bars, in node order, while they raise the rank, up to 3k - 6 for k nodes.
+So each body is isostatic and b - r counts only the loops' overconstraint.
 
-Matrices (seed 001 §1.2). The compatibility matrix C (b x 3j) maps nodal displacements d to bar
-elongations; its rows hold unit bar directions (the seed's Eq. 1-15 divided by each bar's length,
-same rank and null spaces, dimensionless singular values); the equilibrium matrix is H = C^T.
-A joint coupling q_a = c q_b of the mechanism adds one row l_char (w_a - c w_b) with w the joint
-rate (rad per unit displacement) of the least-squares rigid motion of each body's nodes.
+Matrices (Yang 2017, Eqs. 1-11 to 1-16, 2-1 to 2-6). The compatibility matrix C (b x 3j) maps nodal displacements d to
+bar elongations; its rows hold unit bar directions (Yang 2017, Eq. 1-15, divided by each bar's length, same rank and
+null spaces, dimensionless singular values); the equilibrium matrix is H = C^T. A joint coupling q_a = c q_b of the
+mechanism adds one row l_char (w_a - c w_b) with w the joint rate (rad per unit displacement) of the least-squares rigid
+motion of each body's nodes.
 
-Counts (seed 001 §1.3): r = numerical rank of [C; K], m = 3j - 6 - r mechanisms (DOF, rigid motions
-removed), s = b + c - r states of self-stress (redundant constraints), Maxwell's 3j - 6 - b - c = m - s.
+Counts (Yang 2017, Sec. 2.3, Eqs. 2-3, 2-7; Sec. 3.2): r = numerical rank of [C; K], m = 3j - 6 - r mechanisms (DOF,
+rigid motions removed), s = b + c - r states of self-stress (redundant constraints), Maxwell's 3j - 6 - b - c = m - s.
 
-Units: lengths in the mechanism's unit, angles in radians; positions in the mechanism's world frame
-(the root body's frame), where the root body's nodes stay fixed while a path is followed.
+Units: lengths in the mechanism's unit, angles in radians; positions in the mechanism's world frame (the root body's
+frame), where the root body's nodes stay fixed while a path is followed.
 """
 
 from collections.abc import Sequence
@@ -33,16 +32,17 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .errors import AssemblyError, ConvergenceError, ParameterError
+from .errors import AssemblyError, ParameterError
 from .geometry import invert, wrap
 from .graph import DisjointSets
 from .mechanism import Mechanism
+from .path import ArcSystem, follow_arc, padded_svd
 
 if TYPE_CHECKING:
     from .scenes.base import Scene
 
-# Relative rank threshold: singular values below RANK_RTOL x the largest count as zero (seed 001
-# §1.3 uses 1e-9 for exact coordinates). Measured on every registered scene at its start pose and its
+# Relative rank threshold: singular values below RANK_RTOL x the largest count as zero (a threshold for
+# exact coordinates, chosen here). Measured on every registered scene at its start pose and its
 # bifurcation points: kept values >= 1.5e-4 of the largest (triangle-twist-6r), dropped ones <= 1e-15.
 RANK_RTOL = 1e-9
 # Points of one body closer than this x the mechanism's size are one node.
@@ -109,7 +109,7 @@ class Truss:
         return tuple(f"{self.node_names[p]}-{self.node_names[q]}" for p, q in self.bars)
 
     def without(self, bars: Sequence[int]) -> "Truss":
-        """The same truss with bars `bars` removed (seed 001 ch. 3: redundant-bar removal)."""
+        """The same truss with bars `bars` removed (Yang 2017, ch. 3: redundant-bar removal)."""
         bad = [k for k in bars if not 0 <= k < len(self.bars)]
         if bad:
             raise ParameterError(f"bars {bad} do not exist; this truss has bars 0 .. {len(self.bars) - 1}")
@@ -280,7 +280,7 @@ def truss_of(mechanism: Mechanism, q: ArrayLike, spherical: Sequence[str] = ()) 
     The equivalent truss of `mechanism` at joint angles q (rad, (n_joints,), every loop closed).
 
     Joints named in `spherical` become spherical joints (one node at the frame origin): e.g. joints 3
-    and 4 of the Bennett linkage give its RSSR form (seed 001 §2.2). Their angles are then undefined.
+    and 4 of the Bennett linkage give its RSSR form (Yang 2017, Sec. 3.3). Their angles are then undefined.
     """
     q = np.asarray(q, dtype=float)
     if q.shape != (len(mechanism.joints),) or not np.all(np.isfinite(q)):
@@ -381,16 +381,10 @@ def constraints(truss: Truss, x: ArrayLike | None = None) -> NDArray[np.float64]
     return np.vstack([compatibility(truss, x), coupling_rows(truss, x)])
 
 
-def _padded_svd(M: NDArray) -> tuple[NDArray, NDArray, NDArray]:
-    """Full SVD with the singular values padded by zeros to the column count: (U, s (n,), Vt)."""
-    U, s, Vt = np.linalg.svd(M, full_matrices=True)
-    return U, np.concatenate([s, np.zeros(M.shape[1] - len(s))]), Vt
-
-
 @dataclass(frozen=True)
 class Counts:
     """
-    Truss counts at one configuration (seed 001 §1.3).
+    Truss counts at one configuration (Yang 2017, Sec. 2.3).
 
     nodes j, bars b, couplings c, rank r of [C; K], mobility m = 3j - 6 - r, self_stress s = b + c - r,
     maxwell = 3j - 6 - b - c (= m - s), redundant: names of the bars that carry a state of self-stress
@@ -413,7 +407,7 @@ class Counts:
 def analyse(truss: Truss, x: ArrayLike | None = None, rtol: float = RANK_RTOL) -> Counts:
     """Mobility, self-stress and redundant bars of `truss` at positions x (default: its own)."""
     M = constraints(truss, x)
-    U, s, _ = _padded_svd(M)
+    U, s, _ = padded_svd(M)
     rel = s / s.max()
     r = int(np.sum(rel > rtol))
     j, b, c = len(truss.nodes), len(truss.bars), len(truss.couplings)
@@ -426,7 +420,7 @@ def analyse(truss: Truss, x: ArrayLike | None = None, rtol: float = RANK_RTOL) -
 
 def removable_bars(truss: Truss) -> tuple[int, ...]:
     """
-    Seed 001 §1.7 (ch. 3): s body bars of ONE body whose removal keeps the rank (joint bars stay), giving a
+    Yang 2017, Secs. 3.3-3.4: s body bars of ONE body whose removal keeps the rank (joint bars stay), giving a
     non-overconstrained truss with the same mobility (Bennett -> RSSR, Myard -> RRSRR / RSRRR).
 
     Bodies are tried in order. A body's bars are projected off the row space of all other rows and kept
@@ -451,7 +445,7 @@ def removable_bars(truss: Truss) -> tuple[int, ...]:
         if len(mine) - len(kept) == s:
             return tuple(k for i, k in enumerate(mine) if i not in kept)
     raise AssemblyError(f"no single body carries all {s} redundant bars; removing bars of several links changes "
-                        "the topology (seed 001 §1.7)")  # fmt: skip
+                        "the topology (Yang 2017, ch. 3)")  # fmt: skip
 
 
 # -- poses and joint angles from node positions ----------------------------------------------------------------
@@ -494,31 +488,10 @@ def revolute_names(truss: Truss) -> tuple[str, ...]:
     return tuple(h.name for h in truss.hinges if h.revolute)
 
 
-# -- predictor-corrector path following (seed 001 §1.4, §1.5) ---------------------------------------------------
+# -- predictor-corrector path following (Yang 2017, §1.4-1.5), by the path engine (`path.follow_arc`) -----------
 
-# Newton corrector: at most this many iterations to bring every bar-length error below CORRECTOR_TOL x scale.
-CORRECTOR_ITERATIONS = 12
+# Newton corrector: bring every bar-length error below CORRECTOR_TOL x scale.
 CORRECTOR_TOL = 1e-13
-# Step control on the arc length in node space (x scale): first step, largest step, smallest before giving up.
-# A step is rejected (and halved) when the corrector fails, moves the point by more than MAX_CORRECTION x the
-# step, or the tangent turns by more than MAX_TURN rad; a step that converged in <= 3 iterations grows 1.5x.
-FIRST_STEP = 0.02
-MAX_STEP = 0.25
-MIN_STEP = 1e-9
-MAX_CORRECTION = 0.3
-MAX_TURN = 0.4
-# Bifurcations. A branch crosses one between two points when the orientation sign (`_Follower.orientation`)
-# flips; it touches one near a point that is a local minimum of sigma_2 below DIP x the larger of its two
-# neighbours. The minimum of sigma_2 is then located on the path (golden-section rounds over spans shrinking
-# REFINE_SHRINK times, down to REFINE_FLOOR x scale); it is a bifurcation, and its mobility is counted, with
-# BIFURCATION_RTOL x sigma_max as zero. A double point is only located to about the square root of the
-# corrector tolerance: located sigma_2 measured 3.7e-13 .. 3.7e-9, input within 5.5e-7 rad, on 44 crossings of
-# the registered scenes' simple bifurcations (Bricard bundle, plane-symmetric Bricard, Miura, vertex4, thick
-# diamond), against sigma_2 >= 3.5e-5 anywhere on every scene's default paths (triangle-twist-6r).
-DIP = 0.5
-REFINE_SHRINK = 4.0
-REFINE_FLOOR = 1e-10
-BIFURCATION_RTOL = 1e-6
 
 
 @dataclass(frozen=True)
@@ -554,33 +527,26 @@ class TrussPath:
     reached: bool
 
 
-@dataclass(frozen=True)
-class _Point:
-    x: NDArray[np.float64]  # (j, 3) nodes
-    angles: NDArray[np.float64]  # unwrapped revolute joint angles
-    sigma2: float
-    tangent: NDArray[np.float64]  # unit mechanism mode over the free coordinates
-    arc: float  # step taken to reach this point
-
-
-class _Follower:
-    """The grounded truss equations: residual (bar length errors, scaled coupling errors) and Jacobian."""
+class _Follower(ArcSystem):
+    """The grounded truss equations over the free node coordinates: residual (bar length errors, scaled coupling
+    errors), Jacobian [C; K], and the revolute joint angles as the chart."""
 
     def __init__(self, truss: Truss, rtol: float):
-        self.truss, self.rtol = truss, rtol
+        self.truss = truss
         grounded = np.zeros(len(truss.nodes), dtype=bool)
         grounded[truss.body_nodes[truss.ground]] = True
         self.free = np.repeat(~grounded, 3)
         self.rows = np.concatenate([~(grounded[truss.bars[:, 0]] & grounded[truss.bars[:, 1]]),
                                     np.ones(len(truss.couplings), dtype=bool)])  # fmt: skip
         self.revolute = [i for i, h in enumerate(truss.hinges) if h.revolute]
-        self.tol = CORRECTOR_TOL * truss.scale
-        n, rows = int(self.free.sum()), int(self.rows.sum())
-        self.projection = np.random.default_rng(0).standard_normal((n - 1, rows)) / np.sqrt(rows)
+        super().__init__(int(self.free.sum()), int(self.rows.sum()), truss.scale, CORRECTOR_TOL * truss.scale, rtol)
 
-    def angles(self, x: NDArray, ref: NDArray) -> NDArray:
+    def chart(self, x: NDArray, ref: NDArray) -> NDArray:
         """Revolute joint angles unwrapped next to `ref`."""
         return ref + wrap(joint_angles(self.truss, x) - ref)
+
+    def chart_rate(self, x: NDArray, k: int) -> NDArray:
+        return joint_rates(self.truss, x)[:, self.free][k]
 
     def residual(self, x: NDArray, ref: NDArray) -> NDArray:
         """Bar length errors, then scale x (q_a - c q_b) per coupling, on the rows not fixed by the ground."""
@@ -588,7 +554,7 @@ class _Follower:
         p, q = t.bars[:, 0], t.bars[:, 1]
         out = [np.linalg.norm(x[p] - x[q], axis=1) - t.lengths]
         if t.couplings:
-            a = dict(zip(self.revolute, self.angles(x, ref), strict=True))
+            a = dict(zip(self.revolute, self.chart(x, ref), strict=True))
             out.append(np.array([t.scale * (a[i] - c * a[k]) for i, k, c in t.couplings]))
         return np.concatenate(out)[self.rows]
 
@@ -600,170 +566,6 @@ class _Follower:
         y = x.copy().ravel()
         y[self.free] += d
         return y.reshape(x.shape)
-
-    def correct(self, x: NDArray, ref: NDArray) -> tuple[NDArray, int] | None:
-        """
-        Newton with the rank-truncated pseudo-inverse (seed Eq. 2-18), which never inverts the smallest singular
-        value of the full-column system (the path's own mechanism mode): (x, iterations), None if it fails.
-        """
-        n = int(self.free.sum())
-        for it in range(CORRECTOR_ITERATIONS):
-            F = self.residual(x, ref)
-            if np.max(np.abs(F)) < self.tol:
-                return x, it
-            U, s, Vt = np.linalg.svd(self.jacobian(x), full_matrices=False)
-            keep = (s > self.rtol * s.max()) & (np.arange(len(s)) < n - 1)
-            x = self.move(x, -Vt[keep].T @ ((U[:, keep].T @ F) / s[keep]))
-        return None
-
-    def spectrum(self, x: NDArray) -> tuple[NDArray, NDArray]:
-        """(singular values ascending, relative to the largest, padded with zeros; matching right vectors as rows)."""
-        _, s, Vt = _padded_svd(self.jacobian(x))
-        order = np.argsort(s)
-        return s[order] / s.max(), Vt[order]
-
-    def stresses(self, x: NDArray, mobility: int) -> NDArray:
-        """Orthonormal self-stresses (rows, columns) of the grounded system at a point of this mobility."""
-        U = np.linalg.svd(self.jacobian(x), full_matrices=True)[0]
-        return U[:, int(self.free.sum()) - mobility :]
-
-    def orientation(self, x: NDArray, t: NDArray) -> float:
-        """
-        Sign of det [P J(x); t^T], P a fixed generic projection onto n - 1 rows (J may have more, redundant
-        rows): constant along a smooth branch with a continuously oriented tangent t, it flips where the branch
-        crosses a simple bifurcation (Allgower and Georg, Numerical Continuation Methods, ch. 8).
-        """
-        return float(np.sign(np.linalg.det(np.vstack([self.projection @ self.jacobian(x), t]))))
-
-    def tangent(self, x: NDArray, near: NDArray) -> tuple[NDArray, float]:
-        """(unit mechanism mode at x oriented along `near`, relative sigma_2)."""
-        s, V = self.spectrum(x)
-        return V[0] * (np.sign(V[0] @ near) or 1.0), float(s[1])
-
-
-def _step(f: _Follower, p: _Point, eta: float) -> tuple[_Point, int] | None:
-    """Predictor eta along the tangent, corrector; None when step control rejects it."""
-    guess = f.move(p.x, eta * p.tangent)
-    got = f.correct(guess, p.angles)
-    if got is None or np.linalg.norm(got[0] - guess) > MAX_CORRECTION * eta:
-        return None
-    t, s2 = f.tangent(got[0], p.tangent)
-    if t @ p.tangent < np.cos(MAX_TURN):
-        return None
-    return _Point(got[0], f.angles(got[0], p.angles), s2, t, eta), got[1]
-
-
-def _land(f: _Follower, p: _Point, eta: float, k: int, target: float) -> _Point:
-    """The point at which drive angle k equals `target`, between p and p + eta (secant on the predictor step)."""
-    lo, g_lo = 0.0, p.angles[k] - target
-    hi, point = eta, None
-    for _ in range(60):
-        got = _step(f, p, hi)
-        if got is None:
-            raise ConvergenceError(f"corrector failed landing on the stop input {target:.6g} rad")
-        point = got[0]
-        g = point.angles[k] - target
-        if abs(g) < 1e-14 * max(1.0, abs(target)):
-            break
-        lo, g_lo, hi = hi, g, hi - g * (hi - lo) / (g - g_lo)
-    return point
-
-
-def _golden(f: _Follower, p: _Point, lo: float, hi: float) -> _Point:
-    """Golden-section search (to 5% of the bracket) for the minimum of sigma_2 over the predictor steps h in
-    [lo, hi] from p; a step the corrector cannot close counts as no minimum."""
-    g = (np.sqrt(5.0) - 1) / 2
-    span = hi - lo
-
-    def at(h: float) -> _Point:
-        got = f.correct(f.move(p.x, h * p.tangent), p.angles)
-        if got is None:
-            return _Point(p.x, p.angles, np.inf, p.tangent, h)
-        t, s2 = f.tangent(got[0], p.tangent)
-        return _Point(got[0], f.angles(got[0], p.angles), s2, t, h)
-
-    a, b = at(hi - g * span), at(lo + g * span)
-    while hi - lo > 0.05 * span:
-        if a.sigma2 < b.sigma2:
-            hi, b = b.arc, a
-            a = at(hi - g * (hi - lo))
-        else:
-            lo, a = a.arc, b
-            b = at(lo + g * (hi - lo))
-    return min(a, b, key=lambda q: q.sigma2)
-
-
-def _locate(f: _Follower, p: _Point, before: float, after: float) -> _Point:
-    """
-    The minimum of sigma_2 on the path from `before` (arc length) behind p to `after` ahead of it. Near a
-    crossing the corrector, started about curvature x h^2 off the branch, may land on the other branch, which
-    hides a gap of that size around the bifurcation; so the search is repeated around the best point so far,
-    with predictor steps from it, over a span REFINE_SHRINK times shorter each round, down to the rounding
-    floor (REFINE_FLOOR x scale).
-    """
-    best = _golden(f, p, -before, after)
-    span = before + after
-    while span > REFINE_FLOOR * f.truss.scale:
-        span /= REFINE_SHRINK
-        best = min(best, _golden(f, best, -span / 2, span / 2), key=lambda q: q.sigma2)
-    return best
-
-
-def _branch_directions(f: _Follower, p: _Point, null: NDArray) -> list[NDArray]:
-    """
-    Branch tangents at a simple bifurcation p (null space of dimension 2, rows of `null`): t = cos(a) n1 +
-    sin(a) n2 with w . d2F(t) = 0 for every state of self-stress w (no second-order strain that the
-    self-stress would resist), d2F the second derivative of the residual along t (central differences).
-    """
-    W = f.stresses(p.x, 2)
-    h = 1e-3 * f.truss.scale
-    F0 = f.residual(p.x, p.angles)
-
-    def form(t: NDArray) -> NDArray:
-        return W.T @ (f.residual(f.move(p.x, h * t), p.angles) - 2 * F0 + f.residual(f.move(p.x, -h * t), p.angles))
-
-    n1, n2 = null
-    A, C = form(n1), form(n2)
-    B = (form(n1 + n2) - A - C) / 2
-    a, b, c = np.linalg.svd(np.stack([A, B, C], axis=1))[2][0]  # the dominant quadratic a x^2 + 2 b x y + c y^2
-    R = np.hypot((a - c) / 2, b)
-    if R < 1e-12 or abs(a + c) / 2 > R:
-        return []
-    psi, spread = np.arctan2(b, (a - c) / 2), np.arccos(-(a + c) / (2 * R))
-    return [np.cos(u) * n1 + np.sin(u) * n2 for u in ((psi + spread) / 2, (psi - spread) / 2)]
-
-
-def _leave(f: _Follower, p: _Point, t_in: NDArray, rate: NDArray, choice: str, eta: float) -> tuple[_Point, int, int]:
-    """
-    Step off the bifurcation p along the chosen branch: 'keep' = the direction closest to the incoming
-    tangent t_in, 'switch' = the other, oriented so the drive keeps its sense (`rate`: the drive's rate).
-    Returns (p with that direction as its tangent, mobility at p, number of branch directions found).
-    """
-    s, V = f.spectrum(p.x)
-    m = int(np.sum(s < BIFURCATION_RTOL))
-    directions = _branch_directions(f, p, V[:2]) if m == 2 else []
-    if len(directions) == 2:
-        closest = int(np.argmax([abs(d @ t_in) for d in directions]))
-        if choice == "keep":
-            t = directions[closest] * np.sign(directions[closest] @ t_in)
-        else:
-            t = directions[1 - closest]
-            t = t * (np.sign(t @ rate) * np.sign(t_in @ rate) or np.sign(t @ t_in) or 1.0)
-    elif choice == "keep":
-        t = V[:m].T @ (V[:m] @ t_in)
-        t /= np.linalg.norm(t)
-    else:
-        raise AssemblyError(f"cannot switch branch where the mobility jumps to {m} "
-                            f"({len(directions)} real branch directions at second order)")  # fmt: skip
-    return replace(p, tangent=t), m, len(directions)
-
-
-def _is_dip(points: list[_Point], events: list[Bifurcation]) -> bool:
-    """Whether the second-last point is a deep local minimum of sigma_2 (not at an event)."""
-    if len(points) < 3 or (events and events[-1].index >= len(points) - 3):
-        return False
-    a, b, c = (p.sigma2 for p in points[-3:])
-    return b < a and b < c and b < DIP * max(a, c)
 
 
 def follow(
@@ -779,75 +581,28 @@ def follow(
 ) -> TrussPath:
     """
     Follow the 1-DOF motion of `truss` from its configuration until the input q_drive / drive_scale reaches
-    `stop` (rad): predictor along the mechanism mode (the null vector of the grounded [C; K]), corrector by
-    the rank-truncated pseudo-inverse, step control on the arc length in node space (`step`: first step,
-    length units, default FIRST_STEP x scale). The root body stays fixed.
+    `stop` (rad), with `path.follow_arc`: predictor along the mechanism mode (the null vector of the grounded
+    [C; K]), corrector by the rank-truncated pseudo-inverse, step control on the arc length in node space
+    (`step`: first step, length units, default `path.FIRST_STEP` x scale). The root body stays fixed.
 
     At a dip of sigma_2 its minimum is located on the path; where the mobility jumps there (a bifurcation)
     the branch directions are found at second order and `choice` picks one: 'keep' (closest to the incoming
     tangent: straight through a transversal crossing) or 'switch' (the other branch). The path ends early,
     with reached = False, after `max_points` points.
     """
-    if choice not in ("keep", "switch"):
-        raise ParameterError(f"branch choice {choice!r}; it must be 'keep' or 'switch'")
     if not (np.isfinite(stop) and np.isfinite(drive_scale) and drive_scale != 0):
         raise ParameterError(f"stop = {stop!r} rad, drive_scale = {drive_scale!r}: both must be finite, scale nonzero")
     names = revolute_names(truss)
     if drive not in names:
         raise ParameterError(f"drive joint {drive!r} is not a revolute joint of the truss; they are {list(names)}")
-    eta = FIRST_STEP * truss.scale if step is None else float(step)
-    if not (np.isfinite(eta) and eta > 0):
-        raise ParameterError(f"step = {step!r}; it must be a positive length")
     f, k = _Follower(truss, rtol), names.index(drive)
-    target = stop * drive_scale
-    angles = f.angles(truss.nodes, truss.angles0[f.revolute])
-    sense = np.sign(target - angles[k]) or 1.0
-    s, V = f.spectrum(truss.nodes)
-    if s[1] < rtol:
-        raise ParameterError(f"path following needs mobility 1 at the start; sigma_2 = {s[1]:.3g} (mobility >= 2)")
-    rate = joint_rates(truss)[:, f.free][k]
-    points = [_Point(truss.nodes.copy(), angles, float(s[1]), V[0] * (np.sign(V[0] @ rate) * sense or 1.0), 0.0)]
-    events: list[Bifurcation] = []
-    signs = [f.orientation(points[0].x, points[0].tangent)]
-    landed = False
-    while len(points) < max_points and not landed:
-        got = _step(f, points[-1], eta)
-        if got is None:
-            eta /= 2
-            if eta < MIN_STEP * truss.scale:
-                raise ConvergenceError(f"step fell below {MIN_STEP:g} x scale at input "
-                                       f"{points[-1].angles[k] / drive_scale:.6g} rad")  # fmt: skip
-            continue
-        new, iterations = got
-        landed = (new.angles[k] - target) * sense >= 0
-        if landed:
-            new = _land(f, points[-1], eta, k, target)
-        points.append(new)
-        signs.append(f.orientation(new.x, new.tangent))
-        eta = min(1.5 * eta, MAX_STEP * truss.scale) if iterations <= 3 else eta
-        if signs[-1] != signs[-2]:  # crossed between the last two points
-            found, replace_from = _locate(f, points[-2], 0.0, new.arc), -1
-        elif _is_dip(points, events):  # touched near the second-last point
-            found, replace_from = _locate(f, points[-2], points[-2].arc, new.arc), -2
-        else:
-            continue
-        if found.sigma2 < BIFURCATION_RTOL:
-            rate = joint_rates(truss, found.x)[:, f.free][k]
-            leaving, m, n_dir = _leave(f, found, points[replace_from - 1].tangent, rate, choice, eta)
-            got = _step(f, leaving, eta)
-            if got is None:
-                raise ConvergenceError(f"corrector failed stepping off the bifurcation at {found.angles[k]:.6g} rad")
-            after = got[0]
-            landed = (after.angles[k] - target) * sense >= 0
-            if landed:
-                after = _land(f, leaving, eta, k, target)
-            points[replace_from:] = [found, after]
-            signs[replace_from:] = [f.orientation(after.x, after.tangent)] * 2
-            events.append(Bifurcation(len(points) - 2, float(found.angles[k] / drive_scale), found.sigma2, m,
-                                      n_dir, choice))  # fmt: skip
-    angles = np.array([p.angles for p in points])
-    return TrussPath(np.array([p.x for p in points]), angles, names, angles[:, k] / drive_scale,
-                     np.array([p.sigma2 for p in points]), tuple(events), landed)  # fmt: skip
+    run = follow_arc(f, truss.nodes, truss.angles0[f.revolute], k, stop * drive_scale, step=step, choice=choice,
+                     max_points=max_points, unit=drive_scale)  # fmt: skip
+    angles = np.array([p.chart for p in run.points])
+    events = tuple(Bifurcation(e.index, float(e.point.chart[k] / drive_scale), e.point.sigma2, e.mobility,
+                               e.directions, choice) for e in run.events)  # fmt: skip
+    return TrussPath(np.array([p.x for p in run.points]), angles, names, angles[:, k] / drive_scale,
+                     np.array([p.sigma2 for p in run.points]), events, run.reached)  # fmt: skip
 
 
 # -- scenes ----------------------------------------------------------------------------------------------------

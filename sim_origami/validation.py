@@ -31,7 +31,8 @@ ANALYTIC_SAMPLES = 200
 MIN_SWEEP_RAD = 1e-3
 # Events of a numerically traced reference (`kinematics.numeric_pattern`): where and why its trace ended, its
 # mobility changes, an open chain. Reported with every run, inside the sweep or not.
-REFERENCE_EVENTS = ("stall", "lock", "branch-point", "mobility-change", "open-chain", "off-target", "frame")
+REFERENCE_EVENTS = ("stall", "lock", "contact", "branch-point", "mobility-change", "open-chain", "off-target",
+                    "frame")
 # Free runs (scenes with gravity) last this long (s), as the IFToMM A04 benchmark.
 FREE_DURATION = 10.0
 # Bifurcation study: seed offsets (rad of input) tried in turn, and the length of each run (rad).
@@ -132,7 +133,7 @@ def path_events(
 def mobility_report(scene: Scene, branch: str, start: float) -> dict:
     """
     Grubler-Kutzbach count next to the numerical rank of the closure Jacobian, from the numeric
-    loop and from MuJoCo's efc_J, and the truss method's mobility and states of self-stress (seed 001),
+    loop and from MuJoCo's efc_J, and the truss method's mobility and states of self-stress (Yang 2017, ch. 2),
     at the path start and at each bifurcation point of the branch. The idle spins of bars held by two
     spherical joints are left out of every count (the truss method has none).
     """
@@ -149,7 +150,7 @@ def mobility_report(scene: Scene, branch: str, start: float) -> dict:
                 "truss": truss.mobility, "truss_self_stress": truss.self_stress}  # fmt: skip
 
     points = [e.input for e in kin.events() if e.kind == "bifurcation" and branch in e.branches]
-    out = {"gruebler": kin.gruebler(), "inputs": len(scene.drives), "start": at(start),
+    out = {"gruebler": kin.gruebler(), "idle_spins": idle, "inputs": len(scene.drives), "start": at(start),
            "bifurcations": [at(x) for x in points]}  # fmt: skip
     along = getattr(kin, "mobility", None)  # a traced reference's mobility at each of its nodes
     if along is not None and not callable(along):
@@ -238,15 +239,19 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
         *_point_verdicts(scene, branch, preset, dynamic.q, dyn.input),
         Verdict(f"{branch}: MuJoCo {preset} path error (rad)", dyn.max_error(),
                 TOLERANCES.angle(preset),
-                "max over samples and joints of |sim - closed form at the simulated input|"),
+                "max over samples and joints of |sim - closed form at the simulated input|"
+                + _singular_crossings(scene, branch, dyn.input, dyn.error, mobility)),
         Verdict(f"{branch}: MuJoCo {preset} closure residual (m)", float(np.max(dynamic.closure_residual)),
                 TOLERANCES.residual(preset, scene.length_scale), "largest gap between paired closure sites"),
         Verdict(f"{branch}: MuJoCo projection path error (rad)", proj_error, proj_tol,
-                f"Gauss-Newton on MuJoCo's equality residuals at each input, to the rounding floor; {proj_where}"),
+                f"Gauss-Newton on MuJoCo's equality residuals at each input, to the rounding floor; {proj_where}"
+                + _singular_crossings(scene, branch, proj.input, proj.error, mobility)),
         Verdict(f"{branch}: branch followed", float(labels.followed != branch or labels.flips > 0), 0.0,
                 f"followed {labels.followed or 'none'}, {labels.flips} flips"),
         Verdict(f"{branch}: mobility, numeric rank vs MuJoCo rank vs truss (poses that differ)", float(disagree), 0.0,
-                f"Kutzbach {mobility['gruebler']}, instantaneous {mobility['start']['numeric']} at the start"),
+                f"Kutzbach {mobility['gruebler']}"
+                + (f" (+{mobility['idle_spins']} idle spin, taken off every count)" if mobility["idle_spins"] else "")
+                + f", instantaneous {mobility['start']['numeric']} at the start"),
         *_input_count_verdict(scene, branch, mobility),
     )  # fmt: skip
     return BranchRun(
@@ -255,6 +260,30 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
         events=path_events(scene, branch, dyn.input, labels.labels, from_flat=seed == "flat"), mobility=mobility,
         verdicts=verdicts,
     )  # fmt: skip
+
+
+def _singular_crossings(scene: Scene, branch: str, x: np.ndarray, error: np.ndarray, mobility: dict) -> str:
+    """
+    The bifurcations of `branch` that a run's inputs x (n,) cross, as a clause for a failing check's detail, with
+    where its per-sample error (n,) or (n, k) peaks: there the closure constraints lose rank, MuJoCo's soft closures
+    hold the pose only weakly along the new freedom and its error peaks (the Myard with a ball at joint 2 through
+    theta3 = 90 deg: 1.1e-3 rad 0.32 deg past the meeting, 2.6e-8 rad beyond 100 deg). Empty when none is crossed.
+    """
+    lo, hi = float(np.min(x)), float(np.max(x))
+    crossed = [e for e in scene.kinematics.events() if e.kind == "bifurcation" and branch in e.branches
+               and lo < e.input < hi]  # fmt: skip
+    if not crossed:
+        return ""
+    error = np.where(np.isnan(error), np.inf, error).reshape(len(x), -1).max(axis=1)
+    worst = float(x[int(np.argmax(error))])
+    ranks = {round(p["input_rad"], 9): p for p in mobility["bifurcations"]}
+    parts = []
+    for e in crossed:
+        at = ranks.get(round(e.input, 9))
+        count = f"; mobility {at['numeric']} there by the closure rank, {at['mujoco']} by MuJoCo's" if at else ""
+        parts.append(f"the sweep crosses a singular pose: the bifurcation at {e.input:.6g} rad ({e.detail}{count}); "
+                     f"the largest error lies {abs(worst - e.input):.3g} rad from it, at {worst:.6g} rad")
+    return "; " + "; ".join(parts)
 
 
 def _input_count_verdict(scene: Scene, branch: str, mobility: dict) -> tuple[Verdict, ...]:

@@ -1,5 +1,6 @@
-"""Plane-symmetric Bricard 6R (`sim_origami.kinematics.bricard_plane`, scene `bricard-plane`) against seed 000
-Part II (M4 to M7), the numeric loop solver and MuJoCo."""
+"""Plane-symmetric Bricard 6R (`sim_origami.kinematics.bricard_plane`, scene `bricard-plane`) against Feng 2018,
+ch. 4 (§4.2 to §4.5, Table 4-1), the numeric loop solver and MuJoCo. "Case 5" to "case 10" (test names too) are
+the thesis's own cases of Table 4-1 (§4.2); the special case of §4.5.2 is `SPECIAL_CASE_4_36`."""
 
 import numpy as np
 import pytest
@@ -11,7 +12,7 @@ from sim_origami.errors import AssemblyError, ConvergenceError, DomainError, Par
 from sim_origami.geometry import wrap
 from sim_origami.kinematics.bricard_plane import (
     FIG_4_5,
-    M7,
+    SPECIAL_CASE_4_36,
     TABLE_4_1,
     Geometry,
     PlaneSymmetricBricard,
@@ -213,11 +214,12 @@ def test_table_4_1_classification_and_branch_names(case, a_zero, delta, branches
 def test_case_7_is_a_rigid_structure_assembled_only_at_theta2_pi():
     kin = model(TABLE_4_1[7])
     assert kin.branches() == ()
-    # Delta <= -16 at every finite theta2 (seed000: "Delta <= -16"): measured max -16.00000000000001.
+    # Delta < 0 at every finite theta2 (Feng 2018, Table 4-1), bounded by -16 (derived here): measured max
+    # -16.00000000000001.
     assert kin.classification().delta_range[1] == pytest.approx(-16.0, abs=1e-9)
     [(x0, q)] = kin.isolated_assemblies()
     # [NEW] At theta2 = pi (m infinite, outside eqn 4-15) the loop closes: measured residual 9.5e-16,
-    # so "the loop cannot be assembled" (seed000 §5 case 9) holds only for finite theta2.
+    # so "the loop cannot be assembled" (Feng 2018, Table 4-1, case 7) holds only for finite theta2.
     assert x0 == pytest.approx(np.pi)
     np.testing.assert_allclose(wrap(q - np.array([0, np.pi, np.pi, 0, np.pi, np.pi])), 0.0, atol=1e-9)
     loops = kin.loop_system()
@@ -263,12 +265,12 @@ def test_case_9_one_loop_of_both_halves_turns_theta1_once_theta3_once_and_theta4
     (lo, hi) = kin.branches()[0].domain
     ends = {b.name: kin.joint_angles(b.name, [lo, hi]) for b in kin.branches()}
     a, b = ends["theta3_0_at_theta2_180"], ends["theta3_180_at_theta2_180"]
-    # Forward along one half, back along the other: the closed curve of seed000's "one branch if
+    # Forward along one half, back along the other: the closed curve of Feng 2018's "one branch if
     # theta1 is the input" (the halves meet at the turning points, to 1e-6 rad).
     turns = ((a[1] - a[0]) + (b[0] - b[1])) / (2 * np.pi)
     assert np.max(np.abs(turns - np.round(turns))) < 1e-5
     t1, t3, t4 = np.round(turns[[0, 2, 3]]).astype(int)
-    assert abs(t1) == 1 and t3 == t1 and t4 == -3 * t1  # per turn of theta1: +1, -3 (seed000 case 9)
+    assert abs(t1) == 1 and t3 == t1 and t4 == -3 * t1  # per turn of theta1: +1, -3 (Table 4-1, case 9)
 
 
 def test_fig_4_5_one_turn_of_theta2_turns_theta1_minus_three_theta3_two_theta4_one():
@@ -429,18 +431,18 @@ def test_mujoco_validation_passes(case, capsys):
 
 
 # ---------------------------------------------------------------------------------------------
-# M7: A == B == C == 0
+# Feng 2018, §4.5.2: A == B == C == 0
 # ---------------------------------------------------------------------------------------------
 
 
-def test_m7_double_rocker_closes_and_meets_the_eqn_4_37ab_chains_at_plus_minus_60_deg():
-    kin = model(M7)
+def test_special_case_double_rocker_closes_and_meets_the_eqn_4_37ab_chains_at_plus_minus_60_deg():
+    kin = model(SPECIAL_CASE_4_36)
     c = kin.classification()
     assert c.a_identically_zero and c.delta == "zero"
     names = sorted(b.name for b in kin.branches())
     assert names == ["double_rocker_theta6_97_at_theta2_0", "double_rocker_theta6_m97_at_theta2_0"]
     for b in kin.branches():
-        # Real only for |theta2| <= 99.59 deg (seed000 M7).
+        # Real only for |theta2| <= 99.59 deg (derived here; Feng 2018, §4.5.2).
         assert np.rad2deg(b.domain[1]) == pytest.approx(99.5941, abs=1e-4)
         values = kin.joint_angles(b.name, np.linspace(*b.domain, 801))
         assert np.all(values[:, [0, 3]] == 0.0)
@@ -449,7 +451,7 @@ def test_m7_double_rocker_closes_and_meets_the_eqn_4_37ab_chains_at_plus_minus_6
     multi = sorted((e for e in kin.events() if e.kind == "bifurcation"), key=lambda e: e.input)
     assert [round(np.rad2deg(e.input), 9) for e in multi] == [-60.0, 60.0]
     loops = kin.loop_system()
-    for s in (0.3, -2.0, np.pi):  # eqn 4-37a: theta1 = -theta4 free (validation case 16)
+    for s in (0.3, -2.0, np.pi):  # eqn 4-37a: theta1 = -theta4 free
         q = np.deg2rad([np.rad2deg(s), 60, 120, -np.rad2deg(s), 120, 60])
         # Measured 1.1e-15.
         assert loops.residual_norm(q) <= TOLERANCES.closed_form_residual
@@ -457,14 +459,15 @@ def test_m7_double_rocker_closes_and_meets_the_eqn_4_37ab_chains_at_plus_minus_6
     np.testing.assert_allclose(wrap(rocker - np.deg2rad([0, 60, 120, 0, 120, 60])), 0.0, atol=1e-12)
 
 
-def test_m7_principal_arcsin_does_not_close():
+def test_eqn_4_37d_principal_arcsin_does_not_close():
     theta2 = np.linspace(-1.5, 1.5, 31)
     m = np.tan(theta2 / 2)
     t6 = 2 * np.arctan2(-4 * m + np.sqrt(3 * (7 * m * m + 3) * (7 - 5 * m * m)), 15 * m * m + 7)
     t3 = np.arcsin((np.sin(t6) - np.sin(theta2)) / 4) - theta2
     q = np.stack([0 * m, theta2, t3, 0 * m, -(theta2 + t3 + t6), t6], -1)
-    # Measured 16.0 (seed000 §2 item 10: "error about 15"); the supplementary branch closes (above).
-    assert np.max(model(M7).loop_system().residual_norm(q)) > 1.0
+    # Feng 2018, eqn 4-37d with the principal arcsin: measured 16.0 (a first check here gave "about 15"); the
+    # supplementary branch closes (above).
+    assert np.max(model(SPECIAL_CASE_4_36).loop_system().residual_norm(q)) > 1.0
 
 
 def _local_dof(g: Geometry, held: tuple[int, ...], seed: int = 1) -> int:
@@ -489,7 +492,7 @@ def _local_dof(g: Geometry, held: tuple[int, ...], seed: int = 1) -> int:
 @pytest.mark.parametrize(
     ("geometry", "held", "dof"),
     [
-        # seed000 M5: theta1 = pi gives a 5R of local DOF 2 in the three examples of the text
+        # Feng 2018, §4.3: theta1 = pi gives a 5R of local DOF 2 in the three examples of the text
         (Geometry(3, 2, 1, 0.0, 0.0, 0.0), (0,), 2),  # planar: joints 2 and 6 coincide
         (Geometry(0, 0, 0, np.pi / 4, np.pi / 3, np.pi / 5), (0,), 2),  # spherical 4R plus a rotation
         (Geometry(1, 1, 1, np.pi / 2, 0.0, np.pi / 2), (0,), 2),  # serial chain, effective joints 2/6 and 3/5

@@ -1,5 +1,5 @@
 """Threefold-symmetric Bricard 6R (`sim_origami.kinematics.bricard_threefold`, scene `bricard-threefold`)
-against seed 001 §2.5/§6, the loop solver and MuJoCo."""
+against Yang 2017 (eqns 1-27, 2-8 to 2-11, the ch. 2 example), the loop solver and MuJoCo."""
 
 import numpy as np
 import pytest
@@ -51,10 +51,10 @@ def lean(m: BricardThreefold, q: np.ndarray) -> float:
 
 
 @pytest.mark.parametrize("alpha", [300.0, 60.0])
-def test_case8_phi_roots(alpha):
+def test_threefold_bricard_phi_of_the_chapter_2_example(alpha):
     # 300/60 as printed; 60/300 gives the same closure (only cos alpha and sin^2 alpha enter).
     # measured worst 4.9e-5 deg (rounding of the 4th decimal)
-    for entry in checked_by(yang2017.NUMBERS, "test_case8_phi_roots"):
+    for entry in checked_by(yang2017.NUMBERS, "test_threefold_bricard_phi_of_the_chapter_2_example"):
         theta = float(entry.quantity.split("theta = ")[1].split(" deg")[0])
         assert entry.difference(yang2017.threefold_phi(alpha, theta)) <= entry.tol, entry
 
@@ -75,7 +75,7 @@ def test_ch2_joint_coordinates_are_reproduced_up_to_a_rigid_motion():
     check_every(yang2017.NUMBERS, "test_ch2_joint_coordinates_are_reproduced_up_to_a_rigid_motion")
 
 
-# Seed 001 §2.5 closed path (truss continuation, 2 decimals): (step, theta, phi, branch it lies on).
+# The ch. 2 example's closed path, traced here by truss continuation (2 decimals): (step, theta, phi, branch).
 SAMPLED_PATH = [
     (0, 129.31, -19.99, ALONG), (250, 154.41, -89.18, ALONG), (500, 174.49, -159.48, ALONG),
     (574, 179.99, -179.95, ALONG),  # bundle: theta increases through pi ...
@@ -163,7 +163,7 @@ def test_closed_form_matches_numeric_continuation(alpha, branch):
     numeric = m.loop_system().follow(m.loop_angles(values)[0], 0, x)
     # measured worst 4.8e-14 rad
     assert np.max(np.abs(m.observe(numeric) - values)) <= TOLERANCES.closed_form_rad
-    # The numeric motion keeps the threefold symmetry (seed 001 §6 case 8: < 1e-11; measured 2.8e-14).
+    # The numeric motion keeps the threefold symmetry (first check here: < 1e-11; measured 2.8e-14).
     assert np.max(np.abs(numeric[:, [0, 1]] - numeric[:, [2, 3]])) < 1e-11
     assert np.max(np.abs(numeric[:, [0, 1]] - numeric[:, [4, 5]])) < 1e-11
 

@@ -1,4 +1,4 @@
-"""Numeric loop closure (`sim_origami.closure`) against the spherical 4R closed forms of seed 003."""
+"""Numeric loop closure (`sim_origami.closure`) against the spherical 4R closed forms of Peng 2018 (ch. 2-3)."""
 
 import numpy as np
 import pytest
@@ -8,19 +8,19 @@ from sim_origami.errors import ConvergenceError
 from sim_origami.geometry import rot_x, transform, wrap
 from sim_origami.kinematics.vertex4 import Vertex4
 
-# Seed 003 validation case 4: the generic developable vertex (2-34).
-CASE4_ALPHA = (np.pi / 2, 7 * np.pi / 18, np.pi / 3, 7 * np.pi / 9)
-# Seed 003 validation case 1 (Fig 2-1 basic, not developable) and case 3 (Fig 2-5 linkage).
-CASE1_ALPHA = (np.pi / 9, 2 * np.pi / 9, 4 * np.pi / 9, 2 * np.pi / 3)
-CASE3_ALPHA = (2 * np.pi / 9, np.pi / 3, 13 * np.pi / 18, 5 * np.pi / 9)
-# Seed 003 validation case 7 / M6: flat-foldable type I vertex of Fig 3-2.
+# Peng 2018, Eq. 2-34: the generic developable vertex.
+GENERIC_ALPHA = (np.pi / 2, 7 * np.pi / 18, np.pi / 3, 7 * np.pi / 9)
+# Peng 2018, Fig. 2-1 (the basic linkage, not developable) and Fig. 2-5 (a linkage).
+FIG_2_1_ALPHA = (np.pi / 9, 2 * np.pi / 9, 4 * np.pi / 9, 2 * np.pi / 3)
+FIG_2_5_ALPHA = (2 * np.pi / 9, np.pi / 3, 13 * np.pi / 18, 5 * np.pi / 9)
+# Peng 2018, Sec. 3.2.1, Fig. 3-2: the flat-foldable type I vertex.
 TYPE_I_ALPHA = (3 * np.pi / 4, np.pi / 3, np.pi / 4, 2 * np.pi / 3)
 
 INPUT_FIXED = np.array([True, False, False, False])
 
 
 def spherical_loop(alpha) -> LoopSystem:
-    """Spherical 4R D-H loop Rz(q1) Rx(a12) ... Rz(q4) Rx(a41) = I, any twists (seed 003 eqn 2-1)."""
+    """Spherical 4R D-H loop Rz(q1) Rx(a12) ... Rz(q4) Rx(a41) = I, any twists (Peng 2018, Eq. 2-1)."""
     links = np.stack([transform(rot_x(a)) for a in alpha])
     return LoopSystem(4, (Loop((0, 1, 2, 3), links, (1, 1, 1, 1)),))
 
@@ -41,7 +41,7 @@ def assert_same_configurations(found, expected, atol: float) -> None:
 
 @pytest.fixture(scope="module")
 def case4():
-    return Vertex4(np.array(CASE4_ALPHA))
+    return Vertex4(np.array(GENERIC_ALPHA))
 
 
 def test_flat_state_closes_the_loop(case4):
@@ -72,7 +72,7 @@ def test_solve_closes_perturbed_vertex_loop_onto_closed_form(case4, branch):
 @pytest.mark.parametrize("branch, other", [("odd2", "odd3"), ("odd3", "odd2")])
 def test_follow_keeps_the_named_branch_through_the_flat_state(case4, branch, other):
     # From input 0.5 down to -0.5 through the flat bifurcation: continuity must land on the SAME
-    # geometric branch on the far side (the +/- root label would swap there, seed 003 M1 pitfall).
+    # geometric branch on the far side (the +/- root label would swap there: central symmetry, Peng 2018, Eq. 2-10).
     system = case4.loop_system()
     inputs = np.linspace(0.5, -0.5, 40)  # steps straddle 0 at +/-0.0128
     path = system.follow(case4.joint_angles(branch, 0.5)[0], 0, inputs)
@@ -95,33 +95,33 @@ def test_assemblies_finds_exactly_the_closed_form_roots(case4, x):
 @pytest.mark.parametrize(
     "alpha, x, expected",
     [
-        # seed 003 validation case 1: theta1 = 2.0 on both branches
-        (CASE1_ALPHA, 2.0, [(0.241470, 0.711098, 2.339965), (1.751285, -0.711098, -3.015852)]),
-        # seed 003 validation case 3: theta1 = 1.0 on both branches
-        (CASE3_ALPHA, 1.0, [(-0.217664, 1.337066, 1.201753), (-2.237818, -1.337066, -2.525692)]),
+        # Peng 2018, Fig. 2-1 linkage: theta1 = 2.0 on both branches (roots computed here from Eqs. 2-2 to 2-5)
+        (FIG_2_1_ALPHA, 2.0, [(0.241470, 0.711098, 2.339965), (1.751285, -0.711098, -3.015852)]),
+        # Peng 2018, Fig. 2-5 linkage: theta1 = 1.0 on both branches (computed here likewise)
+        (FIG_2_5_ALPHA, 1.0, [(-0.217664, 1.337066, 1.201753), (-2.237818, -1.337066, -2.525692)]),
     ],
     ids=["case1", "case3"],
 )
 def test_assemblies_reproduces_published_non_developable_roots(alpha, x, expected):
     found = spherical_loop(alpha).assemblies(0, x, starts=16)
     expected = np.array([(x, *q) for q in expected])
-    # Published to 6 decimals: half a unit of the last digit.
+    # Given to 6 decimals: half a unit of the last digit.
     assert_same_configurations(found, expected, atol=5e-7)
 
 
 def test_assemblies_is_empty_where_the_linkage_cannot_assemble():
-    # Seed 003 case 1: no solution for |theta1| < 1.468817.
-    assert spherical_loop(CASE1_ALPHA).assemblies(0, 1.0, starts=8).shape == (0, 4)
+    # Peng 2018, Fig. 2-1 linkage: no solution for |theta1| < 1.468817 (computed here).
+    assert spherical_loop(FIG_2_1_ALPHA).assemblies(0, 1.0, starts=8).shape == (0, 4)
 
 
 def test_solve_raises_convergence_error_on_impossible_target():
     with pytest.raises(ConvergenceError, match=r"residual .* > tolerance"):
-        spherical_loop(CASE1_ALPHA).solve([1.0, 0.3, 0.2, 0.1], INPUT_FIXED)
+        spherical_loop(FIG_2_1_ALPHA).solve([1.0, 0.3, 0.2, 0.1], INPUT_FIXED)
 
 
 @pytest.mark.parametrize(
     "alpha, branches, x",
-    [(CASE4_ALPHA, ("odd2", "odd3"), 0.5), (TYPE_I_ALPHA, ("S", "C"), 1.0)],
+    [(GENERIC_ALPHA, ("odd2", "odd3"), 0.5), (TYPE_I_ALPHA, ("S", "C"), 1.0)],
     ids=["generic", "flat_foldable"],
 )
 def test_mobility_is_two_at_flat_state_and_one_when_folded(alpha, branches, x):

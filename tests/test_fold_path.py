@@ -7,6 +7,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from sim_origami import scenes
 from sim_origami.checks.paths import compare
 from sim_origami.cli import main
 from sim_origami.closure import LoopSystem
@@ -16,7 +17,7 @@ from sim_origami.kinematics.miura_sheet import MiuraSheet
 from sim_origami.kinematics.numeric_pattern import BRANCH, PatternPath
 from sim_origami.kinematics.vertex4 import Vertex4
 from sim_origami.path import Polyline, independent_joints, trace
-from sim_origami.scenes.fold_file import fold_scene
+from sim_origami.scenes.fold_file import fold_scene, steadiest
 from sim_origami.simulate import simulate
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import MIN_SWEEP_RAD, validate
@@ -204,6 +205,28 @@ def test_frames_are_compared_with_the_rigid_motion_through_them(tmp_path):
     report = validate(scene)
     failed = [v.name for r in report.runs for v in r.verdicts if not v.passed]
     assert failed == ["through-target: frames' distance from the rigid motion (rad)"]
+
+
+def test_frames_are_traced_from_the_first_frame_on_the_files_branch(tmp_path):
+    """Flat is a branch point of the waterbomb: traced from flat with e1 driven, the thick cell took another branch,
+    0.79 rad from its exact frames; traced from the first frame it stays on theirs."""
+    scene = scenes.get("waterbomb-thick").build()
+    q = np.stack([scene.pose("line-symmetric", x) for x in np.linspace(*scene.path, 5)])
+    rho = q[:, [scene.mechanism.joint_index(c.name) for c in scene.pattern.creases]]
+    path = write_fold(tmp_path / "thick.fold", scene.pattern, rho)
+    for inputs in ("e1", None):
+        kin = fold_scene(path, inputs).kinematics
+        assert max(d["distance_rad"] for d in kin.frame_distances) <= 1e-12, kin.inputs
+    assert kin.inputs not in (("e7",), ("e10",))  # the default: not the most folded creases, the slowest
+
+
+def test_the_steadiest_crease_is_the_one_that_never_slows_down():
+    t = np.linspace(0.0, 1.0, 11)[:, None]
+    states = np.hstack([np.sin(2.5 * t), 0.8 * t, 2.0 * t, np.full_like(t, np.nan)])  # crease 0 turns near t = 0.63
+    usable = np.array([True, True, False, True])  # crease 2 (the fastest) is an F crease
+    assert steadiest(states, usable, default=0) == 1
+    assert steadiest(states[:6], usable, default=0) == 0  # before its turn, crease 0 is the steadier
+    assert steadiest(np.zeros((3, 4)), usable, default=3) == 3  # nothing moves: the default
 
 
 def test_f_creases_stay_flat_and_a_vertex_needing_them_stalls():

@@ -14,6 +14,7 @@ from sim_origami import scenes
 from sim_origami.errors import ParameterError
 from sim_origami.fold import FLAT_TOL, fold_dict, read_fold
 from sim_origami.geometry import rigid_fit
+from sim_origami.kinematics.numeric_pattern import BRANCH
 from sim_origami.kinematics.waterbomb import LINE, path_folds, unit_cell
 from sim_origami.origami import pattern_mechanism
 from sim_origami.report import motion_fold
@@ -30,6 +31,8 @@ MOTIONS = {
     "corrugated-unit": ("corrugated-unit", {}, "CCSS"),
     "miura-sheet-2x2": ("miura-sheet", {"rows": 2, "cols": 2}, "miura"),
 }
+# Thick-panel scenes: read back too, but not folded by Rabbit Ear (it ignores the hinge heights).
+THICK = {"waterbomb-thick": ("waterbomb-thick", {}, "line-symmetric")}
 
 
 def cell():
@@ -123,7 +126,7 @@ def test_full_fold_is_plus_180_and_beyond_is_refused():
 def reports() -> dict[str, Report]:
     """A real MuJoCo run of each MOTIONS scene's branch."""
     out = {key: validate(scenes.get(name).build(**params), branch=branch) for key, (name, params, branch) in
-           MOTIONS.items()}  # fmt: skip
+           (MOTIONS | THICK).items()}  # fmt: skip
     assert all(report.passed for report in out.values())
     return out
 
@@ -162,26 +165,56 @@ def test_motion_files_follow_the_rules(motions):
         assert np.max(np.abs(np.diff(deg[1:], axis=0))) < 30.0  # continuous: no 360 deg jump between frames
 
 
+def failures(report: Report) -> list[str]:
+    """'name: measured (tolerance)' of every failed verdict, the scene's and its branches'."""
+    every = [*report.verdicts, *(v for run in report.runs for v in run.verdicts)]
+    return [f"{v.name}: {v.measured:.3g} (tolerance {v.tolerance:g})" for v in every if not v.passed]
+
+
+# The thick waterbomb cell read back misses two precision checks by 1% and 4% whichever crease drives it: its
+# loops' translations fix the free creases only through the hinge heights (6-10% of the longest edge), so the
+# closure Jacobian's smallest singular value is 0.0066 and a residual of 1e-14 (the continuation's tolerance)
+# or 1e-15 (the reference's polish) leaves 1e-12 / 1e-13 rad (docs/fold_motion.md).
+PRECISION = pytest.mark.xfail(strict=True, reason="closed form vs numeric 1.01e-12 (1e-12), projection 1.04e-13 "
+                              "(1e-13): the thick cell's closure is ill-conditioned (sigma_min 0.0066)")  # fmt: skip
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize(
     "key",
-    [
-        pytest.param(
-            "waterbomb-vertex",
-            marks=pytest.mark.xfail(
-                strict=True,
-                reason="the cell without the scene's symmetry couplings has 5 DOF; validate --fold drives one input",
-            ),
-        ),
-        "square-twist",
-        "corrugated-unit",
-        "miura-sheet-2x2",
-    ],
-)
+    ["waterbomb-vertex", "square-twist", "corrugated-unit", "miura-sheet-2x2",
+     pytest.param("waterbomb-thick", marks=PRECISION)],
+)  # fmt: skip
 def test_motion_validates_when_read_back(motions, key):
     report = validate(fold_scene(motions[key]))
-    failed = [f"{v.name}: {v.measured:.3g} (tolerance {v.tolerance:g})" for v in report.verdicts if not v.passed]
-    assert report.passed, failed
+    assert report.passed, failures(report)
+
+
+@pytest.mark.slow
+def test_several_inputs_are_compared_where_mujoco_holds_them(motions):
+    """The waterbomb cell has 5 freedoms read back, driven by 5 creases along the frames' polyline; their lags
+    differ, so MuJoCo's driven creases leave the polyline (1.4e-4 rad), and the reference at the polyline's
+    nearest point, instead of where they are, puts the run 1.5e-4 rad off (the old verdict: 2.0e-3)."""
+    scene = fold_scene(motions["waterbomb-vertex"])
+    assert len(scene.drives) == 5
+    report = validate(scene)
+    assert report.passed, failures(report)
+    q = report.runs[0].dynamic.q
+    at_path, _ = scene.kinematics.evaluate(BRANCH, scene.input_of(q))
+    assert np.max(np.abs(scene.outputs(q) - at_path)) > 10 * TOLERANCES.angle("fast")
+
+
+@pytest.mark.slow
+def test_the_default_input_is_the_steadiest_crease(motions):
+    """The thick waterbomb cell's most folded crease (e10, -164 deg) turns at worst 0.28 times as fast as the
+    fastest crease, and MuJoCo driving it lagged 6.2e-6 rad; the default input keeps 0.65 of the fastest rate."""
+    scene = fold_scene(motions["waterbomb-thick"])
+    assert scene.drives not in (("e10",), ("e7",))
+    report = validate(scene)
+    path = next(v for run in report.runs for v in run.verdicts if "MuJoCo fast path error" in v.name)
+    assert path.measured < 0.2 * path.tolerance, path
+    precision = ("closed form vs numeric closure", "MuJoCo projection path error")  # PRECISION above
+    assert all(any(name in f for name in precision) for f in failures(report)), failures(report)
 
 
 def rabbit_ear_frames(path: Path) -> np.ndarray:

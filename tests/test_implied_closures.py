@@ -20,8 +20,8 @@ from sim_origami.tolerances import TOLERANCES
 
 @pytest.mark.slow
 def test_the_300_panel_tube_keeps_six_of_its_closures_and_poses_between_the_samples_agree():
-    """The 10 x 5 tube's symmetry couplings and 6 cut creases close the other 125 loops (digest B.2: the couplings
-    leave one DOF); 41 poses a branch, between the 9 the scene samples, imply the same loops."""
+    """The 10 x 5 tube's symmetry couplings and 6 cut creases close the other 125 loops (the couplings leave one DOF,
+    measured here by rank); 41 poses a branch, between the 9 the scene samples, imply the same loops."""
     scene = without_implied_closures(scenes.get("waterbomb-tube").build(n=10))
     mech = scene.mechanism
     assert (len(mech.cut_joints), len(mech.implied)) == (131, 125)

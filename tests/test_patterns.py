@@ -101,7 +101,7 @@ def test_cli_validate_fold(tmp_path, capsys):
     code, _, err = cli(capsys, "validate", "--fold", str(path), "--input", "zz")
     assert code == 2 and "input crease 'zz'" in err
     code, _, err = cli(capsys, "validate", "vertex4", "--fold", str(path))
-    assert code == 2 and "one of a SCENE, --all or --fold" in err
+    assert code == 2 and "one of a SCENE, --all, --fold FILE or --linkage FILE" in err
 
 
 @pytest.mark.parametrize(("rows", "cols"), [(2, 2), (3, 2), (2, 5), (4, 4), (16, 16)])

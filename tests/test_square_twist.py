@@ -1,5 +1,5 @@
-"""Square twist (`kinematics.square_twist`, scene `square-twist`) against seed 003 §3.3 (digest M9, validation
-cases 10 and 11), the signed and unsigned loop solvers and MuJoCo."""
+"""Square twist (`kinematics.square_twist`, scene `square-twist`) against Peng 2018, §3.3
+(eqns 3-29 to 3-32, Figs 3-15 and 3-18), the signed and unsigned loop solvers and MuJoCo."""
 
 import numpy as np
 import pytest
@@ -36,7 +36,7 @@ from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
 
 ALPHA = 5 * np.pi / 6  # Fig 3-15
-# The digest prints 6 decimals: half a unit of the last digit.
+# The 6-decimal values (printed, or computed independently here): half a unit of the last digit.
 PRINTED = 5e-7
 # The servo's force range (mjcf_templates/defaults.xml, class servo), N m.
 SERVO_LIMIT = 20.0
@@ -50,7 +50,7 @@ def vertex_folds(q: np.ndarray, k: int) -> np.ndarray:
 
 
 @pytest.mark.parametrize("alpha_deg", [100.0, 150.0, 170.0])
-def test_pattern_has_four_flat_foldable_vertices_with_the_digest_sectors(alpha_deg):
+def test_pattern_has_four_flat_foldable_vertices_with_peng2018_sectors(alpha_deg):
     alpha = np.deg2rad(alpha_deg)
     pattern = crease_pattern(alpha, 1.0, 0.7)
     assert (len(pattern.faces), len(pattern.creases), len(pattern.interior_vertices())) == (9, 12, 4)
@@ -74,12 +74,12 @@ def test_every_assignment_obeys_maekawa_and_big_little_big(modes):
         assert mv[2] != mv[3]  # Big-Little-Big: creases 3 and 4 bound the smallest sector, pi - alpha
 
 
-def test_case10_multipliers_against_the_digest():
+def test_multipliers_against_peng2018():
     m = edge_multipliers(ALPHA)
     # m_C 1.732051 vs ours 1.7320508, m_S -0.577350 vs -0.5773503
-    check_every(peng2018.NUMBERS, "test_case10_multipliers_against_the_digest")
+    check_every(peng2018.NUMBERS, "test_multipliers_against_peng2018")
     vertex = flat_foldable_multipliers([ALPHA, np.pi / 2, np.pi - ALPHA, np.pi / 2])
-    assert (m["C"], m["S"]) == pytest.approx((vertex["C"][1], vertex["S"][1]), abs=1e-15)  # M6 eqn 3-3 = M9
+    assert (m["C"], m["S"]) == pytest.approx((vertex["C"][1], vertex["S"][1]), abs=1e-15)  # eqn 3-3 = §3.3's
     for alpha in np.linspace(0.51 * np.pi, 0.99 * np.pi, 25):
         m = edge_multipliers(alpha)
         assert m["C"] * m["S"] == pytest.approx(-1.0, abs=1e-13)  # identically; measured <= 1.1e-14 (alpha -> 90)
@@ -88,7 +88,7 @@ def test_case10_multipliers_against_the_digest():
 def test_verdict_table_has_two_rigid_classes_of_four():
     table = {v.name: v for v in verdict_table(ALPHA)}
     assert {name: len(v.members) for name, v in table.items()} == {"adjacent": 4, "opposite": 2, "all-C": 1, "all-S": 1}
-    # seed: K = 9 (CCCC) and 1/9 (SSSS) lock; CCSS and CSCS classes rigid (K = 1)
+    # Peng 2018, §3.3: two classes rigid, two locked; here K = 9 (CCCC) and 1/9 (SSSS), CCSS and CSCS K = 1
     gains = {name: v.loop_gain for name, v in table.items()}
     assert gains == pytest.approx({"adjacent": 1.0, "opposite": 1.0, "all-C": 9.0, "all-S": 1 / 9}, abs=1e-13)
     for name, v in table.items():
@@ -156,9 +156,9 @@ def test_events_mobility_and_kutzbach():
 
 
 @pytest.mark.parametrize("alpha", [5 * np.pi / 6, 3 * np.pi / 4, 2 * np.pi / 3])
-def test_case11_metamaterial_tables(alpha):
+def test_square_twist_metamaterial_tables_of_eqns_3_30_to_3_32(alpha):
     # phi, L, S, H, nu_SL, nu_HL at a = b = c = 1, 6 decimals
-    for entry in checked_by(peng2018.NUMBERS, "test_case11_metamaterial_tables"):
+    for entry in checked_by(peng2018.NUMBERS, "test_square_twist_metamaterial_tables_of_eqns_3_30_to_3_32"):
         if entry.where.endswith(f"alpha = {round(np.rad2deg(alpha))} deg"):
             entry.check()
     theta = np.deg2rad([30.0, 60.0, 90.0, 120.0, 150.0])
@@ -186,24 +186,25 @@ def height_peak(alpha: float) -> float:
 
 
 @pytest.mark.parametrize(
-    ("alpha", "theta_seed", "h_seed", "theta_ours", "corrected"),
+    ("alpha", "theta_sampled", "h_sampled", "theta_ours", "corrected"),
     [(5 * np.pi / 6, 1.2999, 0.9634, 1.299533, True), (3 * np.pi / 4, 1.1437, 1.2872, 1.143718, False),
      (2 * np.pi / 3, 0.9548, 1.4142, np.arccos(1 / np.sqrt(3)), True)],
 )  # fmt: skip
-def test_case11_height_peak(alpha, theta_seed, h_seed, theta_ours, corrected):
+def test_square_twist_metamaterial_height_peak(alpha, theta_sampled, h_sampled, theta_ours, corrected):
     theta = height_peak(alpha)
     assert theta == pytest.approx(theta_ours, abs=5e-7)
     # the text: nu_SL < 0 always; nu_HL > 0 before H peaks and < 0 after
     grid = metamaterial_unit(alpha, np.linspace(0.01, np.pi - 0.01, 2001))
     assert np.all(grid.nu_sl < 0)
     assert np.all(np.sign(grid.nu_hl) == np.where(grid.theta < theta, 1.0, -1.0))
-    assert metamaterial_unit(alpha, theta).H[0] == pytest.approx(h_seed, abs=5e-5)  # 4 decimals: all agree
-    # seed vs ours: 1.2999 vs 1.299533 and 0.9548 vs 0.955317 (= arccos(1/sqrt(3)), H = sqrt(2)); 1.1437 agrees
-    assert (abs(theta - theta_seed) > 5e-5) == corrected
+    assert metamaterial_unit(alpha, theta).H[0] == pytest.approx(h_sampled, abs=5e-5)  # 4 decimals: all agree
+    # a first, sampled reproduction of eqns 3-30 to 3-32 put the peak at 1.2999, 1.1437, 0.9548 (4 decimals); ours
+    # 1.299533 and 0.955317 (= arccos(1/sqrt(3)), H = sqrt(2)) differ; 1.1437 agrees
+    assert (abs(theta - theta_sampled) > 5e-5) == corrected
     if corrected:
-        # CORRECTION: at the seed's theta nu_HL has already (or not yet) changed sign, |nu_HL| 8.9e-4, 7.3e-4
-        nu = metamaterial_unit(alpha, theta_seed).nu_hl[0]
-        assert np.sign(nu) == np.sign(theta - theta_seed) and abs(nu) >= 5e-4
+        # corrected here: at the sampled theta nu_HL has already (or not yet) changed sign, |nu_HL| 8.9e-4, 7.3e-4
+        nu = metamaterial_unit(alpha, theta_sampled).nu_hl[0]
+        assert np.sign(nu) == np.sign(theta - theta_sampled) and abs(nu) >= 5e-4
 
 
 def test_locked_assignment_cannot_leave_flat_in_mujoco():

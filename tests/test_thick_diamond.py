@@ -1,5 +1,5 @@
 """Thick six-crease diamond vertex = plane-symmetric Bricard (`sim_origami.kinematics.thick_diamond`, scene
-`thick-diamond`) against seed 003 M13 / case 16, the loop solver and MuJoCo."""
+`thick-diamond`) against Peng 2018, §4.4.1 (eqns 4-29 to 4-50), the loop solver and MuJoCo."""
 
 import numpy as np
 import pytest
@@ -29,49 +29,49 @@ BRANCHES = (DIAMOND, COUNTER)
 GEOMETRIES = ((30.0, 0.3, 0.5), (30.0, 0.03, 0.05), (10.0, 1.0, 0.01), (45.0, 0.01, 1.0), (20.0, 0.5, 0.5))
 
 
-case16 = peng2018.thick_diamond
+thick_diamond = peng2018.thick_diamond
 
 
 def domain(n: int = 721) -> np.ndarray:
     return np.linspace(-np.pi, np.pi, n)
 
 
-def test_case16_heights_and_published_main_branch():
-    model = case16()
+def test_thick_diamond_heights_and_main_branch_of_eqn_4_38():
+    model = thick_diamond()
     assert model.heights == pytest.approx([0.0, 0.3, -0.2, -1.0, -0.2, 0.3], abs=1e-15)
     assert model.sectors == pytest.approx(np.array([30.0, 120.0, 30.0, 30.0, 120.0, 30.0]) * DEG)
     q = model.at(DIAMOND, np.pi / 2)
     # measured 1.0e-7 (rho) and 2.4e-7 rad (phi2 = pi + rho2, eqn 4-38), 6 decimals
-    check_every(peng2018.NUMBERS, "test_case16_heights_and_published_main_branch")
+    check_every(peng2018.NUMBERS, "test_thick_diamond_heights_and_main_branch_of_eqn_4_38")
     assert q["rho4"] == pytest.approx(np.pi / 2, abs=1e-15)
 
 
-def test_case16_second_flat_branch_at_q1_0_5():
+def test_thick_diamond_second_flat_branch_at_q1_0_5():
     # measured worst 3.0e-5 rad (4 decimals)
-    check_every(peng2018.NUMBERS, "test_case16_second_flat_branch_at_q1_0_5")
+    check_every(peng2018.NUMBERS, "test_thick_diamond_second_flat_branch_at_q1_0_5")
 
 
-def test_case16_line_fold_is_impossible_thick_and_possible_with_zero_thickness():
+def test_thick_diamond_line_fold_is_impossible_thick_and_possible_with_zero_thickness():
     # (psi, 0, 0, psi, 0, 0): fold about the straight line of creases 1 and 4 only.
     q = np.array([0.5, 0.0, 0.0, 0.5, 0.0, 0.0])
-    thick = case16().loop_system().residual_norm(q)
-    # the hinges 1 and 4 are |h4| = 1 m apart: residual |h4| sin(psi) = 0.479426 (digest: 0.48)
+    thick = thick_diamond().loop_system().residual_norm(q)
+    # the hinges 1 and 4 are |h4| = 1 m apart: residual |h4| sin(psi) = 0.479426 (a first check here: 0.48)
     assert thick == pytest.approx(np.sin(0.5), abs=1e-12)
     # measured 8.9e-17
     assert lifted_loop(sectors(np.pi / 6), np.zeros(6)).residual_norm(q) <= TOLERANCES.closed_form_residual
 
 
-def test_case16_r_0_7_is_refused_and_moves_along_another_curve():
+def test_thick_diamond_r_0_7_is_refused_and_moves_along_another_curve():
     with pytest.raises(ParameterError, match=r"r = 0\.7 m but p \+ q = 0\.8 m.*r = p \+ q.*misses closure by 0\.1 "):
         ThickDiamond(np.pi / 6, 0.3, 0.5, 0.7)
     # The r = 0.7 loop still moves (plane-symmetric Bricard); followed from near flat on the branch next to
-    # 'diamond', at phi1 = pi/2 it reaches the digest's non-equivalent (phi2, phi3, phi4).
+    # 'diamond', at phi1 = pi/2 it reaches a non-equivalent (phi2, phi3, phi4) (worked here).
     loops = lifted_loop(sectors(np.pi / 6), hinge_heights(0.3, 0.5, 0.7))
     x = np.linspace(0.02, np.pi / 2, 80)
     q = loops.follow(diamond_folds(np.pi / 6, x[0])[0], 0, x)[-1]
     phi = np.pi - np.abs(q)
     # measured 4.5e-7 rad (6 decimals)
-    check_every(peng2018.NUMBERS, "test_case16_r_0_7_is_refused_and_moves_along_another_curve")
+    check_every(peng2018.NUMBERS, "test_thick_diamond_r_0_7_is_refused_and_moves_along_another_curve")
     assert loops.residual_norm(q) < 1e-13
     assert abs(phi[3] - np.pi / 2) > 0.5  # the equivalent motion would have phi4 = phi1
 
@@ -98,7 +98,7 @@ def test_closed_form_matches_numeric_continuation_on_each_branch(alpha, p, q):
         for x in (np.linspace(-0.2, -2.9, 136), np.linspace(0.2, 2.9, 136)):
             values = model.joint_angles(branch, x)
             numeric = model.loop_system().follow(model.loop_angles(values)[0], joint, scale * x, tol=1e-15)
-            # measured worst 7.9e-14 rad (p = 0.03); 3.3e-15 (case 16), 4.0e-15 (alpha = 45 deg)
+            # measured worst 7.9e-14 rad (p = 0.03); 3.3e-15 (Peng 2018's p = 0.3, q = 0.5), 4.0e-15 (alpha = 45 deg)
             assert np.max(np.abs(model.observe(numeric) - values)) <= TOLERANCES.closed_form_rad
 
 
@@ -107,7 +107,7 @@ def test_every_assembly_is_plane_symmetric_on_one_of_the_two_factors(x):
     # Derived here: eliminating rho1 leaves (u - v)((p + q) u + p v) = 0, u = tan(rho2/2), v = tan(rho3/2).
     # The 'diamond' factor has one assembly per input, the 'counter23' factor three (a cubic in u), one
     # of which is the branch through flat: random starts find exactly those four.
-    model = case16()
+    model = thick_diamond()
     found = model.loop_system().assemblies(0, x, starts=96)
     assert len(found) == 4
     assert np.max(np.abs(wrap(found[:, [1, 2]] - found[:, [5, 4]]))) < 1e-10
@@ -122,7 +122,7 @@ def test_every_assembly_is_plane_symmetric_on_one_of_the_two_factors(x):
 
 def test_mobility_two_at_flat_one_folded_on_both_branches():
     # Simulation recipe item 6: thick Bricard (diamond, r = p + q) 2 / 1; spherical 6R 4 / 3.
-    model = case16()
+    model = thick_diamond()
     loops, sphere = model.loop_system(), lifted_loop(model.sectors, np.zeros(6))
     assert loops.mobility(np.zeros(6)) == 2
     assert sphere.mobility(np.zeros(6)) == 4
@@ -134,7 +134,7 @@ def test_mobility_two_at_flat_one_folded_on_both_branches():
 
 
 def test_both_branches_leave_flat_with_different_tangents():
-    model = case16()
+    model = thick_diamond()
     h = 1e-4
     slopes = [(model.joint_angles(b, h)[0] - model.joint_angles(b, -h)[0]) / (2 * h) for b in BRANCHES]
     # diamond: rho2 / rho1 = -1 / cos(alpha); counter23: -cos(alpha) (k - 1) / ... (distinct directions)
@@ -170,7 +170,7 @@ def test_thesis_twists_4_40_close_at_the_thesis_angles(branch):
         DHRow(0.0, q, np.pi + 2 * a),
         DHRow(0.0, p, a),
     )
-    rho = case16().joint_angles(branch, domain(181))
+    rho = thick_diamond().joint_angles(branch, domain(181))
     th = rho + np.array([np.pi, np.pi, 0.0, np.pi, 0.0, np.pi])
     # measured worst 1.7e-15
     assert np.max(dh_loop(rows).residual_norm(th)) <= TOLERANCES.closed_form_residual
@@ -184,7 +184,7 @@ def test_thesis_twists_4_40_close_at_the_thesis_angles(branch):
 
 
 def test_branches_events_gruebler_and_domain_checks():
-    model = case16()
+    model = thick_diamond()
     assert [(b.name, b.domain) for b in model.branches()] == [(DIAMOND, (-np.pi, np.pi)), (COUNTER, (-np.pi, np.pi))]
     (bifurcation,) = [e for e in model.events() if e.kind == "bifurcation"]
     assert bifurcation.input == 0.0 and set(bifurcation.branches) == {DIAMOND, COUNTER}

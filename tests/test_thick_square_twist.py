@@ -1,5 +1,5 @@
-"""Thick square twist (`kinematics.thick_square_twist`, scene `thick-square-twist`) against seed 003 Fig 4-4
-(digest M11, with M9 and M10): height rule, kinematic equivalence with the zero-thickness twist, mobility at
+"""Thick square twist (`kinematics.thick_square_twist`, scene `thick-square-twist`) against Peng 2018, Fig 4-4
+(with §3.3 and §4.2): height rule, kinematic equivalence with the zero-thickness twist, mobility at
 flat, MuJoCo paths and panel contact."""
 
 import numpy as np
@@ -46,7 +46,7 @@ def vertex_folds(q: np.ndarray, k: int) -> np.ndarray:
 
 @pytest.mark.parametrize("modes", SIGN_CONSISTENT)
 def test_height_rule_in_the_thesis_frame(modes):
-    """Digest M11: heights close round the square iff #S = #C (the six rigid strings); single slab iff opposite."""
+    """Derived here: heights close round the square iff #S = #C (the six rigid strings); single slab iff opposite."""
     if modes in RIGID:
         heights = crease_heights(ALPHA, B, modes)
         assert square_levels(heights) == (2 if CLASS_OF[modes] == "opposite" else 3)

@@ -1,5 +1,5 @@
 """Thick five-crease vertex = Myard linkage (`sim_origami.kinematics.thick_vertex5`, scene `thick-vertex5`)
-against seed 003 M12 / case 15, the loop solver and MuJoCo."""
+against Peng 2018, §4.3 (eqns 4-10 to 4-28), the loop solver and MuJoCo."""
 
 import numpy as np
 import pytest
@@ -16,14 +16,14 @@ from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
 
 DEG = np.pi / 180
-# Case 15: alpha = pi/6, a23 = 1 m, a12 = 0.5 m; its fold angles at rho1 = pi/2 (Peng 2018, 6 decimals).
-[CASE15_Q_ENTRY] = [e for e in checked_by(peng2018.NUMBERS, "test_case15_published_fold_and_dihedral_angles")
-                    if e.quantity.startswith("fold angles")]  # fmt: skip
-CASE15_Q = CASE15_Q_ENTRY.value
+# Peng 2018's example of eqn 4-22: alpha = pi/6, a23 = 1 m, a12 = 0.5 m; its fold angles at rho1 = pi/2 (6 decimals).
+[PUBLISHED_Q_ENTRY] = [e for e in checked_by(peng2018.NUMBERS, "test_thick_five_crease_vertex_angles_of_eqn_4_22")
+                       if e.quantity.startswith("fold angles")]  # fmt: skip
+PUBLISHED_Q = PUBLISHED_Q_ENTRY.value
 ALPHAS_DEG = (5.0, 30.0, 45.0, 60.0, 85.0)
 
 
-def case15() -> ThickVertex5:
+def thick_vertex5() -> ThickVertex5:
     return ThickVertex5(np.pi / 6, 1.0)
 
 
@@ -35,24 +35,24 @@ def domain(n: int = 721) -> np.ndarray:
 dihedral = peng2018.dihedral
 
 
-def test_case15_published_fold_and_dihedral_angles():
-    model = case15()
+def test_thick_five_crease_vertex_angles_of_eqn_4_22():
+    model = thick_vertex5()
     assert model.heights == pytest.approx([0.0, 0.5, 1.5, 1.5, 0.5], abs=1e-15)
     assert model.sectors == pytest.approx(np.array([30.0, 90.0, 120.0, 90.0, 30.0]) * DEG)
     q = model.joint_angles(BRANCH, np.pi / 2)
     # measured 3.7e-7 (q) and 4.9e-7 rad (phi): the 6-decimal rounding; phi1 = pi/2 exactly
-    check_every(peng2018.NUMBERS, "test_case15_published_fold_and_dihedral_angles")
+    check_every(peng2018.NUMBERS, "test_thick_five_crease_vertex_angles_of_eqn_4_22")
     assert dihedral(q)[0, 0] == pytest.approx(np.pi / 2, abs=1e-15)
 
 
-def test_case15_published_q_closes_thick_and_zero_thickness_loops():
+def test_thick_five_crease_vertex_published_q_closes_thick_and_zero_thickness_loops():
     # "The same q closes the zero-thickness 5R": the thick motion is a motion of the sheet.
     # q has 6 decimals (rounding <= 5e-7 rad per angle): measured 1.0e-6 for both (the rotation part).
-    assert case15().loop_system().residual_norm(CASE15_Q) < 3e-6
-    assert lifted_loop(sectors(np.pi / 6), np.zeros(5)).residual_norm(CASE15_Q) < 3e-6
+    assert thick_vertex5().loop_system().residual_norm(PUBLISHED_Q) < 3e-6
+    assert lifted_loop(sectors(np.pi / 6), np.zeros(5)).residual_norm(PUBLISHED_Q) < 3e-6
 
 
-def test_case15_a12_0_7_breaks_closure_with_residual_0_2():
+def test_thick_five_crease_vertex_a12_0_7_breaks_closure_with_residual_0_2():
     with pytest.raises(AssemblyError, match=r"a12 = 0\.7 m but a23 sin\(alpha\) = 0\.5 m.*misses closure by 0\.2 "):
         ThickVertex5(np.pi / 6, 1.0, a12=0.7)
     # the rigid 5R: no assembly at all at rho1 = pi/2, so no motion through flat
@@ -67,7 +67,7 @@ def test_closed_form_closes_the_lifted_loop_over_the_whole_branch(alpha, b):
     q = model.loop_angles(model.joint_angles(BRANCH, domain()))
     # measured worst 1.3e-15 over these (alpha, b), mirrored heights alike
     assert np.max(model.loop_system().residual_norm(q)) <= TOLERANCES.closed_form_residual
-    # the motion is odd in rho1, so the mirrored heights -h close the same angles (digest: "or its mirror")
+    # the motion is odd in rho1, so the mirrored heights -h close the same angles (derived here)
     mirrored = lifted_loop(model.sectors, -model.heights)
     assert np.max(mirrored.residual_norm(q)) <= TOLERANCES.closed_form_residual
 
@@ -86,7 +86,7 @@ def test_closed_form_matches_numeric_continuation(alpha):
 def test_one_cycle_no_other_assembly():
     # Random-start solves at rho1 = 0.5 find the branch and its other half only: the motion is one cycle
     # over rho1 in [-2 pi, 2 pi] (crease 1 folds through flat at +-pi), with no second branch.
-    model = case15()
+    model = thick_vertex5()
     found = model.loop_system().assemblies(0, 0.5, starts=32)
     want = np.vstack([plane_symmetric_folds(model.alpha, 0.5), plane_symmetric_folds(model.alpha, 0.5 - 2 * np.pi)])
     assert len(found) == 2
@@ -98,7 +98,7 @@ def test_one_cycle_no_other_assembly():
 @pytest.mark.parametrize("x", [0.0, 1e-3, -0.5, 2.0, -3.0, np.pi])
 def test_thick_mobility_is_one_at_flat_and_folded(x):
     # Simulation recipe item 6: thick Myard 1 (flat) / 1 (folded); spherical 5R (Myard sectors) 3 / 2.
-    model = case15()
+    model = thick_vertex5()
     q = model.loop_angles(model.joint_angles(BRANCH, x))[0]
     assert model.loop_system().mobility(q) == 1
     sphere = lifted_loop(model.sectors, np.zeros(5))
@@ -137,7 +137,7 @@ def test_corrected_4_23c_and_4_28c_hold_and_printed_sign_fails(alpha):
 
 @pytest.mark.parametrize("alpha", [30.0, 50.0, 70.0])
 def test_4_26_holds_with_sector_alpha_not_alpha12_myard(alpha):
-    # Thesis frame theta^My = (q1 + pi, -q2, q3, q4 + pi, q5) (digest M12).
+    # Thesis frame theta^My = (q1 + pi, -q2, q3, q4 + pi, q5) (Peng 2018, §4.3, related here).
     al = alpha * DEG
     q = ThickVertex5(al, 1.0).joint_angles(BRANCH, np.linspace(0.2, 3.0, 57))
     th = np.column_stack([q[:, 0] + np.pi, -q[:, 1], q[:, 2], q[:, 3] + np.pi, q[:, 4]])
@@ -158,7 +158,7 @@ def test_4_26_holds_with_sector_alpha_not_alpha12_myard(alpha):
 
 
 @pytest.mark.parametrize("alpha", [30.0, 50.0, 70.0])
-def test_seed001_eqn_1_19_with_alpha12_180_minus_alpha_closes_at_the_thesis_angles(alpha):
+def test_yang2017_eqn_1_19_with_alpha12_180_minus_alpha_closes_at_the_thesis_angles(alpha):
     # (4-24) twists (pi - alpha, pi/2, pi + 2 alpha, pi/2, alpha) = eqn 1-19 with alpha12 = pi - alpha
     # (alpha34 = pi - 2 alpha12 = 2 alpha - pi, the same modulo 2 pi); a12 = a51 = a23 sin(alpha), a34 = 0.
     al = alpha * DEG
@@ -181,7 +181,7 @@ def test_seed001_eqn_1_19_with_alpha12_180_minus_alpha_closes_at_the_thesis_angl
 
 
 def test_branch_domain_events_gruebler_and_names():
-    model = case15()
+    model = thick_vertex5()
     (branch,) = model.branches()
     assert branch.name == BRANCH == "plane_symmetric"
     assert branch.domain == (-np.pi, np.pi)
@@ -255,6 +255,6 @@ def test_validate_default_scene_passes_every_verdict(scene):
     assert measured["MuJoCo projection path error (rad)"] <= TOLERANCES.projection_rad
     assert measured["servo stop vs kinematic contact (rad)"] <= TOLERANCES.blockage_rad
     assert report.blockage.stopped and report.blockage.contact_input == pytest.approx(-2.0978594, abs=1e-6)
-    # truss method alike, with the Myard linkage's two states of self-stress (seed 001)
+    # truss method alike, with the Myard linkage's two states of self-stress (Yang 2017, Sec. 3.4)
     start = {"input_rad": -0.4, "numeric": 1, "mujoco": 1, "truss": 1, "truss_self_stress": 2}
     assert run.mobility["start"] == start

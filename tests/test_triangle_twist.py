@@ -1,5 +1,5 @@
 """Triangle twist (`kinematics.triangle_twist`, scene `triangle-twist`) and its 6R linkages (`kinematics.twist_6r`,
-scene `triangle-twist-6r`) against seed 000 ch. 3 (digest M1 to M3, validation cases 1 to 6), the numeric loop
+scene `triangle-twist-6r`) against Feng 2018, ch. 3 (§3.2 to §3.4), the numeric loop
 closure and MuJoCo."""
 
 import numpy as np
@@ -52,7 +52,7 @@ DEC3 = 5e-4 * DEG
 # The servo's force range (mjcf_templates/defaults.xml, class servo), N m.
 SERVO_LIMIT = 20.0
 FIG_3_5 = (55.0, 50.0, 50.0, 45.0)
-SIX_R = ("A3", "B2", "B3", "C2", "C3", "A2")  # joints z1..z6 of the 6R (digest M3)
+SIX_R = ("A3", "B2", "B3", "C2", "C3", "A2")  # joints z1..z6 of the 6R (Feng 2018, Fig. 3-13)
 
 
 def angles_deg(alpha, beta, gamma, delta, epsilon) -> TwistAngles:
@@ -64,30 +64,30 @@ def vertex_folds(q: np.ndarray, v: str) -> np.ndarray:
     return q[:, [CREASES.index(n) for n in (Z1[v], f"{v}2", f"{v}3", Z4[v])]]
 
 
-# --- M1: the degree-4 vertex (validation cases 1, 2; digest correction 1) ---------------------------------------
+# --- the degree-4 vertex (Feng 2018, §3.2; eqn 3-4a corrected) -------------------------------------------------------
 
 
 @pytest.mark.parametrize("mode", ["S", "C"])
-def test_case1_2_spherical_4r_vertex_families(mode):
+def test_spherical_4r_vertex_i_and_ii_of_eqn_3_3(mode):
     """Vertex-I (eqn 3-3a) is our mode S, Vertex-II (3-3b) mode C: same D-H twists, same signs."""
     # 4 decimals (rad): measured <= 4.8e-5
     [entry] = [
         e
-        for e in checked_by(feng2018.NUMBERS, "test_case1_2_spherical_4r_vertex_families")
+        for e in checked_by(feng2018.NUMBERS, "test_spherical_4r_vertex_i_and_ii_of_eqn_3_3")
         if f"mode {mode}" in e.quantity
     ]
     entry.check()
     # eqn 3-4a, fourth ratio corrected: tan(phi4/2)/tan(phi1/2) = s-/s+ with phi = pi - |theta| (measured 2.2e-16),
     # not the printed s-/s- = 1
     if mode == "S":
-        check_every(feng2018.CORRECTIONS, "test_case1_2_spherical_4r_vertex_families")
+        check_every(feng2018.CORRECTIONS, "test_spherical_4r_vertex_i_and_ii_of_eqn_3_3")
 
 
-# --- M2: pattern, schemes, verdicts -----------------------------------------------------------------------------
+# --- the pattern, its schemes and verdicts (Feng 2018, §3.2, §3.3) ---------------------------------------------------
 
 
 @pytest.mark.parametrize("scheme", RIGID_SCHEMES + LOCKED_SCHEMES)
-def test_pattern_vertices_have_the_seed_sectors_and_assignment_obeys_maekawa(scheme):
+def test_pattern_vertices_have_feng2018_sectors_and_assignment_obeys_maekawa(scheme):
     types, angles = example_angles(scheme)
     pattern = crease_pattern(angles, 1.0, 0.5, types)
     assert (len(pattern.faces), len(pattern.creases), len(pattern.interior_vertices())) == (7, 9, 3)
@@ -106,12 +106,12 @@ def test_pattern_vertices_have_the_seed_sectors_and_assignment_obeys_maekawa(sch
         assert mv.count(mv[odd]) == 1
 
 
-def test_case3_compatible_epsilon_against_the_seed():
+def test_compatible_epsilon_against_feng2018():
     """Eqn 3-12 (Fig. 3-5, scheme SSP) and the PSR formula; 4 decimals (deg): ours 35.436776, 33.516640, 7.035508,
     -25.528779 (negative: no compatible pattern)."""
-    check_every(feng2018.NUMBERS, "test_case3_compatible_epsilon_against_the_seed")
+    check_every(feng2018.NUMBERS, "test_compatible_epsilon_against_feng2018")
     assert epsilon_formula("PSR", 60 * DEG, 60 * DEG, 90 * DEG, 45 * DEG) < 0
-    # Fig. 3-5: its only motion is SSP, with the digest's M/V (AB, BC, CA, A2, A3, B2, B3, C2, C3)
+    # Fig. 3-5: its only motion is SSP, with this M/V (AB, BC, CA, A2, A3, B2, B3, C2, C3)
     model = TriangleTwist(angles_deg(*FIG_3_5, 35.436775581528764))
     assert [b.name for b in model.branches()] == ["SSP"]
     assert assignment(model.angles, "SSP") == "VMMVVMMVM"
@@ -121,7 +121,7 @@ def test_case3_compatible_epsilon_against_the_seed():
 
 
 @pytest.mark.slow
-def test_verdict_table_reproduces_the_seed_eight_rigid_four_never():
+def test_verdict_table_reproduces_feng2018_eight_rigid_four_never():
     table = verdict_table()
     assert [v.name for v in table] == list(RIGID_SCHEMES + LOCKED_SCHEMES)
     for v in table:
@@ -134,7 +134,7 @@ def test_verdict_table_reproduces_the_seed_eight_rigid_four_never():
         else:
             assert abs(np.prod(v.mu) - 1.0) >= 0.5  # measured 24.4 (PPP), 2.24, 0.961, 0.666 (QSS)
             assert v.residual >= 1e-5  # stalls: measured 1.1e-3, 3.9e-4, 1.3e-3, 1.2e-4 (QSS)
-    # M/V split (up to a global flip): the prose's 6M/3V for PQQ and QQQ, not Table 3-1's 5M/4V (digest 2.25)
+    # M/V split (up to a global flip): the prose's 6M/3V for PQQ and QQQ, not Table 3-1's 5M/4V (they disagree)
     split = {v.name: sorted((v.assignment.count("M"), v.assignment.count("V"))) for v in table}
     assert split["PQQ"] == split["QQQ"] == [3, 6] and split["PSS"] == [4, 5]
 
@@ -157,8 +157,9 @@ def test_loop_gain_is_the_inverse_mu_product_and_locked_classes_never_reach_one(
     assert checked > 300
 
 
-def test_case4_all_pleats_parallel_never_folds():
-    """gamma = delta = epsilon: eqn 3-16 (with the digest's two restored factors) and no scheme with gain 1."""
+def test_triangle_twist_with_all_pleats_parallel_never_folds():
+    """gamma = delta = epsilon: eqn 3-16 (with the two non-zero factors its simplified form drops, restored here) and
+    no scheme with gain 1."""
     rng = np.random.default_rng(7)
     for _ in range(100):
         a, b = rng.uniform(5, 170, 2)
@@ -200,7 +201,7 @@ def test_closed_form_closes_matches_the_numeric_solve_and_the_vertex_modes(schem
     numeric = loops.follow(q[0], CREASES.index(INPUT), x)
     assert np.max(np.abs(wrap(numeric - q))) <= TOLERANCES.closed_form_rad  # measured <= 1.2e-14
     assert loops.mobility(np.zeros(9)) == 3 and loops.mobility(q[0]) == 1  # flat: 9 - rank 6
-    # the seed's 1-DOF kinematics tan(phi4/2) = mu tan(phi1/2) at every vertex, phi = pi - |rho|
+    # Feng 2018's 1-DOF kinematics tan(phi4/2) = mu tan(phi1/2) at every vertex, phi = pi - |rho|
     for k, v in enumerate(VERTICES):
         f1, f4 = (np.pi - np.abs(vertex_folds(q, v)[:, i]) for i in (0, 3))
         m = mu(types[k], *angles.corners_and_pleats()[k])
@@ -217,7 +218,7 @@ def test_validate_every_rigid_scheme():
         # fast preset, 8x sweep over 0.5..2.4 rad: measured <= 2.8e-8 (QSR); projection <= 1.2e-14
         assert run.dynamic_path.max_error() <= 1e-7
         assert run.mobility["start"]["numeric"] == run.mobility["start"]["mujoco"] == 1
-        if scheme == "PSS":  # the seed's Fig. 3-5: its simulated motion as a FOLD file closes the pattern's loops
+        if scheme == "PSS":  # Feng 2018's Fig. 3-5: its simulated motion as a FOLD file closes the pattern's loops
             fold = read_fold(write(report, "out")["fold"])
             assert fold.pattern.loop_system().residual_norm(fold.frames).max() <= TOLERANCES.fast_residual_m  # 1.3e-9
 
@@ -238,39 +239,39 @@ def test_locked_scheme_cannot_leave_flat_in_mujoco_the_rigid_one_can():
             assert compare(scene, "SSP", run.q).max_error() <= TOLERANCES.fast_rad
 
 
-# --- M3: the derived 6R linkages (validation cases 5, 6; digest corrections 4 to 6) ------------------------------
+# --- the derived 6R linkages (Feng 2018, §3.4; eqns 3-38 to 3-40 corrected) ------------------------------------------
 
 
-def test_case5_dh_data_and_motion_against_the_seed():
+def test_dh_data_and_motion_against_feng2018():
     model = feng2018.twist_6r(*FIG_3_5)
     assert all(r.a == 0 for r in model.rows) and abs(model.bricard_sum()) <= 1e-13  # eqn 2-14: 1.4e-14
     # D-H data, Ka, Kb and the path (theta4 = theta1, theta5 = theta2, theta6 = -theta3)
-    check_every(feng2018.NUMBERS, "test_case5_dh_data_and_motion_against_the_seed")
+    check_every(feng2018.NUMBERS, "test_dh_data_and_motion_against_feng2018")
     loops = model.loop_system()
     for t1 in (30, 60, 90, 120, 150):
         assert loops.residual_norm(model.joint_angles("SSP", t1 * DEG))[0] <= 1e-14  # measured <= 3.3e-15
     # eqn 3-39 as printed (tan(theta2/2) = +Ka Kb tan(theta1/2), ..., theta4 = -theta1) misses closure: measured
     # 1.88 >= 1.0, where the closed form closes to 4.2e-15
-    check_every(feng2018.CORRECTIONS, "test_case5_dh_data_and_motion_against_the_seed")
+    check_every(feng2018.CORRECTIONS, "test_dh_data_and_motion_against_feng2018")
 
 
 @pytest.mark.parametrize("joint", [0, 1, 2, 5])
-def test_case5_one_held_joint_admits_one_configuration(joint):
+def test_derived_6r_with_one_held_joint_admits_one_configuration(joint):
     model = feng2018.twist_6r(*FIG_3_5)
     found = model.loop_system().assemblies(joint, 0.3, starts=32, seed=1)
     assert len(found) == 1  # a single branch: every random start lands on the same pose
     # 2 decimals: measured <= 0.0043 deg
-    entries = checked_by(feng2018.NUMBERS, "test_case5_one_held_joint_admits_one_configuration")
+    entries = checked_by(feng2018.NUMBERS, "test_derived_6r_with_one_held_joint_admits_one_configuration")
     [entry] = [e for e in entries if f"joint {joint + 1} held" in e.quantity]
     assert entry.difference(np.rad2deg(found[0])) <= entry.tol
     # and it is the closed form's pose at the theta1 it has
     assert np.max(np.abs(wrap(model.joint_angles("SSP", found[0][0])[0] - found[0]))) <= 1e-12
 
 
-def test_case6_parallel_pleats_the_new_6r():
+def test_new_6r_of_eqn_3_40_with_parallel_pleats():
     model = feng2018.twist_6r(55, 50, 45, 45)
     # epsilon, D-H data (a12, eqn 2-14's sum with R1 = 0), Ka, Ka Kb and theta at theta1 = 0.5 rad
-    check_every(feng2018.NUMBERS, "test_case6_parallel_pleats_the_new_6r")
+    check_every(feng2018.NUMBERS, "test_new_6r_of_eqn_3_40_with_parallel_pleats")
     np.testing.assert_allclose(model.joint_angles("SSP", -np.pi / 2)[0], np.array([-90, 90, 0, 0, 0, 0]) * DEG,
                                atol=1e-15)  # fmt: skip
 
@@ -278,7 +279,7 @@ def test_case6_parallel_pleats_the_new_6r():
 @pytest.mark.parametrize("angles", [FIG_3_5, (55, 50, 45, 45), (55, 50, 40, 45), (55, 50, 60, 30), (70, 40, 30, 35)])
 def test_6r_is_the_pattern_without_its_triangle(angles):
     """The pattern's SSP pleat folds (+ the D-H flat offsets) are the 6R's joints: the 6R closed form, the printed
-    D-H data and the crease pattern agree. With gamma < delta or delta < epsilon the seed's absolute values in
+    D-H data and the crease pattern agree. With gamma < delta or delta < epsilon the thesis's absolute values in
     eqn 3-38 miss closure [NEW]; the signed offsets close."""
     six = TwistSixR(compatible_angles(*(v * DEG for v in angles)))
     origami = TriangleTwist(six.angles)
@@ -329,7 +330,7 @@ def test_validate_6r(gamma):
     assert run.dynamic_path.max_error() <= 1e-7 and run.followed == "SSP"
 
 
-# --- bad input ---------------------------------------------------------------------------------------------------
+# --- bad input -------------------------------------------------------------------------------------------------------
 
 
 @pytest.mark.parametrize(

@@ -1,6 +1,6 @@
-"""Truncated octahedron -> cube (`kinematics.truncated_octahedron`, scene `truncated-octahedron`) against seed 001
-ch. 5 (digest §2.7, validation cases 12, 14, 20), the numeric loop closure of the whole assembly (spherical joints
-as hinge triples) and MuJoCo (spherical joints as ball joints)."""
+"""Truncated octahedron -> cube (`kinematics.truncated_octahedron`, scene `truncated-octahedron`) against Yang 2017,
+ch. 5, the numeric loop closure of the whole assembly (spherical joints as hinge triples) and MuJoCo (spherical
+joints as ball joints)."""
 
 import mujoco
 import numpy as np
@@ -43,12 +43,12 @@ def edge_errors(P: np.ndarray) -> np.ndarray:
 # --- Yang 2017, chapter 5 (tests/published/yang2017.py) --------------------------------------------------
 
 
-def test_bricard_parameters_match_case_12(model):
-    # Case 12: a, alpha, theta_d, phi_d, theta_f, phi_f; the example's tolerance is 1e-3 deg (measured within
-    # 5e-5 deg of every value)
-    check_every(yang2017.NUMBERS, "test_bricard_parameters_match_case_12")
+def test_truncated_octahedron_bricard_parameters(model):
+    # the ch. 5 Bricard linkage: a, alpha, theta_d, phi_d, theta_f, phi_f; the example's tolerance is 1e-3 deg
+    # (measured within 5e-5 deg of every value)
+    check_every(yang2017.NUMBERS, "test_truncated_octahedron_bricard_parameters")
     [alpha] = [
-        e for e in checked_by(yang2017.NUMBERS, "test_bricard_parameters_match_case_12") if "alpha" in e.quantity
+        e for e in checked_by(yang2017.NUMBERS, "test_truncated_octahedron_bricard_parameters") if "alpha" in e.quantity
     ]
     assert alpha.difference(360 - model.rows[1].alpha % (2 * np.pi) / DEG) <= alpha.tol  # the even twists
     assert max(abs(r.R) for r in model.rows) < 1e-12  # offsets 0 (measured 4.6e-16 m)
@@ -62,7 +62,7 @@ def test_deployed_state_is_the_truncated_octahedron(model):
 
 
 def test_end_state_is_the_cube(model):
-    """Case 20: the end is (5-2) up to a rigid motion; case 14: A1B1, A2E3, C3D2, D1E1 reach 0 together."""
+    """The end is the cube (5-2) up to a rigid motion; A1B1, A2E3, C3D2, D1E1 reach 0 together."""
     P = model.vertices(model.theta_f)[0]
     Q = np.array([CUBE[v] for v in NAMES])
     U, _, Vt = np.linalg.svd((P - P.mean(0)).T @ (Q - Q.mean(0)))
@@ -85,9 +85,9 @@ def test_volume_ratio(model):
 
 
 @pytest.mark.parametrize(
-    "entry", checked_by(yang2017.NUMBERS, "test_truncated_octahedron.py::test_path_matches_seed_table"), ids=str
+    "entry", checked_by(yang2017.NUMBERS, "test_truncated_octahedron.py::test_path_matches_the_worked_table"), ids=str
 )
-def test_path_matches_seed_table(entry):
+def test_path_matches_the_worked_table(entry):
     # measured agreement 0.02 deg or better
     entry.check()
 
@@ -119,10 +119,10 @@ def test_closed_form_matches_numeric_assembly(model):
     """The whole assembly (15 R, 9 S as hinge triples, 7 loops) followed from the truncated octahedron."""
     mechanism = assembly()
     loops = mechanism.loop_system()
-    assert len(loops.loops) == 7  # 24 joints - 18 bodies + 1 (seed §2.7)
+    assert len(loops.loops) == 7  # 24 joints - 18 bodies + 1 (ch. 5)
     q0 = np.zeros(len(mechanism.joints))
     assert loops.residual_norm(q0) < 1e-14  # deployed state closes (measured 3.8e-15)
-    # seed §2.7 table: + R at A3, B3, C3 -> m = 1, besides the idle spins of the 3 S-S bars
+    # ch. 5's truss counts: + R at A3, B3, C3 -> m = 1, besides the idle spins of the 3 S-S bars
     assert mechanism.idle_spins == 3
     assert loops.mobility(q0) == 1 + 3
     theta = np.linspace(*model.domain, 41)

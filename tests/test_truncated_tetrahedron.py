@@ -1,6 +1,6 @@
 """Truncated tetrahedron -> tetrahedron, schemes I and II (`kinematics.truncated_tetrahedron`, assemblies in
-`scenes.truncated_tetrahedron`) against seed 001 ch. 6 (digest §2.8, validation cases 16-20) and the numeric loop
-closure of the whole assembly (9 R hinges, 3 spherical joints, 3 loops) and MuJoCo (ball joints)."""
+`scenes.truncated_tetrahedron`) against Yang 2017, ch. 6 and the numeric loop closure of the whole assembly (9 R
+hinges, 3 spherical joints, 3 loops) and MuJoCo (ball joints)."""
 
 import numpy as np
 import pytest
@@ -73,7 +73,7 @@ def kabsch_error(P: np.ndarray, target: dict[str, np.ndarray]) -> float:
 # --- Yang 2017, chapter 6 (tests/published/yang2017.py) --------------------------------------------------
 
 
-def test_bricard_parameters_match_case_16(two):
+def test_truncated_tetrahedron_bricard_parameters(two):
     """a = 2√69/23, alpha 231.0378/128.9622 deg, R = 0, c = 17√22/92, d = 5√166/92; deployed and folded angles."""
     for k, row in enumerate(two.rows):
         assert row.a == pytest.approx(2 * np.sqrt(69) / 23, abs=1e-14)  # measured 2.2e-16
@@ -85,7 +85,7 @@ def test_bricard_parameters_match_case_16(two):
     assert (invert(frame_2) @ np.append(VERTICES["B"], 1))[2] == pytest.approx(-5 * np.sqrt(166) / 92, abs=1e-14)
     # alpha12; (6-28) 2G and corrected (6-33) 2s_G to 5-6 digits; deployed and folded angles and theta -> phi
     # samples to 1e-4 deg (measured 3e-5)
-    check_every(yang2017.NUMBERS, "test_bricard_parameters_match_case_16")
+    check_every(yang2017.NUMBERS, "test_truncated_tetrahedron_bricard_parameters")
 
 
 def test_corrected_axes():
@@ -108,7 +108,7 @@ def test_delta_peak_of_the_bricard(two):
     m = two.monitors(x)
     k = int(np.argmax(m["delta"]))
     assert m["delta"][k] / DEG == pytest.approx(129.52, abs=0.02)  # sampled peak, measured 129.52
-    assert m["rho"][k] / DEG == pytest.approx(102.4, abs=1.0)  # the seed gives it to 0.1 deg; sampling 0.5 deg
+    assert m["rho"][k] / DEG == pytest.approx(102.4, abs=1.0)  # worked here to 0.1 deg; sampling 0.5 deg
     assert (m["delta"][0] / DEG, m["delta"][-1] / DEG) == pytest.approx((120.0, 60.0), abs=1e-9)
 
 
@@ -123,7 +123,8 @@ def test_deployed_state_is_the_truncated_tetrahedron(case):
 
 
 def test_scheme_ii_reaches_the_tetrahedron(two):
-    """Case 18: |AE|, |BK|, |FG|, |FM| -> 0, KLM height 1.633 -> 0, net rotation 30 deg; the end is (6-3)."""
+    """Scheme II (s_K ∥ QK, delta2 = 0): |AE|, |BK|, |FG|, |FM| -> 0, KLM height 1.633 -> 0, net rotation 30 deg;
+    the end is (6-3)."""
     end = two.domain[1]
     assert end == pytest.approx(two.theta_f, abs=1e-15)
     assert kabsch_error(two.vertices(end)[0], TETRAHEDRON) < 1e-12  # measured 1.5e-15 m
@@ -133,8 +134,9 @@ def test_scheme_ii_reaches_the_tetrahedron(two):
 
 
 def test_scheme_i_misses_the_tetrahedron(one):
-    """Case 19 [NEW in the digest]: with s_G ∥ QG the path ends at the Bricard fold with theta_G = 3.708 deg,
-    |BK| = 0.0585, KLM height 0.0586 m, KLM rotation 29.66 deg; theta_G starts at the printed 146.44 deg."""
+    """Scheme I [NEW]: with s_G ∥ QG (Sec. 6.3.2 says it reaches 0) the path ends at the Bricard fold with
+    theta_G = 3.708 deg, |BK| = 0.0585, KLM height 0.0586 m, KLM rotation 29.66 deg; theta_G starts at the printed
+    146.44 deg."""
     lo = one.domain[0]
     # theta_G from 146.44269 to 3.70837 deg; |BK| 0.058534, height 0.058435, rotation 29.6617 (measured)
     check_every(yang2017.NUMBERS, "test_scheme_i_misses_the_tetrahedron")
@@ -144,7 +146,7 @@ def test_scheme_i_misses_the_tetrahedron(one):
 
 
 def test_scheme_i_turned_axis_reaches_the_tetrahedron(one_reaching):
-    """Case 19: delta1 = -5 deg reaches the tetrahedron after rho over-opens to 120.08 deg."""
+    """Scheme I with delta1 = -5 deg reaches the tetrahedron after rho over-opens to 120.08 deg."""
     lo, _ = one_reaching.domain
     assert kabsch_error(one_reaching.vertices(lo)[0], TETRAHEDRON) < 1e-11  # measured 1.5e-15 m
     assert abs(lo) < 1e-9  # theta_G -> 0 (measured exactly 0: the path ends on the tetrahedron state)
@@ -155,14 +157,15 @@ def test_scheme_i_turned_axis_reaches_the_tetrahedron(one_reaching):
 
 @pytest.mark.slow
 def test_scheme_i_threshold_near_minus_3_5_deg():
-    """Digest §2.8: the tetrahedron is reached for delta1 <~ -3.5 deg and missed above."""
+    """Found here: the tetrahedron is reached for delta1 <~ -3.5 deg and missed above (Sec. 6.5: "delta1 >= 0")."""
     assert SchemeI(-3.5 * DEG).end_gap < 1e-12  # measured 9.6e-16 m
     assert SchemeI(-3 * DEG).end_gap > 1e-3  # measured 0.0084 m
 
 
 @pytest.mark.slow
 def test_scheme_ii_negative_delta_over_opens():
-    """delta2 = -5 deg: rho first rises to 122.03 deg (digest truss), so theta turns back and cannot drive it."""
+    """delta2 = -5 deg: rho first rises to 122.03 deg (a first truss trace here), so theta turns back and cannot
+    drive it."""
     kinematics = SchemeII(-5 * DEG)
     P = kinematics.bricard_motion(kinematics.trace[1][:, 0])
     A, E, F = (P[:, k, :3, :3] @ VERTICES[v] + P[:, k, :3, 3] for k, v in ((0, "A"), (4, "E"), (4, "F")))
@@ -173,15 +176,15 @@ def test_scheme_ii_negative_delta_over_opens():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_scheme_ii_path_matches_seed_table"), ids=str)
-def test_scheme_ii_path_matches_seed_table(entry):
+@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_scheme_ii_path_matches_the_worked_table"), ids=str)
+def test_scheme_ii_path_matches_the_worked_table(entry):
     # measured agreement <= 0.0051 deg and <= 5e-5 m
     entry.check()
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_scheme_i_path_matches_seed_table"), ids=str)
-def test_scheme_i_path_matches_seed_table(entry):
+@pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_scheme_i_path_matches_the_worked_table"), ids=str)
+def test_scheme_i_path_matches_the_worked_table(entry):
     # measured agreement <= 0.0050 deg and <= 1e-4 m
     entry.check()
 

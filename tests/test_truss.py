@@ -1,4 +1,4 @@
-"""The truss method (`sim_origami.truss`, command `mobility`) against seed 001 ch. 2-3, the numeric loop
+"""The truss method (`sim_origami.truss`, command `mobility`) against Yang 2017, ch. 2-3, the numeric loop
 closure's Jacobian rank, MuJoCo's constraint Jacobian and the closed forms."""
 
 import numpy as np
@@ -8,9 +8,9 @@ from sim_origami import cli, scenes
 from sim_origami.cli import mobility
 from sim_origami.errors import AssemblyError, ParameterError
 from sim_origami.geometry import rotation, wrap
+from sim_origami.path import BIFURCATION_RTOL
 from sim_origami.simulate import mujoco_mobility
 from sim_origami.truss import (
-    BIFURCATION_RTOL,
     RANK_RTOL,
     analyse,
     follow,
@@ -56,9 +56,10 @@ def test_truss_mobility_equals_jacobian_mobility(name):
         assert counts.kept > 1e3 * RANK_RTOL and counts.dropped < 1e-3 * RANK_RTOL
 
 
-def test_seed001_bennett_counts_tilt_and_release():
-    # Seed 001 §1.3 / §6 case 2: j = 8, b = 20, r = 17, m = 1, s = 3; an axis tilted by 1.5 deg: r = 18, m = 0;
-    # minus CD', C'D, C'D' of one link (the common normal CD stays): b = 17, r = 17, m = 1, s = 0 (§1.7).
+def test_yang2017_bennett_counts_tilt_and_release():
+    # Yang 2017, Sec. 3.3, Fig. 3-1: j = 8, b = 20, r = 17, m = 1, s = 3; an axis tilted by 1.5 deg (derived here):
+    # r = 18, m = 0; minus CD', C'D, C'D' of one link (the common normal CD stays): b = 17, r = 17, m = 1, s = 0
+    # (Sec. 3.3, the RSSR form).
     scene = scenes.get("bennett").build()
     truss = truss_of(scene.mechanism, scene.pose("bennett", 1.0))
     c = analyse(truss)
@@ -78,17 +79,17 @@ def test_seed001_bennett_counts_tilt_and_release():
     assert (released.bars, released.rank, released.mobility, released.self_stress) == (17, 17, 1, 0)
 
 
-def test_seed001_rssr_truss():
-    # Seed 001 §1.3, §2.2: Bennett with S joints at C and D (joints 3, 4): j = 6, b = 11, r = 11, m = 1, s = 0.
+def test_yang2017_rssr_truss():
+    # Yang 2017, Sec. 3.3: Bennett with S joints at C and D (joints 3, 4): j = 6, b = 11, r = 11, m = 1, s = 0.
     scene = scenes.get("bennett").build()
     c = analyse(truss_of(scene.mechanism, scene.pose("bennett", 1.0), spherical=("joint_3", "joint_4")))
     assert (c.nodes, c.bars, c.rank, c.mobility, c.self_stress) == (6, 11, 11, 1, 0)
 
 
 @pytest.mark.parametrize("ball", ["joint_1", "joint_2"])
-def test_seed001_myard_counts_and_non_overconstrained_forms(ball):
-    # Seed 001 §6 case 7: Myard j = 9, b = 22, r = 20, m = 1, s = 2 (joints 3, 4 meet: link 34 is a triangle);
-    # RRSRR (S at A = joint 1) and RSRRR (S at B = joint 2): j = 8, b = 17, r = 17, m = 1, s = 0.
+def test_yang2017_myard_counts_and_non_overconstrained_forms(ball):
+    # Yang 2017, Sec. 3.4, Fig. 3-7: Myard j = 9, b = 22, r = 20, m = 1, s = 2 (joints 3, 4 meet: link 34 is a
+    # triangle); RRSRR (S at A = joint 1) and RSRRR (S at B = joint 2): j = 8, b = 17, r = 17, m = 1, s = 0.
     scene = scenes.get("myard").build()
     q = scene.pose("plane_symmetric", 40 * DEG)
     truss = truss_of(scene.mechanism, q)
@@ -96,15 +97,15 @@ def test_seed001_myard_counts_and_non_overconstrained_forms(ball):
     assert (c.nodes, c.bars, c.rank, c.mobility, c.self_stress) == (9, 22, 20, 1, 2)
     s = analyse(truss_of(scene.mechanism, q, spherical=(ball,)))
     assert (s.nodes, s.bars, s.rank, s.mobility, s.self_stress) == (8, 17, 17, 1, 0)
-    # §1.7: two body bars of one link that share A' (the RRSRR of Fig. 3-9)
+    # Sec. 3.4: two body bars of one link that share A' (the RRSRR of Fig. 3-9)
     removed = removable_bars(truss)
     assert len(removed) == 2 and all("joint_1'" in truss.bar_names()[k] for k in removed)
     assert analyse(truss.without(removed)).self_stress == 0
 
 
-def test_seed001_threefold_bricard_counts():
-    # Seed 001 §6 case 9: from theta = 129.31 deg, phi = -19.990: j = 12, b = 30, r = 29, m = 1, s = 1; at the
-    # bundle (theta = phi = 180 deg) the mobility is 2.
+def test_yang2017_threefold_bricard_counts():
+    # Yang 2017, Sec. 2.3, Fig. 2-3: j = 12, b = 30; at theta = 129.31 deg, phi = -19.990 (a pose chosen here):
+    # r = 29, m = 1, s = 1; at the bundle (theta = phi = 180 deg, Sec. 2.4, Fig. 2-5b) the mobility is 2.
     scene = scenes.get("bricard-threefold").build()
     q = scene.pose("even-axes-along", 129.31 * DEG)
     assert q[1] == pytest.approx(-19.990 * DEG, abs=5e-4 * DEG)
@@ -123,7 +124,7 @@ def test_bricard_threefold_path_follower_matches_closed_form(branch):
     assert run.input[0] == pytest.approx(start, abs=1e-15) and run.input[-1] == pytest.approx(stop, abs=1e-14)
     error = np.abs(wrap(scene.outputs(run.q) - scene.kinematics.joint_angles(branch, run.input)))
     assert error.max() <= PATH_RAD
-    # seed 001 §6 case 8: theta1 = theta3 = theta5 on the path (< 1e-11); measured 6e-15
+    # Yang 2017, Sec. 2.3 (threefold symmetry): theta1 = theta3 = theta5 on the path (< 1e-11); measured 6e-15
     assert np.abs(wrap(run.q[:, 0] - run.q[:, 2])).max() < 1e-11
     assert np.abs(wrap(run.q[:, 0] - run.q[:, 4])).max() < 1e-11
 
@@ -144,8 +145,8 @@ def test_path_follower_keeps_joint_couplings():
 
 @pytest.mark.slow
 def test_bricard_threefold_closed_path_crosses_the_bundle_twice():
-    # Seed 001 §2.5: from theta = 129.31 deg the motion is closed (theta1 grows by 720 deg) and passes the bundle
-    # twice, at theta1 = pi and 3 pi, where the mobility is 2; 'keep' goes straight through.
+    # Yang 2017, Sec. 2.4, Fig. 2-5: the motion is closed (from theta = 129.31 deg theta1 grows by 720 deg) and
+    # passes the bundle twice, at theta1 = pi and 3 pi, where the mobility is 2; 'keep' goes straight through.
     scene = scenes.get("bricard-threefold").build()
     x0 = 129.31 * DEG
     run = follow_scene(scene, "even-axes-along", x0, x0 + 4 * np.pi)

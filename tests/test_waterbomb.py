@@ -1,5 +1,5 @@
 """Symmetric waterbomb cell (`kinematics.waterbomb`, scenes `waterbomb-vertex` and `waterbomb-thick`) against
-seed 000 ch. 5 (digest M8, M9, validation cases 17 to 21), the loop solver and MuJoCo."""
+Feng 2018, ch. 5 (§5.3, §5.4), the loop solver and MuJoCo."""
 
 import numpy as np
 import pytest
@@ -34,27 +34,31 @@ DEG = np.pi / 180
 dihedrals = feng2018.dihedrals
 
 
-# Worked values of Feng 2018, chapter 5 (cases 17 to 20): tests/published/feng2018.py
+# Worked values of Feng 2018, chapter 5 (§5.3, §5.4): tests/published/feng2018.py
 
 
-@pytest.mark.parametrize("entry", checked_by(feng2018.NUMBERS, "test_case18_vertex_b_dihedrals"), ids=str)
-def test_case18_vertex_b_dihedrals(entry):
+@pytest.mark.parametrize(
+    "entry", checked_by(feng2018.NUMBERS, "test_waterbomb_vertex_b_dihedrals_on_paths_i_and_ii"), ids=str
+)
+def test_waterbomb_vertex_b_dihedrals_on_paths_i_and_ii(entry):
     entry.check()
 
 
-@pytest.mark.parametrize("entry", checked_by(feng2018.NUMBERS, "test_case17_vertex_a"), ids=str)
-def test_case17_vertex_a(entry):
+@pytest.mark.parametrize("entry", checked_by(feng2018.NUMBERS, "test_waterbomb_vertex_a_of_section_5_3"), ids=str)
+def test_waterbomb_vertex_a_of_section_5_3(entry):
     entry.check()
 
 
-@pytest.mark.parametrize("entry", checked_by(feng2018.NUMBERS, "test_case18b_sweeps_including_blocked_phi4"), ids=str)
-def test_case18b_sweeps_including_blocked_phi4(entry):
+@pytest.mark.parametrize(
+    "entry", checked_by(feng2018.NUMBERS, "test_waterbomb_vertex_b_sweeps_including_blocked_phi4"), ids=str
+)
+def test_waterbomb_vertex_b_sweeps_including_blocked_phi4(entry):
     entry.check()
 
 
-def test_case19_blockage_onsets_of_path_two():
+def test_waterbomb_blockage_onsets_of_path_two():
     # phi1* = pi + x* (deg) for 35/45, 50/50, 40/55 (alpha + beta = 90 is outside the model, formula only)
-    check_every(feng2018.NUMBERS, "test_case19_blockage_onsets_of_path_two")
+    check_every(feng2018.NUMBERS, "test_waterbomb_blockage_onsets_of_path_two")
     assert plane_blockage(40 * DEG, 40 * DEG) is None  # (a): alpha = beta < 45 deg, path II smooth
     events = [e for e in Waterbomb(35 * DEG, 45 * DEG, 0.5).events() if e.branches == (PLANE,)]
     assert [e.kind for e in events] == ["lock", "lock"] and events[0].input == -events[1].input
@@ -78,8 +82,8 @@ def test_closed_forms_close_the_cell_and_match_the_numeric_solve(alpha, beta, mu
 
 
 @pytest.mark.parametrize(("alpha", "beta", "mu"), [(35, 45, 0.5), (40, 40, 1.0), (20, 30, 2.0)])
-def test_thick_cell_matches_the_seed_dh_linkages(alpha, beta, mu):
-    """Eqns 5-11 and 5-12 (the seed's D-H Bricard loops of A and B) close at our path I through the seed's
+def test_thick_cell_matches_feng2018_dh_linkages(alpha, beta, mu):
+    """Eqns 5-11 and 5-12 (the thesis's D-H Bricard loops of A and B) close at our path I through the thesis's
     joint maps: the hinge heights of the cell are an independent, equivalent reconstruction."""
     a, b, ap = alpha * DEG, beta * DEG, 0.03
     A = (DHRow(0, (2 + mu) * ap, 2 * np.pi - a), DHRow(0, 0, np.pi - 2 * a), DHRow(0, (2 + mu) * ap, a),
@@ -96,14 +100,14 @@ def test_thick_cell_matches_the_seed_dh_linkages(alpha, beta, mu):
         assert dh_loop(B).residual_norm(omega) <= 1e-14
 
 
-def test_case20_thick_b_dh_angles():
-    check_every(feng2018.NUMBERS, "test_case20_thick_b_dh_angles")
+def test_thick_waterbomb_vertex_b_dh_angles_of_eqn_5_12():
+    check_every(feng2018.NUMBERS, "test_thick_waterbomb_vertex_b_dh_angles_of_eqn_5_12")
 
 
 def test_branches_by_thickness():
     assert [b.name for b in Waterbomb(0.7, 0.7, 0.5).branches()] == [LINE, PLANE, DEGREE4, STRAIGHT]
     assert [b.name for b in Waterbomb(0.7, 0.7, 0.5, 0.5, 0.05).branches()] == [LINE]
-    # eqn 5-22b: alpha = beta and mu = 1 keeps path II in the thick cell (case 21)
+    # eqn 5-22b: alpha = beta and mu = 1 keeps path II in the thick cell (Fig 5-13)
     model = Waterbomb(40 * DEG, 40 * DEG, 0.5, 1.0, 0.05)
     assert [b.name for b in model.branches()] == [LINE, PLANE]
     q = model.joint_angles(PLANE, np.linspace(-3.0, -0.1, 50))
@@ -182,8 +186,8 @@ def _closest_approach(alpha_deg: float, beta_deg: float) -> float:
 
 
 def test_thick_panels_interfere_only_for_alpha_above_45_degrees():
-    """Seed 000 section 5.4: "to avoid the interference at vertex A, 0 < alpha <= pi/4" (a collision claim
-    the digest could not test). Faces sharing no vertex, down to rho_A4 = -3.14 on path I: closest approach
+    """Feng 2018, §5.4: "to avoid the interference at vertex A, 0 < alpha <= pi/4" (a collision claim that needs
+    the panels' geometry to test). Faces sharing no vertex, down to rho_A4 = -3.14 on path I: closest approach
     measured 7.1e-2 m at the defaults (40/40), 1.35e-2 at 44.5/30, 5.7e-4 at 45/30, overlap -3.2e-3 at 45.5/30
     (faces A43 and B12), the same threshold for beta 20-40, mu 0.5-2 and a 0.005-0.05."""
     assert _closest_approach(40.0, 40.0) > 0.05

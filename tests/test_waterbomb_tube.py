@@ -1,5 +1,5 @@
-"""Generalized waterbomb tube (`kinematics.waterbomb_tube`, scene `waterbomb-tube`) against seed 004 (digest
-seed002_004 part B and its validation cases 9-23) and seed 000 ch. 6 (digest M10-M13), the loop solver and MuJoCo."""
+"""Generalized waterbomb tube (`kinematics.waterbomb_tube`, scene `waterbomb-tube`) against Feng, Ma and
+Chen 2020 (§2, §3) and Feng 2018 (ch. 6, §6.1-6.4), the loop solver and MuJoCo."""
 
 import numpy as np
 import pytest
@@ -34,44 +34,46 @@ from sim_origami.tolerances import TOLERANCES
 DEG = np.pi / 180
 
 
-# Worked values at Feng, Ma and Chen 2020's tubes (cases 9-14, 22) and Feng 2018's (case 23): tests/published/
+# Worked values at Feng, Ma and Chen 2020's tubes (§2) and Feng 2018's (§6.2): tests/published/
 
 
-def test_case9_dihedrals_and_radii():
+def test_tube_n6_m3_40_35_dihedrals_and_radii():
     """n6 m3 alpha 40 beta 35, eta01 = 90 deg: A0, B0, C0, A1 and radii (m = 3: rows 0, 1, 2 from the bottom are the
     paper's rows -1, 0, 1)."""
-    check_every(feng_ma_chen2020.NUMBERS, "test_case9_dihedrals_and_radii")
+    check_every(feng_ma_chen2020.NUMBERS, "test_tube_n6_m3_40_35_dihedrals_and_radii")
 
 
-@pytest.mark.parametrize("entry", checked_by(feng_ma_chen2020.NUMBERS, "test_case10_row1_against_eta01"), ids=str)
-def test_case10_row1_against_eta01(entry):
-    """Case 10 (n6 m3 alpha 40 beta 35): kappa_B1,4 (row 1's vertical edges) and eta_1,1, 3 decimals."""
+@pytest.mark.parametrize(
+    "entry", checked_by(feng_ma_chen2020.NUMBERS, "test_tube_n6_m3_40_35_row1_against_eta01"), ids=str
+)
+def test_tube_n6_m3_40_35_row1_against_eta01(entry):
+    """n6 m3 alpha 40 beta 35: kappa_B1,4 (row 1's vertical edges) and eta_1,1, 3 decimals."""
     entry.check()
 
 
-def test_case11_alpha45_beta40():
-    check_every(feng_ma_chen2020.NUMBERS, "test_case11_alpha45_beta40")
+def test_tube_n6_m3_45_40_dihedrals_and_radius():
+    check_every(feng_ma_chen2020.NUMBERS, "test_tube_n6_m3_45_40_dihedrals_and_radius")
 
 
-def test_case12_and_case14_radii_and_uniform_states():
-    """Case 12: n6 m5 alpha 45 beta 40 at eta01 = 100 (A2 and radii); case 14: n6 m5 40/40 uniform states (every row
-    alike) and axial lengths (top free-edge midpoint to bottom one); Feng 2018's case 23 measures between the
-    corners (eqn 6-18)."""
-    check_every(feng_ma_chen2020.NUMBERS, "test_case12_and_case14_radii_and_uniform_states")
-    check_every(feng2018.NUMBERS, "test_case12_and_case14_radii_and_uniform_states")
+def test_tube_radii_uniform_states_and_axial_lengths():
+    """n6 m5 alpha 45 beta 40 at eta01 = 100 (A2 and radii); n6 m5 40/40 uniform states (every row alike) and axial
+    lengths (top free-edge midpoint to bottom one); Feng 2018's n6 m3 45/45 length is measured between the corners
+    (eqn 6-18)."""
+    check_every(feng_ma_chen2020.NUMBERS, "test_tube_radii_uniform_states_and_axial_lengths")
+    check_every(feng2018.NUMBERS, "test_tube_radii_uniform_states_and_axial_lengths")
 
 
-def test_case22_even_tube_equator():
-    """Case 22 (m even, n6 alpha 45 beta 40): the corrected eqn 18 radius and the equatorial vertices (m = 4: rows
+def test_even_tube_equator_with_eqn_18_corrected():
+    """m even (n6 m4 alpha 45 beta 40): the corrected eqn 18 radius and the equatorial vertices (m = 4: rows
     0..3 from the bottom are the paper's rows -1..2; its row 0, below the equator, is row 1)."""
-    check_every(feng_ma_chen2020.NUMBERS, "test_case22_even_tube_equator")
+    check_every(feng_ma_chen2020.NUMBERS, "test_even_tube_equator_with_eqn_18_corrected")
     for theta in (80, 100, 120):
         rows = row_coordinates(6, 4, 45 * DEG, 40 * DEG, 1.0, theta * DEG)
         assert rows["A", 1][0][0] == rows["A", 0][0][0]  # the half-turn maps A_0 to A_1
 
 
-@pytest.mark.parametrize("entry", checked_by(feng2018.NUMBERS, "test_seed000_case23_m7_tube_states"), ids=str)
-def test_seed000_case23_m7_tube_states(entry):
+@pytest.mark.parametrize("entry", checked_by(feng2018.NUMBERS, "test_feng2018_m7_tube_states"), ids=str)
+def test_feng2018_m7_tube_states(entry):
     entry.check()
 
 
@@ -119,7 +121,7 @@ def test_folding_the_strip_with_the_closed_form_closes_the_tube():
 
 @pytest.mark.slow
 def test_free_tube_has_4n_minus_6_dof_and_the_couplings_leave_one():
-    """Digest B.2 / validation case 23: 18 DOF for n = 6 at generic states, 19 with the equatorial row fully folded
+    """Measured here (rank test): 18 DOF for n = 6 at generic states (4n - 6), 19 with the equatorial row fully folded
     (the twist bifurcation); the symmetry couplings leave the contraction alone."""
     model = WaterbombTube(6, 3, 40 * DEG, 40 * DEG)
     free, coupled = model.free_loop_system(), model.loop_system()
@@ -144,8 +146,10 @@ def test_closed_form_matches_the_numeric_continuation():
     assert np.max(np.abs(wrap(numeric - q))) <= TOLERANCES.closed_form_rad
 
 
-@pytest.mark.parametrize("entry", checked_by(feng_ma_chen2020.NUMBERS, "test_seed004_contraction_ranges"), ids=str)
-def test_seed004_contraction_ranges(entry):
+@pytest.mark.parametrize(
+    "entry", checked_by(feng_ma_chen2020.NUMBERS, "test_feng_ma_chen2020_contraction_ranges"), ids=str
+)
+def test_feng_ma_chen2020_contraction_ranges(entry):
     # the paper truncates to 1 decimal (120.6478 is printed 120.6): within one unit above
     entry.check()
 
@@ -156,22 +160,22 @@ def test_contraction_starts_fully_folded(m, alpha, beta):
     assert lo == pytest.approx(60 * DEG, abs=1e-12)  # the fully folded equatorial row, eqn 13
 
 
-def test_seed004_model_that_cannot_fold_rigidly():
-    """n6 m5 alpha 40 beta 35: row 2 closes nowhere on the strict criterion (§2.1); the seed's chain is real only
-    on an island 119.98-120.19 deg with the top diagonals reversed (digest B.6)."""
+def test_feng_ma_chen2020_model_that_cannot_fold_rigidly():
+    """n6 m5 alpha 40 beta 35: row 2 closes nowhere on the strict criterion (§2.1); the paper's chain is real only
+    on an island 119.98-120.19 deg with the top diagonals reversed (measured here)."""
     with pytest.raises(ParameterError, match="cannot contract rigidly"):
         WaterbombTube(6, 5, 40 * DEG, 35 * DEG)
-    check_every(feng_ma_chen2020.NUMBERS, "test_seed004_model_that_cannot_fold_rigidly")
+    check_every(feng_ma_chen2020.NUMBERS, "test_feng_ma_chen2020_model_that_cannot_fold_rigidly")
 
 
 def starts_fully_folded(m, alpha, beta):
-    """Valid just above theta = 60 deg on the seed's criterion (chain real)."""
+    """Valid just above theta = 60 deg on the paper's criterion (chain real; Feng, Ma and Chen 2020)."""
     layout = tube_layout(6, m, alpha * DEG, beta * DEG, 1.0)
     return bool(valid_inputs(layout, np.array([60 * DEG + 1e-9]), strict=False)[0])
 
 
 def top_row_interferes(m, alpha, beta):
-    """Some valid theta (seed's criterion) has the top row's A's through the axis."""
+    """Some valid theta (the paper's criterion) has the top row's A's through the axis."""
     layout = tube_layout(6, m, alpha * DEG, beta * DEG, 1.0)
     theta = np.linspace(0.01, np.pi - 0.01, 2001)
     ok = valid_inputs(layout, theta, strict=False)
@@ -182,7 +186,7 @@ def top_row_interferes(m, alpha, beta):
 @pytest.mark.slow
 @pytest.mark.parametrize(
     ("predicate", "published", "tol"),
-    [  # seed 004 Fig. 8c (n6 m7 beta 40, alpha varies) and 8d (alpha 45, beta varies), 1 decimal printed
+    [  # Feng, Ma and Chen 2020, Fig. 8c (n6 m7 beta 40, alpha varies) and 8d (alpha 45, beta varies), 1 decimal printed
         (lambda v: starts_fully_folded(7, v, 40), 31.3, 0.05),
         (lambda v: not top_row_interferes(7, v, 40), 37.3, 0.05),
         (lambda v: not starts_fully_folded(7, v, 40), 44.5, 0.05),
@@ -191,7 +195,7 @@ def top_row_interferes(m, alpha, beta):
         (lambda v: motion_range(tube_layout(6, 7, 45 * DEG, v * DEG, 1.0)) is not None, 39.0, 0.5),
     ],
 )
-def test_seed004_fig8_thresholds_within_printed_precision(predicate, published, tol):
+def test_feng_ma_chen2020_fig8_thresholds_within_printed_precision(predicate, published, tol):
     """The property switches inside [published - tol, published + tol] (ours: 31.309, 37.269, 44.518, 40.179,
     44.415, 38.977 by bisection in scripts/waterbomb_tube_numbers.py)."""
     assert not predicate(published - tol) and predicate(published + tol)
@@ -206,8 +210,9 @@ def test_twist_limits_and_thresholds_closed_forms():
 
 @pytest.mark.parametrize("alpha", [40, 45, 50])
 def test_equal_diameter_bifurcation_at_beta_max(alpha):
-    """At beta_max (eqn 40) every row is fully folded at theta = 360/n (seed 004 Figs 15-16): all A's on the axis
-    and every vertical edge folded flat; slightly above beta_max row 1 passes through the axis (r_A1 < 0)."""
+    """At beta_max (eqn 40) every row is fully folded at theta = 360/n (Feng, Ma and Chen 2020, Figs 15-16): all A's
+    on the axis and every vertical edge folded flat; slightly above beta_max row 1 passes through the axis
+    (r_A1 < 0)."""
     beta = beta_max(alpha * DEG, 6)
     layout = tube_layout(6, 5, alpha * DEG, beta, 1.0)
     X = vertices(layout, np.array([60 * DEG]))[0]
@@ -222,12 +227,12 @@ def test_equal_diameter_bifurcation_at_beta_max(alpha):
     assert above["A", 1][0][0] < -1e-3  # measured -1.4e-2, -1.1e-2, -8.2e-3 (alpha 40, 45, 50)
 
 
-def test_seed000_m7_events_against_the_thesis():
-    """Seed 000 §6.2 (n6 m7 alpha = beta = 45): the thesis samples on a grid of 0.06-0.12 deg (digest M10), so its
-    values agree to one step: uniform radius 65.88 (ours 65.937), interference 90.72-128.52 (90.751-128.475),
+def test_feng2018_m7_events_against_the_thesis():
+    """Feng 2018, §6.2 (n6 m7 alpha = beta = 45): its values are multiples of 0.06-0.12 deg (a sampling grid), so
+    they agree to one step: uniform radius 65.88 (ours 65.937), interference 90.72-128.52 (90.751-128.475),
     theta_max 144.24 (144.242)."""
     # the printed events to the thesis's grid step (0.12 deg), our exact values (3 decimals) and r_A of the top row
-    check_every(feng2018.NUMBERS, "test_seed000_m7_events_against_the_thesis")
+    check_every(feng2018.NUMBERS, "test_feng2018_m7_events_against_the_thesis")
 
 
 def test_pattern_lengths_and_counts():
@@ -237,7 +242,7 @@ def test_pattern_lengths_and_counts():
                                                                                   6 * n * m)  # fmt: skip
     assert len(layout.seam) == 2 * m - 1
     L = lengths(40 * DEG, 35 * DEG, 1.0)
-    # digest B.2: L_m = a (cot(alpha) - cot(alpha + beta)); the unit of alpha = beta = 45 deg is the 2a x 2a square
+    # derived here: L_m = a (cot(alpha) - cot(alpha + beta)); the unit of alpha = beta = 45 deg is the 2a x 2a square
     assert L.midline == pytest.approx(1 / np.tan(40 * DEG) - 1 / np.tan(75 * DEG), abs=1e-15)
     square = lengths(45 * DEG, 45 * DEG, 1.0)
     assert (square.midline, square.corner, square.boundary) == pytest.approx((1.0, 1.0, 1.0), abs=1e-15)

@@ -1,6 +1,6 @@
-"""Contact between the waterbomb tube's panels (scene `waterbomb-tube`, self contact): the seed's "physical
-interference" (seed 004 Fig. 8c: n = 6, m = 7, beta = 40 deg, middle-row panel collisions for alpha >= 54.6 deg;
-digest seed002_004 B.5, B.6 and validation case 15) found by MuJoCo's collision detection at closed-form poses,
+"""Contact between the waterbomb tube's panels (scene `waterbomb-tube`, self contact): the "physical
+interference" of Feng, Ma and Chen 2020 (Fig. 8c: n = 6, m = 7, beta = 40 deg, middle-row panel collisions for
+alpha >= 54.6 deg) found by MuJoCo's collision detection at closed-form poses,
 a force-limited servo stopped by it, and the default tube's contraction free of contact."""
 
 import mujoco
@@ -17,16 +17,17 @@ from sim_origami.simulate import Bindings, compile_model, simulate
 from sim_origami.tolerances import TOLERANCES
 
 DEG = np.pi / 180
-# Seed 004 Fig. 8c (digest B.6): no middle-row collision at alpha = 54.5 deg, onset at 54.6 deg at the bottom of
-# the range (theta = 89.32 deg); at alpha = 56 deg the colliding part of the range is [88.79, 95.04] deg.
+# Feng, Ma and Chen 2020, Fig. 8c: middle-row collisions from alpha = 54.6 deg. A zero-thickness triangle-crossing
+# test run when the paper was first reproduced here found none at alpha = 54.5 deg, the onset at 54.6 deg at the
+# bottom of the range (theta = 89.32 deg) and, at alpha = 56 deg, the colliding part [88.79, 95.04] deg.
 # The onset measured by bisection on alpha: 54.593 deg with MuJoCo's solids, 54.578 with the bare triangles.
-SEED_ONSET_DEG = 54.6
-SEED_END_DEG = 95.04
+PUBLISHED_ONSET_DEG = 54.6
+CROSSING_END_DEG = 95.04
 # Where the colliding part of the range ends at alpha = 56 deg: MuJoCo's inset plates measured 95.130 deg, the exact
-# crossing of the zero-thickness triangles 95.168 deg (the digest's collision test found 95.04; a crossing
-# tolerance of 1e-3 in barycentric coordinates gives 95.003): 0.2 deg covers the 0.13 deg between the digest's test
+# crossing of the zero-thickness triangles 95.168 deg (that first crossing test found 95.04; a crossing
+# tolerance of 1e-3 in barycentric coordinates gives 95.003): 0.2 deg covers the 0.13 deg between that test
 # and the exact crossing.
-SEED_END_TOL_DEG = 0.2
+CROSSING_END_TOL_DEG = 0.2
 # Triangle crossing: an edge must pass GRAZE (barycentric, and along the edge) inside the other triangle; edges closer
 # to parallel to its plane than PARALLEL (m^3, a = 1 m) are skipped (no division by zero; no effect measured). Without
 # GRAZE, 25 more pairs count at the bottom of the range at alpha = 54.6 deg (97 instead of 72), pairs whose edges only
@@ -38,12 +39,12 @@ BISECTIONS = 30
 
 
 def interfering_scene(alpha_deg: float):
-    """The seed's Fig. 8c tube: n = 6, m = 7, beta = 40 deg, a = 0.5 m."""
+    """The Fig. 8c tube of Feng, Ma and Chen 2020: n = 6, m = 7, beta = 40 deg, a = 0.5 m."""
     return scenes.get("waterbomb-tube").build(n=6, m=7, alpha=alpha_deg * DEG, beta=40 * DEG)
 
 
 def theta_deg(x):
-    """The seeds' theta = eta_01 (deg) of the input rho (rad)."""
+    """The papers' theta = eta_01 (deg; Feng 2018 ch. 6, Feng, Ma and Chen 2020) of the input rho (rad)."""
     return np.rad2deg(np.pi + np.asarray(x))
 
 
@@ -77,7 +78,7 @@ class Contacts:
 
 def crossing_pairs(kinematics: WaterbombTube, theta: float) -> int:
     """How many pairs of the tube's zero-thickness triangles that share no vertex cross at theta (deg): an edge of
-    one passes through the other's interior (Moller-Trumbore), the digest's collision test."""
+    one passes through the other's interior (Moller-Trumbore), the first crossing test."""
     faces = np.array([[kinematics.layout.strip_keys[v] for v in f] for f in kinematics.pattern.faces])
     shared = (faces[:, None, :, None] == faces[None, :, None, :]).any(axis=(2, 3))
     a, b = np.nonzero(np.triu(~shared, 1))
@@ -109,12 +110,12 @@ def test_tube_pattern_also_excludes_panels_that_meet_across_the_seam():
 
 
 @pytest.mark.slow
-def test_bare_triangles_cross_where_the_seed_says():
-    """The digest's own test (triangle-triangle crossing, zero thickness): none at alpha = 54.5 deg, crossing at the
-    bottom of the range at 54.6 deg; at 56 deg they cross up to 95.168 deg (seed 95.04)."""
+def test_bare_triangles_cross_from_the_published_onset():
+    """The first crossing test (triangle-triangle, zero thickness): none at alpha = 54.5 deg, crossing at the bottom
+    of the range at 54.6 deg (Fig. 8c's onset); at 56 deg they cross up to 95.168 deg (first test 95.04)."""
     clear = interfering_scene(54.5).kinematics
     assert crossing_pairs(clear, theta_deg(clear.domain[0]) + 1e-7) == 0
-    onset = interfering_scene(SEED_ONSET_DEG).kinematics
+    onset = interfering_scene(PUBLISHED_ONSET_DEG).kinematics
     assert crossing_pairs(onset, theta_deg(onset.domain[0]) + 1e-7) == 72  # measured: 72 pairs in rows 2-4
     kinematics = interfering_scene(56.0).kinematics
     inside, outside = 92.0, 97.0
@@ -122,36 +123,36 @@ def test_bare_triangles_cross_where_the_seed_says():
         mid = 0.5 * (inside + outside)
         inside, outside = (mid, outside) if crossing_pairs(kinematics, mid) else (inside, mid)
     np.testing.assert_allclose(inside, 95.168, atol=1e-3)  # measured 95.16801
-    np.testing.assert_allclose(inside, SEED_END_DEG, atol=SEED_END_TOL_DEG)
+    np.testing.assert_allclose(inside, CROSSING_END_DEG, atol=CROSSING_END_TOL_DEG)
 
 
 @pytest.mark.slow
-def test_contact_onset_is_the_seed_middle_row_interference():
+def test_contact_onset_is_the_published_middle_row_interference():
     """Fig. 8c: no panel contact anywhere on the range at alpha = 54.5 deg; at 54.6 deg contact at the bottom of the
-    range between rows -1, 0, 1 (rows 2-4 from the bottom), which the dihedral criteria do not see (digest B.4)."""
+    range between rows -1, 0, 1 (rows 2-4 from the bottom), which the dihedral criteria do not see (measured here)."""
     clear = interfering_scene(54.5)
     contacts = Contacts(clear)
     lo, hi = theta_deg(clear.kinematics.domain)
     assert not any(contacts.at(t) for t in np.linspace(lo + 1e-7, hi - 1e-7, 41))
-    onset = interfering_scene(SEED_ONSET_DEG)
+    onset = interfering_scene(PUBLISHED_ONSET_DEG)
     contacts = Contacts(onset)
     lo, hi = theta_deg(onset.kinematics.domain)
-    np.testing.assert_allclose(lo, 89.32, atol=5e-3)  # the seed's theta at the onset, 2 decimals; ours 89.3225
+    np.testing.assert_allclose(lo, 89.32, atol=5e-3)  # the first test's theta at the onset, 2 decimals; ours 89.3225
     pairs = contacts.at(lo + 1e-7)
     assert pairs and rows_of(pairs, onset.mechanism.root) == {2, 3, 4}
     # measured: contact up to 0.031 deg above the bottom of the range at the onset
     assert not any(contacts.at(t) for t in np.linspace(lo + 0.1, hi - 1e-7, 41))
 
 
-def test_contact_part_of_the_range_at_alpha_56_matches_the_seed():
-    """alpha = 56 deg: contact from the bottom of the range (seed 88.79 deg) to 95.130 deg (seed 95.04)."""
+def test_contact_part_of_the_range_at_alpha_56_matches_the_crossing_test():
+    """alpha = 56 deg: contact from the bottom of the range (first test 88.79 deg) to 95.130 deg (first test 95.04)."""
     scene = interfering_scene(56.0)
     contacts = Contacts(scene)
     lo, _ = theta_deg(scene.kinematics.domain)
     np.testing.assert_allclose(lo, 88.79, atol=5e-3)  # ours 88.7859
     assert rows_of(contacts.at(lo + 1e-7), scene.mechanism.root) == {2, 3, 4}
     end = contacts.last(92.0, 97.0)
-    np.testing.assert_allclose(end, SEED_END_DEG, atol=SEED_END_TOL_DEG)
+    np.testing.assert_allclose(end, CROSSING_END_DEG, atol=CROSSING_END_TOL_DEG)
     assert all(contacts.at(t) for t in np.linspace(lo + 1e-7, end - 0.01, 21))
 
 
@@ -159,7 +160,7 @@ def test_contact_part_of_the_range_at_alpha_56_matches_the_seed():
 def test_force_limited_servo_stops_at_the_interference():
     """Driven from theta = 105 deg down to 89.5 deg, inside the colliding part, with contact on: the servo stops at
     the solids' contact angle (measured 95.107 deg against 95.130, 4.0e-4 rad; settled to 0.004 deg over the
-    last 0.5 s; drive force at most 7.1 of its 20 N m), near the seed's 95.04 deg."""
+    last 0.5 s; drive force at most 7.1 of its 20 N m), near the first test's 95.04 deg."""
     scene = interfering_scene(56.0)
     touch = Contacts(scene).last(92.0, 97.0)
     start, stop = 105.0 * DEG - np.pi, 89.5 * DEG - np.pi
@@ -168,7 +169,7 @@ def test_force_limited_servo_stops_at_the_interference():
     result = assess(x, run.target, run.drive_force, 20.0, touch * DEG - np.pi, stop)
     assert result.stopped and run.contacts[-1] > 0
     assert result.error < TOLERANCES.blockage_rad
-    np.testing.assert_allclose(theta_deg(result.stop_input), SEED_END_DEG, atol=SEED_END_TOL_DEG)
+    np.testing.assert_allclose(theta_deg(result.stop_input), CROSSING_END_DEG, atol=CROSSING_END_TOL_DEG)
 
 
 @pytest.mark.slow

@@ -1,5 +1,5 @@
-"""Twist of the generalized waterbomb tube (`kinematics.waterbomb_twist`, scene `waterbomb-twist`) against seed 004
-§3 (digest seed002_004 B.3.6, B.6 and validation cases 17-21), seed 000 §6.4 (digest M13, case 30), the loop solver
+"""Twist of the generalized waterbomb tube (`kinematics.waterbomb_twist`, scene `waterbomb-twist`) against Feng, Ma
+and Chen 2020 (§3, Figs 14-16) and Feng 2018 (§6.4), the loop solver
 and MuJoCo."""
 
 import numpy as np
@@ -32,14 +32,14 @@ from sim_origami.validation import validate
 
 DEG = np.pi / 180
 TWIST_6X5 = feng_ma_chen2020.twist(6, 5, 40, 40)
-seed_angles = feng_ma_chen2020.twist_angles
+published_angles = feng_ma_chen2020.twist_angles
 
 
 @pytest.mark.parametrize("eta02", [60, 70, 80, 90, 100])
-def test_case17_twist_states(eta02):
+def test_clockwise_twist_states_of_fig_13b(eta02):
     """n6 m5 alpha = beta = 40: eta02 rising from its start is the clockwise twist (Feng, Ma and Chen 2020 Fig 13b);
     the dihedrals to 4 decimals (measured <= 4.9e-5 deg, rounding), the end twist to 3 (measured <= 4.8e-4)."""
-    entries = checked_by(feng_ma_chen2020.NUMBERS, "test_case17_twist_states")
+    entries = checked_by(feng_ma_chen2020.NUMBERS, "test_clockwise_twist_states_of_fig_13b")
     for entry in [e for e in entries if f"eta02 = {eta02} deg" in e.quantity]:
         entry.check()
     # kappa_B0,4 = 0 on every unit and every A_0 on the axis throughout (measured 0 and 0)
@@ -49,16 +49,16 @@ def test_case17_twist_states(eta02):
     assert np.max(np.abs(TWIST_6X5.radii(CW, np.pi - eta02 * DEG)[0, 2])) == 0.0
 
 
-def test_case17_start_and_case18_limits():
+def test_twist_start_and_limits_of_the_n6_m5_40_40_tube():
     """Start eta02 = eta06 = 47.7173 at eta01 = 60 (eqn 39a); limit eta02 = 100.8002, eta01 = 76.5459, end twist
     72.35, r_A1 = 0.4191, r_A2 = 0.9194, eta_2,1 = 149.522 (m = 5); mirror end eta02 = 0 with eta06 = 100.8002."""
     model = TWIST_6X5
     lo, hi = model.domain
     assert np.pi - hi == pytest.approx(0.0, abs=1e-12)  # measured 9.2e-14 (the domain's ends sit 1e-13 inside)
-    end = seed_angles(model, CW, np.rad2deg(np.pi - lo), ["A2_0_3", "A2_0_6"])
+    end = published_angles(model, CW, np.rad2deg(np.pi - lo), ["A2_0_3", "A2_0_6"])
     assert np.all(np.abs(end) <= 1e-9)  # eta03 = eta06 = 0 at the limit
     # start, limit, eta01 and eta_2,1 there, the end twist (2 decimals; ours 72.3493), r_A1, r_A2, the mirror end
-    check_every(feng_ma_chen2020.NUMBERS, "test_case17_start_and_case18_limits")
+    check_every(feng_ma_chen2020.NUMBERS, "test_twist_start_and_limits_of_the_n6_m5_40_40_tube")
     assert model.end_twist(CCW, hi)[0] == pytest.approx(-model.end_twist(CW, lo)[0], abs=1e-12)
     # at the start the three branches are one configuration (measured 1.8e-15 rad)
     q = [model.joint_angles(b, model.start)[0] for b in (CCW, CW, CONTRACTION)]
@@ -68,8 +68,8 @@ def test_case17_start_and_case18_limits():
 
 @pytest.mark.parametrize(("n", "alpha", "twist"), [(6, 45, 60.0), (5, 40, None), (7, 40, None), (8, 40, None)])
 def test_middle_row_limits(n, alpha, twist):
-    """Digest B.6 / case 18: the double roots of the corrected W quartic (eqn 41), the middle row's own limit, here
-    on m = 1 tubes (beta = 40); seed 000 M13: the end twist at that limit is 60 deg for alpha = 45, n = 6."""
+    """The double roots of the corrected W quartic (eqn 41), the middle row's own limit, here on m = 1 tubes
+    (beta = 40); Feng 2018, §6.4: the end twist at that limit is 60 deg for alpha = 45, n = 6."""
     model = feng_ma_chen2020.twist(n, 1, alpha, 40)
     [limit] = [
         e for e in checked_by(feng_ma_chen2020.NUMBERS, "test_middle_row_limits") if f"n{n} m1 {alpha}/" in e.where
@@ -77,45 +77,46 @@ def test_middle_row_limits(n, alpha, twist):
     limit.check()
     if twist is not None:
         assert abs(model.end_twist(CW, model.domain[0])[0] / DEG + twist) <= 1e-9  # measured 7.0e-12 deg
-    # seed 000 eqn 6-51 at the eta02 = 0 end: tan(t/2) = (1 - cos eta06) / (tan(pi/n) (3 + cos eta06))
+    # Feng 2018, eqn 6-51 at the eta02 = 0 end: tan(t/2) = (1 - cos eta06) / (tan(pi/n) (3 + cos eta06))
     hi = model.domain[1]
-    eta06 = seed_angles(model, CCW, np.rad2deg(np.pi - hi), ["A0_0_6"])[0] * DEG
+    eta06 = published_angles(model, CCW, np.rad2deg(np.pi - hi), ["A0_0_6"])[0] * DEG
     expected = 2 * np.arctan((1 - np.cos(eta06)) / (np.tan(np.pi / n) * (3 + np.cos(eta06))))
     assert abs(model.end_twist(CCW, hi)[0] - expected) <= 1e-12  # measured <= 1.4e-15 rad
 
 
-def test_seed000_square_tube_twist():
-    """Seed 000 M13 / case 30 (n6 m3 alpha = beta = 45): eta02 in [0, 90]; at eta02 = 0 eta03 = eta06 = 90, eta01 =
+def test_feng2018_square_tube_twist():
+    """Feng 2018, §6.4 (n6 m3 alpha = beta = 45): eta02 in [0, 90]; at eta02 = 0 eta03 = eta06 = 90, eta01 =
     70.529 and the side edge tilted to zeta = 54.736 deg (atan sqrt 2), end twist 60; untwisted eta02 = 44.415."""
     model = WaterbombTwist(6, 3, 45 * DEG, 45 * DEG)
     np.testing.assert_allclose(np.rad2deg(np.pi - np.array(model.domain)), [90, 0], atol=1e-9, rtol=0)
     hi = model.domain[1]
     # untwisted eta02, the eta02 = 0 end and the table at zeta = 80 deg (3 decimals)
-    check_every(feng2018.NUMBERS, "test_seed000_square_tube_twist")
+    check_every(feng2018.NUMBERS, "test_feng2018_square_tube_twist")
     assert model.tilt(hi)[0] == pytest.approx(np.arctan(np.sqrt(2)), abs=1e-12)  # measured 9.9e-14 (the domain's
     assert model.end_twist(CCW, hi)[0] == pytest.approx(60 * DEG, abs=1e-12)  # end sits 1e-13 inside); 1.2e-13
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize(
-    ("n", "m", "published"),
+    ("n", "m", "sampled"),
     [(6, 7, (7.44, 92.01)), (6, 9, (17.46, 80.28)), (6, 11, (34.19, 61.69)), (5, 5, (31.44, 87.86))],
 )
-def test_fig14_twist_ranges_where_the_top_row_deploys(n, m, published):
-    """Digest B.6 (Figs 14a, 14b, alpha = beta = 40): twist ranges that end where the top row deploys (eqn 14).
-    Ours are bisected and contain the digest's, which stop short by <= 0.108 deg (measured 0.027, 0.007, 0.108, 0.088
-    at the worse end): the digest's step, as its 2 decimals and its ranges of m = 3, 5 agree with our exact ends."""
+def test_fig14_twist_ranges_where_the_top_row_deploys(n, m, sampled):
+    """Feng, Ma and Chen 2020, Figs 14a, 14b (alpha = beta = 40): twist ranges that end where the top row deploys
+    (eqn 14). Ours are bisected and contain those of a first, sampled reproduction of the figures (2 decimals), which
+    stop short by <= 0.108 deg (measured 0.027, 0.007, 0.108, 0.088 at the worse end): its sampling step, as its
+    2 decimals and its ranges of m = 3, 5 agree with our exact ends."""
     lo, hi = WaterbombTwist(n, m, 40 * DEG, 40 * DEG).domain
     ours = np.rad2deg(np.pi - np.array([hi, lo]))
-    assert ours[0] <= published[0] and ours[1] >= published[1]
-    assert max(published[0] - ours[0], ours[1] - published[1]) <= 0.11
+    assert ours[0] <= sampled[0] and ours[1] >= sampled[1]
+    assert max(sampled[0] - ours[0], ours[1] - sampled[1]) <= 0.11
 
 
 @pytest.mark.slow
 def test_fig14_no_twist_and_alpha_threshold():
-    """m = 13 (Fig 14a) and n = 4 (14b) have no twist; on the seeds' (non-strict) criterion the n6 m5 beta = 40 tube
-    twists from alpha = 26.85 (digest B.6; the paper's 25.7 is not reproduced) and eta02 reaches 0 from 35.73 (ours
-    35.7765 by bisection: inside case 19's tolerance of 0.05 deg)."""
+    """m = 13 (Fig 14a) and n = 4 (14b) have no twist; on the papers' (non-strict) criterion the n6 m5 beta = 40 tube
+    twists from alpha = 26.85 (sampled here; Fig. 14c's 25.7 is not reproduced) and eta02 reaches 0 from 35.73
+    (sampled; ours 35.7765 by bisection, inside the sampling's 0.05 deg)."""
     with pytest.raises(ParameterError, match="fully folded middle row"):
         WaterbombTwist(6, 13, 40 * DEG, 40 * DEG)
     with pytest.raises(ParameterError, match="cannot contract rigidly"):
@@ -173,12 +174,12 @@ def test_folding_the_strip_closes_the_twisted_tube_round_its_circumference():
 @pytest.mark.slow
 def test_symmetry_couplings_and_mobility():
     """The couplings hold on both twist senses and on the contraction; the coupled closure has mobility 1 on each
-    branch and 2 at their meeting point, where the free tube gains one mode (19 = 4n - 5, digest case 23)."""
+    branch and 2 at their meeting point, where the free tube gains one mode (19 = 4n - 5, measured here by rank)."""
     coupled = TWIST_6X5.loop_system()
     for branch in (CCW, CW, CONTRACTION):
         q = TWIST_6X5.joint_angles(branch, np.linspace(*TWIST_6X5.branch(branch).domain, 11))
         assert np.max(coupled.residual_norm(q)) <= 1e-14  # measured 3.3e-15
-    model = WaterbombTwist(6, 3, 40 * DEG, 40 * DEG)  # the counts do not depend on m (digest B.2)
+    model = WaterbombTwist(6, 3, 40 * DEG, 40 * DEG)  # the counts do not depend on m (measured here)
     free, coupled = model.free_loop_system(), model.loop_system()
     for branch in (CCW, CW, CONTRACTION):
         assert coupled.mobility(model.joint_angles(branch, np.mean(model.branch(branch).domain))[0]) == 1
@@ -212,7 +213,7 @@ def test_events():
     ends = {e.branches[0]: e for e in events if e.kind == "lock"}
     assert ends[CCW].input == TWIST_6X5.domain[1] and "eta02 = 0" in ends[CCW].detail
     assert ends[CW].input == TWIST_6X5.domain[0] and "eta03 = eta06 = 0" in ends[CW].detail
-    # the contraction's uniform states (case 14) seen from eta02 (eqn 9)
+    # the contraction's uniform states (n6 m5 40/40) seen from eta02 (eqn 9)
     check_every(feng_ma_chen2020.NUMBERS, "test_events")
     # beta above beta_max (eqn 40): rows 1 and 3 start through the axis and leave it during the twist
     interfering = WaterbombTwist(6, 5, 35.73 * DEG, 40 * DEG)

@@ -1,6 +1,6 @@
 """Twist of a row other than the middle one (`WaterbombTwist(row=...)`, scene `waterbomb-twist -p row=...`) against
-seed 004 Fig 16 (digest seed002_004 B.3.6 "Bifurcation", B.5, validation case 20), the loop solver and MuJoCo. The
-seed gives no numbers for paths I and III beyond their common start (configuration iii)."""
+Feng, Ma and Chen 2020 (§3, "Bifurcation", Fig 16), the loop solver and MuJoCo. The paper gives no numbers for paths
+I and III beyond their common start (configuration iii)."""
 
 import numpy as np
 import pytest
@@ -18,7 +18,7 @@ from sim_origami.tolerances import TOLERANCES
 
 DEG = np.pi / 180
 ALPHA = 40 * DEG
-BETA = beta_max(ALPHA, 6)  # 42.0105238 deg (digest B.6; Fig 16 prints 42.01)
+BETA = beta_max(ALPHA, 6)  # 42.0105238 deg (eqn 40 solved here; Fig 16 prints 42.01)
 PATH_I = WaterbombTwist(6, 3, ALPHA, BETA, row=1)  # top row twisting
 PATH_III = WaterbombTwist(6, 3, ALPHA, BETA, row=-1)  # bottom row twisting
 
@@ -70,7 +70,7 @@ def test_start_is_the_equal_diameter_cylinder():
     assert np.max(np.abs(end[vertical] + np.pi)) <= 1e-14  # measured 0
     for row in (1, 0, -1):
         model = PATH_I if row == 1 else PATH_III if row == -1 else WaterbombTwist(6, 3, ALPHA, BETA)
-        assert model.start == pytest.approx(np.pi - 47.7173 * DEG, abs=5e-5 * DEG)  # eqn 39a, digest case 20
+        assert model.start == pytest.approx(np.pi - 47.7173 * DEG, abs=5e-5 * DEG)  # eqn 39a
         for branch in (CCW, CW):
             q = model.joint_angles(branch, model.start)[0]
             assert np.max(np.abs(wrap(q - end))) <= 1e-14  # measured 8.9e-16 rad
@@ -78,7 +78,7 @@ def test_start_is_the_equal_diameter_cylinder():
 
 
 def test_ranges_and_events():
-    """Paths I and III (no numbers in the seed): eta02 from 0 (counter-clockwise end) to 100.8002 deg (clockwise),
+    """Paths I and III (no numbers in the paper): eta02 from 0 (counter-clockwise end) to 100.8002 deg (clockwise),
     the end-ring twist +-72.3493 deg, as path II: the twisting row's own limits (a), (b) end them. The other rows
     touch the axis at the start (no crossing events)."""
     for model in (PATH_I, PATH_III):
@@ -155,11 +155,11 @@ def test_mujoco_follows_the_twist_of_an_end_row(row, branch):
 @pytest.mark.parametrize(
     ("values", "match"),
     [
-        ({"row": 2}, r"row = 2; the 3-row tube twists in one of its seed rows -1, 0, 1"),
+        ({"row": 2}, r"row = 2; the 3-row tube twists in one of its rows -1, 0, 1"),
         ({"row": 0.5}, r"row = 0.5; it must be a whole number"),
-        ({"row": 1}, r"beta = 40 deg is not beta_max = 42.0105238 deg .*seed row 1 has r_A = 0.0581 a"),
+        ({"row": 1}, r"beta = 40 deg is not beta_max = 42.0105238 deg .*row 1 has r_A = 0.0581 a"),
         ({"row": -1, "beta": 42.01}, r"beta = 42.01 deg is not beta_max .*r_A = 1.48e-05 a"),  # Fig 16's rounding
-        ({"row": -2}, r"row = -2; the 3-row tube twists in one of its seed rows -1, 0, 1"),
+        ({"row": -2}, r"row = -2; the 3-row tube twists in one of its rows -1, 0, 1"),
     ],
 )
 def test_bad_row_or_beta_is_refused(values, match):

@@ -1,4 +1,4 @@
-"""The free 6 x 3 waterbomb tube twisted by end torques (scripts/waterbomb_twist_torque.py; seed 000 §6.4.2).
+"""The free 6 x 3 waterbomb tube twisted by end torques (scripts/waterbomb_twist_torque.py; Feng 2018, §6.4.2).
 
 Real MuJoCo (fast preset, implicitfast, hinge damping 5 N m s/rad, torque 1 N m for 3 s: quasi-static, measured
 within 2 % of damping 50). Each run measured about 0.12 s of stepping CPU plus the scene build and compile.

@@ -1,9 +1,11 @@
-"""`sim-origami describe SCENE`: parameters, joints, input, branches and events."""
+"""`sim-origami describe SCENE` (or `--linkage FILE`): parameters, joints, input, branches and events."""
 
 import argparse
 
 from .. import scenes
 from ..conventions import rad_to_deg
+from ..errors import ParameterError
+from ..scenes.linkage_file import linkage_scene
 from .options import add_params, parse_params
 
 NAME = "describe"
@@ -11,20 +13,30 @@ HELP = "show a scene's parameters (units, defaults), joints, input, branches and
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("scene")
+    parser.add_argument("scene", nargs="?", help="scene name (see list); omit with --linkage")
+    parser.add_argument("--linkage", metavar="FILE", help="a linkage file (docs/linkage_files.md) instead of a scene")
     add_params(parser)
 
 
 def run(args: argparse.Namespace) -> int:
-    kind = scenes.get(args.scene)
-    scene = kind.build_from_user(parse_params(args.param))
+    if (args.scene is None) == (args.linkage is None):
+        raise ParameterError("give a SCENE or --linkage FILE")
+    if args.linkage is not None:
+        if args.param:
+            raise ParameterError("-p sets a registered scene's parameters; a --linkage file holds its own")
+        scene = linkage_scene(args.linkage)
+        print(f"{scene.name}: linkage file {args.linkage}")
+        print("parameters: none (the file holds the geometry)")
+    else:
+        kind = scenes.get(args.scene)
+        scene = kind.build_from_user(parse_params(args.param))
+        print(f"{kind.name}: {kind.summary}")
+        print("parameters:")
+        for p in kind.params:
+            value = p.to_user(scene.params[p.name])
+            print(f"  {p.name:10s} = {value:<10.6g} {p.unit:4s} (default {p.default:g}) {p.help}")
     kin = scene.kinematics
     deg = rad_to_deg
-    print(f"{kind.name}: {kind.summary}")
-    print("parameters:")
-    for p in kind.params:
-        value = p.to_user(scene.params[p.name])
-        print(f"  {p.name:10s} = {value:<10.6g} {p.unit:4s} (default {p.default:g}) {p.help}")
     print(
         f"input: {kin.input_name} (degrees here, radians in JSON); drives {scene.drive_joint} x {scene.drive_scale:g}"
     )

@@ -1,7 +1,7 @@
 """`sim-origami mobility SCENE [-p NAME=VALUE] [--branch B] [--at DEG]`: truss method vs Jacobian rank.
 
-At the branch's start pose (or at --at) and at each of its bifurcation events: the truss counts (seed 001
-§1.3: nodes j, bars b, couplings c, rank r, mobility m = 3j - 6 - r, states of self-stress s, Maxwell's
+At the branch's start pose (or at --at) and at each of its bifurcation events: the truss counts (Yang 2017,
+§2.3: nodes j, bars b, couplings c, rank r, mobility m = 3j - 6 - r, states of self-stress s, Maxwell's
 3j - 6 - b - c) next to the instantaneous mobility from the numeric loop closure's Jacobian and from
 MuJoCo's constraint Jacobian, then the redundant bars (those carrying self-stress) at each pose.
 Exit 0 when the three mobilities agree at every pose, 1 otherwise, 2 on bad input.
@@ -19,7 +19,7 @@ from ..truss import truss_mobility
 from .options import add_params, parse_params
 
 NAME = "mobility"
-HELP = "truss mobility, self-stress and redundant bars next to the Jacobian-rank mobility (seed 001)"
+HELP = "truss mobility, self-stress and redundant bars next to the Jacobian-rank mobility (Yang 2017)"
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
@@ -52,7 +52,7 @@ def run(args: argparse.Namespace) -> int:
         numeric = loops.mobility(scene.mechanism_to_loop(q)[0])
         rows.append((label, x, truss, numeric, mujoco_mobility(scene, q)))
         stresses.append((label, x, truss.redundant))
-    print(f"{scene.name}, branch {branch}: truss method (seed 001 §1.3) vs Jacobian rank; input {kin.input_name}")
+    print(f"{scene.name}, branch {branch}: truss method (Yang 2017, §2.3) vs Jacobian rank; input {kin.input_name}")
     print(f"  {'pose':12s} {'input deg':>10s} {'j':>4s} {'b':>4s} {'c':>3s} {'r':>4s} {'truss m':>7s} {'s':>3s} "
           f"{'Maxwell':>7s} {'numeric m':>9s} {'MuJoCo m':>8s}")  # fmt: skip
     for label, x, t, numeric, mujoco in rows:

@@ -17,6 +17,7 @@ from ..mjcf import PRESETS
 from ..report import as_dict, plain, write
 from ..report_page import write_index, write_page
 from ..scenes.fold_file import fold_scene
+from ..scenes.linkage_file import linkage_scene
 from ..validation import validate
 from .options import add_params, parse_params
 
@@ -27,14 +28,16 @@ FRAMES = 60
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("scene", nargs="?", help="scene name (see list); omit with --all or --fold")
+    parser.add_argument("scene", nargs="?", help="scene name (see list); omit with --all, --fold or --linkage")
     parser.add_argument("--all", action="store_true", help="every scene with its defaults, plus a summary")
     parser.add_argument("--fold", type=Path, help="a FOLD 1.2 file with a folded state: numeric reference")
     parser.add_argument("--input", help="with --fold: the driven crease(s), e<edge index>[,e<edge index>...] "
-                        "(default: as many as the pattern has freedoms, picked by rank, the most folded first)")
+                        "(default: as many as the pattern has freedoms, picked by rank, the steadiest first)")
     parser.add_argument("--frames-tolerance", type=float, metavar="DEG",
                         help="with --fold: fail frames farther than this from the rigid motion (default 0.573 deg "
                         "for exact angles; frames measured from 3-D coordinates are reported only)")
+    parser.add_argument("--linkage", type=Path, metavar="FILE",
+                        help="a linkage file (JSON or TOML, docs/linkage_files.md): numeric reference")
     add_params(parser)
     parser.add_argument("--branch", help="one branch (default: every branch)")
     parser.add_argument(
@@ -113,14 +116,15 @@ HEADER = ("| scene | result | preset | branches followed | max angle error (rad)
 
 
 def run(args: argparse.Namespace) -> int:
-    if sum((args.all, bool(args.scene), args.fold is not None)) != 1:
-        raise ParameterError("give one of a SCENE, --all or --fold FILE")
+    if sum((args.all, bool(args.scene), args.fold is not None, args.linkage is not None)) != 1:
+        raise ParameterError("give one of a SCENE, --all, --fold FILE or --linkage FILE")
     if args.input and args.fold is None:
         raise ParameterError("--input names the driven crease of a --fold pattern")
     if args.reference is None and (args.reference_units or args.reference_tol is not None):
         raise ParameterError("--reference-units and --reference-tol qualify a --reference FILE")
     if args.all and args.reference is not None:
-        raise ParameterError("--reference checks one scene's curves; give a SCENE (or --fold FILE), not --all")
+        raise ParameterError("--reference checks one scene's curves; give a SCENE (or --fold / --linkage FILE), "
+                             "not --all")
     if args.all:
         if args.param or args.branch:
             raise ParameterError("--all runs every scene with its defaults; -p and --branch need a SCENE")
@@ -143,6 +147,10 @@ def run(args: argparse.Namespace) -> int:
             raise ParameterError("-p sets a registered scene's parameters; a --fold pattern has none")
         tolerance = None if args.frames_tolerance is None else np.deg2rad(args.frames_tolerance)
         scene = fold_scene(args.fold, args.input, tolerance)
+    elif args.linkage is not None:
+        if args.param:
+            raise ParameterError("-p sets a registered scene's parameters; a --linkage file holds its own")
+        scene = linkage_scene(args.linkage)
     else:
         scene = scenes.get(args.scene).build_from_user(parse_params(args.param))
     return validate_scene(scene, args)
@@ -170,9 +178,12 @@ def validate_scene(scene, args: argparse.Namespace) -> int:
             mark = "ok  " if v["passed"] else "FAIL"
             measured = "null (inf or nan)" if v["measured"] is None else f"{v['measured']:.3g}"  # JSON's null
             print(f"  {mark} {v['name']}: {measured} (tolerance {v['tolerance']:g})")
-            if v["name"].startswith("reference") and not v["passed"]:
+            if not v["passed"]:  # why it failed: the samples over tolerance, a singular pose crossed, ...
                 print(f"       {v['detail']}")
         if "reference" in doc:
             print("\n".join(summary_lines(doc["reference"])))
+        for e in doc.get("events", []):  # where a traced reference stopped short of its target, and why
+            if e["kind"] in ("contact", "stall"):
+                print(f"  {e['kind']} at {e['input_rad']:.6g} rad: {e['detail']}")
         print(f"outputs in {out}/")
     return 0 if doc["passed"] else 1

@@ -96,6 +96,16 @@ class Kinematics(ABC):
         joint, scale = self.loop_input()
         return (joint,), scale * np.atleast_1d(np.asarray(x, dtype=float))[:, None]
 
+    def evaluate_held(
+        self, branch: str, x: ArrayLike, held: ArrayLike
+    ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        """
+        `evaluate` with the input loop joints (`loop_inputs`' joints) at `held` (n, k) (rad) instead of their values
+        at x: for several inputs, the reference where a simulation's driven joints are, which may lie off the
+        inputs' path. One input: `evaluate` at x (the held joint is scale * x there).
+        """
+        return self.evaluate(branch, x)
+
     @abstractmethod
     def observe(self, q_loop: ArrayLike) -> NDArray[np.float64]:
         """Output joints (n, k) measured from loop joint angles (n, n_loop_joints)."""

@@ -1,6 +1,6 @@
-"""Bennett 4R linkage (seed 001 §2.1, eqns 1-17/1-18; seed 003 M10; spec mujoco.md §3.4).
+"""Bennett 4R linkage (Yang 2017, eqns 1-17/1-18; Peng 2018, §4.2).
 
-D-H rows (seeds' convention): a_12 = a_34 = a, a_23 = a_41 = b; alpha_12 = alpha_34 = alpha,
+D-H rows (the theses' convention: Yang 2017, eqn 1-2): a_12 = a_34 = a, a_23 = a_41 = b; alpha_12 = alpha_34 = alpha,
 alpha_23 = alpha_41 = beta; all R = 0; Bennett condition sin(alpha)/a = sin(beta)/b.
 Closure: tan(theta1/2) tan(theta2/2) = K = sin((beta + alpha)/2) / sin((beta - alpha)/2),
 theta3 = -theta1, theta4 = -theta2 (mod 2 pi; eqn 1-18 writes theta1 + theta3 = 2 pi).
@@ -32,7 +32,7 @@ class Bennett(DHKinematics):
       Twists alpha_12 = alpha_34 and alpha_23 = alpha_41 (rad), in (0, pi), alpha != beta.
     check : bool
       Refuse parameters that break the Bennett condition with AssemblyError naming the loop's
-      closure residual (MuJoCo would silently run a compromise motion, spec mujoco.md §3.4).
+      closure residual (MuJoCo would silently run a compromise motion, measured here).
     """
 
     input_name = "theta1"

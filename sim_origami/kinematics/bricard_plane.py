@@ -1,14 +1,15 @@
-"""Plane-symmetric Bricard 6R linkage (seed 000 Part II, M4 to M7; Feng thesis ch. 4).
+"""Plane-symmetric Bricard 6R linkage (Feng 2018, ch. 4, §4.2-4.5).
 
 Geometry (eqn 4-1): a12 = a61 = a, a23 = a56 = b, a34 = a45 = c; alpha12 = alpha, alpha61 = 2 pi - alpha,
 alpha23 = beta, alpha56 = 2 pi - beta, alpha34 = gamma, alpha45 = 2 pi - gamma; R1 = R4 = 0, R6 = -R2,
 R5 = -R3 (D-H rows T = Rz(theta) Tz(R) Tx(a) Rx(alpha), `kinematics.dh`). The input is theta2; every
-branch but M7's double rocker keeps theta5 = theta3 and theta6 = theta2 (eqn 4-3). The review form of
-eqn 2-10 is not mobile in this convention (seed000 §2 item 22) and is not used.
+branch but the double rocker of eqn 4-37d keeps theta5 = theta3 and theta6 = theta2 (eqn 4-3). The review
+form of eqn 2-10 is not mobile in this convention (local DOF 0, found here) and is not used.
 
-Closed form (M4). With m = tan(theta2/2), n = tan(theta3/2), A n^2 + B n + C = 0 (eqn 4-5), with A, B,
+Closed form (§4.2). With m = tan(theta2/2), n = tan(theta3/2), A n^2 + B n + C = 0 (eqn 4-5), with A, B,
 C of eqn 4-6 and the CORRECTED sign of C's linear term, -2 sin(alpha) (R3 sin(gamma) + R2 sin(beta +
-gamma)) m (seed000 §2 item 7; the printed "+" leaves closure residuals of order 1 with offsets).
+gamma)) m (corrected here: eqn 4-6c prints "+", which misses closure by up to 0.23 on 72 random geometries with
+offsets, against 2e-14 corrected; the sign is invisible when R2 = R3 = 0, as in every example of the thesis).
 A, B and C are used multiplied by cos^2(theta2/2): quadratic forms in (sin(theta2/2), cos(theta2/2)),
 finite at theta2 = pi. theta3 is the root of the quadratic written with both half-angle pairs (stable
 at A = 0, where one root goes to theta3 = pi), theta1 from eqn 4-7 (appendix entry (1,3)) or entry
@@ -40,14 +41,14 @@ Case 10 family (eqn 4-32) **[NEW, verified]**: path I (eqn 4-33) closes for ever
 alpha = pi - 2 beta, gamma = -beta, R = 0 (so it is case 8's branch too); path II (eqn 4-34) needs b = c.
 Both are evaluated from those explicit forms, which have no 0/0 points.
 
-Case 7 **[NEW]**: Delta < 0 for every finite theta2, but at theta2 = pi (m infinite) the loop closes at the
-isolated configuration (0, pi, pi, 0, pi, pi), rigid to second order: an assembled structure. The model
-has no branch then; `isolated_assemblies` and an 'isolated_assembly' event report the configuration.
+Case 7 of Table 4-1 **[NEW]**: Delta < 0 for every finite theta2, but at theta2 = pi (m infinite) the loop
+closes at the isolated configuration (0, pi, pi, 0, pi, pi), rigid to second order: an assembled structure.
+The model has no branch then; `isolated_assemblies` and an 'isolated_assembly' event report the configuration.
 
-M7 (A == B == C == 0, eqn 4-36): eqn 4-5 is void. Of eqn 4-37 only the double rocker (d) is driven by
-theta2; its two halves (``double_rocker_theta6_<deg>_at_theta2_0``) meet at |theta2| = 99.59 deg and pass
-the multifurcations with the chains (a), (b) at theta2 = +-60 deg. Other A == B == C == 0 geometries are
-refused with ParameterError.
+The special case of §4.5.2 (`SPECIAL_CASE_4_36`: A == B == C == 0, eqn 4-36): eqn 4-5 is void. Of eqn 4-37
+only the double rocker (d) is driven by theta2; its two halves (``double_rocker_theta6_<deg>_at_theta2_0``)
+meet at |theta2| = 99.59 deg and pass the multifurcations with the chains (a), (b) at theta2 = +-60 deg.
+Other A == B == C == 0 geometries are refused with ParameterError.
 """
 
 from dataclasses import dataclass
@@ -121,7 +122,7 @@ class Geometry:
 
 
 _PI = np.pi
-# Table 4-1 cases 5..10 (seed000 M4), all R2 = R3 = 0.
+# Table 4-1 cases 5..10 (Feng 2018, §4.2), all R2 = R3 = 0.
 TABLE_4_1 = {
     5: Geometry(1.0, 1.0, 2.0, _PI / 3, _PI / 2, _PI / 6),
     6: Geometry(1.5, 1.0, 2.0, _PI / 2, _PI / 4, -_PI / 4),
@@ -130,12 +131,13 @@ TABLE_4_1 = {
     9: Geometry(3.0, 2.0, 1.0, _PI / 12, _PI / 3, _PI / 4),
     10: Geometry(2.0, 1.0, 1.0, 2 * _PI / 3, _PI / 6, -_PI / 6),
 }
-# Fig. 4-5: A == 0 with a Bennett branch theta3 = theta5 = pi (seed000 M5).
+# Fig. 4-5: A == 0 with a Bennett branch theta3 = theta5 = pi (Feng 2018, §4.3-4.4).
 FIG_4_5 = Geometry(1.0, 3.0, 2.0, _PI / 4, _PI / 3, 7 * _PI / 12)
-# M7 (eqn 4-36): A == B == C == 0, so eqn 4-5 is void; its motions are those of eqn 4-37.
-M7 = Geometry(3.0, 2.0, 4.0, _PI / 2, 0.0, _PI / 2)
+# The special case of Feng 2018, §4.5.2 (eqn 4-36): A == B == C == 0, so eqn 4-5 is void; its motions are those
+# of eqn 4-37.
+SPECIAL_CASE_4_36 = Geometry(3.0, 2.0, 4.0, _PI / 2, 0.0, _PI / 2)
 # The double rocker (eqn 4-37d) is real for |tan(theta2/2)| <= sqrt(7/5), |theta2| <= 99.59 deg.
-M7_ROCKER_LIMIT = 2 * np.arctan(np.sqrt(7 / 5))
+DOUBLE_ROCKER_LIMIT = 2 * np.arctan(np.sqrt(7 / 5))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -280,11 +282,11 @@ def path_two(beta: float, theta2: ArrayLike) -> NDArray[np.float64]:
 
 def double_rocker(theta2: ArrayLike, sign: int) -> NDArray[np.float64]:
     """
-    M7's double rocker (eqn 4-37d), not plane-symmetric; (n, 6) joints 1..6 for |theta2| <= 99.59 deg.
+    The double rocker of eqn 4-37d (geometry 4-36), not plane-symmetric; (n, 6) joints 1..6, |theta2| <= 99.59 deg.
 
     theta1 = theta4 = 0; with m = tan(theta2/2): tan(theta6/2) = (-4m + sign sqrt(3(7m^2 + 3)(7 - 5m^2))) /
     (15m^2 + 7); theta2 + theta3 = pi - arcsin((sin(theta6) - sin(theta2))/4) (the principal arcsin does not
-    close, seed000 §2 item 10); theta5 = -(theta2 + theta3 + theta6).
+    close: error about 15, found here); theta5 = -(theta2 + theta3 + theta6).
     """
     t2 = np.atleast_1d(np.asarray(theta2, dtype=float))
     m = np.tan(t2 / 2)
@@ -488,9 +490,9 @@ class PlaneSymmetricBricard(DHKinematics):
         return "II" if abs(g.b - g.c) < tol else "I"
 
     @property
-    def is_m7(self) -> bool:
-        """The special geometry of eqn 4-36 (seed000 M7)."""
-        g, ref = self.geometry, M7
+    def is_special_case_4_36(self) -> bool:
+        """The special geometry of eqn 4-36 (Feng 2018, §4.5.2)."""
+        g, ref = self.geometry, SPECIAL_CASE_4_36
         lengths = max(abs(g.a - ref.a), abs(g.b - ref.b), abs(g.c - ref.c), abs(g.R2), abs(g.R3)) < 1e-12 * g.scale
         twists = max(
             abs(float(wrap(u - v)))
@@ -619,12 +621,12 @@ class PlaneSymmetricBricard(DHKinematics):
         family = self.family if self._explicit else ""
         full = (-np.pi, np.pi)
         if not np.any(self._forms):
-            if not self.is_m7:
+            if not self.is_special_case_4_36:
                 raise ParameterError(
-                    "A = B = C = 0 for every theta2: eqn 4-5 says nothing about theta3 (seed000 M7); only the M7 "
-                    "geometry a = 3, b = 2, c = 4 m, alpha = 90, beta = 0, gamma = 90 deg is modelled"
+                    "A = B = C = 0 for every theta2: eqn 4-5 says nothing about theta3 (Feng 2018, §4.5.2); only the "
+                    "eqn 4-36 geometry a = 3, b = 2, c = 4 m, alpha = 90, beta = 0, gamma = 90 deg is modelled"
                 )
-            ends = (-M7_ROCKER_LIMIT, M7_ROCKER_LIMIT)
+            ends = (-DOUBLE_ROCKER_LIMIT, DOUBLE_ROCKER_LIMIT)
             return [_Candidate(1, ends, "rocker"), _Candidate(-1, ends, "rocker")]
         if family:
             out = [_Candidate(0, full, "one")]
@@ -798,7 +800,7 @@ class PlaneSymmetricBricard(DHKinematics):
             "all_joints_move": "the 6R motion: every joint turns (eqn 4-9, A = 0)",
         }.get(name, "a plane-symmetric 6R motion (theta5 = theta3, theta6 = theta2)")
         if self._candidates[k].explicit == "rocker":
-            text = "M7's four-bar double rocker (eqn 4-37d): theta1 = theta4 = 0, not plane-symmetric"
+            text = "the four-bar double rocker of eqn 4-37d: theta1 = theta4 = 0, not plane-symmetric"
         if hi - lo < 2 * np.pi - 1e-9:
             share = (hi - lo) / (2 * np.pi)
             text += (
@@ -850,7 +852,7 @@ class PlaneSymmetricBricard(DHKinematics):
         for (lo, hi), names in by_arc.items():
             for end in (lo, hi):
                 detail = "Delta = 0: the two roots meet and theta2 turns back (eqn 4-15)"
-                if self.is_m7:
+                if self.is_special_case_4_36:
                     detail = "7 - 5 tan^2(theta2/2) = 0: the two theta6 roots of eqn 4-37d meet and theta2 turns back"
                 events.append(Event("turning_point", end, tuple(names), detail))
         # Singular configurations: the six joint lines lose rank (bifurcations, incl. with motions
@@ -871,7 +873,7 @@ class PlaneSymmetricBricard(DHKinematics):
             conf = _degrees(q0)
             if len(through) > 1:
                 detail = f"{len(through)} branches cross at theta = ({conf}) deg"
-            elif self.is_m7:
+            elif self.is_special_case_4_36:
                 sign, eqn = ("", "4-37a") if x0 > 0 else ("-", "4-37b")
                 detail = (
                     f"multifurcation (Fig. 4-8) at theta = ({conf}) deg: the rocker meets eqn {eqn}, theta1 = -theta4 "
@@ -925,7 +927,7 @@ class PlaneSymmetricBricard(DHKinematics):
                 if ratio(x0) >= RANK_RATIO:
                     continue
                 # Snap to a multiple of 15 deg (theta2 = 0, pi: the collinear configurations; +-60 deg:
-                # M7's multifurcations) when it is one; +pi over -pi.
+                # the multifurcations of eqn 4-36's geometry) when it is one; +pi over -pi.
                 nearest = float(np.round(x0 * 12 / np.pi)) * np.pi / 12 + 0.0
                 if abs(x0 - nearest) < 1e-7:
                     targets = [nearest, nearest + 2 * np.pi, nearest - 2 * np.pi]

@@ -1,6 +1,6 @@
-"""Threefold-symmetric Bricard 6R linkage (seed 001 §2.5: eqns 1-27, 5-42 = 6-48, 6-50...6-52).
+"""Threefold-symmetric Bricard 6R linkage (Yang 2017: eqns 1-27, 2-8 to 2-11, 5-42 = 6-48, 6-50...6-52).
 
-D-H rows (seeds' convention): every a_(i,i+1) = a; alpha_12 = alpha_34 = alpha_56 = alpha and
+D-H rows (Yang 2017's convention, eqn 1-2): every a_(i,i+1) = a; alpha_12 = alpha_34 = alpha_56 = alpha and
 alpha_23 = alpha_45 = alpha_61 = 2 pi - alpha; every R = 0. The motion keeps the threefold symmetry:
 theta1 = theta3 = theta5 = theta and theta2 = theta4 = theta6 = phi, with (5-42 = 6-48)
 
@@ -11,7 +11,7 @@ C = cos^2 a + sin^2 a cos theta. Both roots are phi = atan2(B, A) +/- atan2(sqrt
 discriminant D = A^2 + B^2 - C^2 reduces to (4 cos^2 a - 1) + 4 sin^2 a cos^2(theta/2), so:
 
 * cos^2 a > 1/4: D > 0 on the whole input circle: two disjoint closed motions, no event;
-* cos^2 a = 1/4 (alpha = 60, 120, 240, 300 deg; the seed's Ch. 2 example): D = 0 only at theta = pi,
+* cos^2 a = 1/4 (alpha = 60, 120, 240, 300 deg; the thesis's Ch. 2 example): D = 0 only at theta = pi,
   where both motions pass through the bundle (every joint angle pi, joints 1 = 3 = 5 and 2 = 4 = 6
   coincide): a bifurcation, where a smooth motion crosses from one branch to the other;
 * cos^2 a < 1/4: |theta| <= theta_max = 2 arcsin(sqrt(3) / (2 |sin a|)); the two branches are the
@@ -27,7 +27,7 @@ domain, so each name is smooth over its open domain. In the tan-half form (6-51,
 branch is the '-' sign and the against branch the '+' sign, for every alpha. At theta = 0,
 phi = +120 deg (along) or -120 deg (against) for every alpha, since F(0, phi) = 1 + 2 cos phi.
 
-Only cos a and sin^2 a enter: alpha and 2 pi - alpha give the same motion (the seed's printed axis
+Only cos a and sin^2 a enter: alpha and 2 pi - alpha give the same motion (the thesis's printed axis
 orientation, twists 300/60 deg, and 60/300 deg), and pi - alpha negates phi and swaps the names.
 """
 
@@ -176,7 +176,7 @@ class BricardThreefold(DHKinematics):
         if self.kind == "bifurcating":
             detail = (
                 "bundle: every joint angle is pi, joints 1 = 3 = 5 and 2 = 4 = 6 coincide; both branches "
-                "cross here and a smooth motion continues on the other branch (seed 001 §2.5)"
+                "cross here and a smooth motion continues on the other branch (Yang 2017, §2.4)"
             )
             return tuple(Event("bifurcation", end, both, detail) for end in (-np.pi, np.pi))
         if self.kind == "turning":

@@ -1,9 +1,9 @@
-"""Double-corrugated units P and Q: rigid foldability against the mountain-valley assignment (seed 003
-§3.2.2, digest M6 and M7; the §3.2.3 metamaterials of M8 are stacks of these units).
+"""Double-corrugated units P and Q: rigid foldability against the mountain-valley assignment (Peng 2018,
+§3.2.1-3.2.2; the §3.2.3 metamaterials are stacks of these units).
 
-Geometry (digest M7 "Unit geometry", a reconstruction [RECON] of the lost Fig. 3-1). Design angles are
+Geometry (reconstructed here [RECON] from eqns 3-16, 3-22 and the text; Fig. 3-1 is lost in our copy). Design angles are
 the sectors (alpha, beta, gamma, delta) of a type-I vertex, counter-clockwise; every vertex is
-flat-foldable (alpha + gamma = beta + delta = pi) and gamma is the strict minimum (the seed's case,
+flat-foldable (alpha + gamma = beta + delta = pi) and gamma is the strict minimum (the thesis's case,
 which the M/V counts assume). A type-II vertex has the same sectors clockwise: (alpha, delta, gamma, beta).
 
 * P: the parallelogram A = (0, 0), B = L1 e(alpha), C = B + D, D = L2 e(0) (angles alpha, gamma).
@@ -14,24 +14,24 @@ edge and one corner face at each vertex, all parallelograms; outer creases have 
 so the side faces on AB and CD of P are copies of Q and those on AB and EF of Q copies of P. Twelve
 creases, four interior degree-4 vertices (P: A, C type I and B, D type II; Q: A, E type I and B, F
 type II). Crease names: the inner creases by their end points (P: AB, BC, CD, AD; Q: AB, BE, EF, AF),
-the outer ones by vertex and the seed's crease number k (a3, a4, b1, ...). VERTEX_CREASES lists each
-vertex's creases in the seed's k order (digest table "Crease angles"; counter-clockwise, sector k
+the outer ones by vertex and the thesis's crease number k (a3, a4, b1, ...). VERTEX_CREASES lists each
+vertex's creases in the thesis's k order (counter-clockwise, sector k
 between creases k and k + 1, gamma = sector 3 at every vertex).
 
 Signs (`sim_origami.conventions`, `sim_origami.creases`): rho > 0 is a valley seen from +z, so a crease
-is V when rho > 0 and M when rho < 0. The seed reads M/V from the other side (theta > 0 = mountain,
-digest §0.3): every M/V string of the digest's M7 tables is ours with M and V swapped.
+is V when rho > 0 and M when rho < 0. Peng 2018 reads M/V from the other side (theta > 0 =
+mountain): every M/V string in the thesis's convention is ours with M and V swapped.
 
-Kinematics (digest M6, M7 "Loop condition"). Near flat a flat-foldable vertex folds in mode S
+Kinematics (Peng 2018, §3.2.1-3.2.2, eqns 3-1 to 3-23). Near flat a flat-foldable vertex folds in mode S
 (rho3 = -rho1, rho4 = rho2) or C (rho3 = rho1, rho4 = -rho2), each linear in t = tan(rho/2):
-t_(k+1) = m_(k,k+1) t_k (`vertex4.flat_foldable_multipliers`, seed eqn 3-1). A unit with one mode per
+t_(k+1) = m_(k,k+1) t_k (`vertex4.flat_foldable_multipliers`, eqn 3-1). A unit with one mode per
 vertex closes round its central face iff the loop gain K = prod of the multipliers along the inner
 creases is 1 (P: m12(A) m34(B) m12(C) m34(D); Q: m23(F) m23(E) m23(B) m23(A)); otherwise only the flat
 and the fully folded states close: the unit is locked. Every crease of a rigid mode combination is then
-tan(rho/2) = g tan(x/2) with a constant gain g, for the input x = rho_AD (P, the seed's theta_1a) or
+tan(rho/2) = g tan(x/2) with a constant gain g, for the input x = rho_AD (P, the thesis's theta_1a) or
 rho_AF (Q, theta_2f).
 
-M/V assignments (digest M7 "Enumeration"). A vertex's M/V obeys Maekawa (three of one kind) and
+M/V assignments (Peng 2018, §3.2.2: P1-P10, Q1-Q6). A vertex's M/V obeys Maekawa (three of one kind) and
 Big-Little-Big (the creases round the smallest sector gamma differ), which leaves four per vertex: the
 two modes times a global flip. The unit's assignments are the sign vectors of its twelve creases that
 are valid at all four vertices, enumerated here by brute force over all 2^12 (no multiplier used); a
@@ -71,8 +71,8 @@ OUTER = {
     "Q": (("a4", "a1"), ("b4", "b1"), ("e4", "e1"), ("f4", "f1")),
 }
 INNER = {"P": ("AD", "CD", "BC", "AB"), "Q": ("AB", "BE", "EF", "AF")}  # central edge i: corner i -> i + 1
-# Each vertex's creases in the seed's order k = 1..4 (digest M7 crease-angle table and shared creases
-# 3-16, 3-22), in the order the digest lists mode combinations.
+# Each vertex's creases in the thesis's order k = 1..4 (shared creases 3-16, 3-22), in the order (A, B, C, D) /
+# (F, E, B, A) in which mode combinations are named.
 VERTEX_CREASES = {
     "P": {
         "A": ("AD", "AB", "a3", "a4"),
@@ -87,7 +87,7 @@ VERTEX_CREASES = {
         "A": ("a1", "AB", "AF", "a4"),
     },
 }
-INPUT = {"P": "AD", "Q": "AF"}  # the seed's theta_1a and theta_2f
+INPUT = {"P": "AD", "Q": "AF"}  # the thesis's theta_1a and theta_2f
 MODES = ("S", "C")
 # Loop gains within this of 1 count as closed (the multipliers carry rounding only, about 1e-15).
 GAIN_TOL = 1e-9
@@ -111,7 +111,7 @@ def check_sectors(sectors: ArrayLike) -> NDArray[np.float64]:
         raise ParameterError(
             f"gamma = {np.rad2deg(s[2]):.6g} deg is not the smallest design angle "
             f"(alpha, beta, delta = {', '.join(f'{np.rad2deg(v):.6g}' for v in s[[0, 1, 3]])} deg); "
-            "the seed's units need gamma < alpha, beta, delta"
+            "Peng 2018's units need gamma < alpha, beta, delta"
         )
     return s
 
@@ -241,13 +241,13 @@ class UnitModel:
 
     @cached_property
     def multipliers(self) -> dict[str, dict[str, NDArray[np.float64]]]:
-        """{vertex: {'S': (m12, m23, m34, m41), 'C': ...}} from each vertex's own sectors (seed eqn 3-1)."""
+        """{vertex: {'S': (m12, m23, m34, m41), 'C': ...}} from each vertex's own sectors (Peng 2018, eqn 3-1)."""
         return {v: flat_foldable_multipliers(self.vertex_sectors(v)) for v in self.vertices}
 
     def loop_gain(self, modes: str) -> float:
         """
         K: tan(rho/2) of the input carried round the central face through each vertex's multiplier from
-        its first to its second inner crease (digest M7 "Loop condition"), over tan(rho/2) of the input.
+        its first to its second inner crease (Peng 2018, §3.2.2), over tan(rho/2) of the input.
         """
         inner = set(INNER[self.unit])
         crease, gain = INPUT[self.unit], 1.0
@@ -378,7 +378,7 @@ def mode_couplings(unit: str, modes: str) -> tuple[tuple[str, str, float], ...]:
     for vertex, mode in zip(VERTEX_CREASES[unit], modes, strict=True):
         names = VERTEX_CREASES[unit][vertex]
         k = next(k for k in range(4) if names[k] in inner and names[(k + 1) % 4] in inner)
-        odd = k % 2 == 0  # pair (1, 3) in the seed's 1-based numbering
+        odd = k % 2 == 0  # pair (1, 3) in the thesis's 1-based numbering
         scale = (-1.0 if odd else 1.0) if mode == "S" else (1.0 if odd else -1.0)
         out.append((names[(k + 2) % 4], names[k], scale))
     return tuple(out)

@@ -1,5 +1,5 @@
-"""Double-corrugated tessellation: a sheet of rows x cols repeated units P or Q (seed 003 §3.2.2, digest M7
-"Tessellation"; units in `kinematics.corrugated`).
+"""Double-corrugated tessellation: a sheet of rows x cols repeated units P or Q (Peng 2018, §3.2.2, Fig 3-9;
+units in `kinematics.corrugated`).
 
 Lattice (metres, the flat sheet's world frame). The double-corrugated pattern is a quad mesh of parallelograms:
 vertex (i, j) is reached from (0, 0) by i steps along u and j along v, the steps alternating
@@ -15,15 +15,15 @@ has (2 cols + 1) x (2 rows + 1) faces: the r x c unit faces (P, or Q) at odd fac
 unit's vertex A is the origin. Faces are named f<i>_<j> (lower-left vertex (i, j)), creases u<i>_<j> ((i, j) to
 (i + 1, j)) and v<i>_<j> ((i, j) to (i, j + 1)).
 
-Modes (digest M6, M7). Each vertex takes the mode, S or C, of the unit vertex it repeats: the unit vertex at the
-same lattice parity (P: A (1, 1), B (1, 0), C (0, 0), D (0, 1); Q: A (0, 1), B (0, 0), E (1, 0), F (1, 1), as
-(i mod 2, j mod 2)). Every face then has one corner of each role, so the loop gain round every face is the
-unit's K up to inversion (the magnitudes of a vertex's multipliers pair up: type I |m| = x on its alpha and gamma
-sectors and 1/x on beta and delta, type II the reverse) and its sign (-1)^#S or (-1)^#C, +1 on every rigid
-string: the sheet folds rigidly iff the unit does (the digest's "the pattern is rigid iff every unit is").
+Modes (Peng 2018, §3.2.1-3.2.2). Each vertex takes the mode, S or C, of the unit vertex it repeats: the unit vertex at
+the same lattice parity (P: A (1, 1), B (1, 0), C (0, 0), D (0, 1); Q: A (0, 1), B (0, 0), E (1, 0), F (1, 1), as (i mod
+2, j mod 2)). Every face then has one corner of each role, so the loop gain round every face is the unit's K up to
+inversion (the magnitudes of a vertex's multipliers pair up: type I |m| = x on its alpha and gamma sectors and 1/x on
+beta and delta, type II the reverse) and its sign (-1)^#S or (-1)^#C, +1 on every rigid string: the sheet folds rigidly
+iff the unit does (Peng 2018: the pattern is rigid iff every unit is).
 
 Closed form. On a rigid mode string every crease folds as tan(rho/2) = k tan(x/2) with a constant k, chained
-vertex by vertex from the input x = the fold of u1_1, the first unit's AD (P, the seed's theta_1a) or AF (Q,
+vertex by vertex from the input x = the fold of u1_1, the first unit's AD (P, the thesis's theta_1a) or AF (Q,
 theta_2f); every vertex's four folds are the unit vertex's of the same role, up to a global sign. Fold
 angles follow `sim_origami.creases` (rho > 0 valley seen from +z). Branches are the unit's rigid mode strings
 (`corrugated.rigid_modes`), all crossing the flat state and ending where every crease folds flat (x = +-pi).
@@ -127,7 +127,7 @@ class CorrugatedSheet(FixedModeKinematics):
         self.ratios = {modes: self.gains(modes) for modes in rigid_modes(self.model)}
 
     def _vertices(self) -> dict[int, tuple[str, tuple[int, ...], NDArray[np.float64]]]:
-        """Interior vertex -> (role, crease indices in the seed's order k = 1..4, sectors (4,) rad)."""
+        """Interior vertex -> (role, crease indices in the thesis's order k = 1..4, sectors (4,) rad)."""
         nv = 2 * self.rows + 2
         out = {}
         for v in self.pattern.interior_vertices():
@@ -141,7 +141,7 @@ class CorrugatedSheet(FixedModeKinematics):
         return out
 
     def vertex_gains(self, modes: str, vertex: int) -> NDArray[np.float64]:
-        """tan-half gains (4,) of an interior vertex's creases in the seed's order k = 1..4 on `modes`."""
+        """tan-half gains (4,) of an interior vertex's creases in the thesis's order k = 1..4 on `modes`."""
         return self.ratios[modes][list(self.vertices[vertex][1])]
 
     def gains(self, modes: str) -> NDArray[np.float64]:

@@ -1,38 +1,38 @@
-"""Transformable polyhedra of seed 001: cuboctahedron <-> octahedron (ch. 4, digest §2.6).
+"""Transformable polyhedra of Yang 2017: cuboctahedron <-> octahedron (ch. 4).
 
-Frame and units: the seed's (4-1) frame, unit edges (m), origin at the body centre, z through the centre of
+Frame and units: the thesis's (4-1) frame, unit edges (m), origin at the body centre, z through the centre of
 the top square IJKL; angles in radians. Every position below is given with triangle ABE held at its
 cuboctahedron pose (the deployed world frame), so the deployed coordinates are exactly (4-1) (with the
-misprinted second "G" of (4-1e) read as I = (sqrt2/2, 0, sqrt2/2), digest §4.1 #10) and the octahedron
+misprinted second "G" of (4-1e) read as I = (sqrt2/2, 0, sqrt2/2), which makes every edge 1) and the octahedron
 equals (4-2) up to one rigid motion.
 
-Assembly (digest §2.6): 8 rigid triangles, bottom ring ABE, BCF, CDG, DAH and top ring IJE, JKF, KLG, LIH; the
+Assembly (Yang 2017, §4.2): 8 rigid triangles, bottom ring ABE, BCF, CDG, DAH and top ring IJE, JKF, KLG, LIH; the
 6 squares are hollow. R joints at A, B, C, D (Bennett 1, loop A B C D) and I, J, K, L (Bennett 2, loop I J K L)
 along the printed axes (4-8, 4-9), through the vertices; S joints at E, F, G, H join a bottom triangle to a
 top one. 8 bodies, 12 joints, 5 loops (2 Bennett + 4 RSRS), 1 DOF.
 
-Bennett 1 (seed §2.0 procedure on the printed axes): a = sqrt(3/14) m, twists (alpha, -alpha) with
-alpha = arccos(2/5), offsets 0, D-H angles (theta, phi, theta, phi) at (A, B, C, D) with
-tan(theta/2) tan(phi/2) = 1/cos(alpha) = 5/2 (digest §2.1 'alternative equal-length form'). The input is
-theta = theta_A, the D-H angle of triangle ABE relative to DAH about +s_A: theta_d = 2 atan(2 sqrt 5)
-= 154.7912 deg at the cuboctahedron, theta_f = 2 atan(sqrt(5)/4) = 58.4119 deg at the octahedron (B = D).
-The thesis's angles are the negatives (all axes reversed, (4-29), (4-42)).
+Bennett 1 (Yang 2017's D-H procedure, eqn 1-2, on the printed axes): a = sqrt(3/14) m, twists (alpha, -alpha) with alpha
+= arccos(2/5), offsets 0, D-H angles (theta, phi, theta, phi) at (A, B, C, D) with tan(theta/2) tan(phi/2) =
+1/cos(alpha) = 5/2 (Yang 2017, ch. 4: eqn 1-18 with beta = pi - alpha and some axes reversed). The input is theta =
+theta_A, the D-H angle of triangle ABE relative to DAH about +s_A: theta_d = 2 atan(2 sqrt 5) = 154.7912 deg at the
+cuboctahedron, theta_f = 2 atan(sqrt(5)/4) = 58.4119 deg at the octahedron (B = D). The thesis's angles are the
+negatives (all axes reversed, (4-29), (4-42)).
 
 Analytic model. The printed axes make the linkage symmetric under the three coordinate mirrors of (4-1), and
-the motion keeps them (digest §2.6, Sec. 4.3): Bennett 1 keeps its mirrors x (A <-> C) and y (B <-> D) by the
+the motion keeps them (Yang 2017, §4.3): Bennett 1 keeps its mirrors x (A <-> C) and y (B <-> D) by the
 uniqueness of its closed form, so E, F, G, H stay coplanar in the plane through E normal to
 n = unit((A - C) x (H - E)), and Bennett 2 is the image of Bennett 1 in that plane (the image of the
 deployed mirror z -> -z, which maps A, B, C, D, ABE, ... onto I, J, K, L, IJE, ...). This closes the four
 RSRS loops exactly for every theta, with no equation left to solve. Hinge angles: the mirror negates
 rotations, so q_I = -q_A, q_J = -q_B, q_K = -q_C, q_L = -q_D.
 
-The path ends at the octahedron, a singular configuration of the whole assembly (digest §2.6 and §7 #2: the
-second-smallest singular value falls linearly to 0 there). [NEW] It is a bifurcation: E = F and G = H, so the
-top pyramid can turn rigidly about the line through them with every hinge frozen (`swing_poses`, exact closure),
-but its faces then cut through the bottom ones for either sign of the turn. Beyond theta_f on the path, B and D,
-A and I, E and F pass through each other (the triangles' edges cross the opposite faces). The cuboctahedron is
-not an end of the Bennett motion (no face crossing up to theta = 180 deg); the seed's transformation starts
-there, so `domain` is [theta_f, theta_d].
+The path ends at the octahedron, a singular configuration of the whole assembly (found here, though Yang 2017, §4.3
+reports none: the second-smallest singular value of the truss falls linearly to 0 there). [NEW] It is a bifurcation: E =
+F and G = H, so the top pyramid can turn rigidly about the line through them with every hinge frozen (`swing_poses`,
+exact closure), but its faces then cut through the bottom ones for either sign of the turn. Beyond theta_f on the path,
+B and D, A and I, E and F pass through each other (the triangles' edges cross the opposite faces). The cuboctahedron is
+not an end of the Bennett motion (no face crossing up to theta = 180 deg); the thesis's transformation starts there, so
+`domain` is [theta_f, theta_d].
 """
 
 import numpy as np
@@ -62,7 +62,7 @@ OCTAHEDRON: dict[str, NDArray[np.float64]] = {
     }.items()
     for name in pair
 }  # fmt: skip
-# (4-8, 4-9): the printed (not unit) R-joint axes, in the digest orientation.
+# (4-8, 4-9): the printed (not unit) R-joint axes, oriented as printed.
 AXES: dict[str, NDArray[np.float64]] = {
     name: np.array(xyz, dtype=float) / 3
     for name, xyz in {
@@ -85,8 +85,8 @@ SPHERICAL: tuple[tuple[str, str, str], ...] = (("E", "ABE", "IJE"), ("F", "BCF",
 SQUARES = ("ABCD", "ILKJ", "AHIE", "BEJF", "CFKG", "DGLH")
 MIRROR_Z = np.diag([1.0, 1.0, -1.0, 1.0])
 COS_ALPHA = 0.4  # (4-25): alpha = arccos 0.4
-K_BENNETT = 1.0 / COS_ALPHA  # tan(theta/2) tan(phi/2), digest §2.1
-THETA_D = 2.0 * np.arctan(2.0 * np.sqrt(5.0))  # (4-28), digest sign: 154.7912 deg
+K_BENNETT = 1.0 / COS_ALPHA  # tan(theta/2) tan(phi/2), eqn 1-18 in this axis orientation
+THETA_D = 2.0 * np.arctan(2.0 * np.sqrt(5.0))  # (4-28), sign of the printed axes: 154.7912 deg
 THETA_F = 2.0 * np.arctan(np.sqrt(5.0) / 4.0)  # (4-41) corrected and (4-42): 58.4119 deg = phi_d
 # Exact volumes for unit edges: cuboctahedron 5 sqrt2 / 3, octahedron sqrt2 / 3 (ch. 4 abstract: 5).
 VOLUME_RATIO = 5.0
@@ -121,9 +121,9 @@ def _reflection(point: NDArray[np.float64], normal: NDArray[np.float64]) -> NDAr
 
 class CuboctahedronOctahedron:
     """
-    Cuboctahedron -> octahedron: 2 Bennett linkages and 4 RSRS loops, 1 DOF (seed 001 ch. 4).
+    Cuboctahedron -> octahedron: 2 Bennett linkages and 4 RSRS loops, 1 DOF (Yang 2017, ch. 4).
 
-    The input is theta = theta_A (rad), Bennett 1's D-H angle at A in the digest orientation (triangle ABE
+    The input is theta = theta_A (rad), Bennett 1's D-H angle at A in the printed axes' orientation (triangle ABE
     relative to DAH about +s_A), from theta_d = 154.7912 deg (cuboctahedron, the reference pose) down to
     theta_f = 58.4119 deg (octahedron); `domain` is (theta_f, theta_d).
     """
@@ -137,7 +137,7 @@ class CuboctahedronOctahedron:
         self.rows: tuple[DHRow, ...] = rows
         self.theta_d, self.phi_d = float(angles[0]), float(angles[1])
         # Link ABE's D-H frame (after Rz(theta_A)) in the deployed world frame: origin at the foot on axis A of
-        # the common normal to axis B (offsets are 0), x along that normal (seed §2.0 steps 1-2).
+        # the common normal to axis B (offsets are 0), x along that normal (D-H convention, Yang 2017, eqn 1-2).
         foot_a = common_normal_foot(points[1], self.dirs[1], points[0], self.dirs[0])
         x = unit(common_normal_foot(points[0], self.dirs[0], points[1], self.dirs[1]) - foot_a)
         self._abe = transform(np.stack([x, np.cross(self.dirs[0], x), self.dirs[0]], axis=1), foot_a)
@@ -211,7 +211,7 @@ class CuboctahedronOctahedron:
         return dict(zip(REVOLUTE, (dt, dp, dt, dp, -dt, -dp, -dt, -dp), strict=True))
 
     def diagonals(self, theta: ArrayLike) -> dict[str, NDArray[np.float64]]:
-        """The distances (m) the seed tracks (digest §2.6): BD, AI, EF (-> 0), AC, EH, BJ (-> sqrt 2)."""
+        """The distances (m) the thesis tracks (Yang 2017, §4.3): BD, AI, EF (-> 0), AC, EH, BJ (-> sqrt 2)."""
         P = self.vertices(theta)
         k = {v: i for i, v in enumerate(NAMES)}
         return {

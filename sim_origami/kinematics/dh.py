@@ -1,4 +1,4 @@
-"""Denavit-Hartenberg loops in the seeds' convention (seed 001 §2.0, seed 000 §1.1).
+"""Denavit-Hartenberg loops in the sources' convention (Yang 2017, eqn 1-2; Feng 2018, eqns 2-1 to 2-5).
 
 T_(i,i+1) = Rz(theta_i) Tz(R_i) Tx(a_(i,i+1)) Rx(alpha_(i,i+1)); the loop closes when the product of
 all rows is the identity. A row holds the constant part (R_i, a_(i,i+1), alpha_(i,i+1)) of joint i.
@@ -53,7 +53,8 @@ class DHKinematics(JointSpaceKinematics):
 
 def dh_from_axes(points: np.ndarray, dirs: np.ndarray) -> tuple[tuple[DHRow, ...], np.ndarray]:
     """
-    D-H rows and joint angles of a closed loop of revolute axes (seed 001 §2.0 procedure).
+    D-H rows and joint angles of a closed loop of revolute axes (Yang 2017, eqns 1-2, 1-3: x_(i+1) along the
+    common normal from z_i to z_(i+1)).
 
     Parameters
     ----------

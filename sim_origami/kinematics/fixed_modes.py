@@ -1,8 +1,8 @@
 """Patterns of flat-foldable vertices held in fixed modes: every crease folds as tan(rho_i/2) = k_i tan(x/2).
 
-On such a branch (seed 003 M6 multipliers chained over the pattern) each fold angle is a fixed tan-half multiple
-of the input x, so the whole pattern folds flat together at x = +-pi. Subclasses set `ratios`: branch name ->
-(n_creases,) multipliers k_i (k_input = 1), in their loop-joint order.
+On such a branch (the mode multipliers of Peng 2018, §3.2.1, chained over the pattern) each fold angle is a fixed
+tan-half multiple of the input x, so the whole pattern folds flat together at x = +-pi. Subclasses set `ratios`: branch
+name -> (n_creases,) multipliers k_i (k_input = 1), in their loop-joint order.
 """
 
 import numpy as np

@@ -1,18 +1,18 @@
-"""Kokotsakis 3x3 meshes of four degree-4 vertices (seed 003 §2.3-2.5; digest M3-M5).
+"""Kokotsakis 3x3 meshes of four degree-4 vertices (Peng 2018, §2.3-2.5).
 
 Mesh. A central quadrilateral with corners A, B, C, D in clockwise order seen from +z, one developable
 degree-4 vertex (a spherical 4R linkage) at each corner, 9 panels (central, four sides, four corners), 4
-inner creases (AB, BC, CD, DA) and 8 outer creases. Each vertex carries the seed's crease numbering 1..4
+inner creases (AB, BC, CD, DA) and 8 outer creases. Each vertex carries Peng 2018's crease numbering 1..4
 (sector alpha_k between creases k and k+1); `MeshVertex.previous` is the crease pointing to the previous
-corner (A's previous is D) and a mirrored vertex (a mirror image placement, seed M3) numbers its creases
-clockwise. Outer creases are named by vertex and seed number (``a3``, ``b4``, ...). Layout (digest M5
-[RECON]): A = (0, 0), crease A->D along +x, |AB| and |BC| given, D where the line from C meets the x axis;
+corner (A's previous is D) and a mirrored vertex (a mirror image placement, Peng 2018, §2.3) numbers its creases
+clockwise. Outer creases are named by vertex and thesis number (``a3``, ``b4``, ...). Layout (reconstructed
+here, [RECON]): A = (0, 0), crease A->D along +x, |AB| and |BC| given, D where the line from C meets the x axis;
 side panels are quadrilaterals and corner panels triangles bounded by outer creases of length `outer`.
 
 Signs (`sim_origami.creases`): rho is the crease's own fold angle, 0 flat, > 0 a valley seen from +z. It is
-the D-H angle theta of seed 003 at every vertex whose numbering runs counter-clockwise (digest §0.3); a
+the D-H angle theta of Peng 2018 at every vertex whose numbering runs counter-clockwise (checked here); a
 mirror image keeps every valley a valley, so a mirrored vertex has the same rho on corresponding creases
-(the seed's "reflection negates the D-H angles" is the clockwise numbering).
+(the thesis's "reflection negates the D-H angles" is the clockwise numbering).
 
 Cases (`example`), each driven by the inner crease AB:
 
@@ -33,11 +33,12 @@ Cases (`example`), each driven by the inner crease AB:
 4. Plane-symmetric case (Path3, eqn 2-19) [RECON]: D and C are mirror images of A and B, the shared creases
    are a2-b2, b3-c3, c2-d2, d1-a1, so the central corners are alpha_12, alpha_23, alpha_23, alpha_12 and a
    planar central panel needs alpha_12 + alpha_23 = 180 deg: an isosceles trapezoid, mirror-symmetric about
-   the plane through the midpoints of DA and BC. The seed's figure vertex is not developable (digest M3), so
+   the plane through the midpoints of DA and BC. The thesis's figure vertex (Fig 2-6, its
+   caption's second alpha34 read as alpha41) is not developable (sectors sum to 33 pi/18), so
    the mesh keeps its alpha_12 = 40 and alpha_41 = 100 deg and takes alpha_23 = 140, alpha_34 = 80 deg.
    Creases 1 and 3 of every vertex are then collinear: a3-DA-d3 and b1-BC-c1 are straight lines across the
-   sheet, which the seed excludes (M5: "more than 1 DOF"). [NEW] Both hold: the mesh moves on one 1-DOF
-   branch with every vertex alike (odd1, A = B = C = D in rho, which is A = B, C = D = -A in the seed's D-H
+   sheet, which the thesis excludes (§2.5: "more than 1 DOF"). [NEW] Both hold: the mesh moves on one 1-DOF
+   branch with every vertex alike (odd1, A = B = C = D in rho, which is A = B, C = D = -A in the thesis's D-H
    angles), and on a 2-DOF family that folds the two straight lines alone (rho_AB = 0 on it, mobility 2
    everywhere on it); the two meet at the flat state (`straight_lines`).
 
@@ -87,11 +88,11 @@ class MeshVertex:
     Attributes
     ----------
     alpha : (4,) float
-      Sector angles (rad) in the seed's numbering: alpha[k - 1] lies between creases k and k + 1.
+      Sector angles (rad) in the thesis's numbering: alpha[k - 1] lies between creases k and k + 1.
     previous : int
-      Seed number (1-4) of the crease pointing to the previous corner (A -> D, B -> A, C -> B, D -> C).
+      Thesis number (1-4) of the crease pointing to the previous corner (A -> D, B -> A, C -> B, D -> C).
     mirrored : bool
-      True when the seed numbering runs clockwise in the flat sheet (a mirror-image placement).
+      True when the thesis numbering runs clockwise in the flat sheet (a mirror-image placement).
     """
 
     alpha: tuple[float, float, float, float]
@@ -100,12 +101,12 @@ class MeshVertex:
 
     @property
     def next(self) -> int:
-        """Seed number of the crease pointing to the next corner (A -> B, ...)."""
+        """Thesis number of the crease pointing to the next corner (A -> B, ...)."""
         return (self.previous - 2) % 4 + 1 if self.mirrored else self.previous % 4 + 1
 
     @property
     def outer(self) -> tuple[int, int]:
-        """Seed numbers of the two outer creases, counter-clockwise from the crease to the next corner."""
+        """Thesis numbers of the two outer creases, counter-clockwise from the crease to the next corner."""
         step = -1 if self.mirrored else 1
         return ((self.next - 1 + step) % 4 + 1, (self.next - 1 + 2 * step) % 4 + 1)
 
@@ -133,7 +134,7 @@ class MeshVertex:
 
 
 def example(case: int) -> tuple[MeshVertex, MeshVertex, MeshVertex, MeshVertex]:
-    """The four vertices A, B, C, D of seed case 1, 2 or 3 (module docstring)."""
+    """The four vertices A, B, C, D of case 1, 2 or 3 (module docstring)."""
     generic = tuple(np.array([90.0, 70.0, 60.0, 140.0]) * DEG)  # eqn 2-34
     if case == 1:
         return tuple(MeshVertex(generic, k) for k in (1, 2, 3, 4))
@@ -225,7 +226,7 @@ def crease_pattern(
         raise ParameterError(f"outer crease length {outer:g} m; it must be positive")
     points = corners(vertices, ab, bc)
     xy = [tuple(p) for p in points]
-    ends: dict[tuple[int, int], int] = {}  # (vertex index, seed crease) -> pattern vertex of the outer end
+    ends: dict[tuple[int, int], int] = {}  # (vertex index, thesis crease number) -> pattern vertex of the outer end
     outer_creases = []
     for i, (name, v) in enumerate(zip(CORNERS, vertices, strict=True)):
         d = points[(i - 1) % 4] - points[i]
@@ -291,7 +292,7 @@ def _solvers(vertices: tuple[MeshVertex, ...]) -> tuple[Vertex4, ...]:
 def _chain(
     solvers: tuple[Vertex4, ...], vertices: tuple[MeshVertex, ...], branches: tuple[str, ...], x: NDArray
 ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-    """Vertex fold angles (4, n, 4), seed numbering, solved in turn from x = rho_AB; valid (n,)."""
+    """Vertex fold angles (4, n, 4), thesis numbering, solved in turn from x = rho_AB; valid (n,)."""
     rho = np.full((4, x.size, 4), np.nan)
     valid = np.ones(x.size, dtype=bool)
     value = x
@@ -348,7 +349,7 @@ class Kokotsakis(JointSpaceKinematics):
     Parameters
     ----------
     vertices : 4 MeshVertex
-      Vertices A, B, C, D (`example` gives the seed's cases).
+      Vertices A, B, C, D (`example` gives the thesis's cases).
     ab, bc, outer : float
       Central side lengths |AB|, |BC| and the outer crease length (m).
 
@@ -368,7 +369,7 @@ class Kokotsakis(JointSpaceKinematics):
         self.creases = crease_names(self.vertices)
         self.joint_names = tuple(f"rho{c}" for c in self.creases)
         self._solvers = _solvers(self.vertices)
-        # each crease's (vertex index, seed number) it is read from; DA from A (the loop's end is D)
+        # each crease's (vertex index, thesis number) it is read from; DA from A (the loop's end is D)
         first, second, third = self.vertices[:3]
         inner = ((0, first.next), (1, second.next), (2, third.next), (0, first.previous))
         self._source = inner + tuple((i, k) for i, v in enumerate(self.vertices) for k in v.outer)
@@ -425,7 +426,7 @@ class Kokotsakis(JointSpaceKinematics):
 
     def vertex_folds(self, branch: str, x: ArrayLike) -> NDArray[np.float64]:
         """
-        Fold angles (n, 4, 4) of vertices A, B, C, D (axis 1) in their seed numbering (axis 2), rad.
+        Fold angles (n, 4, 4) of vertices A, B, C, D (axis 1) in their thesis numbering (axis 2), rad.
 
         Raises
         ------

@@ -1,17 +1,17 @@
-"""Asymmetric Miura vertex (seed 002, Kamrava et al.; digest seed002_004.md part A).
+"""Asymmetric Miura vertex (Kamrava et al. 2021).
 
 Paper frame: vertex at the origin, flat in the XY plane. Spinal creases a = (1, 0, 0) (free) and
 c = (-1, 0, 0); peripheral creases b at angle alpha1 and d at -alpha2. The input theta tilts the
-two panels that contain c by +theta and -theta about X, so the fold at c is 2 theta (seed 002
-eqns 9-10). Outputs: phi = atan2(a_z, a_x) and psi = atan2(a_y, a_x), projection angles of the
+two panels that contain c by +theta and -theta about X, so the fold at c is 2 theta (eqns
+9-10). Outputs: phi = atan2(a_z, a_x) and psi = atan2(a_y, a_x), projection angles of the
 unit crease a (eqns 38-39), and the fold angles rho_a, rho_b, rho_c, rho_d in the convention of
 `sim_origami.conventions` (creases a, b, c, d = creases 1, 2, 3, 4 of a degree-4 vertex with
 sectors alpha1, pi - alpha1, pi - alpha2, alpha2; rho > 0 a valley seen from +z).
 
-Corrections applied (digest A.3, A.4): K3 has squares, (K2/cos)^2 + (K1/sin)^2 (eqn 24 is
-misprinted); psi uses atan2 (the printed arctan jumps by pi once f_x < 0, e.g. 50/80 deg);
-the fold limit uses tan(min(alpha))/tan(max(alpha)) (eqn 40 holds only for alpha1 <= alpha2).
-The scaled vector f = (K3 + 1) a is multiplied here by sin^2 cos^2 theta, which leaves the angles
+Corrections applied (made here): K3 has squares, (K2/cos)^2 + (K1/sin)^2 (eqn 24 is printed without them, eqn 23 has
+them; with them phi and psi match two independent numerical solutions to 1e-13 rad); psi uses atan2 (the printed arctan
+jumps by pi once f_x < 0, e.g. 50/80 deg); the fold limit uses tan(min(alpha))/tan(max(alpha)) (eqn 40 holds only for
+alpha1 <= alpha2). The scaled vector f = (K3 + 1) a is multiplied here by sin^2 cos^2 theta, which leaves the angles
 unchanged and removes the 1/sin theta singularity, so theta = 0 gives phi = psi = 0 exactly.
 
 Branches: 'miura' (a_x = (K3 - 1)/(K3 + 1), the paper's branch; crease a folds opposite to b, c, d)
@@ -64,7 +64,7 @@ def spinal_crease(alpha1: float, alpha2: float, theta: ArrayLike) -> NDArray[np.
 
 
 def fold_angles_from_creases(a: NDArray, b: NDArray, d: NDArray) -> NDArray[np.float64]:
-    """Fold angles (n, 4) of creases a, b, c, d from the panel normals (digest A.3)."""
+    """Fold angles (n, 4) of creases a, b, c, d from the panel normals (signed angles between them)."""
     c = np.broadcast_to([-1.0, 0.0, 0.0], a.shape)
     n_ab, n_bc, n_cd, n_da = (
         unit(np.cross(a, b)),
@@ -153,7 +153,7 @@ class MiuraVertex(Kinematics):
                     "lock",
                     sign * self.theta_limit,
                     ("miura",),
-                    f"crease {crease} folds flat (seed 002 eqn 40)",
+                    f"crease {crease} folds flat (Kamrava et al. 2021, eqn 40)",
                 )
             )
             events.append(Event("lock", sign * np.pi / 2, ("straight",), "crease c folds flat (rho_c = pi)"))

@@ -7,7 +7,7 @@ is the parallelogram with lower-left corner (i, j).
 
 Every interior vertex has the creases up, left, down, right (counter-clockwise) with sectors
 (gamma, pi - gamma, pi - gamma, gamma) in even columns and (pi - gamma, gamma, gamma, pi - gamma) in odd ones:
-flat-foldable, folding in the seed's mode S (seed 003 M6: rho_down = -rho_up, rho_right = rho_left) with the
+flat-foldable, folding in the mode S of Peng 2018, §3.2.1 (rho_down = -rho_up, rho_right = rho_left) with the
 tan-half multiplier m = tan(rho_left/2) / tan(rho_up/2) of `vertex4.flat_foldable_multipliers` (even
 columns; the odd columns' is -m). Propagating along the lines gives the closed form of the whole sheet
 in the input x = rho of the vertical crease above vertex (i0, j0), the interior vertex nearest the centre with

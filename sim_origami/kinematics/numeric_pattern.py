@@ -8,9 +8,11 @@ with k driven creases (the inputs) moved along a path in their space. Two ways t
   folds flat; the input x is the driven crease's angle;
 - directed: anything else (several inputs, frames, a state with NaN (free) entries, creases at +-180 deg, a state
   off the rigid path, M/V letters only): the inputs move from flat along a straight line to the state's inputs
-  (or through the frames' inputs), and the trace goes as far as the rigid motion does. It stops at the path's
-  end, at a stall (no rigid configuration beyond), where a crease reaches +-(pi - LOCK_MARGIN), or, with
-  `signs`, where a crease would take the other sign than its M/V letter. With one input x is its angle;
+  (or through the frames' inputs; from the first frame, back to flat and on, when it is an exact rigid state),
+  and the trace goes as far as the rigid motion does. It stops at the path's end, at a stall (no rigid
+  configuration beyond), where a crease reaches +-(pi - LOCK_MARGIN), with `signs` where a crease would take the
+  other sign than its M/V letter, or at the first self-contact of two faces (`self_contact`, zero thickness).
+  With one input x is its angle;
   with several, the arc length (rad) along the inputs' path from flat.
 
 `evaluate` polishes an interpolated guess with the solver at each input, so values close the loops to the
@@ -33,6 +35,7 @@ from ..creases import CreasePattern
 from ..errors import ParameterError
 from ..path import PathStop, Polyline, TracedPath, correct, trace
 from .base import Branch, Event, JointSpaceKinematics
+from .self_contact import SelfContact
 
 BRANCH = "through-target"
 # Patterns with more creases than this solve with sparse normal equations (16 x 16 Miura, 480 creases: a corrector
@@ -92,10 +95,13 @@ class PatternPath(JointSpaceKinematics):
     target : (n_creases,) float, optional
       A folded state (rad); NaN entries are free. Not needed with `frames` or `signs`.
     frames : (n_frames, n_creases) float, optional
-      States the motion passes through in turn (NaN free): the inputs move from flat through theirs.
+      States the motion passes through in turn (NaN free): the inputs move from flat through theirs, traced from
+      the first folded frame when it closes with the inputs held (`_frame_anchor`).
     signs : (n_creases,) float, optional
       M/V letters as -1/+1 (0: free): the trace keeps each crease on its letter's side and, without a target,
       heads for +-pi in every driven crease.
+    contact : bool
+      Stop each trace at the first self-contact of two faces (default); False traces through it.
     """
 
     def __init__(
@@ -106,6 +112,7 @@ class PatternPath(JointSpaceKinematics):
         *,
         frames: ArrayLike | None = None,
         signs: ArrayLike | None = None,
+        contact: bool = True,
     ):
         names = [c.name for c in pattern.creases]
         inputs = (inputs,) if isinstance(inputs, str) else tuple(inputs)
@@ -121,6 +128,7 @@ class PatternPath(JointSpaceKinematics):
         self.input_index = int(self.driven[0])
         self.input_name = f"rho_{inputs[0]}" if len(inputs) == 1 else "s (arc length of the inputs' path, rad)"
         self._loops = replace(pattern.loop_system(lock_flat(pattern)), sparse=len(names) > SPARSE_FROM)
+        self._contact = SelfContact(pattern) if contact else None
         for k in self.driven:
             if pattern.creases[k].assignment == "F":
                 raise ParameterError(f"input crease {names[k]!r} is an F crease (kept flat): it cannot be driven")
@@ -182,7 +190,7 @@ class PatternPath(JointSpaceKinematics):
         span = abs(path.s[-1] - path.s[0])
         return trace(self._loops, q0, self.driven, path, lower=self.lower, upper=self.upper, first_step=first,
                      max_step=MAX_STEP, min_step=STALL_STEP * span, tol=CLOSE_TOL,
-                     names=tuple(c.name for c in self.pattern.creases))  # fmt: skip
+                     names=tuple(c.name for c in self.pattern.creases), stop_when=self._contact)  # fmt: skip
 
     def _trace_anchored(self, q_target: NDArray) -> None:
         x = self.target_input = float(q_target[self.input_index])
@@ -244,20 +252,53 @@ class PatternPath(JointSpaceKinematics):
         path = Polyline.through(self._knots())
         span = abs(path.s[-1] - path.s[0])
         s1 = path.s[0] + np.sign(path.s[-1] - path.s[0]) * FIRST_STEP * min(span, abs(path.s[1] - path.s[0]))
-        traced = trace(self._loops, self._start(path, s1), self.driven, path, s0=s1, lower=self.lower,
-                       upper=self.upper, first_step=FIRST_STEP * span, max_step=MAX_STEP,
-                       min_step=STALL_STEP * span, tol=CLOSE_TOL, names=tuple(c.name for c in self.pattern.creases),
-                       previous=(path.s[0], np.zeros(len(self.joint_names))))  # fmt: skip
+        names = tuple(c.name for c in self.pattern.creases)
+        anchor = self._frame_anchor(path)
+        if anchor is None:
+            parts = [trace(self._loops, self._start(path, s1), self.driven, path, s0=s1, lower=self.lower,
+                           upper=self.upper, first_step=FIRST_STEP * span, max_step=MAX_STEP,
+                           min_step=STALL_STEP * span, tol=CLOSE_TOL, names=names,
+                           previous=(path.s[0], np.zeros(len(self.joint_names))), stop_when=self._contact)]  # fmt: skip
+        else:  # from the first frame back to near flat, and on through the others
+            s_frame, q_frame = anchor
+            parts = [trace(self._loops, q_frame, self.driven, path, s0=s_frame, s_end=s_end, lower=self.lower,
+                           upper=self.upper, first_step=FIRST_STEP * span, max_step=MAX_STEP,
+                           min_step=STALL_STEP * span, tol=CLOSE_TOL, names=names, stop_when=self._contact)
+                     for s_end in (s1, path.s[-1])]  # fmt: skip
+        traced = parts[-1]
         self.path = path
-        self.stops = [traced.stop]
-        self.rank_events = list(traced.events)
-        order = np.argsort(traced.s)
-        self.s_nodes, self.nodes, self.mobility = traced.s[order], traced.q[order], traced.mobility[order]
+        self.stops = [p.stop for p in parts]
+        self.rank_events = [e for p in parts for e in p.events]
+        s = np.concatenate([parts[0].s, *(p.s[1:] for p in parts[1:])])
+        q = np.vstack([parts[0].q, *(p.q[1:] for p in parts[1:])])
+        mobility = np.concatenate([parts[0].mobility, *(p.mobility[1:] for p in parts[1:])])
+        order = np.argsort(s)
+        self.s_nodes, self.nodes, self.mobility = s[order], q[order], mobility[order]
         self.target_gap = np.nan
         self.frame_distances = self._frame_distances() if self.frames is not None else []
         if self.target is not None and traced.stop.kind == "end":
             known = np.isfinite(self.target)
             self.target_gap = float(np.max(np.abs(traced.q[-1][known] - self.target[known]), initial=0.0))
+
+    def _frame_anchor(self, path: Polyline) -> tuple[float, NDArray] | None:
+        """
+        (its parameter, the closed state) of the first folded frame, closed with the inputs held, when it is an
+        exact rigid state (every angle given, within TARGET_TOL of the closed one, inside the bounds); else None.
+        Traced from flat instead, the inputs alone may pick another branch at flat, a branch point (the thick
+        waterbomb cell driven by e1 did, 0.79 rad from its frames).
+        """
+        if self.frames is None:
+            return None
+        folded = [f for f in self.frames if np.max(np.abs(f[self.driven])) > 0]
+        if not folded or not np.all(np.isfinite(folded[0])) or np.max(np.abs(folded[0])) >= np.pi - LOCK_MARGIN:
+            return None
+        fixed = np.zeros(len(self.joint_names), dtype=bool)
+        fixed[self.driven] = True
+        q, r, _ = correct(self._loops, folded[0].copy(), fixed, CLOSE_TOL, max_iter=200)
+        if r > 100 * CLOSE_TOL or np.max(np.abs(q - folded[0])) > TARGET_TOL or np.any(q < self.lower) \
+                or np.any(q > self.upper):  # fmt: skip
+            return None
+        return float(path.parameter_of(q[self.driven][None])[0]), q
 
     def _frame_distances(self) -> list[dict]:
         """Each frame against the rigid motion through the frames' inputs: its closure residual (its free entries
@@ -295,7 +336,7 @@ class PatternPath(JointSpaceKinematics):
         if self.open_chain:
             parts.append("an open chain: no closed loop, the closure check is empty")
         for e in self.events():
-            if e.kind in ("stall", "lock", "branch-point", "off-target"):
+            if e.kind in ("stall", "lock", "contact", "branch-point", "off-target"):
                 parts.append(f"{e.kind} at {e.input:.6g} rad: {e.detail}")
         return "; ".join(parts)
 
@@ -315,16 +356,24 @@ class PatternPath(JointSpaceKinematics):
                        (lo, hi)),)  # fmt: skip
 
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        return self.evaluate_held(branch, x, self.driven_values(x))
+
+    def evaluate_held(
+        self, branch: str, x: ArrayLike, held: ArrayLike
+    ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        """The closed configurations (n, n_creases) with the inputs at `held` (n, k) (rad), from the trace's
+        state at x (n,) as the guess; NaN where x is off the traced domain."""
         x, valid = self.in_domain(branch, x)
-        key = x.tobytes()  # validation asks for the same inputs several times (path error, branch labels)
+        held = np.asarray(held, dtype=float).reshape(len(x), len(self.driven))
+        key = x.tobytes() + held.tobytes()  # validation asks for the same inputs several times (path error, labels)
         if key not in self._evaluated:
             if len(self._evaluated) >= EVALUATE_MEMO:
                 self._evaluated.pop(next(iter(self._evaluated)))
-            self._evaluated[key] = self._evaluate(x, valid)
+            self._evaluated[key] = self._evaluate(x, valid, held)
         values, valid = self._evaluated[key]
         return values.copy(), valid.copy()
 
-    def _evaluate(self, x: NDArray, valid: NDArray) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    def _evaluate(self, x: NDArray, valid: NDArray, held: NDArray) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
         values = np.full((len(x), len(self.joint_names)), np.nan)
         fixed = np.zeros(len(self.joint_names), dtype=bool)
         fixed[self.driven] = True
@@ -332,12 +381,13 @@ class PatternPath(JointSpaceKinematics):
             return values, valid
         guesses = np.stack([np.interp(x[valid], self.s_nodes, self.nodes[:, j]) for j in range(self.nodes.shape[1])],
                            axis=-1)  # fmt: skip
-        guesses[:, self.driven] = self.driven_values(x[valid])
+        guesses[:, self.driven] = held[valid]
         if not self._loops.n_residuals:
             values[valid] = guesses
         elif self._loops.sparse:
             if self.path_is_input and len(self.driven) == 1:
                 guesses = self._hermite(x[valid], ~fixed)
+                guesses[:, self.driven] = held[valid]
             values[valid] = self._polish_chord(x[valid], guesses, fixed)
         else:
             for k, guess in zip(np.flatnonzero(valid), guesses, strict=True):
@@ -438,7 +488,7 @@ class PatternPath(JointSpaceKinematics):
         for stop in self.stops:
             if stop.kind == "end":
                 continue
-            what = {"stall": "stall", "bound": "lock", "bifurcation": "branch-point"}[stop.kind]
+            what = {"stall": "stall", "bound": "lock", "bifurcation": "branch-point", "contact": "contact"}[stop.kind]
             detail = stop.detail
             if stop.kind == "bound" and stop.joint is not None:
                 j = stop.joint

@@ -74,7 +74,7 @@ class RSSR:
 
     @property
     def x2(self) -> float:
-        """a1 / a2, the seed's second design variable (Sec. 3.5)."""
+        """a1 / a2, Yang 2017's second design variable (§3.5)."""
         return self.a1 / self.a2
 
     @property
@@ -84,7 +84,7 @@ class RSSR:
         return acute if self.root == 1 else np.pi - acute
 
     @property
-    def K(self) -> float:  # noqa: N802  (the seed's K of (3-6a), as in kinematics.bennett)
+    def K(self) -> float:  # noqa: N802  (Yang 2017's K of (3-6a), as in kinematics.bennett)
         """tan(theta1/2) tan(theta2/2) on this root: (cos alpha + root sqrt(x2^2 - sin^2 alpha)) / (1 - x2)."""
         r = np.sqrt(self.x2**2 - np.sin(self.alpha) ** 2)
         return float((np.cos(self.alpha) + self.root * r) / (1 - self.x2))

@@ -1,10 +1,10 @@
-"""Square-twist pattern: 4 flat-foldable vertices round a central square (seed 003 §3.3, digest M9; M6, M7).
+"""Square-twist pattern: 4 flat-foldable vertices round a central square (Peng 2018, §3.3; §3.2).
 
-Pattern (digest M9, the Q unit of M7 with beta = delta = pi/2). A central square of side `side` with corners
-A, B, C, D counter-clockwise, centred at the origin of the flat sheet (normal +z). Every corner is a
-degree-4 vertex with sectors (alpha, pi/2, pi - alpha, pi/2), pi/2 < alpha < pi; the twist angle, between
-each pleat and the square edge next to it, is gamma = pi - alpha. Vertex-local creases, counter-clockwise,
-at vertex k = 0..3 (A..D; directions from +x):
+Pattern (Peng 2018, §3.3: the Q unit of §3.2.2 with beta = delta = pi/2, eqn 3-29). A central square of side `side` with
+corners A, B, C, D counter-clockwise, centred at the origin of the flat sheet (normal +z). Every corner is a degree-4
+vertex with sectors (alpha, pi/2, pi - alpha, pi/2), pi/2 < alpha < pi; the twist angle, between each pleat and the
+square edge next to it, is gamma = pi - alpha. Vertex-local creases, counter-clockwise, at vertex k = 0..3 (A..D;
+directions from +x):
 
 * crease 2: the square edge to the next corner, at 90k deg (A2 = AB, B2 = BC, C2 = CD, D2 = DA);
 * crease 3: the square edge to the previous corner, at 90k + 90 deg (A3 = DA, B3 = AB, ...);
@@ -17,7 +17,7 @@ pleat x pleat square between the two pleats of vertex v. Nine faces, twelve crea
 Angles are fold angles rho (`sim_origami.creases`: 0 flat, > 0 a valley seen from +z), a crease's rho
 the same at both its vertices. The input is x = rho_AB in [-pi, pi].
 
-Closed form (digest M6 eqn 3-3, M9). Each vertex folds in mode S (rho3 = -rho1, rho4 = rho2) or mode
+Closed form (Peng 2018, eqns 3-3 and 3-29 to 3-31). Each vertex folds in mode S (rho3 = -rho1, rho4 = rho2) or mode
 C (rho3 = rho1, rho4 = -rho2), linear in t = tan(rho/2) with the multipliers of
 `vertex4.flat_foldable_multipliers`. Round the square, t(crease 3) = m23 t(crease 2) with
 
@@ -37,11 +37,11 @@ classes under the pattern's 90 deg rotation (thesis T1-T4, which of ours is T1 i
 Branches of `SquareTwist` are the six rigid mode strings, named by the mode of each vertex A, B, C, D:
 all cross at the flat state (a bifurcation) and end where every crease folds flat at once (x = +-pi).
 
-Metamaterial unit (digest M9, eqns 3-30 to 3-32): theta and phi are the fold angles of creases 2 and 3
+Metamaterial unit (Peng 2018, eqns 3-30 to 3-32): theta and phi are the fold angles of creases 2 and 3
 of one mode-C vertex (tan(phi/2) = m_C tan(theta/2), eqn 3-31), unit dimensions a, b, c.
-CORRECTION [NEW] of the digest's peak-height inputs: H peaks where nu_hl changes sign, at theta =
-1.299533 (alpha = 150 deg; digest 1.2999, where nu_hl = -8.9e-4 already) and 0.955317 = arccos(1/sqrt(3))
-(alpha = 120 deg; digest 0.9548, where nu_hl = +7.3e-4 still); 1.143718 at alpha = 135 deg agrees.
+[NEW] H peaks where nu_hl changes sign, at theta = 1.299533 (alpha = 150 deg), 1.143718 (135 deg) and
+0.955317 = arccos(1/sqrt(3)) (120 deg), solved here; coarser sampled values, 1.2999 (150 deg) and
+0.9548 (120 deg), miss it: nu_hl = -8.9e-4 and +7.3e-4 there.
 """
 
 from dataclasses import dataclass
@@ -75,7 +75,7 @@ def _check_alpha(alpha: float) -> None:
     if not np.pi / 2 < alpha < np.pi:
         raise ParameterError(
             f"alpha = {np.rad2deg(alpha):.6g} deg; the square twist needs 90 < alpha < 180 deg "
-            "(twist angle 180 - alpha in (0, 90), digest M9)"
+            "(twist angle 180 - alpha in (0, 90), Peng 2018, §3.3)"
         )
 
 
@@ -92,7 +92,7 @@ def check_modes(modes: str) -> None:
     if modes.count("S") % 2:
         raise ParameterError(
             f"modes {modes!r} put {modes.count('S')} vertices in mode S; M/V signs close round the central "
-            "square only with an even number (digest M9)"
+            "square only with an even number (derived here)"
         )
 
 
@@ -102,7 +102,7 @@ def vertex_sectors(alpha: float) -> NDArray[np.float64]:
 
 
 def edge_multipliers(alpha: float) -> dict[str, float]:
-    """m23 = tan(rho3/2) / tan(rho2/2) of a vertex in mode 'C' and in mode 'S' (digest M9)."""
+    """m23 = tan(rho3/2) / tan(rho2/2) of a vertex in mode 'C' and in mode 'S' (Peng 2018, §3.3)."""
     return {
         "C": float(-np.cos((np.pi / 2 - alpha) / 2) / np.cos((np.pi / 2 + alpha) / 2)),
         "S": float(np.sin((np.pi / 2 - alpha) / 2) / np.sin((np.pi / 2 + alpha) / 2)),
@@ -110,7 +110,7 @@ def edge_multipliers(alpha: float) -> dict[str, float]:
 
 
 def loop_gain(alpha: float, modes: str) -> float:
-    """K = m_C^#C m_S^#S: tan(rho_AB/2) after one turn round the square over its start value (digest M9)."""
+    """K = m_C^#C m_S^#S: tan(rho_AB/2) after one turn round the square over its start value (derived here)."""
     m = edge_multipliers(alpha)
     return float(np.prod([m[mode] for mode in modes]))
 

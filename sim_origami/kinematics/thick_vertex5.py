@@ -1,10 +1,10 @@
-"""Thick-panel five-crease symmetric vertex = Myard linkage (seed 003 §4.3, digest M12).
+"""Thick-panel five-crease symmetric vertex = Myard linkage (Peng 2018, §4.3).
 
 Sectors (eqn 4-10): alpha12 = alpha51 = alpha, alpha23 = alpha45 = pi/2, alpha34 = pi - 2 alpha, 0 < alpha < pi/2.
 Hinge k lies on the line through (0, 0, h_k) along its flat crease direction d_k with
-h = (0, a12, a12 + a23, a12 + a23, a12) (digest M12 [RECON]): hinges 3 and 4 at one height (a34 = 0) and
+h = (0, a12, a12 + a23, a12 + a23, a12) (reconstructed here [RECON]): hinges 3 and 4 at one height (a34 = 0) and
 a12 = a23 sin(alpha) (eqn 4-25c); b = a23 is the thickness scale. Any other a12 leaves the 5R rigid
-(Kutzbach 5 - 6 = -1): seed 003 case 15's a12 = 0.7 misses closure by 0.2 at rho1 = pi/2.
+(Kutzbach 5 - 6 = -1): with alpha = pi/6 (Fig 4-8) and a23 = 1, a12 = 0.7 misses closure by 0.2 at rho1 = pi/2.
 
 Closed form. The hinge angles q are the fold angles of the zero-thickness vertex's plane-symmetric motion
 (eqn 4-11: rho4 = rho3, rho5 = rho2), verified by the PoE closure. With the corrected (4-20)/(4-21b),
@@ -20,9 +20,10 @@ smooth on rho1 in [-pi, pi], where crease 1 folds flat (panels 5 and 1 face to f
 odd in rho1, so the mirrored heights -h close the same angles. Unlike the zero-thickness vertex (2 DOF,
 instantaneous mobility 3 at flat), the thick loop has mobility 1 everywhere: no bifurcation at flat.
 
-Seed 003's printed (4-20) (t2/(2 t1) for 2 t2/t1) and the middle signs of (4-23c)/(4-28c) are wrong, and
-(4-26b,c) hold only with alpha the sector angle alpha12 (not alpha12^My = pi - alpha12); the tests prove each
-by a closure residual. The Myard of (4-24) is seed 001's eqn 1-19 with alpha12 = pi - alpha.
+Corrected here: Peng 2018's printed (4-20) (t2/(2 t1) for 2 t2/t1; (4-21b) with 2 t2/t1 closes to 4e-13) and the middle
+signs of (4-23c)/(4-28c) are wrong ((4-23c) as printed: error 6.0, corrected 5e-13), and (4-26b,c) hold only with alpha
+the sector angle alpha12 (not alpha12^My = pi - alpha12); the tests prove each by a closure residual. The Myard of
+(4-24) is Yang 2017's eqn 1-19 with alpha12 = pi - alpha.
 """
 
 import numpy as np
@@ -44,7 +45,7 @@ def sectors(alpha: float) -> NDArray[np.float64]:
 
 
 def hinge_heights(a12: float, a23: float) -> NDArray[np.float64]:
-    """Heights (5,) of the hinge lines above the sheet (m), digest M12."""
+    """Heights (5,) of the hinge lines above the sheet (m), reconstructed here."""
     return np.array([0.0, a12, a12 + a23, a12 + a23, a12])
 
 
@@ -109,7 +110,7 @@ class ThickVertex5(JointSpaceKinematics):
             residual = float(self.loop_system().residual_norm(q)[0])
             raise AssemblyError(
                 f"this thick five-crease vertex cannot move as a Myard linkage: a12 = {self.a12:.9g} m but "
-                f"a23 sin(alpha) = {want:.9g} m (seed 003 eqn 4-25c); the loop misses closure by {residual:.3g} "
+                f"a23 sin(alpha) = {want:.9g} m (Peng 2018, eqn 4-25c); the loop misses closure by {residual:.3g} "
                 "at rho1 = pi/2"
             )
 

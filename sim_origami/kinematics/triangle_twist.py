@@ -1,6 +1,6 @@
-"""Generalised triangle-twist origami: three flat-foldable vertices round a triangle (seed 000 §3.2-3.3, digest M2).
+"""Generalised triangle-twist origami: three flat-foldable vertices round a triangle (Feng 2018, §3.2-3.3).
 
-Pattern (digest M2 "Pattern geometry", a reconstruction that reproduces the seed's D-H data of §3.4). The flat
+Pattern (reconstructed here; it reproduces Feng 2018's D-H data of §3.4 exactly). The flat
 sheet lies in the XY plane (normal +z), lengths in metres: A = (0, 0), B = (d, 0), C = d sin(beta) /
 sin(alpha + beta) (cos(alpha), sin(alpha)); interior angles alpha, beta, pi - alpha - beta. Each corner is a
 degree-4 vertex with creases z1..z4 counter-clockwise: z1 and z4 the triangle edges (A: AC, AB; B: BA, BC;
@@ -12,30 +12,30 @@ the pleat panels P_AB, P_BC, P_CA (between a triangle edge and the pleats next t
 O_A, O_B, O_C (between a vertex's two pleats). Nine creases, three loops.
 
 Angles are fold angles rho (`sim_origami.creases`: 0 flat, > 0 a valley seen from +z); the input is
-x = rho_AB in [-pi, pi]. (The digest's dihedrals are phi = pi - |rho|, so its mu = tan(phi4/2)/tan(phi1/2)
+x = rho_AB in [-pi, pi]. (Feng 2018's dihedrals are phi = pi - |rho|, so its mu = tan(phi4/2)/tan(phi1/2)
 is |tan(rho1/2)/tan(rho4/2)|.)
 
 Closed form. A flat-foldable vertex folds in mode S (rho3 = -rho1, rho4 = rho2) or mode C (rho3 = rho1,
 rho4 = -rho2), linear in t = tan(rho/2) (`vertex4.flat_foldable_multipliers`). Which crease then folds
-opposite to the other three is fixed by the geometry, and is the seed's vertex type (§3.3):
+opposite to the other three is fixed by the geometry, and is Feng 2018's vertex type (§3.3):
 
 * mode C: type P (crease z2 odd) if p < c, type R (z4 odd) if p > c;
 * mode S: type S (z1 odd) if p < pi - c, type Q (z3 odd) if p > pi - c.
 
-(The digest's rule "P: minimum sector at alpha12 or alpha23", etc., is the same condition.) Chaining t round
+(The thesis's rule "P: minimum sector at alpha12 or alpha23", etc., is the same condition.) Chaining t round
 the triangle, AB -> B -> BC -> C -> CA -> A -> AB, multiplies t(AB) by the loop gain K = k_A k_B k_C with
 k = t(z4)/t(z1) of each vertex; |k| = 1/mu. A scheme (a type per vertex, named in the order A, B, C) folds
 rigidly iff K = 1: the signs close with an even number of types R, S (32 of 64 strings) and the magnitudes
 with mu_a mu_b mu_c = 1 (eqn 3-11). Then tan(rho_i/2) = r_i tan(x/2) on every crease, a single branch through
 flat that ends where every crease folds flat at once (x = +-pi). Types P and R have mu > 1, S and Q mu < 1,
 so schemes of only P, R or only S, Q never fold (PPP, PRR, QQQ, QSS); the other 8 of the 12 classes under
-rotation fold for the epsilon of the digest's eqns 3-12 to 3-37.
+rotation fold for the epsilon of the thesis's eqns 3-12 to 3-37.
 
-At the seed's Fig. 3-5 angles (55, 50, 50, 45 deg, epsilon = 35.4368 deg) the rigid scheme is SSP with M/V
-AB, BC, CA = V, M, M, A2, A3 = V, V, B2, B3 = M, M, C2, C3 = V, M: the digest's assignment (5 M / 4 V).
-The seed's PSR example (30, 80, 90, 45 deg) has gamma > alpha, so vertex A is type R, not P: it realises
-RSP, a rotation of PRS, which the formula cannot tell from PSR (mu_r = -mu_p as printed) [NEW; digest §6.14].
-PQQ and QQQ fold 6 M / 3 V (up to a global flip), as the seed's prose says, not 5/4 as its Table 3-1 lists.
+At the thesis's Fig. 3-5 angles (55, 50, 50, 45 deg, epsilon = 35.4368 deg) the rigid scheme is SSP with M/V
+AB, BC, CA = V, M, M, A2, A3 = V, V, B2, B3 = M, M, C2, C3 = V, M, as derived here from the vertex types (5 M / 4 V).
+The thesis's PSR example (30, 80, 90, 45 deg) has gamma > alpha, so vertex A is type R, not P: it realises
+RSP, a rotation of PRS, which the formula cannot tell from PSR (mu_r = -mu_p as printed) [NEW].
+PQQ and QQQ fold 6 M / 3 V (up to a global flip), as the thesis's prose says, not 5/4 as its Table 3-1 lists.
 """
 
 from dataclasses import dataclass
@@ -62,15 +62,15 @@ Z1 = {"A": "CA", "B": "AB", "C": "BC"}
 Z4 = {"A": "AB", "B": "BC", "C": "CA"}
 LOOP_ORDER = ("B", "C", "A")
 MODE_OF = {"P": "C", "R": "C", "S": "S", "Q": "S"}
-# The 12 scheme classes under rotation (digest M2 "Schemes"): 8 rigid-foldable, 4 never.
+# The 12 scheme classes under rotation (Feng 2018, §3.3, Fig. 3-8): 8 rigid-foldable, 4 never.
 RIGID_SCHEMES = ("PPQ", "PQQ", "PRS", "PSS", "QRS", "QRR", "PSR", "QSR")
 LOCKED_SCHEMES = ("PPP", "PRR", "QQQ", "QSS")
 SCHEMES = RIGID_SCHEMES + LOCKED_SCHEMES
 # Every sign-consistent type string (32) -> its class: the class name rotated A -> B -> C.
 CLASS_OF = {name[k:] + name[:k]: name for name in SCHEMES for k in range(3)}
 # One realisation per class: (type string at A, B, C; alpha, beta, gamma, delta in deg; epsilon in deg for a
-# locked class, None where the digest's formula gives it). PSS is the seed's Fig. 3-5 (realised as SSP), PRS the
-# seed's "PSR" example (realised as RSP); the others maximise, on a 5 deg grid (angles 20..160), the smallest
+# locked class, None where the thesis's formula gives it). PSS is Feng 2018's Fig. 3-5 (realised as SSP), PRS
+# its "PSR" example (realised as RSP); the others maximise, on a 5 deg grid (angles 20..160), the smallest
 # distance of any vertex from its type boundary, of a pleat angle from 0 or 180 and of the triangle's corners
 # from 20 deg (rigid ones with every |r_i| in [1/6, 6]): 20 deg for PPQ, PQQ, 25 for PPP, QQQ, else >= 50.
 EXAMPLES: dict[str, tuple[str, float, float, float, float, float | None]] = {
@@ -117,7 +117,7 @@ class TwistAngles:
                 if abs(p - bound) < COLLINEAR_TOL:
                     raise ParameterError(
                         f"vertex {v}: pleat angle {np.rad2deg(p):.6g} deg equals {rule} = {np.rad2deg(bound):.6g} deg "
-                        "(corner c); two of its creases are collinear and its M-V type is undefined (digest M2)"
+                        "(corner c); two of its creases are collinear and its M-V type is undefined (Feng 2018, §3.3)"
                     )
 
     def corners_and_pleats(self) -> tuple[tuple[float, float], ...]:
@@ -135,7 +135,8 @@ def vertex_sectors(c: float, p: float) -> NDArray[np.float64]:
 
 
 def vertex_type(c: float, p: float, mode: str) -> str:
-    """Seed type (P, Q, R or S) of a vertex with corner c and pleat p folding in mode 'C' or 'S' (module docstring)."""
+    """Type (P, Q, R or S; Feng 2018, §3.3) of a vertex with corner c and pleat p folding in mode 'C' or 'S'
+    (module docstring)."""
     if mode == "C":
         return "P" if p < c else "R"
     return "S" if p < np.pi - c else "Q"
@@ -149,7 +150,7 @@ def check_types(types: str) -> None:
     if flips % 2:
         raise ParameterError(
             f"scheme {types!r} has {flips} vertices of type R or S; M/V signs close round the triangle only with "
-            "an even number (digest M2: 32 of 64 strings)"
+            "an even number (Feng 2018, §3.3: 32 of 64 strings)"
         )
 
 
@@ -170,7 +171,7 @@ def modes_of(angles: TwistAngles, types: str) -> str:
         raise ParameterError(
             f"vertex {VERTICES[v]} (corner {np.rad2deg(c):.6g} deg, pleat {np.rad2deg(p):.6g} deg) is type "
             f"{got[v]}, not {types[v]}: in mode {modes[v]} type P needs pleat < corner, R pleat > corner, S "
-            "pleat < 180 - corner, Q pleat > 180 - corner (digest M2 'M-V types per vertex')"
+            "pleat < 180 - corner, Q pleat > 180 - corner (Feng 2018, §3.3)"
         )
     return modes
 
@@ -209,7 +210,7 @@ def assignment(angles: TwistAngles, types: str) -> str:
 
 
 def mu(letter: str, c: float, p: float) -> float:
-    """The seed's mu = tan(phi4/2) / tan(phi1/2) of a vertex of type `letter`, corner c, pleat p (eqns 3-17a-d)."""
+    """Feng 2018's mu = tan(phi4/2) / tan(phi1/2) of a vertex of type `letter`, corner c, pleat p (eqns 3-17a-d)."""
     if letter in "PR":
         value = np.sin((c + p) / 2) / np.sin((c - p) / 2)
     else:
@@ -219,7 +220,7 @@ def mu(letter: str, c: float, p: float) -> float:
 
 def epsilon_formula(types: str, alpha: float, beta: float, gamma: float, delta: float) -> float:
     """
-    Pleat angle epsilon at C (rad, in (-pi, pi)) that makes scheme `types` rigid (digest M2 "Schemes", eqns 3-12
+    Pleat angle epsilon at C (rad, in (-pi, pi)) that makes scheme `types` rigid (Feng 2018, §3.3, eqns 3-12
     to 3-37): mu_c(epsilon) = zeta = 1 / (mu_a mu_b) solved for C's type. Outside (0, pi): no compatible pattern.
     """
     check_types(types)
@@ -235,13 +236,13 @@ def epsilon_formula(types: str, alpha: float, beta: float, gamma: float, delta: 
 
 
 def scheme_class(types: str) -> str:
-    """The digest's name (SCHEMES) of the rotation class of a sign-consistent type string."""
+    """The name (SCHEMES) of the rotation class of a sign-consistent type string."""
     check_types(types)
     return CLASS_OF[types]
 
 
 def example_angles(scheme: str) -> tuple[str, TwistAngles]:
-    """(realised type string, angles) of the EXAMPLES entry of a scheme class; epsilon by the digest's formula."""
+    """(realised type string, angles) of the EXAMPLES entry of a scheme class; epsilon by the thesis's formula."""
     if scheme not in EXAMPLES:
         raise ParameterError(f"unknown scheme {scheme!r}; the classes are {', '.join(SCHEMES)}")
     types, *deg, eps = EXAMPLES[scheme]
@@ -328,7 +329,7 @@ class SchemeVerdict:
     """
     One scheme class at its EXAMPLES realisation: analytic and numeric rigid-foldability verdicts.
 
-    `mu` holds the seed's mu_a, mu_b, mu_c (eqns 3-17); `rigid_analytic` is mu_a mu_b mu_c = 1 (eqn 3-11, to
+    `mu` holds Feng 2018's mu_a, mu_b, mu_c (eqns 3-17); `rigid_analytic` is mu_a mu_b mu_c = 1 (eqn 3-11, to
     GAIN_TOL), which for the locked classes cannot hold for any epsilon (`mixed` False: every mu on one side
     of 1). `rigid_numeric` and `residual` are the sign-held closure of the crease pattern
     (`numeric_pattern.foldable_with_signs`): the largest closed residual when rigid, the stalled one when not.

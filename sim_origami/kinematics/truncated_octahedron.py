@@ -1,11 +1,11 @@
-"""Transformable polyhedra of seed 001: truncated octahedron <-> cube (ch. 5, digest §2.7).
+"""Transformable polyhedra of Yang 2017: truncated octahedron <-> cube (ch. 5).
 
-Frame and units: the seed's (5-1) frame, unit edges (m), origin at the body centre; angles in radians.
+Frame and units: the thesis's (5-1) frame, unit edges (m), origin at the body centre; angles in radians.
 Every position below is given with square A held at its truncated-octahedron pose (the deployed world
 frame), so the deployed coordinates are exactly (5-1) and the cube coordinates equal (5-2) up to one
 rigid motion.
 
-Assembly (1-DOF design, digest §2.7 and §5): 6 rigid squares A..F and 12 rigid bars. Bricard 1 is the
+Assembly (1-DOF design, Yang 2017, §5.3): 6 rigid squares A..F and 12 rigid bars. Bricard 1 is the
 hexagon A1 A2 C1 C2 B1 B2 (links: square A, bar A2C1, square C, bar C2B1, square B, bar B2A1) with R joints
 at its six vertices; Bricard 2 = D1 D2 E1 E2 F1 F2 is its image under the half-turn R2: (x, y, z) ->
 (-y, -x, -z), which maps the squares A, B, C onto E, D, F with the same vertex indices. R joints at A3,
@@ -13,14 +13,15 @@ B3, C3 join squares A, B, C to the bars A3E3, B3F3, C3D3 (axis in the bisecting 
 turned by zeta from the direction to the centre); S joints at E3, F3, D3 and at both ends of the bars
 A4F4, B4D4, C4E4. 15 R + 9 S joints, 18 bodies, 7 loops, 1 DOF.
 
-Bricard axes (digest orientation, corrected printed vectors (5-3), (5-16), (5-17)): odd joints A1, C1, B1
-along O -> vertex; even joints s_C2 = (p, q, r), s_A2 = (r, p, q), s_B2 = (q, r, p) with
-p = (1 - 2 sqrt 2)/2, q = -(sqrt 2 + 1)/2, r = -3/2. The seed's §2.0 procedure gives a threefold-symmetric
+Bricard axes (the thesis's vectors, oriented as listed, with (5-3), (5-16), (5-17) corrected here: its s_B1 is
+OB2, and its s_A2, s_B2 have permuted components, which leaves gaps of 1.49 and 0.85 between axes that must meet):
+odd joints A1, C1, B1 along O -> vertex; even joints s_C2 = (p, q, r), s_A2 = (r, p, q), s_B2 = (q, r, p) with
+p = (1 - 2 sqrt 2)/2, q = -(sqrt 2 + 1)/2, r = -3/2. Yang 2017's D-H procedure (eqn 1-2) gives a threefold-symmetric
 Bricard (1-27) with a = 0.713234 m, alpha = 214.7865 deg, R = 0: `BricardThreefold` gives its closed form,
 theta at the odd joints (A1, C1, B1), phi at the even ones, on its 'even-axes-along' branch (phi_d = 147.4964
-deg at theta_d = 34.3147 deg). Angles are D-H joint angles in this axis orientation (seed §2.0).
+deg at theta_d = 34.3147 deg). Angles are D-H joint angles in this axis orientation (eqn 1-2).
 
-Analytic model (digest §2.7 "reduced C3-symmetric model"). The motion keeps the threefold symmetry about
+Analytic model (a reduced C3-symmetric model, derived here). The motion keeps the threefold symmetry about
 the common axis of both Bricards, so it is fixed by the input theta = theta_A (Bricard 1's odd joint angle)
 and three unknowns x = (theta_D, psi, h): Bricard 2's odd joint angle, and the turn psi (rad) and shift h (m)
 of Bricard 2 along Bricard 1's symmetry axis, relative to their deployed relative pose. Three equations
@@ -36,7 +37,7 @@ angle at A3, B3, C3): in cylindrical coordinates about the common axis E3 fixes 
 (`bricard_threefold.bricard_axis`); one chord step from a table dense in the input closes them to rounding.
 
 The path ends at the cube (theta_f = 166.1251 deg: A1 = B1 = C1, Bricard 1 folded, delta2 = 0 in (5-40));
-beyond it the squares pass through each other (the seed's rho < 0).
+beyond it the squares pass through each other (rho < 0, signed here: the thesis does not sign it).
 """
 
 from dataclasses import dataclass
@@ -100,7 +101,7 @@ THREEFOLD = np.array([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
 # Rounding floor (m^2) of the reduced closure's residuals (`TruncatedOctahedronCube._closure`): Newton's method
 # stalls at 3.6e-15 (measured on 1e6 inputs).
 RESIDUAL_FLOOR = 8e-15
-# Exact volumes for unit edges: truncated octahedron 8 sqrt 2, cube 1 (seed 001 ch. 5 abstract: 11.3).
+# Exact volumes for unit edges: truncated octahedron 8 sqrt 2, cube 1 (Yang 2017, ch. 5 abstract: 11.3).
 VOLUME_RATIO = 8.0 * SQ2
 
 
@@ -119,7 +120,7 @@ def bricard_axes() -> tuple[NDArray[np.float64], NDArray[np.float64]]:
 
 def axis_a3(zeta: float) -> NDArray[np.float64]:
     """
-    Unit axis of the R joint at A3 (deployed frame): Rot(unit(A2 - E3), zeta) unit(O - A3) (digest §2.7):
+    Unit axis of the R joint at A3 (deployed frame): Rot(unit(A2 - E3), zeta) unit(O - A3) (Yang 2017, §5.3):
     zeta = 0 points to the centre, positive zeta right-handed about A2 - E3.
     """
     return rotation(unit(VERTICES["A2"] - VERTICES["E3"]), zeta) @ unit(-VERTICES["A3"])
@@ -170,14 +171,15 @@ def volume(points: ArrayLike) -> NDArray[np.float64]:
 @dataclass(frozen=True)
 class PathOutcome:
     """
-    How the reduced model's path leaves the truncated octahedron for one design (digest §2.7 zeta study).
+    How the reduced model's path leaves the truncated octahedron for one design (the zeta study of Yang 2017,
+    §5.5, redone here).
 
     `kind` names the first of these events along the path (pseudo-arclength from the deployed state with
     d theta > 0): 'cube' (rho1 and rho2 reach 0 together), 'rho1-negative' (Bricard 1 folds first, theta =
     theta_f with rho2 > 0: going on passes squares A, B, C through each other), 'rho2-negative' (Bricard 2 folds
     first: D, E, F), 'loop' (the path closes back on the truncated octahedron without a fold) or 'no-end' (none
     within `max_length`, or a Bricard angle reaches +-pi, the end of its closed form). Angles in radians, signed
-    rho as in digest §7 item 7 (negative beyond the Bricard's fold). `theta`, `rho1`, `rho2`: at that event;
+    rho (signed here, negative beyond the Bricard's fold). `theta`, `rho1`, `rho2`: at that event;
     `turns`: the inputs theta at which theta turned back before it (the input A1 = theta - theta_d cannot drive
     the path past the first); `rho1_min`, `rho1_max`: extremes of rho1 before the event (> 120 deg:
     over-opening); `gap_max`: largest |rho1 - rho2|.
@@ -211,13 +213,13 @@ def _dot(a: tuple | NDArray, b: tuple | NDArray) -> NDArray[np.float64]:
 
 class TruncatedOctahedronCube:
     """
-    Truncated octahedron -> cube, 1-DOF design with R joints at A3, B3, C3 (seed 001 ch. 5).
+    Truncated octahedron -> cube, 1-DOF design with R joints at A3, B3, C3 (Yang 2017, ch. 5).
 
     Parameters
     ----------
     zeta : float
       Deviation (rad) of the A3 axis from the direction to the centre, in the bisecting plane of angle
-      A2 A3 E3 (digest §2.7); the seed's prototype and the default use 0. Must lie in (-pi/2, pi/2).
+      A2 A3 E3 (Yang 2017, §5.3); the thesis's prototype and the default use 0. Must lie in (-pi/2, pi/2).
 
     The input is theta = theta_A (rad), Bricard 1's odd-joint D-H angle, from theta_d (the truncated
     octahedron) to theta_f (the cube); `domain` is that closed interval.
@@ -227,7 +229,7 @@ class TruncatedOctahedronCube:
         if not (np.isfinite(zeta) and abs(zeta) < np.pi / 2):
             raise ParameterError(
                 f"zeta = {np.rad2deg(zeta):.6g} deg; it must lie in (-90, 90) deg (at +/-90 deg the A3 axis lies "
-                "along the bar A3E3's plane normal, outside the seed's range of designs)"
+                "along the bar A3E3's plane normal, outside Yang 2017's range of designs)"
             )
         self.zeta = float(zeta)
         points, dirs = bricard_axes()
@@ -236,7 +238,7 @@ class TruncatedOctahedronCube:
         self.bricard = BricardThreefold(rows[0].a, rows[0].alpha % (2 * np.pi))
         self.theta_d, self.phi_d = float(angles[0]), float(angles[1])
         # Joint 1's D-H frame (before Rz(theta_1)) in the deployed world frame: origin at the foot on axis
-        # A1 of the common normal from axis B2, x along that normal (seed §2.0 step 2).
+        # A1 of the common normal from axis B2, x along that normal (D-H convention, Yang 2017, eqn 1-2).
         foot_out = common_normal_foot(points[0], dirs[0], points[5], dirs[5])
         foot_in = common_normal_foot(points[5], dirs[5], points[0], dirs[0])
         x = unit(foot_in - foot_out)
@@ -252,7 +254,7 @@ class TruncatedOctahedronCube:
     # --- Bricard 1 from the closed form --------------------------------------------------------
 
     def phi(self, theta: ArrayLike) -> NDArray[np.float64]:
-        """Even-joint angle phi (rad) of a Bricard on the seed's branch ('even-axes-along' of (5-42))."""
+        """Even-joint angle phi (rad) of a Bricard on the thesis's branch ('even-axes-along' of (5-42))."""
         values, _ = self.bricard.evaluate(ALONG, np.atleast_1d(np.asarray(theta, dtype=float)))
         return values[:, 1]
 
@@ -404,7 +406,7 @@ class TruncatedOctahedronCube:
     def events(self) -> tuple[Event, ...]:
         """The cube (theta_f, rad): Bricard 1 folds, A1 = B1 = C1 and the squares meet (a lock)."""
         return (Event("lock", self.theta_f, ("transformation",), "the cube: A1 = B1 = C1, the squares meet; beyond "
-                      "it they pass through each other (seed 001 §2.7)"),)  # fmt: skip
+                      "it they pass through each other (Yang 2017, §5.4)"),)  # fmt: skip
 
     def state(self, theta: ArrayLike) -> NDArray[np.float64]:
         """
@@ -683,8 +685,9 @@ class TruncatedOctahedronCube:
 
     def fold_angles(self, theta: ArrayLike) -> NDArray[np.float64]:
         """
-        (rho1, rho2, delta_A, delta_D) per input (n, 4), rad (digest §2.7 names): rho1 = angle B1 C2 C1,
-        rho2 = angle D1 F2 F1 (120 deg -> 0), delta_A = angle C2 C1 A2, delta_D = angle F2 F1 E2 (120 -> 90 deg).
+        (rho1, rho2, delta_A, delta_D) per input (n, 4), rad (Yang 2017's rho^A, rho^D, delta^A, delta^D): rho1 = angle
+        B1 C2 C1, rho2 = angle D1 F2 F1 (120 deg -> 0), delta_A = angle C2 C1 A2, delta_D = angle F2 F1 E2 (120 -> 90
+        deg).
         """
         P = self.vertices(theta)
         k = {v: i for i, v in enumerate(NAMES)}

@@ -1,23 +1,25 @@
-"""Transformable polyhedron of seed 001 ch. 6: truncated tetrahedron <-> tetrahedron, schemes I and II (digest §2.8).
+"""Transformable polyhedron of Yang 2017, ch. 6: truncated tetrahedron <-> tetrahedron, schemes I and II.
 
-Frame and units: the seed's (6-1) frame, unit edges (m): origin at the centre of hexagon ABCDEF, z its normal,
+Frame and units: the thesis's (6-1) frame, unit edges (m): origin at the centre of hexagon ABCDEF, z its normal,
 x toward F; angles in radians. Every position returned is given with triangle ABG (the root body) held at its
 deployed pose, so the deployed coordinates are exactly (6-1).
 
-Assembly (digest §2.8, §5): 4 rigid triangles ABG, CDH, EFJ, KLM and 6 rigid bars BC, DE, FA, GK, HL, JM.
+Assembly (Yang 2017, §6.2): 4 rigid triangles ABG, CDH, EFJ, KLM and 6 rigid bars BC, DE, FA, GK, HL, JM.
 The threefold Bricard is the hexagon A B C D E F (links ABG, BC, CDH, DE, EFJ, FA) with R joints at A..F along
 the printed (6-4, 6-13, 6-14) axes. Scheme I adds R joints at G, H, J (triangle -> bar, axis s_G) and S joints
 at K, L, M (bar -> triangle KLM); scheme II adds S joints at G, H, J (triangle -> bar) and R joints at K, L, M
 (bar -> triangle KLM, axis s_K). 9 R + 3 S, 10 bodies, 3 loops, 1 DOF (truss j = 21, b = 57, r = 56, s = 1).
 
-Axes (corrected, digest §2.8 / §4 misprints 28, 29, 31): s_G(delta1) = Rot(unit(B - K), delta1) unit(G - Q) and
-s_K(delta2) = Rot(unit(G - M), delta2) unit(K - Q), Q = (0, 0, sqrt 6 / 4) the body centre; H, J and L, M get
-the +-120 deg images about z. The seed's printed s_G (6-17) is the direction of OG and s_M (6-18) is wrong.
+Axes (the printed (6-17), (6-18) and (6-33) corrected here): s_G(delta1) = Rot(unit(B - K), delta1) unit(G - Q)
+and s_K(delta2) = Rot(unit(G - M), delta2) unit(K - Q), Q = (0, 0, sqrt 6 / 4) the body centre; H, J and L, M get
+the +-120 deg images about z. The thesis's printed s_G (6-17) is the direction of OG, not QG, and its s_M (6-18)
+= (sqrt 210/35, -2 sqrt 35/35, sqrt 35/7) is not the image of s_K; the symmetric s_M is (sqrt 22/11, -sqrt 66/33,
+5 sqrt 33/33).
 
-Reduced model (digest §2.8, "scheme I analytic model", extended to scheme II). The motion keeps the threefold
+Reduced model (derived here for scheme I and extended to scheme II). The motion keeps the threefold
 symmetry about the Bricard's axis (the normal of triangle BDF through its centroid; the "symmetric frame",
 which is the (6-1) frame at deployment). The Bricard follows its closed form (`BricardThreefold`, branch
-'even-axes-along': theta at A, C, E, phi at B, D, F, seed's '-' root of (6-52)); triangle KLM stays centred on
+'even-axes-along': theta at A, C, E, phi at B, D, F, the thesis's '-' root of (6-52)); triangle KLM stays centred on
 the axis, turned by psi (rad) and shifted by h (m) along it. The state u = (theta, q, psi, h), with q the
 scheme's R-joint angle (q_G or q_K, 0 deployed), obeys three equations, the closure of the loop through G and K:
 
@@ -25,8 +27,8 @@ scheme's R-joint angle (q_G or q_K, 0 deployed), obeys three equations, the clos
 * scheme II: G carried by the bar GK (held by KLM through the R joint at K at angle q_K) = G of ABG.
 
 The 1-D solution set is traced from the deployed state (pseudo-arclength, step 0.02) in the direction in
-which KLM turns positively about z (d psi > 0: the seed's KLM rotation 0 -> 30 deg), up to the Bricard fold
-theta_f (A = C = E, digest case 16), where the path ends: beyond it the Bricard's links pass through each
+which KLM turns positively about z (d psi > 0: the thesis's KLM rotation 0 -> 30 deg), up to the Bricard fold
+theta_f (A = C = E, Yang 2017, §6.3.2), where the path ends: beyond it the Bricard's links pass through each
 other. A path that reaches the tetrahedron ends exactly on its state (`tetrahedron_state`), where theta turns
 back; one that misses it (scheme I, delta1 >= -3 deg) ends at theta_f with K short of B (`end_gap`).
 Queries are solved by Newton from a cubic Hermite guess on the trace. The R-joint angles alone (`hinge_angles`,
@@ -34,10 +36,10 @@ what `evaluate` reports; no poses) need only theta and q: KLM turns and slides o
 so the closure reduces to one equation, the distance of K (scheme I) or G (scheme II) from that axis
 (`bricard_axis`, in closed form), solved from a table dense in the input (`PathTable`).
 
-Inputs (the seed's driving angles): scheme I is driven by theta_G = theta_G0 + q_G (the seed's quartic unknown,
+Inputs (the thesis's driving angles): scheme I is driven by theta_G = theta_G0 + q_G (the thesis's quartic unknown,
 the signed angle from B - G to K - G about s_G, 146.4427 deg deployed for delta1 = 0), which falls
 monotonically; the Bricard's theta cannot drive it, since theta has a turning point at deployment (delta1 = 0)
-or dips below theta_d first (delta1 < 0, digest §2.8). Scheme II is driven by the Bricard angle theta at A,
+or dips below theta_d first (delta1 < 0, measured here). Scheme II is driven by the Bricard angle theta at A,
 which rises monotonically to theta_f for delta2 >= 0. [NEW] With delta2 = 0 the deployed state is a turning
 point of theta too (dtheta/ds = 0; the two directions are distinct motions, of which d psi > 0 reaches the
 tetrahedron): near theta_d the state is fixed by theta only to sqrt(theta - theta_d).
@@ -100,24 +102,24 @@ PARENTS = {"A": ("FA", "ABG"), "B": ("ABG", "BC"), "C": ("BC", "CDH"), "D": ("CD
 # Rounding floor (m^2) of the squared radii (<= 4/3 m^2) in `Transformation._solve`'s residual: the residuals of
 # Newton's method stall at 1.9e-15 (measured on 1e6 inputs, either scheme).
 RESIDUAL_FLOOR = 4e-15
-# Exact volumes for unit edges: truncated tetrahedron 23 sqrt 2 / 12, tetrahedron sqrt 2 / 12 (seed ch. 6: 23).
+# Exact volumes for unit edges: truncated tetrahedron 23 sqrt 2 / 12, tetrahedron sqrt 2 / 12 (Yang 2017, ch. 6: 23).
 VOLUME_RATIO = 23.0
 
 
 def _turn(k: int) -> NDArray[np.float64]:
-    """Rz(k 120 deg) (3, 3): k = 1 maps A -> C, F -> B, G -> H, K -> L (digest §2.8)."""
+    """Rz(k 120 deg) (3, 3): k = 1 maps A -> C, F -> B, G -> H, K -> L (Yang 2017, §6.2)."""
     return rotation(np.array([0.0, 0.0, 1.0]), 2 * np.pi * k / 3)
 
 
 def bricard_axes() -> NDArray[np.float64]:
-    """Unit axes (6, 3) of the R joints A..F (6-4, 6-13, 6-14), the digest's orientation."""
+    """Unit axes (6, 3) of the R joints A..F (6-4, 6-13, 6-14), oriented as printed."""
     s_a = np.array([np.sqrt(22) / 11, np.sqrt(66) / 11, -np.sqrt(33) / 11])
     s_f = np.array([-2 * np.sqrt(166) / 83, 0.0, 5 * np.sqrt(249) / 83])
     return np.array([s_a, _turn(1) @ s_f, _turn(1) @ s_a, _turn(-1) @ s_f, _turn(-1) @ s_a, s_f])
 
 
 def axis_g(delta: float) -> NDArray[np.float64]:
-    """Unit s_G (scheme I) = Rot(unit(B - K), delta) unit(G - Q) (digest sign); delta = 0: (0, 4√66/33, √33/33)."""
+    """Unit s_G (scheme I) = Rot(unit(B - K), delta) unit(G - Q) (sign chosen here); delta = 0: (0, 4√66/33, √33/33)."""
     return rotation(unit(VERTICES["B"] - VERTICES["K"]), delta) @ unit(VERTICES["G"] - Q)
 
 
@@ -181,7 +183,7 @@ class Transformation:
     """
     Shared closed form of both schemes (see the module docstring); subclasses set the top joints.
 
-    `delta` (rad) turns the scheme's R axis (delta1 or delta2 of digest §2.8); it must lie in (-90, 90) deg.
+    `delta` (rad) turns the scheme's R axis (delta1 or delta2, Yang 2017, §6.5); it must lie in (-90, 90) deg.
     """
 
     input_name: str
@@ -203,7 +205,8 @@ class Transformation:
         self.bricard = BricardThreefold(rows[0].a, rows[0].alpha % (2 * np.pi))
         self.theta_d, self.phi_d = float(angles[0]), float(angles[1])
         # Joint A's D-H frame (before Rz(theta)), fixed to bar FA: origin at the foot on axis A of the common
-        # normal from axis F, x along that normal (seed §2.0); the chain below is placed from it.
+        # normal from axis F, x along that normal (Yang 2017's D-H convention, eqn 1-2); the chain below is placed
+        # from it.
         foot_out = common_normal_foot(points[0], dirs[0], points[5], dirs[5])
         foot_in = common_normal_foot(points[5], dirs[5], points[0], dirs[0])
         x = unit(foot_in - foot_out)
@@ -214,7 +217,7 @@ class Transformation:
     # --- the Bricard ---------------------------------------------------------------------------------
 
     def phi(self, theta: ArrayLike) -> NDArray[np.float64]:
-        """Even-joint angle phi (rad, at B, D, F) of the Bricard on the seed's branch; theta may pass pi."""
+        """Even-joint angle phi (rad, at B, D, F) of the Bricard on the thesis's branch; theta may pass pi."""
         t = np.atleast_1d(np.asarray(theta, dtype=float))
         return self.bricard.evaluate(ALONG, wrap(t))[0][:, 1]
 
@@ -245,7 +248,8 @@ class Transformation:
 
     @cached_property
     def theta_f(self) -> float:
-        """Bricard angle (rad) at its fold A = C = E (digest case 16: 186.9018 deg): A crosses the symmetric axis."""
+        """Bricard angle (rad) at its fold A = C = E (Yang 2017, §6.3.2: 186.90 deg; 186.9018 here): A crosses the
+        symmetric axis."""
 
         def y_a(t: float) -> float:  # A's y in the symmetric frame: > 0 before the fold, < 0 after
             return float(_apply(self.bricard_motion(t)[0, 0], VERTICES["A"])[1])
@@ -529,10 +533,10 @@ class Transformation:
 
     def monitors(self, x: ArrayLike) -> dict[str, NDArray[np.float64]]:
         """
-        The seed's monitors (n,) (digest §2.8): rho = angle AFE, delta = angle BAF, lambda1 = angle BGK,
+        The thesis's monitors (n,) (Yang 2017, §6.3.2): rho = angle AFE, delta = angle BAF, lambda1 = angle BGK,
         lambda2 = angle GKM (rad); height of KLM's centroid above plane BDF (m); rotation of KLM about the BDF
         normal, signed from F - c_BDF to K - c_KLM (rad, 90 deg deployed); |AE|, |BK| (m); theta_G = signed
-        angle from B - G to K - G about s_G (rad; scheme I's input, the seed's quartic unknown).
+        angle from B - G to K - G about s_G (rad; scheme I's input, the thesis's quartic unknown).
         """
         P = self.vertices(x)
         p = {v: P[:, k] for k, v in enumerate(NAMES)}
@@ -580,10 +584,10 @@ class Transformation:
 
 class SchemeI(Transformation):
     """
-    Scheme I (seed 001 §6.3): R joints at G, H, J (triangle -> bar), S joints at K, L, M (bar -> KLM).
+    Scheme I (Yang 2017, §6.3): R joints at G, H, J (triangle -> bar), S joints at K, L, M (bar -> KLM).
 
-    Input theta_G (rad): the seed's angle of K about s_G, theta_G0 + q_G, falling from its deployed value
-    (146.4427 deg for delta1 = 0) to the end of the path. `delta` = delta1 (rad), digest sign (thumb along B - K).
+    Input theta_G (rad): the thesis's angle of K about s_G, theta_G0 + q_G, falling from its deployed value
+    (146.4427 deg for delta1 = 0) to the end of the path. `delta` = delta1 (rad), sign chosen here (thumb along B - K).
     """
 
     input_name = "theta_G"
@@ -643,10 +647,10 @@ class SchemeI(Transformation):
 
 class SchemeII(Transformation):
     """
-    Scheme II (seed 001 §6.3): S joints at G, H, J (triangle -> bar), R joints at K, L, M (bar -> KLM).
+    Scheme II (Yang 2017, §6.4): S joints at G, H, J (triangle -> bar), R joints at K, L, M (bar -> KLM).
 
     Input theta (rad): the Bricard's D-H angle at A, rising from theta_d = 40.4591 deg to theta_f = 186.9018 deg.
-    `delta` = delta2 (rad), digest sign (thumb along G - M); delta2 < 0 makes theta turn back (ParameterError).
+    `delta` = delta2 (rad), sign chosen here (thumb along G - M); delta2 < 0 makes theta turn back (ParameterError).
     """
 
     input_name = "theta"
@@ -656,7 +660,7 @@ class SchemeII(Transformation):
 
     def _setup_axes(self) -> None:
         self.s_k = axis_k(self.delta)
-        self._theta_g_axis = axis_g(0.0)  # fixed in ABG, the root: the seed's theta_G as a monitor
+        self._theta_g_axis = axis_g(0.0)  # fixed in ABG, the root: the thesis's theta_G as a monitor
 
     def _bar(self, u: NDArray[np.float64], abg: NDArray[np.float64]) -> NDArray[np.float64]:
         return _screw(u[:, 2], u[:, 3]) @ _about_line(VERTICES["K"], self.s_k, -u[:, 1])

@@ -1,9 +1,9 @@
-"""The 6R linkages of the triangle-twist kirigami (seed 000 §3.4, digest M3): the pleat panels without the triangle.
+"""The 6R linkages of the triangle-twist kirigami (Feng 2018, §3.4): the pleat panels without the triangle.
 
-Loop (digest M3): P_AB -B2- O_B -B3- P_BC -C2- O_C -C3- P_CA -A2- O_A -A3- P_AB, joints z1..z6 = A3, B2, B3,
-C2, C3, A2 of `kinematics.triangle_twist`, each z_i pointing away from the triangle corner it passes through.
-D-H rows in the seeds' convention (`kinematics.dh`, T = Rz(theta) Tz(R) Tx(a) Rx(alpha)); with the x axes on
-the flat sheet's +z every theta_i is the fold angle rho of its crease (its left face is link i(i+1)), 0 flat.
+Loop: P_AB -B2- O_B -B3- P_BC -C2- O_C -C3- P_CA -A2- O_A -A3- P_AB, joints z1..z6 = A3, B2, B3, C2, C3, A2 of
+`kinematics.triangle_twist`, each z_i pointing away from the triangle corner it passes through. D-H rows in Feng 2018's
+convention (eqns 2-1 to 2-5; `kinematics.dh`, T = Rz(theta) Tz(R) Tx(a) Rx(alpha)); with the x axes on the
+flat sheet's +z every theta_i is the fold angle rho of its crease (its left face is link i(i+1)), 0 flat.
 
 gamma != delta (eqn 3-38, "R45" read as the twist alpha45): a = 0; twists alpha12 = 2 pi - gamma + delta,
 alpha23 = pi - beta, alpha34 = 2 pi - delta + epsilon, alpha45 = alpha + beta, alpha56 = gamma - epsilon,
@@ -14,22 +14,22 @@ sin(alpha + beta) and CA = d sin(beta) / sin(alpha + beta):
     R3 = BC sin(epsilon) / sin(delta - epsilon),  R4 = -BC sin(delta) / sin(delta - epsilon),
     R5 = -CA sin(gamma) / sin(gamma - epsilon),   R6 = CA sin(epsilon) / sin(gamma - epsilon).
 
-The seed prints each ratio in absolute value; that equals these signed offsets only for gamma > delta > epsilon
+The thesis prints each ratio in absolute value; that equals these signed offsets only for gamma > delta > epsilon
 and gamma > epsilon (its example) [NEW: with gamma < delta the absolute values miss closure, the test shows it].
 R1 R3 R5 + R2 R4 R6 = 0: the doubly collapsible octahedral Bricard condition.
 
-gamma = delta (eqn 3-40, z1 parallel to z2): a12 = d sin(delta), alpha12 = 0; R1 = 0 and R2 = -d cos(delta)
-(only R1 + R2 is defined; the seed's choice), R5 reconstructed by the digest, the rest as above with gamma ->
-delta. x2 then lies in the sheet, so the flat state is theta1 = -pi/2, theta2 = +pi/2 (offsets o below).
+gamma = delta (eqn 3-40, z1 parallel to z2): a12 = d sin(delta), alpha12 = 0; R1 = 0 and R2 = -d cos(delta) (only R1 +
+R2 is defined; the thesis's choice), R5 (garbled in print) reconstructed here from the geometry, the rest as above with
+gamma -> delta. x2 then lies in the sheet, so the flat state is theta1 = -pi/2, theta2 = +pi/2 (offsets o below).
 
-Closed form (eqn 3-39 CORRECTED in the digest; the printed signs miss closure by up to 1.9), with
+Closed form (eqn 3-39 CORRECTED here: the printed signs miss closure by up to 1.9, these close to 1e-15), with
 psi_i = theta_i - o_i, Ka = cos((alpha - gamma)/2) / cos((alpha + gamma)/2) and Kb likewise with beta, delta:
 
     tan(psi2/2) = -Ka Kb tan(psi1/2),  tan(theta3/2) = -Ka tan(psi1/2),  psi4 = psi1,  psi5 = psi2,  theta6 = -theta3.
 
-epsilon is the compatible pleat angle of the seed's Fig. 3-5 scheme SSP (eqn 3-12; it solves loop gain 1 for
+epsilon is the compatible pleat angle of the thesis's Fig. 3-5 scheme SSP (eqn 3-12; it solves loop gain 1 for
 vertex modes S, S, C whatever types those modes take at other angles). The loop is that scheme's motion, named
-by the types it realises (SSP at the seed's angles): a single branch on which every joint makes full turns. The
+by the types it realises (SSP at the thesis's angles): a single branch on which every joint makes full turns. The
 flat state (psi = 0) is singular (closure rank 3 of 6), no bifurcation.
 """
 
@@ -63,7 +63,7 @@ def dh_rows(angles: TwistAngles, d: float) -> tuple[DHRow, ...]:
     for name, (p, q) in (("delta = epsilon", (dl, e)), ("gamma = epsilon", (g, e))):
         if abs(p - q) <= PARALLEL_TOL:
             raise ParameterError(
-                f"{name} = {np.rad2deg(p):.6g} deg: two pleats of one panel are parallel; the seed gives that 6R "
+                f"{name} = {np.rad2deg(p):.6g} deg: two pleats of one panel are parallel; Feng 2018 gives that 6R "
                 "only for gamma = delta (eqn 3-40)"
             )
     bc, ca = d * np.sin(a) / np.sin(a + b), d * np.sin(b) / np.sin(a + b)
@@ -80,7 +80,7 @@ def dh_rows(angles: TwistAngles, d: float) -> tuple[DHRow, ...]:
 
 
 def coefficients(angles: TwistAngles) -> tuple[float, float]:
-    """Ka = cos((alpha - gamma)/2) / cos((alpha + gamma)/2) and Kb likewise with beta, delta (digest M3)."""
+    """Ka = cos((alpha - gamma)/2) / cos((alpha + gamma)/2) and Kb likewise with beta, delta (eqn 3-39)."""
     ka = np.cos((angles.alpha - angles.gamma) / 2) / np.cos((angles.alpha + angles.gamma) / 2)
     kb = np.cos((angles.beta - angles.delta) / 2) / np.cos((angles.beta + angles.delta) / 2)
     return float(ka), float(kb)
@@ -109,7 +109,7 @@ class TwistSixR(DHKinematics):
         self.ka, self.kb = coefficients(angles)
         self.parallel = abs(angles.gamma - angles.delta) <= PARALLEL_TOL
         self.branch_name = realised_types(angles, MODES)
-        # D-H angles of the flat state: x2 lies in the sheet when z1 and z2 are parallel (digest M3 pitfall)
+        # D-H angles of the flat state: x2 lies in the sheet when z1 and z2 are parallel (found here)
         self.offsets = np.array([-np.pi / 2, np.pi / 2, 0, 0, 0, 0]) if self.parallel else np.zeros(6)
 
     @property
@@ -141,6 +141,6 @@ class TwistSixR(DHKinematics):
         return ()
 
     def bricard_sum(self) -> float:
-        """R1 R3 R5 + R2 R4 R6 (m^3): 0 for gamma != delta (eqn 2-14); 4.685016 for the seed's gamma = delta case."""
+        """R1 R3 R5 + R2 R4 R6 (m^3): 0 for gamma != delta (eqn 2-14); 4.685016 for the thesis's gamma = delta case."""
         R = [r.R for r in self.rows]
         return float(R[0] * R[2] * R[4] + R[1] * R[3] * R[5])

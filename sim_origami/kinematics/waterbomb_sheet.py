@@ -1,6 +1,6 @@
-"""Zero-thickness waterbomb tessellation of rows x cols bases in the seed's symmetric folding (seed 000 §5.3, M8).
+"""Zero-thickness waterbomb tessellation of rows x cols bases in the symmetric folding of Feng 2018, §5.3.
 
-Layout (digest "Waterbomb pattern geometry"): base (i, j) is centred on A = (2 t j + t (i mod 2), i H) with
+Layout (reconstructed here, as in `waterbomb`): base (i, j) is centred on A = (2 t j + t (i mod 2), i H) with
 H = t cot(alpha) + h_C, so each row is shifted by half a base; its six triangles are those of
 `waterbomb.unit_cell`. Every interior edge is a crease of one of nine types: A1 ... A6 (the creases at A), B2
 (a top edge C -> B+, and C -> B-, which is B6 of the neighbouring B) and B4 (a side edge). The symmetric

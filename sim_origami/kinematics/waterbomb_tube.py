@@ -1,16 +1,18 @@
-"""Generalized waterbomb tube: radial contraction for odd and even m (seed 004 §2, seed 000 ch. 6, digest M10-M12).
+"""Generalized waterbomb tube: radial contraction for odd and even m (Feng, Ma and Chen 2020, §2; Feng 2018,
+§6.1-6.3; "the sources" below).
 
-Pattern (digest seed002_004 B.2, the reconstruction `waterbomb.unit_cell` uses). One unit of seed row i is centred
-on A_i with half-width a: top midpoint C_i at height L_m = a sin(beta) / (sin(alpha) sin(alpha + beta)) above A_i,
-top corners B_i at (+-a, a cot(alpha)), bottom midpoint B_(i-1) at -L_m, bottom corners C_(i-1) at (+-a,
--a cot(alpha)); rows sit H = a cot(alpha) + L_m apart and are shifted by a. Flat coordinates are integer slots p
-(x = p a): A_i and C_i at p = i mod 2 (mod 2), B_i at p = i + 1 (mod 2). A tube has n units per row and m rows,
-seed rows i = -r0 .. m - 1 - r0 with r0 = (m - 1) // 2: for odd m row 0 is the equatorial row, for even m it is
-the row just below the equator (seed 004 §2.2). Names count rows from the bottom, r = i + r0, and units k = 0..n-1.
+Pattern (reconstructed here from the lengths the sources quote, as `waterbomb.unit_cell` is). One unit of row i
+(the sources' row numbering, below) is centred on A_i with half-width a: top midpoint C_i at height L_m = a sin(beta) /
+(sin(alpha) sin(alpha + beta)) above A_i, top corners B_i at (+-a, a cot(alpha)), bottom midpoint B_(i-1) at -L_m,
+bottom corners C_(i-1) at (+-a, -a cot(alpha)); rows sit H = a cot(alpha) + L_m apart and are shifted by a. Flat
+coordinates are integer slots p (x = p a): A_i and C_i at p = i mod 2 (mod 2), B_i at p = i + 1 (mod 2). A tube has n
+units per row and m rows, rows i = -r0 .. m - 1 - r0 with r0 = (m - 1) // 2: for odd m row 0 is the equatorial row,
+for even m it is the row just below the equator (Feng, Ma and Chen 2020, §2.2). Names count rows from the bottom,
+r = i + r0, and units k = 0..n-1.
 
 * Faces F<r>_<k>_<s>: s = 12, 23, 34, 45, 56, 61 is the pair of A-creases that bound it (23 and 56 are the big
   triangles), 6nm in all.
-* Creases (9nm - 2n): A<r>_<k>_<j>, j = 1..6 the seed's numbering clockwise from the up midline A->C (1 up
+* Creases (9nm - 2n): A<r>_<k>_<j>, j = 1..6 the sources' numbering clockwise from the up midline A->C (1 up
   midline M, 2 upper-right diagonal V, 3 lower-right diagonal V, 4 down midline M, 5, 6 the left diagonals V);
   V<r>_<k> the vertical edge (M) between unit k and unit k+1, from the lower corner up; T<r>_<k>_r and
   T<r>_<k>_l the row-boundary edges (M) from C_i to the right and left top corner (rows below the top).
@@ -22,38 +24,41 @@ boundary edges of the strip (`seam`). `loop_system` closes every vertex of the t
 C's, seam vertices included) and adds one ring loop around row 0 across the seam, which makes the strip a tube.
 
 Fold angles rho follow `sim_origami.creases` (0 flat, > 0 valley seen from the flat sheet's +z); +z ends up
-outside the tube. The seeds' dihedrals are phi = pi - s rho, with s = +1 on a valley, -1 on a mountain:
+outside the tube. The sources' dihedrals are phi = pi - s rho, with s = +1 on a valley, -1 on a mountain:
 phi in [0, pi], phi = pi flat, phi = 0 folded; phi < 0 is a crease folded through its neighbour (penetration),
 phi > pi a crease reversed through flat. The input is x = rho of A<r0>_0_1, the top midline of unit 0 of row 0
-(the seeds' theta = eta_01 = phi_0,1 = pi + x).
+(the sources' theta = eta_01 = phi_0,1 = pi + x).
 
-Analytic model (digest M10 "independent coordinate model", made explicit). Under the seeds' symmetry every
-vertex lies in a meridian half-plane: A_i and C_i at azimuth p pi / n with their slot p, B_i likewise, each at a
-signed radius r (negative: through the axis) and height z. Every vertex meets two rigid edges to vertices already
-placed, one in its own meridian and one in the meridian pi/n away, so it is the intersection of two circles in
-its meridian plane (`meet`; the seeds' '-' root, checked against seed 004 validation case 9). Odd m starts from
-the equatorial row: r_A0 = a sin(theta/2 - pi/n) / sin(pi/n), r_B0 = a sin(theta/2) / sin(pi/n), z_A0 = 0,
-z_B0 = a cot(alpha) (seed 004 eqn 11), then C_i, A_(i+1), B_(i+1) row by row; the lower half is the mirror
-z -> -z (A_i <-> A_-i, B_i <-> C_(-i-1)). Even m starts from the equatorial row boundary: r_B0 = r_C0 = rho =
-a sin(theta/2) / sin(pi/n), z_B0 = -z_C0 = sqrt(L_r^2 - 2 rho^2 (1 - cos(pi/n))) / 2 (L_r = a / sin(alpha +
-beta)), then A_1, B_1, C_1, ...; the lower half is the half-turn z -> -z, azimuth + pi/n (A_i <-> A_(1-i),
-B_i <-> C_(-i)). This replaces the seeds' chain eqns 6-11...6-13 / 12a-g (garbled in places, CORRECTED in the
-digest) and seed 004's wrong eqn 18. Fold angles then follow from the 3-D vertices (`fold_angles`). `evaluate`
-measures only one crease per symmetry class (`FoldPlan`: 15 of the 258 creases of the 6 x 5 tube), without cross
-products (`crease_folds`), on blocks of inputs, and copies each to its class.
+Analytic model (an independent coordinate model, derived here). Under the sources' symmetry every vertex lies in a
+meridian half-plane: A_i and C_i at azimuth p pi / n with their slot p, B_i likewise, each at a signed radius r
+(negative: through the axis) and height z. Every vertex meets two rigid edges to vertices already placed, one in its own
+meridian and one in the meridian pi/n away, so it is the intersection of two circles in its meridian plane (`meet`; the
+sources' '-' root, checked against the worked values of Feng, Ma and Chen 2020's equations at n6 m3 40/35, eta01 = 90
+deg, tests/published/feng_ma_chen2020.py). Odd m starts from the equatorial row: r_A0 = a sin(theta/2 - pi/n) /
+sin(pi/n), r_B0 = a sin(theta/2) / sin(pi/n), z_A0 = 0, z_B0 = a cot(alpha) (Feng, Ma and Chen 2020, eqn 11), then C_i,
+A_(i+1), B_(i+1) row by row; the lower half is the mirror z -> -z (A_i <-> A_-i, B_i <-> C_(-i-1)). Even m starts from
+the equatorial row boundary: r_B0 = r_C0 = rho = a sin(theta/2) / sin(pi/n), z_B0 = -z_C0 = sqrt(L_r^2 - 2 rho^2 (1 -
+cos(pi/n))) / 2 (L_r = a / sin(alpha + beta)), then A_1, B_1, C_1, ...; the lower half is the half-turn z -> -z, azimuth
++ pi/n (A_i <-> A_(1-i), B_i <-> C_(-i)). This replaces the sources' vertex chain (Feng 2018, eqns 6-11...6-13, garbled
+in print; Feng, Ma and Chen 2020, eqns 12a-g, with typos in 12d, 12g and 14) and Feng, Ma and Chen 2020's eqn 18, which
+does not close the even tube (corrected here: r_A0 = 0.42500 a, not its 0.13198 a, at n6 alpha45 beta40, eta01 = 80
+deg). Fold angles then follow from the 3-D vertices (`fold_angles`). `evaluate` measures only one crease per symmetry
+class (`FoldPlan`: 15 of the 258 creases of the 6 x 5 tube), without cross products (`crease_folds`), on blocks of
+inputs, and copies each to its class.
 
 Domain: the first connected interval of theta above 0 on which every circle meets, no crease is reversed through
-flat (the digest's "strict" criterion) and the middle row is not through the axis (r_A0 >= 0: theta >= 2 pi/n
-for odd m, seed eqn 13). It ends at a fold of the top row (eqn 14: the top crease flat, a turning point).
-Inside it, rows whose A's cross the axis (r_A < 0, vertical edges folded through each other: seed eqn 15) are
-reported as lock events: the mechanism-structure-mechanism transition of seed 000 §6.2.2. Events of kind
-"uniform_radius" mark the states with every row alike (seed 000 eqn 6-22), regular points of this full tube.
+flat (a "strict" criterion added here: the sources only need the chain real) and the middle row is not through
+the axis (r_A0 >= 0: theta >= 2 pi/n for odd m, Feng, Ma and Chen 2020, eqn 13). It ends at a fold of the top row
+(eqn 14: the top crease flat, a turning point). Inside it, rows whose A's cross the axis (r_A < 0, vertical edges
+folded through each other: eqn 15) are reported as lock events: the mechanism-structure-mechanism transition of
+Feng 2018, §6.2.2. Events of kind "uniform_radius" mark the states with every row alike (Feng 2018, eqn 6-22),
+regular points of this full tube.
 
-Symmetry. The free tube has 4n - 6 DOF (digest B.2); `couplings` pin it to the contraction with joint couplings
-between symmetry images (`loop_system`), as the scene does in MuJoCo. The twist (seed 000 §6.4) is not modelled;
+Symmetry. The free tube has 4n - 6 DOF (counted here); `couplings` pin it to the contraction with joint couplings
+between symmetry images (`loop_system`), as the scene does in MuJoCo. The twist (Feng 2018, §6.4) is not modelled;
 its thresholds are: `alpha_limit` (eqn 38 / 6-47), `beta_max` (eqn 40 / 6-49, where the contraction ends in the
 equal-diameter, fully folded cylinder) and `alpha_min` (eqn 6-33). scripts/waterbomb_tube_numbers.py prints the
-seeds' numbers against ours.
+sources' numbers against ours.
 """
 
 from collections.abc import Callable
@@ -82,7 +87,7 @@ PLAN_PROBES = np.array([0.5, 0.1, 0.3819660113, 0.6180339887, 0.9])
 # Samples of theta in (0, pi) on which the domain's first interval is found, before its ends are bisected.
 GRID = 4097
 
-Key = tuple[str, int, int]  # (kind "A" / "B" / "C", seed row, slot p)
+Key = tuple[str, int, int]  # (kind "A" / "B" / "C", row, slot p)
 
 
 @dataclass(frozen=True)
@@ -108,8 +113,8 @@ class Lengths:
 
 
 def lengths(alpha: float, beta: float, a: float) -> Lengths:
-    """Seed 004 B.2: L_m = a sin(beta) / (sin(alpha) sin(alpha + beta)), L_d = a / sin(alpha), L_v = 2 a cot(alpha),
-    L_r = a / sin(alpha + beta)."""
+    """Lengths (reconstructed here, consistent with Feng, Ma and Chen 2020): L_m = a sin(beta) / (sin(alpha)
+    sin(alpha + beta)), L_d = a / sin(alpha), L_v = 2 a cot(alpha), L_r = a / sin(alpha + beta)."""
     corner = a / np.tan(alpha)
     return Lengths(
         a * np.sin(beta) / (np.sin(alpha) * np.sin(alpha + beta)),
@@ -121,7 +126,7 @@ def lengths(alpha: float, beta: float, a: float) -> Lengths:
 
 
 def row_range(m: int) -> tuple[int, int]:
-    """Seed indices (bottom, top) of the rows: r0 = (m - 1) // 2 rows below row 0."""
+    """Row indices (bottom, top) of the rows, the sources' numbering: r0 = (m - 1) // 2 rows below row 0."""
     r0 = (m - 1) // 2
     return -r0, m - 1 - r0
 
@@ -142,7 +147,7 @@ class TubeLayout:
     """
     The tube's topology and flat strip (module docstring for names).
 
-    `keys` are the tube's vertices (kind, seed row, slot mod 2n) with flat positions `flat` (m); `creases` are the
+    `keys` are the tube's vertices (kind, row, slot mod 2n) with flat positions `flat` (m); `creases` are the
     tube's creases as (name, start, end, M/V) over `keys`, strip creases first (in `pattern` order), then `seam`.
     `left` / `right` give each crease's face names and `third_left` / `third_right` the vertex of each face off the
     crease. `strip_keys` maps the strip's vertices to `keys`.
@@ -278,7 +283,7 @@ def meet(p: tuple, d1: float, q: tuple, d2: float, n: int) -> tuple[NDArray, NDA
     The vertex (r, z) at distance d1 from p = (r, z) in its own meridian half-plane and d2 from q = (r, z) in the
     meridian pi/n away: two circles in the meridian plane, centred at p and at (r_q cos(pi/n), z_q) with radius
     sqrt(d2^2 - (r_q sin(pi/n))^2). Of their two intersections, the one clockwise of the line from the first centre
-    to the second in the (r, z) plane (the seeds' '-' root). NaN where the circles do not meet.
+    to the second in the (r, z) plane (the sources' '-' root). NaN where the circles do not meet.
     """
     (pr, pz), (qr, qz) = p, q
     r2 = d2**2 - (qr * np.sin(np.pi / n)) ** 2
@@ -296,7 +301,7 @@ def row_coordinates(
     n: int, m: int, alpha: float, beta: float, a: float, theta: ArrayLike
 ) -> dict[tuple[str, int], tuple[NDArray, NDArray]]:
     """
-    (r, z) in m of every vertex kind and seed row, {(kind, row): (r (N,), z (N,))}, at inputs theta = phi_0,1 (N,)
+    (r, z) in m of every vertex kind and row, {(kind, row): (r (N,), z (N,))}, at inputs theta = phi_0,1 (N,)
     (rad), on the contraction path (module docstring). NaN where the tube does not assemble.
     """
     theta = np.atleast_1d(np.asarray(theta, dtype=float))
@@ -309,7 +314,8 @@ def row_coordinates(
         rows["A", 0] = (a * np.sin(theta / 2 - np.pi / n) / s, np.zeros_like(theta))
         rows["B", 0] = (rho, np.full_like(theta, L.corner))
         rows["C", 0] = meet(rows["A", 0], L.midline, rows["B", 0], L.boundary, n)
-    else:  # B_0 above the equator, C_0 below (the seeds' assembly; seed 004 validation case 22)
+    else:  # B_0 above the equator, C_0 below (the sources' assembly; the even-tube values in
+        # tests/published/feng_ma_chen2020.py check it)
         zeta2 = L.boundary**2 - 2 * rho**2 * (1 - np.cos(np.pi / n))
         zeta = 0.5 * np.sqrt(np.where(zeta2 >= 0, zeta2, np.nan))
         rows["B", 0], rows["C", 0] = (rho, zeta), (rho, -zeta)
@@ -476,7 +482,7 @@ def vertex_loops(layout: TubeLayout) -> tuple[Loop, ...]:
 
 def ring_loop(layout: TubeLayout, row: int = 0) -> Loop:
     """
-    The closure round seed row `row`, across the seam: from face 56 of unit k across creases 6, 1, 2 of A to face 23
+    The closure round row `row`, across the seam: from face 56 of unit k across creases 6, 1, 2 of A to face 23
     and across the vertical edge to face 56 of unit k + 1, n times. Hinge frames are taken in the unrolled flat sheet,
     so the last link carries the strip's width: T = prod_k Rz(s_k rho_k) L_k with L_k = inv(F_k) F_(k+1) and
     L_last = inv(F_last) Shift(2 n a) F_0; s_k = +1 where the face entered is the crease's left face.
@@ -509,7 +515,7 @@ def assignment_signs(layout: TubeLayout) -> NDArray[np.float64]:
 
 
 def dihedrals(layout: TubeLayout, rho: ArrayLike, creases: ArrayLike | None = None) -> NDArray[np.float64]:
-    """The seeds' dihedral angles phi = pi - s rho (rad), wrapped to (-pi, pi] (module docstring), of all creases or
+    """The sources' dihedral angles phi = pi - s rho (rad), wrapped to (-pi, pi] (module docstring), of all creases or
     of the indices `creases`."""
     signs = assignment_signs(layout)
     return wrap(np.pi - (signs if creases is None else signs[np.asarray(creases)]) * np.asarray(rho, dtype=float))
@@ -542,7 +548,7 @@ def reversed_creases(layout: TubeLayout, q: NDArray[np.float64], creases: ArrayL
     """
     Which creases (all, or the indices `creases`) are reversed through flat at fold angles q (..., n): the dihedral
     phi = pi - s rho, wrapped to (-pi, pi], lies in (-pi + REVERSAL_TOL, -pi/2), i.e. phi in (pi, 3 pi / 2). A crease
-    folded through its neighbour (phi < 0, the seeds' interference) is allowed down to -pi/2; beyond, it cannot be
+    folded through its neighbour (phi < 0, the sources' interference) is allowed down to -pi/2; beyond, it cannot be
     told from a reversed one by its angle alone and counts as reversed.
     """
     phi = dihedrals(layout, q, creases)
@@ -560,8 +566,8 @@ def valid_inputs(layout: TubeLayout, theta: ArrayLike, strict: bool = True) -> N
     """
     Where the contraction is a rigid motion (N,) at theta (N,): theta in (0, pi), every vertex placed, the middle
     row's A's not through the axis (r_A0 >= 0), and (strict) no crease reversed through flat. `strict=False` is the
-    seeds' criterion (the chain real, seed 004 B.3.4 "paper"), which lets other creases pass through flat. Unit 0
-    of each row stands for its row (`TubeLayout.unit0`).
+    sources' criterion (the chain real, Feng, Ma and Chen 2020, §2.1), which lets other creases pass through flat. Unit
+    0 of each row stands for its row (`TubeLayout.unit0`).
     """
     theta = np.atleast_1d(np.asarray(theta, dtype=float))
     q = folds_at(layout, theta, layout.unit0)
@@ -587,7 +593,8 @@ def motion_range(layout: TubeLayout, strict: bool = True) -> tuple[float, float]
 
 def alpha_limit(n: int) -> float:
     """
-    Largest alpha (rad) for the twist: tan(alpha) = 1 / cos(pi/n) (seed 004 eqn 38, seed 000 eqn 6-47). Above it the
+    Largest alpha (rad) for the twist: tan(alpha) = 1 / cos(pi/n) (Feng, Ma and Chen 2020, eqn 38; Feng 2018, eqn 6-47).
+    Above it the
     fully folded equatorial row pushes C_0 below the equator, into the lower small triangles.
     """
     return float(np.arctan(1.0 / np.cos(np.pi / n)))
@@ -595,7 +602,7 @@ def alpha_limit(n: int) -> float:
 
 def alpha_min(n: int) -> float:
     """
-    Smallest alpha (rad) of a wave-shaped tube for alpha + beta = pi/2 (seed 000 eqn 6-33, theta_I = theta_II):
+    Smallest alpha (rad) of a wave-shaped tube for alpha + beta = pi/2 (Feng 2018, eqn 6-33, theta_I = theta_II):
     (4 + 4 T^2 - T^4) c^4 - 2 T^2 c^2 - 1 = 0 with T = tan(pi/n), c = cos(alpha), a quadratic in c^2.
     """
     T2 = np.tan(np.pi / n) ** 2
@@ -605,9 +612,9 @@ def alpha_min(n: int) -> float:
 
 def beta_max_residual(alpha: float, beta: ArrayLike, n: int) -> NDArray[np.float64]:
     """
-    Left side of seed 004 eqn 40 (seed 000 eqn 6-49), zero where every row of the tube is fully folded at
-    theta = 2 pi / n (the equal-diameter cylinder): c^4(a) s^2(a+b) T^4 + 2 c^2(a) [c(2b) - c^2(a+b)] T^2 + s^2(a+b)
-    - 4 c^2(a) s^2(b), T = tan(pi/n).
+    Left side of Feng, Ma and Chen 2020, eqn 40 (Feng 2018, eqn 6-49), zero where every row of the tube is fully
+    folded at theta = 2 pi / n (the equal-diameter cylinder):
+    c^4(a) s^2(a+b) T^4 + 2 c^2(a) [c(2b) - c^2(a+b)] T^2 + s^2(a+b) - 4 c^2(a) s^2(b), T = tan(pi/n).
     """
     b = np.asarray(beta, dtype=float)
     T2, ca2, sab2 = np.tan(np.pi / n) ** 2, np.cos(alpha) ** 2, np.sin(alpha + b) ** 2
@@ -621,9 +628,9 @@ def beta_max_residual(alpha: float, beta: ArrayLike, n: int) -> NDArray[np.float
 
 def beta_max(alpha: float, n: int) -> float:
     """
-    Largest beta (rad) for the twist at this alpha (rad): the root of `beta_max_residual` in (0, pi/2) (seed 004
-    eqn 40). There every row's vertical edges fold flat together at theta = 2 pi / n, a bifurcation from which the
-    twist may start in any row (seed 004 Fig. 16).
+    Largest beta (rad) for the twist at this alpha (rad): the root of `beta_max_residual` in (0, pi/2) (Feng, Ma
+    and Chen 2020, eqn 40). There every row's vertical edges fold flat together at theta = 2 pi / n, a bifurcation
+    from which the twist may start in any row (Feng, Ma and Chen 2020, Fig. 16).
 
     Raises
     ------
@@ -650,7 +657,7 @@ class TubeLoops:
 
     def gruebler(self) -> int:
         """Kutzbach: creases - 3 per vertex loop - 6 for the ring - 1 per coupling. Without couplings 4n - 6 (the
-        free tube, digest B.2); with them negative, as the couplings are redundant on purpose."""
+        free tube, counted here); with them negative, as the couplings are redundant on purpose."""
         return len(self.crease_names) - 3 * len(vertex_loops(self.layout)) - 6 - len(self.couplings)
 
     @property
@@ -710,12 +717,13 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
     n : int
       Units round the tube, >= 3.
     m : int
-      Rows, >= 1; odd m has an equatorial row (seed 004 §2.1), even m an equatorial row boundary (§2.2).
+      Rows, >= 1; odd m has an equatorial row (Feng, Ma and Chen 2020, §2.1), even m an equatorial row boundary
+      (§2.2).
     alpha, beta : float
       Design angles (rad), each in (0, pi/2): the unit's big triangles have apex pi - 2 alpha, its small ones the
       angles alpha, beta, pi - alpha - beta.
     a : float
-      Half-width of a unit (m), the seeds' a (seed 004) or t (seed 000).
+      Half-width of a unit (m), a in Feng, Ma and Chen 2020, t in Feng 2018.
 
     Raises
     ------
@@ -743,7 +751,7 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
 
     # -- closed form -------------------------------------------------------------------------------------------
     def rows(self, x: ArrayLike) -> dict[tuple[str, int], tuple[NDArray, NDArray]]:
-        """(r, z) in m of every vertex kind and seed row at inputs x (rad), `row_coordinates`."""
+        """(r, z) in m of every vertex kind and row at inputs x (rad), `row_coordinates`."""
         with np.errstate(invalid="ignore", divide="ignore"):
             return row_coordinates(self.n, self.m, self.alpha, self.beta, self.a, np.pi + np.asarray(x, dtype=float))
 
@@ -762,7 +770,7 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
             raise ParameterError(
                 f"the {self.n} x {self.m} tube with alpha = {np.rad2deg(self.alpha):.6g} deg, beta = "
                 f"{np.rad2deg(self.beta):.6g} deg cannot contract rigidly: no theta in (0, 180) deg assembles without "
-                "a crease reversed through flat (seed 004 §2.1)"
+                "a crease reversed through flat (Feng, Ma and Chen 2020, §2.1)"
             )
         return theta[0] - np.pi, theta[1] - np.pi
 
@@ -775,7 +783,8 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
     def length(self, x: ArrayLike, corners: bool = False) -> NDArray[np.float64]:
         """
         Axial length (N,) in m at inputs x (N,): from the bottom row's bottom midpoints to the top row's top
-        midpoints (seed 004 Fig. 1d), or with `corners` between its corners (seed 000 eqn 6-18, L = 2 z_B,top).
+        midpoints (Feng, Ma and Chen 2020, Fig. 1d), or with `corners` between its corners (Feng 2018, eqn 6-18,
+        L = 2 z_B,top).
         """
         rows = self.rows(np.atleast_1d(x))
         bottom, top = row_range(self.m)
@@ -787,7 +796,7 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
         symmetry = "mirror in the equatorial plane" if self.m % 2 else "half-turn about an equatorial radius"
         return (
             Branch(BRANCH, f"units plane-symmetric and alike round each row, {symmetry}: the tube contracts "
-                   "radially (seed 004 §2)", self.domain),
+                   "radially (Feng, Ma and Chen 2020, §2)", self.domain),
         )  # fmt: skip
 
     @cached_property
@@ -814,19 +823,22 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
         if abs(radii[-row_range(self.m)[0]]) < 1e-9 * self.a:
             if self.m % 2:
                 detail = ("the equatorial row's vertical edges fold flat (kappa_B0,4 = 0), its A's meet on the axis "
-                          "(seed 004 eqn 13, seed 000 eqn 6-14): the twist of seed 000 §6.4 branches off")  # fmt: skip
+                          "(Feng, Ma and Chen 2020, eqn 13; Feng 2018, eqn 6-14): the twist of Feng 2018, §6.4 "
+                          "branches off")  # fmt: skip
             else:
-                detail = ("rows 0 and 1: vertical edges fold flat, r_A0 = r_A1 = 0 (seed 000 §6.2.3); even m has no "
+                detail = ("rows 0 and 1: vertical edges fold flat, r_A0 = r_A1 = 0 (Feng 2018, §6.2.3); even m has no "
                           "rigid twist")  # fmt: skip
             if np.max(np.abs(radii)) < 1e-9 * self.a:
-                detail += ("; every row is fully folded, the equal-diameter cylinder of beta = beta_max (seed 004 eqn "
-                           "40): a bifurcation where the twist may start in any row (Fig. 16)")  # fmt: skip
+                detail += ("; every row is fully folded, the equal-diameter cylinder of beta = beta_max (Feng, Ma "
+                           "and Chen 2020, eqn 40): a bifurcation where the twist may start in any row "
+                           "(Fig. 16)")  # fmt: skip
             return Event("lock", inside, (BRANCH,), detail)
         rows = self.rows(np.array([outside]))
         missing = next(((kind, i) for (kind, i), (r, _) in rows.items() if not np.isfinite(r[0])), None)
         if missing is not None:
             detail = (f"no assembly beyond: vertex {missing[0]}{missing[1]} loses its place (two circles part); "
-                      "where it is the top C, the top row's up midlines are flat (seed 004 eqn 14)")  # fmt: skip
+                      "where it is the top C, the top row's up midlines are flat (Feng, Ma and Chen 2020, "
+                      "eqn 14)")  # fmt: skip
             return Event("turning_point", inside, (BRANCH,), detail)
         if outside >= 0.0:
             return Event("lock", inside, (BRANCH,), "the input crease is flat (theta = 180 deg)")
@@ -845,10 +857,10 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
             for x in sign_changes(lambda x, i=i: self.radii(x)[:, i - bottom], lo, hi):
                 crossings.setdefault(round(x, 9), []).append(i)
         for x, rows in crossings.items():
-            names = ", ".join(f"{i - bottom} (seed row {i})" for i in rows)
-            detail = (f"rows {names}: r_A = 0, the vertical edges fold flat onto each other (kappa_Bi,4 = 0, seed 004 "
-                      "eqn 15); where r_A < 0 the rigid tube penetrates itself: the mechanism-structure-mechanism "
-                      "transition (seed 000 §6.2.2)")  # fmt: skip
+            names = ", ".join(f"{i - bottom} (the sources' row {i})" for i in rows)
+            detail = (f"rows {names}: r_A = 0, the vertical edges fold flat onto each other (kappa_Bi,4 = 0, Feng, Ma "
+                      "and Chen 2020, eqn 15); where r_A < 0 the rigid tube penetrates itself: the "
+                      "mechanism-structure-mechanism transition (Feng 2018, §6.2.2)")  # fmt: skip
             out.append(Event("lock", x, (BRANCH,), detail))
         first = 0 if self.m % 2 else 1
         if top > first:
@@ -857,7 +869,7 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
             ):
                 r = self.radii(np.array([x]))[0]
                 if np.ptp(r) < 1e-9 * self.a:
-                    detail = (f"uniform radius r_A = {r[0]:.6g} m: every row alike (seed 000 eqn 6-22); the radius "
+                    detail = (f"uniform radius r_A = {r[0]:.6g} m: every row alike (Feng 2018, eqn 6-22); the radius "
                               "profile changes sign here, and a truncated tube may switch motion (§6.3)")  # fmt: skip
                     out.append(Event("uniform_radius", x, (BRANCH,), detail))
         return tuple(sorted(out, key=lambda e: e.input))

@@ -1,76 +1,76 @@
-"""Generalized waterbomb tube, twist of the fully folded middle row (seed 004 §3 eqns 24-41, seed 000 §6.4 M13).
+"""Generalized waterbomb tube, twist of the fully folded middle row (Feng, Ma and Chen 2020, §3,
+eqns 24-41; Feng 2018, §6.4; "the sources" below).
 
 The tube, its names, flat strip, seam, vertex loops, ring loop and fold-angle measurement are those of
 `waterbomb_tube` (imported, not copied); m must be odd. Fold angles rho: `sim_origami.creases` (0 flat, > 0 valley
-seen from the flat sheet's +z, which ends up outside the tube); the seeds' dihedrals are phi = pi - s rho (s = +1
+seen from the flat sheet's +z, which ends up outside the tube); the sources' dihedrals are phi = pi - s rho (s = +1
 valley, -1 mountain). Every fold angle is reported in (s pi/2 - pi, s pi/2 + pi] (`unwrapped`): the middle row's
 vertical edges sit at rho = -pi all along the twist, and a fully folded crease must not flip between -pi and +pi.
 
-Input. x = rho of A<r0>_0_2, the upper-right diagonal of unit 0 of the middle row (seed row 0): the seeds' input
-eta02 = pi - x (seed 004 §3, Table 1). The tube axis is +z, slot p at azimuth p pi / n as in `waterbomb_tube`.
+Input. x = rho of A<r0>_0_2, the upper-right diagonal of unit 0 of the middle row (row 0): the sources' input eta02
+= pi - x (Feng, Ma and Chen 2020, §3, Table 1). The tube axis is +z, slot p at azimuth p pi / n as in `waterbomb_tube`.
 
-Model (explicit construction of seed 000 M13, checked against seed 004 validation cases 17, 18). At the end of the
-contraction (eta01 = 2 pi / n) every A_0 is on the axis and the middle row's vertical edges are folded flat
-(kappa_B0,4 = 0); they stay so during the twist. Put every A_0 at the origin; the vertical edge of slot p (odd) has
-its midpoint E at radius a, azimuth p pi / n, height 0, and turns about the radius through E: its direction is
-u = cos(zeta) e_psi + sin(zeta) e_z (zeta = pi/2 untwisted), so B_0 = E + a cot(alpha) u and C_-1 = E - a cot(alpha)
-u. B_0 then sits at radius a sqrt(1 + cot^2(alpha) cos^2(zeta)), height a cot(alpha) sin(zeta), azimuth p pi / n +
-delta with delta = atan(cot(alpha) cos(zeta)). The upper half (the B_0 and C_0 rings and every row above) is
-plane-symmetric about the meridians at p pi / n + delta, like the contraction: C_0 meets A_0 (the origin) and the
-B_0's (`waterbomb_tube.meet`), then A_i, B_i, C_i row by row with the contraction's chain. The lower half is the
-image of the upper under the half-turn about the horizontal radius at azimuth 0 (through unit 0's A_0 midline):
-A_i <-> A_-i, B_i <-> C_(-i-1), slot p <-> -p, so its vertices sit at azimuth p pi / n - delta, height -z. The
-relative end-ring twist (top end ring against the bottom one, about +z, from the untwisted state) is 2 delta;
-positive is counter-clockwise seen from +z. zeta < pi/2 turns the upper half counter-clockwise and folds eta02 to 0
-(the seeds' counter-clockwise twist, seed 004 Fig 13a); zeta > pi/2 clockwise, to eta03 = eta06 = 0 (Fig 13b).
-The seeds' quartic (34) is not needed: zeta(x) inverts the monotone map x(zeta) (checked at build) by a table, one
-Newton and one secant step (`WaterbombTwist.tilt`). `evaluate` measures one crease per symmetry class
-(`waterbomb_tube.FoldPlan`) and copies it to the rest of its class.
+Model (an explicit construction of the twist of Feng 2018, §6.4, derived here; checked against the worked twist states
+and limits of Feng, Ma and Chen 2020, §3, in tests/published/feng_ma_chen2020.py). At the end of the contraction (eta01
+= 2 pi / n) every A_0 is on the axis and the middle row's vertical edges are folded flat (kappa_B0,4 = 0); they stay so
+during the twist. Put every A_0 at the origin; the vertical edge of slot p (odd) has its midpoint E at radius a, azimuth
+p pi / n, height 0, and turns about the radius through E: its direction is u = cos(zeta) e_psi + sin(zeta) e_z (zeta =
+pi/2 untwisted), so B_0 = E + a cot(alpha) u and C_-1 = E - a cot(alpha) u. B_0 then sits at radius a sqrt(1 +
+cot^2(alpha) cos^2(zeta)), height a cot(alpha) sin(zeta), azimuth p pi / n + delta with delta = atan(cot(alpha)
+cos(zeta)). The upper half (the B_0 and C_0 rings and every row above) is plane-symmetric about the meridians at p pi /
+n + delta, like the contraction: C_0 meets A_0 (the origin) and the B_0's (`waterbomb_tube.meet`), then A_i, B_i, C_i
+row by row with the contraction's chain. The lower half is the image of the upper under the half-turn about the
+horizontal radius at azimuth 0 (through unit 0's A_0 midline): A_i <-> A_-i, B_i <-> C_(-i-1), slot p <-> -p, so its
+vertices sit at azimuth p pi / n - delta, height -z. The relative end-ring twist (top end ring against the bottom one,
+about +z, from the untwisted state) is 2 delta; positive is counter-clockwise seen from +z. zeta < pi/2 turns the upper
+half counter-clockwise and folds eta02 to 0 (the sources' counter-clockwise twist, Feng, Ma and Chen 2020, Fig 13a);
+zeta > pi/2 clockwise, to eta03 = eta06 = 0 (Fig 13b). The sources' quartic (34) is not needed: zeta(x) inverts the
+monotone map x(zeta) (checked at build) by a table, one Newton and one secant step (`WaterbombTwist.tilt`). `evaluate`
+measures one crease per symmetry class (`waterbomb_tube.FoldPlan`) and copies it to the rest of its class.
 
-Symmetry of the twist (which creases are equal along it). The tube keeps the dihedral group D_n: the n-fold turn
-about the axis (units of a row alike) and the half-turns about the horizontal radii through each A_0 midline and
-each row-0 vertical edge (seed row i <-> -i; A creases 1 <-> 4, 2 <-> 5, 3 <-> 6; vertical edges of rows i <-> -i;
-the row boundaries above row i <-> those below row -i). On top, each half is plane-symmetric about its meridians:
-in every row but the middle one, creases 2 = 6 and 3 = 5 of A and the two row boundaries of a unit are equal, as
-are the two row boundaries on each side of the middle row (kappa_B0,2 = kappa_B0,6). The middle row's A is line-
-but not plane-symmetric: eta01 = eta04, eta02 = eta05, eta03 = eta06 (seed 004 eqn 24). `couplings` couples every
-spanning-tree crease to the first tree crease of its class (classes found from the closed form, as the contraction
-model does). The radial contraction has all of these symmetries too, so it satisfies the couplings: the coupled
-closure carries both paths, crossing at the bifurcation (mobility 2 there, 1 elsewhere on either).
+Symmetry of the twist (which creases are equal along it). The tube keeps the dihedral group D_n: the n-fold turn about
+the axis (units of a row alike) and the half-turns about the horizontal radii through each A_0 midline and each row-0
+vertical edge (row i <-> -i; A creases 1 <-> 4, 2 <-> 5, 3 <-> 6; vertical edges of rows i <-> -i; the row
+boundaries above row i <-> those below row -i). On top, each half is plane-symmetric about its meridians: in every row
+but the middle one, creases 2 = 6 and 3 = 5 of A and the two row boundaries of a unit are equal, as are the two row
+boundaries on each side of the middle row (kappa_B0,2 = kappa_B0,6). The middle row's A is line- but not
+plane-symmetric: eta01 = eta04, eta02 = eta05, eta03 = eta06 (Feng, Ma and Chen 2020, eqn 24). `couplings` couples every
+spanning-tree crease to the first tree crease of its class (classes found from the closed form, as the contraction model
+does). The radial contraction has all of these symmetries too, so it satisfies the couplings: the coupled closure
+carries both paths, crossing at the bifurcation (mobility 2 there, 1 elsewhere on either).
 
-Branches (input x): "twist-ccw" (x from the start to the counter-clockwise end), "twist-cw" (from the clockwise end
-to the start) and the contraction seen from this input ("radial-contraction", `WaterbombTube` at eta01 = 2
-atan(tan(eta02 / 2) / cos(alpha)), seed 004 eqn 9, from its upper end to the start), which crosses the twist at
-the start x_b = pi - 2 atan(cos(alpha) tan(pi/n)) (eqn 39a).
+Branches (input x): "twist-ccw" (x from the start to the counter-clockwise end), "twist-cw" (from the clockwise end to
+the start) and the contraction seen from this input ("radial-contraction", `WaterbombTube` at eta01 = 2 atan(tan(eta02 /
+2) / cos(alpha)), Feng, Ma and Chen 2020, eqn 9, from its upper end to the start), which crosses the twist at the start
+x_b = pi - 2 atan(cos(alpha) tan(pi/n)) (eqn 39a).
 
-Domain of the twist: the interval of zeta around pi/2 on which every vertex is placed, the middle row's diagonals
-are not folded through (eta02 >= 0 and eta03 >= 0: limits (a), (b), the big and small triangles of the middle units
+Domain of the twist: the interval of zeta around pi/2 on which every vertex is placed, the middle row's diagonals are
+not folded through (eta02 >= 0 and eta03 >= 0: limits (a), (b), the big and small triangles of the middle units
 coincide) and no crease is reversed through flat (`waterbomb_tube.reversed_creases`, the strict criterion;
-`tilt_range(strict=False)` is the seeds' "chain real"); the top row deploying (eqn 14, limit (c)) shows as a vertex
-losing its place. Rows whose A's cross the axis (r_A = 0, kappa_Bi,4 = 0: limit (d), eqn 15) are lock events inside
-the domain, as in `waterbomb_tube` (interference; the digest's twist ranges keep it too, B.6 Fig 14c): with beta >
-beta_max (eqn 40) rows +-1 already start through the axis.
+`tilt_range(strict=False)` is the sources' "chain real"); the top row deploying (eqn 14, limit (c)) shows as a vertex
+losing its place. Rows whose A's cross the axis (r_A = 0, kappa_Bi,4 = 0: limit (d), eqn 15) are lock events inside the
+domain, as in `waterbomb_tube` (interference; the twist ranges of Feng, Ma and Chen 2020, Fig 14c, as reproduced here,
+keep it too): with beta > beta_max (eqn 40) rows +-1 already start through the axis.
 
-Other rows (seed 004 Fig 16 paths I and III; digest B.3.6 "Bifurcation", B.6 item 20). At beta = beta_max the
-contraction ends in the fully folded equal-diameter cylinder (configuration iii: every row's A's on the axis), from
-which any row may twist (`row` = seed row k: +1 top, path I; -1 bottom, path III; 0 the middle, path II). The
-construction above builds each side of the twisting row outward by the chain, so a row's place does not depend on
-the rows farther out (as for the contraction, seed 004 Fig 7): the twist of row k in the m-row tube is the middle-row
-twist of the m + 2 |k| row tube, its seed rows i - k kept as rows i (`twist_rows`; slots shift by k, which turns the
-whole tube by k pi / n and leaves every fold angle as it is). Checked, not assumed: every vertex loop and the ring
-closes to 5.4e-15 along both senses, and the start equals the contraction's end at theta = 2 pi / n (configuration
-iii) to 8.9e-16 rad (n6 m3 alpha 40, rows -1, 0, 1; tests/test_waterbomb_twist_rows.py). The input is then the
-twisting row's A<k + r0>_0_2; the limits (a), (b) apply to its diagonals, (c), (d) to the other rows, which touch the
-axis at the start (r_A = c (zeta - pi/2)^2, not a crossing). For beta != beta_max the row k is not fully folded
-where the contraction ends (r_A = -1.615 a (beta - beta_max) for rows +-1 of n6 alpha 40), so its twist would start
-from a state off the contraction: refused unless |r_A| <= FOLDED_TOL a there. The half-turn about the horizontal
-radius through the middle row at azimuth (k mod 2) pi / n maps the twist of row k onto that of row -k at the same
-input and end-ring twist: on the flat strip the point reflection A_i <-> A_-i, B_i <-> C_(-i-1), slot p <-> 2 (k mod
-2) - p (the input A<k + r0>_0_2 <-> A<r0 - k>_0_5, equal to A<r0 - k>_0_2 by the twisting row's line symmetry;
-checked in the tests). Only the twist is modelled for row != 0: its couplings (found from the closed form as for row
-0; 91 on the 6 x 3 tube) make the twisting row's A line-symmetric (eta01 = eta04), which the radial contraction
-breaks in rows +-1 (its coupled residual 0.80), so "radial-contraction" is not a branch of that model (the
-contraction is the row-0 model's).
+Other rows (Feng, Ma and Chen 2020, §3 and Fig 16 paths I and III). At beta = beta_max the contraction ends in the fully
+folded equal-diameter cylinder (configuration iii: every row's A's on the axis), from which any row may twist (`row` =
+row k: +1 top, path I; -1 bottom, path III; 0 the middle, path II). The construction above builds each side of the
+twisting row outward by the chain, so a row's place does not depend on the rows farther out (as for the contraction,
+Feng, Ma and Chen 2020, Fig 7): the twist of row k in the m-row tube is the middle-row twist of the m + 2 |k| row tube,
+its rows i - k kept as rows i (`twist_rows`; slots shift by k, which turns the whole tube by k pi / n and leaves
+every fold angle as it is). Checked, not assumed: every vertex loop and the ring closes to 5.4e-15 along both senses,
+and the start equals the contraction's end at theta = 2 pi / n (configuration iii) to 8.9e-16 rad (n6 m3 alpha 40, rows
+-1, 0, 1; tests/test_waterbomb_twist_rows.py). The input is then the twisting row's A<k + r0>_0_2; the limits (a), (b)
+apply to its diagonals, (c), (d) to the other rows, which touch the axis at the start (r_A = c (zeta - pi/2)^2, not a
+crossing). For beta != beta_max the row k is not fully folded where the contraction ends (r_A = -1.615 a (beta -
+beta_max) for rows +-1 of n6 alpha 40), so its twist would start from a state off the contraction: refused unless |r_A|
+<= FOLDED_TOL a there. The half-turn about the horizontal radius through the middle row at azimuth (k mod 2) pi / n maps
+the twist of row k onto that of row -k at the same input and end-ring twist: on the flat strip the point reflection A_i
+<-> A_-i, B_i <-> C_(-i-1), slot p <-> 2 (k mod 2) - p (the input A<k + r0>_0_2 <-> A<r0 - k>_0_5, equal to A<r0 -
+k>_0_2 by the twisting row's line symmetry; checked in the tests). Only the twist is modelled for row != 0: its
+couplings (found from the closed form as for row 0; 91 on the 6 x 3 tube) make the twisting row's A line-symmetric
+(eta01 = eta04), which the radial contraction breaks in rows +-1 (its coupled residual 0.80), so "radial-contraction" is
+not a branch of that model (the contraction is the row-0 model's).
 """
 
 from functools import cached_property
@@ -151,9 +151,9 @@ def twist_rows(
     n: int, m: int, alpha: float, beta: float, a: float, zeta: ArrayLike, row: int = 0
 ) -> tuple[dict[tuple[str, int], tuple[NDArray, NDArray]], NDArray[np.float64]]:
     """
-    (r, z) in m of every vertex kind and seed row, {(kind, row): (r (N,), z (N,))}, and the upper half's azimuth
-    offset delta (N,) (rad), at side-edge tilts zeta (N,) (rad), seed row `row` twisting; NaN where a vertex cannot
-    be placed. Row `row` != 0: the middle-row twist of the m + 2 |row| row tube, its seed rows i - row kept as rows
+    (r, z) in m of every vertex kind and row, {(kind, row): (r (N,), z (N,))}, and the upper half's azimuth
+    offset delta (N,) (rad), at side-edge tilts zeta (N,) (rad), row `row` twisting; NaN where a vertex cannot
+    be placed. Row `row` != 0: the middle-row twist of the m + 2 |row| row tube, its rows i - row kept as rows
     i (module docstring, "Other rows").
     """
     if row:
@@ -215,13 +215,13 @@ def expanded_middle_input(n: int, alpha: float, beta: float, a: float, zeta: Arr
 
 
 def upper_half(layout: TubeLayout, row: int = 0) -> NDArray[np.bool_]:
-    """Per vertex key: in the upper half of the twist of seed row `row` (B_i, C_i with i >= row, A_i with i >= row +
+    """Per vertex key: in the upper half of the twist of row `row` (B_i, C_i with i >= row, A_i with i >= row +
     1; the A_row are on the axis)."""
     return np.array([i >= row + (1 if kind == "A" else 0) for kind, i, _ in layout.keys])
 
 
 def twist_vertices(layout: TubeLayout, zeta: ArrayLike, row: int = 0) -> NDArray[np.float64]:
-    """3-D vertices (N, len(layout.keys), 3) in m at side-edge tilts zeta (N,) (rad) of the twist of seed row `row`,
+    """3-D vertices (N, len(layout.keys), 3) in m at side-edge tilts zeta (N,) (rad) of the twist of row `row`,
     axis +z (module docstring)."""
     rows, delta = twist_rows(layout.n, layout.m, layout.alpha, layout.beta, layout.a, zeta, row)
     names = list(rows)
@@ -283,14 +283,14 @@ def twist_folds(
     layout: TubeLayout, zeta: ArrayLike, creases: ArrayLike | None = None, row: int = 0
 ) -> NDArray[np.float64]:
     """Fold angles (N, n) of all creases (or the indices `creases`) at side-edge tilts zeta (N,) (rad) of the twist
-    of seed row `row`, `unwrapped`; NaN where the tube does not assemble."""
+    of row `row`, `unwrapped`; NaN where the tube does not assemble."""
     with np.errstate(invalid="ignore", divide="ignore"):
         q = fold_angles(layout, twist_vertices(layout, zeta, row), creases)
     return unwrapped(layout, q, creases)
 
 
 def middle_diagonals(layout: TubeLayout, row: int = 0) -> tuple[int, int]:
-    """Indices of A<r>_0_2 (the input, eta02) and A<r>_0_3 (eta03 = eta06) of seed row `row` (named r = row + r0)
+    """Indices of A<r>_0_2 (the input, eta02) and A<r>_0_3 (eta03 = eta06) of row `row` (named r = row + r0)
     in layout.creases."""
     r = row - row_range(layout.m)[0]
     return layout.index(f"A{r}_0_2"), layout.index(f"A{r}_0_3")
@@ -298,7 +298,7 @@ def middle_diagonals(layout: TubeLayout, row: int = 0) -> tuple[int, int]:
 
 def twist_checks(layout: TubeLayout, zeta: ArrayLike, row: int = 0) -> dict[str, NDArray[np.bool_]]:
     """
-    The domain's conditions (N,) at side-edge tilts zeta (N,) of the twist of seed row `row` (module docstring):
+    The domain's conditions (N,) at side-edge tilts zeta (N,) of the twist of row `row` (module docstring):
     'placed' (every vertex), 'diagonals' (the twisting row's eta02, eta03 >= 0), 'unreversed' (no crease reversed
     through flat). Unit 0 of each row stands for its row.
     """
@@ -314,9 +314,9 @@ def twist_checks(layout: TubeLayout, zeta: ArrayLike, row: int = 0) -> dict[str,
 
 
 def valid_tilts(layout: TubeLayout, zeta: ArrayLike, strict: bool = True, row: int = 0) -> NDArray[np.bool_]:
-    """Where the twist of seed row `row` is a rigid motion (N,) at side-edge tilts zeta (N,) (rad): every
-    `twist_checks` holds; `strict=False` drops 'unreversed', the seeds' criterion (the chain real, digest B.3.4
-    "paper")."""
+    """Where the twist of row `row` is a rigid motion (N,) at side-edge tilts zeta (N,) (rad): every
+    `twist_checks` holds; `strict=False` drops 'unreversed', the sources' criterion (the chain real, Feng, Ma and
+    Chen 2020, §3)."""
     checks = twist_checks(layout, zeta, row)
     if not strict:
         del checks["unreversed"]
@@ -324,7 +324,7 @@ def valid_tilts(layout: TubeLayout, zeta: ArrayLike, strict: bool = True, row: i
 
 
 def tilt_range(layout: TubeLayout, strict: bool = True, row: int = 0) -> tuple[float, float] | None:
-    """The range of side-edge tilts zeta (rad) of the twist of seed row `row`: the interval around pi/2 where
+    """The range of side-edge tilts zeta (rad) of the twist of row `row`: the interval around pi/2 where
     `valid_tilts` holds, its ends bisected to about 1e-13 (`base.domain_of`); None where the start is not valid."""
     try:
         return domain_of(lambda z: valid_tilts(layout, z, strict, row), 1e-9, np.pi - 1e-9, np.pi / 2, GRID)
@@ -333,12 +333,12 @@ def tilt_range(layout: TubeLayout, strict: bool = True, row: int = 0) -> tuple[f
 
 
 def twisting_row(m: int, row: float) -> int:
-    """The seed row `row` of an m-row tube as an int; ParameterError unless it is one of the tube's seed rows."""
+    """The row `row` of an m-row tube as an int; ParameterError unless it is one of the tube's rows."""
     bottom, top = row_range(m)
     if row != int(row) or not bottom <= row <= top:
         rows = ", ".join(str(i) for i in range(bottom, top + 1))
         raise ParameterError(
-            f"row = {row:g}; the {m}-row tube twists in one of its seed rows {rows} (0 the middle row, {top} the top)"
+            f"row = {row:g}; the {m}-row tube twists in one of its rows {rows} (0 the middle row, {top} the top)"
         )
     return int(row)
 
@@ -353,14 +353,14 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
     n : int
       Units round the tube, >= 3.
     m : int
-      Rows, odd (the twist needs a middle row, seed 004 §3).
+      Rows, odd (the twist needs a middle row, Feng, Ma and Chen 2020, §3).
     alpha, beta : float
       Design angles (rad): alpha in (0, `alpha_limit`(n)) (eqn 38), beta in (0, pi/2); above `beta_max`(alpha, n)
       (eqn 40) rows +-1 start through the axis (lock events where they leave it).
     a : float
       Half-width of a unit (m).
     row : int
-      Seed row that twists (0 the middle row, +1 the one above it, ...; module docstring, "Other rows"); a row other
+      Row that twists (0 the middle row, +1 the one above it, ...; module docstring, "Other rows"); a row other
       than 0 only at beta = beta_max (|r_A| <= FOLDED_TOL a where the contraction ends), without the contraction
       branch. The input is that row's A<row + r0>_0_2.
 
@@ -368,16 +368,18 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
     ------
     ParameterError
       For a geometry out of range, one whose middle row cannot fully fold or twist rigidly, a row that is not one of
-      the tube's seed rows, or a row other than 0 that is not fully folded where the contraction ends.
+      the tube's rows, or a row other than 0 that is not fully folded where the contraction ends.
     """
 
     def __init__(self, n: int, m: int, alpha: float, beta: float, a: float = 1.0, row: int = 0):
         if int(m) == m and m % 2 == 0:
-            raise ParameterError(f"m = {m:g} rows; the rigid twist needs an odd m, a middle row to fold (seed 004 §3)")
+            raise ParameterError(f"m = {m:g} rows; the rigid twist needs an odd m, a middle row to fold "
+                                  "(Feng, Ma and Chen 2020, §3)")
         if int(n) == n and n >= 3 and alpha >= alpha_limit(int(n)):
             raise ParameterError(
                 f"alpha = {np.rad2deg(alpha):.6g} deg is not below the twist's limit "
-                f"{np.rad2deg(alpha_limit(int(n))):.6g} deg for n = {n:g} (tan(alpha) = 1/cos(pi/n), seed 004 eqn 38)"
+                f"{np.rad2deg(alpha_limit(int(n))):.6g} deg for n = {n:g} (tan(alpha) = 1/cos(pi/n), "
+                "Feng, Ma and Chen 2020, eqn 38)"
             )
         self.tube = WaterbombTube(n, m, alpha, beta, a)  # checks n, m, alpha, beta, a and the contraction
         tube = self.tube
@@ -394,7 +396,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
             raise ParameterError(
                 f"the {self.n} x {self.m} tube (alpha = {np.rad2deg(alpha):.6g}, beta = {np.rad2deg(beta):.6g} deg) "
                 f"cannot contract to its fully folded middle row: its contraction starts at eta01 = "
-                f"{np.rad2deg(np.pi + self.tube.domain[0]):.6g} deg, not 360/n (seed 004 eqn 13)"
+                f"{np.rad2deg(np.pi + self.tube.domain[0]):.6g} deg, not 360/n (Feng, Ma and Chen 2020, eqn 13)"
             )
         if self.row:
             self._check_folded_row()
@@ -409,7 +411,8 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         if abs(radius) > FOLDED_TOL * self.a:
             raise ParameterError(
                 f"beta = {np.rad2deg(self.beta):.10g} deg is not beta_max = "
-                f"{np.rad2deg(beta_max(self.alpha, self.n)):.10g} deg (seed 004 eqn 40): seed row {self.row} "
+                f"{np.rad2deg(beta_max(self.alpha, self.n)):.10g} deg (Feng, Ma and Chen 2020, eqn 40): "
+                f"row {self.row} "
                 f"has r_A = {radius / self.a:.3g} a where the contraction ends (theta = 360/n), not fully folded "
                 f"(|r_A| <= {FOLDED_TOL:g} a), so its twist does not start from the contraction; only the middle row "
                 "(row 0) twists from there unless beta = beta_max (Fig 16)"
@@ -422,7 +425,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         if tilts is None:
             raise ParameterError(
                 f"the {self.n} x {self.m} tube (alpha = {np.rad2deg(self.alpha):.6g}, beta = "
-                f"{np.rad2deg(self.beta):.6g} deg) has no rigid state at the twist's start (seed 004 §3)"
+                f"{np.rad2deg(self.beta):.6g} deg) has no rigid state at the twist's start (Feng, Ma and Chen 2020, §3)"
             )
         x = self.input_of(np.linspace(*tilts, GRID))
         if not np.all(np.diff(x) < 0):
@@ -460,7 +463,8 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         return np.clip(z1 - np.where(moved, f1 * (z1 - z0) / np.where(moved, f1 - f0, 1.0), 0.0), *self.tilts)
 
     def contraction_theta(self, x: ArrayLike) -> NDArray[np.float64]:
-        """The contraction's eta01 (rad) at inputs x: tan(eta02 / 2) = cos(alpha) tan(eta01 / 2) (seed 004 eqn 9)."""
+        """The contraction's eta01 (rad) at inputs x: tan(eta02 / 2) = cos(alpha) tan(eta01 / 2) (Feng, Ma and
+        Chen 2020, eqn 9)."""
         eta02 = np.pi - np.asarray(x, dtype=float)
         return 2 * np.arctan(np.tan(eta02 / 2) / np.cos(self.alpha))
 
@@ -505,16 +509,17 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         if self.row:
             which = "top" if self.row > 0 else "bottom"
             return (
-                Branch(CCW, f"seed row {self.row} ({which} side) twists from the equal-diameter cylinder (seed 004 "
-                       "Fig 16), the rows above it turn counter-clockwise about +z against those below: x rises, "
-                       "its eta02 falls to 0 or the domain's end", (self.start, hi)),
-                Branch(CW, f"seed row {self.row} twists, the rows above it turn clockwise: x falls, its eta02 rises "
+                Branch(CCW, f"row {self.row} ({which} side) twists from the equal-diameter cylinder (Feng, Ma "
+                       "and Chen 2020, Fig 16), the rows above it turn counter-clockwise about +z against those "
+                       "below: x rises, its eta02 falls to 0 or the domain's end", (self.start, hi)),
+                Branch(CW, f"row {self.row} twists, the rows above it turn clockwise: x falls, its eta02 rises "
                        "and eta03 = eta06 falls to 0 or the domain's end", (lo, self.start)),
             )  # fmt: skip
         c_lo = float(self.contraction_input(np.pi + self.tube.domain[1]))
         return (
             Branch(CCW, "middle row twists, upper half turns counter-clockwise about +z against the lower half "
-                   "(seed 004 Fig 13a): x rises, eta02 falls to 0 or the domain's end", (self.start, hi)),
+                   "(Feng, Ma and Chen 2020, Fig 13a): x rises, eta02 falls to 0 or the domain's end",
+                   (self.start, hi)),
             Branch(CW, "middle row twists, upper half turns clockwise (Fig 13b): x falls, eta02 rises and eta03 "
                    "= eta06 falls to 0 or the domain's end", (lo, self.start)),
             Branch(CONTRACTION, "the radial contraction (waterbomb_tube) seen from eta02, from its upper end down to "
@@ -566,13 +571,15 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         if not checks["placed"]:
             outer = "top row's up" if not self.row else "outermost row's outer"
             detail = (f"no assembly beyond ({where}): a vertex loses its place, the {outer} midlines flat "
-                      "(seed 004 eqn 14, limit (c))")  # fmt: skip
+                      "(Feng, Ma and Chen 2020, eqn 14, limit (c))")  # fmt: skip
             return Event("turning_point", x, (branch,), detail)
         if not checks["diagonals"]:
             crease = "eta02" if branch == CCW else "eta03 = eta06"
-            units = "middle units" if not self.row else f"units of seed row {self.row}"
-            detail = (f"{crease} = 0 ({where}): the big and small triangles of the {units} coincide (seed 004 "
-                      "Fig 13, limits (a)/(b); the double root of eqn 41 with W5 corrected, digest B.3.6)")  # fmt: skip
+            units = "middle units" if not self.row else f"units of row {self.row}"
+            detail = (f"{crease} = 0 ({where}): the big and small triangles of the {units} coincide (Feng, Ma "
+                      "and Chen 2020, Fig 13, limits (a)/(b); the double root of eqn 41 with W5 corrected here: the "
+                      "c(2 pi/n) coefficient of W5 gains 2 sin^2(alpha), and the printed W5 puts the limit at "
+                      "64.975 deg, not 100.800 deg, for n6 alpha40)")  # fmt: skip
         else:
             detail = f"a crease folds flat and would reverse ({where}; strict criterion)"
         return Event("lock", x, (branch,), detail)
@@ -584,7 +591,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         return np.stack([rows["A", i][0] for i in range(bottom, top + 1)], -1)
 
     def _row_radius(self, zeta: NDArray[np.float64], row: int, touching: bool) -> NDArray[np.float64]:
-        """r_A (N,) in m of seed row `row` at tilts zeta (N,); for a row `touching` the axis at the start (beta =
+        """r_A (N,) in m of row `row` at tilts zeta (N,); for a row `touching` the axis at the start (beta =
         beta_max) |r_A| <= FOLDED_TOL a reads 0: there r_A = c (zeta - pi/2)^2 (c = 0.93, 1.73 m for the rows next
         to and two from the twisting one, n6 alpha 40, measured) touches 0 with round-off of either sign (6.7e-16 m)
         and is no crossing."""
@@ -593,8 +600,9 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
 
     def _crossings(self) -> list[Event]:
         """Lock events where rows' A's cross the axis during the twist (r_A = 0, their vertical edges folded flat
-        onto each other: seed 004 limit (d), eqn 15); where r_A < 0 the rigid tube penetrates itself (interference,
-        which the seeds' ranges keep: digest B.6, Fig 14c). Rows i and -i cross together (the half-turn)."""
+        onto each other: Feng, Ma and Chen 2020, limit (d), eqn 15); where r_A < 0 the rigid tube penetrates itself
+        (interference, which the paper's ranges of Fig 14c keep, as reproduced here). Rows i and -i cross together
+        (the half-turn)."""
         lo, hi = self.tilts
         bottom, top = row_range(self.m)
         touching = np.abs(self._tilt_radii(np.array([np.pi / 2]))[0]) <= FOLDED_TOL * self.a
@@ -605,18 +613,18 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
                     crossings.setdefault(round(zeta, 9), []).append(i)
         out = []
         for zeta, rows in crossings.items():
-            names = ", ".join(f"{i - bottom} (seed row {i})" for i in rows)
-            detail = (f"rows {names}: r_A = 0, the vertical edges fold flat onto each other (kappa_Bi,4 = 0, seed 004 "
-                      "limit (d), eqn 15); where r_A < 0 the rigid tube penetrates itself")  # fmt: skip
+            names = ", ".join(f"{i - bottom} (row {i})" for i in rows)
+            detail = (f"rows {names}: r_A = 0, the vertical edges fold flat onto each other (kappa_Bi,4 = 0, Feng, Ma "
+                      "and Chen 2020, limit (d), eqn 15); where r_A < 0 the rigid tube penetrates itself")  # fmt: skip
             x = float(self.input_of(np.array([zeta]))[0])
             out.append(Event("lock", x, (CCW if zeta < np.pi / 2 else CW,), detail))
         return out
 
     def events(self) -> tuple[Event, ...]:
         lo, hi = self.tilts
-        meet_detail = ("the fully folded middle row (eta01 = 2 pi/n, kappa_B0,4 = 0, every A_0 on the axis, seed 004 "
-                       "eqn 13): the radial contraction ends and the twist branches off (eqn 39a); the coupled "
-                       "closure's mobility is 2 here")  # fmt: skip
+        meet_detail = ("the fully folded middle row (eta01 = 2 pi/n, kappa_B0,4 = 0, every A_0 on the axis, Feng, Ma "
+                       "and Chen 2020, eqn 13): the radial contraction ends and the twist branches off (eqn 39a); the "
+                       "coupled closure's mobility is 2 here")  # fmt: skip
         if self.row:
             return self._row_events()
         through = np.flatnonzero(self._tilt_radii(np.array([np.pi / 2]))[0] < 0)
@@ -641,7 +649,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         """`events` of the twist of a row other than the middle one (module docstring, "Other rows")."""
         lo, hi = self.tilts
         meet_detail = (f"the fully folded equal-diameter cylinder (configuration iii, beta = beta_max, eqn 40): every "
-                       f"row's A's on the axis; seed row {self.row}'s twist (Fig 16 path "
+                       f"row's A's on the axis; row {self.row}'s twist (Fig 16 path "
                        f"{'I' if self.row > 0 else 'III'}) branches off where the radial contraction and the other "
                        "rows' twists end or start; the coupled closure's mobility is 2 here")  # fmt: skip
         out = [

@@ -1,4 +1,4 @@
-"""Scene `bennett`: the Bennett 4R linkage (seed 001 §2.1), driven by theta1; link 4 is ground."""
+"""Scene `bennett`: the Bennett 4R linkage (Yang 2017, eqns 1-17, 1-18), driven by theta1; link 4 is ground."""
 
 import numpy as np
 
@@ -16,7 +16,7 @@ PARAMS = (
 )
 
 
-@register("bennett", "Bennett 4R linkage (seed 001), input theta1, joints theta1..theta4", PARAMS)
+@register("bennett", "Bennett 4R linkage (Yang 2017), input theta1, joints theta1..theta4", PARAMS)
 def build(a: float, alpha: float, b: float, beta: float) -> Scene:
     kinematics = Bennett(a, alpha, b, beta)
     return Scene(

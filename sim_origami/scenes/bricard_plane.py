@@ -1,4 +1,4 @@
-"""Scene `bricard-plane`: the plane-symmetric Bricard 6R (seed 000 M4 to M7), driven by theta2; link 6 is ground.
+"""Scene `bricard-plane`: the plane-symmetric Bricard 6R (Feng 2018, §4.2-4.5), driven by theta2; link 6 is ground.
 
 `case` picks a Table 4-1 preset (5 to 10) and its geometry; 0 uses a, b, c, alpha, beta, gamma, R2, R3 as given
 (the case 10 values where not given). Geometry given without `case` means case 0; geometry given with a nonzero
@@ -74,8 +74,8 @@ def structure_message(kinematics: PlaneSymmetricBricard, number: int) -> str:
 def default_path(kinematics: PlaneSymmetricBricard) -> tuple[float, float]:
     """
     A sweep in the widest event-free input interval inside the domain of every branch that shares the
-    first branch's domain (branches on other arcs of theta2, e.g. seed000 validation case 15, cannot
-    share one sweep: `Scene` has a single path).
+    first branch's domain (branches on other arcs of theta2, e.g. the offset geometry OFFSETS of
+    tests/published/feng2018.py, cannot share one sweep: `Scene` has a single path).
     """
     branches = kinematics.branches()
     lo, hi = branches[0].domain
@@ -107,7 +107,7 @@ def default_path(kinematics: PlaneSymmetricBricard) -> tuple[float, float]:
 
 @register(
     "bricard-plane",
-    "plane-symmetric Bricard 6R (seed 000 ch. 4, Table 4-1 cases 5..10), input theta2, joints theta1..theta6",
+    "plane-symmetric Bricard 6R (Feng 2018, ch. 4, Table 4-1 cases 5..10), input theta2, joints theta1..theta6",
     PARAMS,
 )
 def build(

@@ -1,4 +1,4 @@
-"""Scene `bricard-threefold`: the threefold-symmetric Bricard 6R linkage (seed 001 §2.5), driven by
+"""Scene `bricard-threefold`: the threefold-symmetric Bricard 6R linkage (Yang 2017, ch. 2 example), driven by
 theta1; link 6 is ground."""
 
 from ..kinematics.bricard_threefold import BricardThreefold
@@ -8,7 +8,7 @@ from .base import ANGLE_MARGIN, Param, Scene, register
 PARAMS = (
     Param("a", "m", 1.0, "common link length a12 = ... = a61"),
     # The Ch. 2 example with the axes as printed in (2-10, 2-11): twists alternate 300/60 deg
-    # (seed 001 §2.5 and validation case 8); alpha = 120 deg is the same linkage with the axes of
+    # (Yang 2017, eqns 2-10, 2-11 and 1-27); alpha = 120 deg is the same linkage with the axes of
     # joints 2, 4, 6 reversed (phi negated).
     Param("alpha", "deg", 300.0, "twist alpha12 = alpha34 = alpha56; alpha23 = alpha45 = alpha61 = 360 - alpha",
           lo=ANGLE_MARGIN, hi=360 - ANGLE_MARGIN),
@@ -17,7 +17,7 @@ PARAMS = (
 
 @register(
     "bricard-threefold",
-    "threefold-symmetric Bricard 6R linkage (seed 001), input theta1, joints theta1..theta6",
+    "threefold-symmetric Bricard 6R linkage (Yang 2017), input theta1, joints theta1..theta6",
     PARAMS,
 )
 def build(a: float, alpha: float) -> Scene:

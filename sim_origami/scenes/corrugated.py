@@ -1,7 +1,7 @@
-"""Scene `corrugated-unit`: double-corrugated unit P or Q as a 3 x 3 Kokotsakis mesh (seed 003 §3.2.2, M7).
+"""Scene `corrugated-unit`: double-corrugated unit P or Q as a 3 x 3 Kokotsakis mesh (Peng 2018, §3.2.2).
 
 Nine parallelogram faces (`kinematics.corrugated.unit_pattern`), twelve crease hinges, the central face
-fixed and the seed's input crease driven (P: AD = theta_1a, Q: AF = theta_2f). The spanning tree keeps
+fixed and the thesis's input crease driven (P: AD = theta_1a, Q: AF = theta_2f). The spanning tree keeps
 the four inner creases and one outer crease per corner face; the other four outer creases are closed by
 connects, one loop per vertex. There are no M/V joint limits, so the flat state is the bifurcation of
 all six rigid mode combinations (the kinematics' branches); the default sweep starts away from it.
@@ -15,7 +15,7 @@ from .patterns import pattern_scene
 PARAMS = (
     Param("unit", "", 0.0, "which unit: 0 = P (parallelogram ABCD), 1 = Q (parallelogram ABEF)",
           lo=0, hi=1, integer=True),
-    Param("alpha", "deg", 135.0, "design angle alpha (largest sector, P's angle at A); seed Fig 3-2", **SECTOR),
+    Param("alpha", "deg", 135.0, "design angle alpha (largest sector, P's angle at A); Peng 2018, Fig 3-2", **SECTOR),
     Param("beta", "deg", 60.0, "design angle beta (Q's angle at A)", **SECTOR),
     Param("gamma", "deg", 45.0, "design angle gamma = 180 - alpha, the smallest sector", **SECTOR),
     Param("delta", "deg", 120.0, "design angle delta = 180 - beta", **SECTOR),
@@ -41,7 +41,7 @@ def unit_name(unit: float) -> str:
     return "PQ"[int(unit)]
 
 
-@register("corrugated-unit", "double-corrugated unit P or Q (seed 003 M7), 3 x 3 mesh of 4 flat-foldable "
+@register("corrugated-unit", "double-corrugated unit P or Q (Peng 2018, §3.2.2), 3 x 3 mesh of 4 flat-foldable "
           "vertices; branches = the six rigid vertex-mode combinations", PARAMS)  # fmt: skip
 def build(unit: float, alpha: float, beta: float, gamma: float, delta: float, L1: float, L2: float, L3: float) -> Scene:
     name = unit_name(unit)

@@ -1,4 +1,4 @@
-"""Scene `corrugated-sheet`: a double-corrugated tessellation of rows x cols units P or Q (seed 003 §3.2.2, M7).
+"""Scene `corrugated-sheet`: a double-corrugated tessellation of rows x cols units P or Q (Peng 2018, §3.2.2).
 
 Every face of `kinematics.corrugated_sheet.sheet_pattern` is a body, every crease a hinge; the spanning tree
 keeps the input crease u1_1 (the first unit's AD for P, AF for Q) and the first unit's central face f1_1 is
@@ -39,7 +39,7 @@ FAST_STEP_SCALE = 1.25
 INSET = 0.05
 
 
-@register("corrugated-sheet", "double-corrugated tessellation of rows x cols units P or Q (seed 003 M7), every "
+@register("corrugated-sheet", "double-corrugated tessellation of rows x cols units P or Q (Peng 2018, §3.2.2), every "
           "vertex in the mode of its unit vertex; branches = the unit's six rigid mode strings", PARAMS)  # fmt: skip
 def build(
     unit: float,

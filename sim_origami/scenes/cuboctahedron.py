@@ -1,4 +1,4 @@
-"""Scene `cuboctahedron`: the cuboctahedron <-> octahedron transformation of seed 001 ch. 4.
+"""Scene `cuboctahedron`: the cuboctahedron <-> octahedron transformation of Yang 2017, ch. 4.
 
 Bodies: the 8 rigid triangles of `kinematics.cuboctahedron` (thin plates); every body frame is the deployed
 world frame (4-1), root ABE. R joints at A, B, C, D, I, J, K, L are hinges through the vertex along the printed
@@ -12,7 +12,8 @@ the cuboctahedron to the octahedron, a turn by theta_d - theta_f = 96.38 deg abo
 measured to 1e-16), y = +z of (4-1), z = x cross y. The relative turn axis stays in the deployed xy plane, so
 the middle angle stays within 11.6 deg of 0 on the whole path (measured on 401 samples), clear of +-90 deg.
 
-`assembly(revolute=...)` also builds the seed's variants for its mobility counts (digest §2.6): vertices not
+`assembly(revolute=...)` also builds variants for mobility counts (all S, as in Yang 2017, §4.2; only Bennett 1
+as R; an R joint at E, both derived here): vertices not
 listed get ball joints (triad: z along the R axis it replaces), and E, F, G, H listed get hinges along the
 direction to the centre.
 """
@@ -75,7 +76,7 @@ def _ends(vertex: str) -> tuple[str, str]:
 
 def assembly(revolute: tuple[str, ...] = REVOLUTE) -> Mechanism:
     """
-    The cuboctahedral linkage (seed 001 §2.6): hinges at the vertices in `revolute` (default the two Bennett
+    The cuboctahedral linkage (Yang 2017, §4.2): hinges at the vertices in `revolute` (default the two Bennett
     linkages), balls at the other vertices; root ABE, hinge 'A' kept in the spanning tree as the input when
     it is a hinge.
     """
@@ -85,7 +86,7 @@ def assembly(revolute: tuple[str, ...] = REVOLUTE) -> Mechanism:
     spacers, joints = [], []
     for v, p in VERTICES.items():
         parent, child = _ends(v)
-        axis = AXES[v] if v in AXES else -p  # E..H as hinges: toward the centre (digest §2.6)
+        axis = AXES[v] if v in AXES else -p  # E..H as hinges: toward the centre (a variant defined here)
         if v in revolute:
             frame = frame_along(axis, p)
             joints.append(Joint(v, parent, child, frame, frame, anchors=ANCHORS))
@@ -100,7 +101,7 @@ def assembly(revolute: tuple[str, ...] = REVOLUTE) -> Mechanism:
 
 @register(
     "cuboctahedron",
-    "cuboctahedron <-> octahedron (seed 001 ch. 4): 2 Bennett linkages and 4 RSRS loops, 8 R + 4 S joints, input A",
+    "cuboctahedron <-> octahedron (Yang 2017, ch. 4): 2 Bennett linkages and 4 RSRS loops, 8 R + 4 S joints, input A",
     (),
 )
 def build() -> Scene:

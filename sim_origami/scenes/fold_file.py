@@ -1,20 +1,22 @@
 """A scene from a FOLD 1.2 file: any crease pattern, with the numeric loop closure as the reference.
 
 What the motion is (`kinematics.numeric_pattern` for the trace and its stops):
-- the file's frames, when it has several: the inputs move from flat through each frame's inputs in turn;
+- the file's frames, when it has several: the inputs move through each frame's inputs in turn (traced from the first
+  frame, back to flat and on through the others);
 - else its folded state (the last frame, or the key frame's `edges_foldAngle`; null = free): anchored at it when
   it is an exact rigid state with one input, otherwise a direction traced from flat as far as the rigid motion goes
   (+-180 deg targets, free entries, states off the rigid path);
 - else its M/V letters: from flat with every crease on its letter's side, towards +-180 deg.
 The inputs are the creases named (`--input e1,e5`), or as many as the pattern has freedoms along the motion,
-picked by rank (`path.independent_joints`), the most folded crease first. F creases are locked flat.
+picked by rank (`path.independent_joints`), the steadiest crease first (`steadiest`: the one whose rate stays the
+largest fraction of the fastest crease's). F creases are locked flat.
 
 Scale. The pattern is simulated at unit size: lengths divided by its longest edge L (`params["size_m"]`), so the
 same pattern at 1 mm, 1 m or 1000 "unit" gives the same verdict and angle errors; closure residuals in the report
 are then in units of L (multiply by L for metres).
 
 The sweep runs from SWEEP_FROM of the target's input to the target when the target is a state on the rigid motion,
-else from SWEEP_FROM of the traced motion's end to that end, or over the frames' whole span.
+else from SWEEP_FROM of the traced motion's end to that end, or from the first frame to the last.
 """
 
 from dataclasses import replace
@@ -40,6 +42,8 @@ SWEEP_TIME_SCALE = 4.0
 # Exact frame angles may be this far (rad) from the rigid motion through them: FOLD writers round angles (the
 # same allowance as `numeric_pattern.TARGET_TOL`).
 FRAMES_TOL = TARGET_TOL
+# A step of the motion in which no crease turns more than this (rad) says nothing about their rates (repeated frames).
+MOVING = 1e-9
 
 
 def longest_edge(pattern: CreasePattern) -> float:
@@ -107,7 +111,7 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     trial = None
     if inputs is None:
         inputs, trial = _choose_inputs(pattern, reference, several, signs if letters_only else None)
-    # the trial traced with the first input is this very path when that input is all it needs (half the build)
+    # the input choice's one-input trial trace is this very path when its crease is the one chosen (half the build)
     kinematics = trial if trial is not None and trial.inputs == inputs else \
         PatternPath(pattern, inputs, None if several is not None else target, **kwargs)  # fmt: skip
     if frames_tolerance is not None and frames_tolerance < 0:
@@ -115,12 +119,17 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     from_coords = getattr(fold, "frames_from_coords", False)
     kinematics.frames_tolerance = frames_tolerance if frames_tolerance is not None else None if from_coords \
         else FRAMES_TOL  # fmt: skip
+    # MuJoCo locks the F creases of a spanning forest of them: one closing a cycle of F creases (four round a
+    # vertex, as the bird base's diagonal marks) is held flat by the others, and a cut joint cannot be coupled
+    flat = tuple(names[c.joint] for c in lock_flat(pattern))
+    held = [names[k] for k in pattern.spanning_creases(prefer=flat) if names[k] in flat]
     mechanism = pattern_mechanism(pattern, root=pattern.crease_faces(pattern.crease(inputs[0]))[0], keep=inputs,
-                                  couplings=tuple((names[c.joint], names[c.joint], 0.0) for c in lock_flat(pattern)))
-    lo, hi = kinematics.branches()[0].domain
-    # a state on the rigid motion is what the file asks about: sweep up to it; a direction: as far as the trace went
-    end = kinematics.target_input if kinematics.target_input is not None else hi if abs(hi) >= abs(lo) else lo
-    sweep = (lo, hi) if several is not None else (SWEEP_FROM * end, end)
+                                  couplings=tuple((n, n, 0.0) for n in held))  # fmt: skip
+    # frames: the motion they describe, from the first to the last (the trace from flat to the first only finds it)
+    if several is not None:
+        sweep = (kinematics.frame_distances[0]["input"], kinematics.frame_distances[-1]["input"])
+    else:
+        sweep = (SWEEP_FROM * motion_end(kinematics), motion_end(kinematics))
     multi = not kinematics.path_is_input
     source = "frames" if several is not None else "M/V letters" if letters_only else "folded state"
     return Scene(
@@ -133,23 +142,61 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     )  # fmt: skip
 
 
+def motion_end(kinematics: PatternPath) -> float:
+    """
+    The input (rad) a state or letters sweep ends at: a state on the rigid motion is what the file asks about, so
+    its input; a direction, as far as the trace went.
+    """
+    lo, hi = kinematics.branches()[0].domain
+    return kinematics.target_input if kinematics.target_input is not None else hi if abs(hi) >= abs(lo) else lo
+
+
 def _choose_inputs(pattern: CreasePattern, target, frames, signs) -> tuple[tuple[str, ...], PatternPath]:
     """
-    The most folded crease of the state (or the first lettered one), then, when the pattern has more freedoms
-    along its motion than one (the mobility at the middle of a one-input trace), as many as it has, by rank; and that
-    one-input trace.
+    The steadiest crease of the motion (`steadiest`: over the frames, else over each crease's own sweep along a
+    trace driven by the most folded crease), then, when the pattern has more freedoms along its motion than one
+    (the mobility at the middle of a one-input trace), as many as it has, by rank; and that one-input trace.
     """
     names = [c.name for c in pattern.creases]
-    state = frames[-1] if frames is not None else target if target is not None else signs
-    usable = np.array([c.assignment != "F" for c in pattern.creases]) & np.isfinite(state) & (np.nan_to_num(state) != 0)
+    # letters only: a U crease has no direction to be driven in (free, as a null angle)
+    state = frames[-1] if frames is not None else target if target is not None else np.where(signs != 0, signs, np.nan)
+    given = np.all(np.isfinite(frames), axis=0) if frames is not None else np.isfinite(state)
+    usable = np.array([c.assignment != "F" for c in pattern.creases]) & given & (np.nan_to_num(state) != 0)
     if not np.any(usable):
         raise ParameterError("every crease is flat, free (null) or F in the folded state: no crease to drive")
     first = int(np.argmax(np.where(usable, np.abs(np.nan_to_num(state)), -1.0)))
+    if frames is not None:
+        first = steadiest(frames, usable, first)
     trial = PatternPath(pattern, names[first], target, frames=frames, signs=signs)
+    if frames is None:
+        end = motion_end(trial)
+        on = (trial.s_nodes * np.sign(end) >= 0) & (np.abs(trial.s_nodes) <= abs(end))
+        nodes = trial.nodes[on][np.argsort(np.abs(trial.s_nodes[on]))]  # from flat to the end
+        # driven, crease j would sweep from SWEEP_FROM of its end angle to its end angle
+        inside = np.abs(nodes) >= SWEEP_FROM * np.abs(nodes[-1]) - MOVING
+        first = steadiest(nodes, usable, first, inside[:-1] & inside[1:])
     middle = len(trial.nodes) // 2
     m = int(trial.mobility[middle])
     if m <= 1:
         return (names[first],), trial
-    allowed = np.array([c.assignment != "F" for c in pattern.creases]) & np.isfinite(state)
+    allowed = np.array([c.assignment != "F" for c in pattern.creases]) & given
     picked = independent_joints(trial.loop_system(), trial.nodes[middle], m, among=allowed, first=(first,))
     return tuple(names[k] for k in picked), trial
+
+
+def steadiest(states: np.ndarray, usable: np.ndarray, default: int, swept: np.ndarray | None = None) -> int:
+    """
+    The usable crease whose rate stays the largest fraction of the fastest crease's along `states` (m, n_creases)
+    (rad, in the motion's order), over the steps `swept` (m - 1, n_creases) marks for each crease (default all);
+    `default` when nothing moves. Driven, it gears every other crease up the least, so MuJoCo's lag behind the
+    drive is amplified the least; a crease near a turning point (rate -> 0) scores 0 (measured scores and lags:
+    docs/fold_motion.md).
+    """
+    steps = np.nan_to_num(np.abs(np.diff(states, axis=0)))  # a free (null) entry has no rate: 0
+    fastest = np.max(steps, axis=1, initial=0.0)
+    counted = (fastest > MOVING)[:, None] & (np.ones(steps.shape, dtype=bool) if swept is None else swept)
+    if not np.any(counted & usable):
+        return default
+    ratio = np.where(counted, steps / np.where(fastest > MOVING, fastest, 1.0)[:, None], np.inf)
+    score = np.where(np.any(counted, axis=0), np.min(ratio, axis=0), 0.0)
+    return int(np.argmax(np.where(usable, score, -1.0)))

@@ -1,9 +1,9 @@
-"""Scene `kokotsakis`: 3x3 Kokotsakis meshes of four degree-4 vertices (seed 003 §2.5, digest M3-M5).
+"""Scene `kokotsakis`: 3x3 Kokotsakis meshes of four degree-4 vertices (Peng 2018, §2.3-2.5).
 
 Nine panels (central, four sides, four corners) as bodies, twelve crease hinges, the central panel fixed and
 inner crease AB driven (`kinematics.kokotsakis`). The spanning tree keeps the four inner creases and one
 outer crease per corner panel; the other outer crease of each corner panel is cut and closed by connects,
-one per vertex loop. `case` picks the seed's mesh: 1 = Example 1 (rotation case, identical generic vertices,
+one per vertex loop. `case` picks Peng 2018's mesh: 1 = Example 1 (rotation case, identical generic vertices,
 eqn 2-34), 2 = Example 2 (variant rotation case, flat-foldable vertices, eqn 2-38), 3 = the two-fold case with
 identical (mirrored) vertices [RECON], 4 = the plane-symmetric case with identical (mirrored) vertices [RECON]:
 an isosceles trapezoid with two straight crease lines, so the flat state is also the start of a 2-DOF family.
@@ -47,7 +47,8 @@ def _case(value: float) -> int:
     return int(value)
 
 
-@register("kokotsakis", "3x3 Kokotsakis mesh of four degree-4 vertices (seed 003 M5), case 1-4, input rho_AB", PARAMS)
+@register("kokotsakis", "3x3 Kokotsakis mesh of four degree-4 vertices (Peng 2018, §2.5), case 1-4, input rho_AB",
+          PARAMS)  # fmt: skip
 def build(case: float, outer: float) -> Scene:
     number = _case(case)
     kinematics = Kokotsakis(example(number), outer=outer)

@@ -1,4 +1,4 @@
-"""Scene `miura`: the asymmetric Miura vertex of seed 002, driven by theta (half the fold at c).
+"""Scene `miura`: the asymmetric Miura vertex of Kamrava et al. 2021, driven by theta (half the fold at c).
 
 Creases a, b, c, d are crease_1 .. crease_4 of a vertex with sectors (alpha1, pi - alpha1,
 pi - alpha2, alpha2). Panel P_bc (panel_2) is fixed; the spinal crease c (crease_3) is driven with
@@ -21,7 +21,7 @@ PARAMS = (
 INSET_PER_THICKNESS = 1.5
 
 
-@register("miura", "asymmetric Miura vertex (seed 002), input theta, joints phi, psi, rho_a..rho_d", PARAMS)
+@register("miura", "asymmetric Miura vertex (Kamrava et al. 2021), input theta, joints phi, psi, rho_a..rho_d", PARAMS)
 def build(alpha1: float, alpha2: float, length: float, thickness: float) -> Scene:
     kinematics = MiuraVertex(alpha1, alpha2)
     mechanism = vertex_mechanism(

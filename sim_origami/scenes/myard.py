@@ -1,4 +1,4 @@
-"""Scene `myard`: the Myard 5R linkage (seed 001 §2.3, eqn 1-19), driven by theta3; link 5 is ground.
+"""Scene `myard`: the Myard 5R linkage (Yang 2017, eqn 1-19), driven by theta3; link 5 is ground.
 
 Joints 3 and 4 meet at one point (a34 = 0): link 3 is drawn as a cube of the bar width there
 (`linkage.bar`). The loop is cut at joint 5, closed by two connects at +-a23/2 along its axis.
@@ -22,7 +22,7 @@ PARAMS = (
 PATH = (0.5, 2.5)
 
 
-@register("myard", "Myard 5R linkage (seed 001), input theta3, joints theta1..theta5", PARAMS)
+@register("myard", "Myard 5R linkage (Yang 2017), input theta3, joints theta1..theta5", PARAMS)
 def build(a23: float, alpha12: float) -> Scene:
     kinematics = Myard(a23, alpha12)
     return Scene(

@@ -1,10 +1,11 @@
-"""Scene `rssr`: the RSSR linkage, the non-overconstrained form of the Bennett linkage (seed 001 ch. 3, §2.2).
+"""Scene `rssr`: the RSSR linkage, the non-overconstrained form of the Bennett linkage (Yang 2017, §3.3).
 
 Ground DA, input theta1 at A (hinge `joint_1`), R at B (`joint_2`), balls at C (a MuJoCo ball joint) and D (one
 connect). Any a1 = AB = CD, a2 = BC = DA and twist alpha of AB (a2 sin alpha < a1) moves like the Bennett linkage
 of implied beta = asin(a2 sin alpha / a1): so a built RSSR with fabrication errors stays mobile where the Bennett
-locks (`sim_origami.fabrication`; `scripts/fabrication_errors.py`). The seed's 1.5 mm length error (k = +1, lengths
-scaled 100 mm -> 1 m) is `-p a1=1.015 -p a2=0.6922`. Outputs: theta1 and theta2 (rad); points: the joint origins.
+locks (`sim_origami.fabrication`; `scripts/fabrication_errors.py`). Yang 2017's 1.5 mm length error (§3.5;
+k = +1, lengths scaled 100 mm -> 1 m) is `-p a1=1.015 -p a2=0.6922`. Outputs: theta1 and theta2 (rad); points: the
+joint origins.
 """
 
 import numpy as np
@@ -15,13 +16,14 @@ from .base import SECTOR, Param, Scene, register
 from .polyhedra import AssemblyKinematics, kutzbach
 
 PARAMS = (
-    Param("a1", "m", 1.0, "AB = CD, the link with twist alpha (seed 001 Sec. 3.5: 100 mm)"),
+    Param("a1", "m", 1.0, "AB = CD, the link with twist alpha (Yang 2017, §3.5: 100 mm)"),
     Param("a2", "m", 0.7072, "BC = DA (70.72 mm)"),
     Param("alpha", "deg", 45.0, "twist of AB", **SECTOR),
 )
 
 
-@register("rssr", "RSSR linkage, the Bennett linkage's non-overconstrained form (seed 001 §2.2), input theta1", PARAMS)
+@register("rssr", "RSSR linkage, the Bennett linkage's non-overconstrained form (Yang 2017, §3.3), input theta1",
+          PARAMS)  # fmt: skip
 def build(a1: float, a2: float, alpha: float) -> Scene:
     rssr = RSSR(a1, a2, alpha)
     mechanism = rssr_mechanism(rssr)

@@ -1,4 +1,4 @@
-"""Scene `square-twist`: the zero-thickness square twist of seed 003 §3.3 (digest M9), input rho_AB.
+"""Scene `square-twist`: the zero-thickness square twist of Peng 2018, §3.3, input rho_AB.
 
 Nine faces (`kinematics.square_twist`), twelve crease hinges, the central square fixed, square edge AB
 driven; the four per-vertex loops are closed by connects on four cut creases. Nothing imposes an M/V
@@ -46,8 +46,8 @@ def _scene(
                          sweep_time_scale=SWEEP_TIME_SCALE, notes=notes)  # fmt: skip
 
 
-@register("square-twist", "square twist, zero thickness: four flat-foldable vertices round a square (seed 003 M9), "
-          "input rho_AB", PARAMS)  # fmt: skip
+@register("square-twist", "square twist, zero thickness: four flat-foldable vertices round a square "
+          "(Peng 2018, §3.3), input rho_AB", PARAMS)  # fmt: skip
 def build(alpha: float, side: float, pleat: float) -> Scene:
     kinematics = SquareTwist(alpha, side, pleat)
     return _scene(

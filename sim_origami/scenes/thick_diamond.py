@@ -1,4 +1,4 @@
-"""Scene `thick-diamond`: a thick-panel six-crease diamond vertex = plane-symmetric Bricard (seed 003 M13).
+"""Scene `thick-diamond`: a thick-panel six-crease diamond vertex = plane-symmetric Bricard (Peng 2018, §4.4.1).
 
 Panels are slabs between their hinge planes and collide (relieved from the creases as in `thick-vertex4`,
 with q, the distance between hinges 2 and 3, as the thickness scale). With h = (0, p, p - q, -2q, p - q, p)
@@ -39,7 +39,8 @@ ROOT, CUT = 3, 3
 ANCHORS = (0.0, 1.0)  # fractions of the crease length
 
 
-@register("thick-diamond", "thick-panel six-crease diamond vertex = Bricard linkage (seed 003 M13), input rho1", PARAMS)
+@register("thick-diamond", "thick-panel six-crease diamond vertex = Bricard linkage (Peng 2018, §4.4.1), input rho1",
+          PARAMS)  # fmt: skip
 def build(alpha: float, p: float, q: float, r: float, length: float) -> Scene:
     kinematics = ThickDiamond(alpha, p, q, r)
     keep = tuple(k for k in range(1, 7) if k != CUT)

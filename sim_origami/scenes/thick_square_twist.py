@@ -1,4 +1,4 @@
-"""Scene `thick-square-twist`: the square twist with thick panels, four Bennett vertices (seed 003 Fig 4-4, M11).
+"""Scene `thick-square-twist`: the square twist with thick panels, four Bennett vertices (Peng 2018, Fig 4-4).
 
 Nine hull panels (`kinematics.thick_square_twist`), twelve crease hinges on their lifted lines, the central
 square fixed, square edge AB driven; the four per-vertex loops are closed by connects on four cut creases.
@@ -44,7 +44,7 @@ SWEEP_TIME_SCALE = 4.0
 ROOT = "square"
 
 
-@register("thick-square-twist", "square twist with thick panels: four Bennett vertices (seed 003 M11), one rigid "
+@register("thick-square-twist", "square twist with thick panels: four Bennett vertices (Peng 2018, Fig 4-4), one rigid "
           "mode string selected by the hinge heights, input rho_AB", PARAMS)  # fmt: skip
 def build(alpha: float, b: float, modes: float, side: float, pleat: float) -> Scene:
     kinematics = ThickSquareTwist(alpha, b, choice("modes", modes, RIGID), side, pleat)

@@ -1,4 +1,4 @@
-"""Scene `thick-vertex4`: a thick-panel flat-foldable four-crease vertex = Bennett linkage (seed 003 M10).
+"""Scene `thick-vertex4`: a thick-panel flat-foldable four-crease vertex = Bennett linkage (Peng 2018, §4.2).
 
 Panels are slabs between their hinge planes and collide (inset from the creases), so the fold that the
 thickness blocks is found by contact; with zero-thickness panels the same sheet bifurcates at flat.
@@ -15,7 +15,7 @@ from .base import SECTOR, Param, Scene, register
 
 # Collision solids stop this fraction of b short of the hinge lines, so hinged neighbours do not touch
 # along their shared edge at flat. Slabs reaching the hinge line collide at |rho2| = pi/2, i.e.
-# rho1 = -pi/6 = -0.523599 for 60/90 deg (digest M10); with this relief: -0.524599 (b = 0.05 m).
+# rho1 = -pi/6 = -0.523599 for 60/90 deg (derived here); with this relief: -0.524599 (b = 0.05 m).
 RELIEF = 2e-3
 
 PARAMS = (
@@ -27,7 +27,8 @@ PARAMS = (
 )
 
 
-@register("thick-vertex4", "thick-panel four-crease vertex = Bennett linkage (seed 003 M10), input rho1", PARAMS)
+@register("thick-vertex4", "thick-panel four-crease vertex = Bennett linkage (Peng 2018, §4.2), input rho1",
+          PARAMS)  # fmt: skip
 def build(alpha1: float, alpha2: float, b: float, length: float, zigzag: float) -> Scene:
     if zigzag not in (0.0, 1.0):
         raise ParameterError(f"zigzag = {zigzag:g}; use 0 (staircase) or 1 (zigzag)")

@@ -1,11 +1,11 @@
-"""Scene `thick-vertex5`: a thick-panel symmetric five-crease vertex = Myard linkage (seed 003 M12).
+"""Scene `thick-vertex5`: a thick-panel symmetric five-crease vertex = Myard linkage (Peng 2018, §4.3).
 
 Panels are slabs between their hinge planes and collide (relieved from the creases as in `thick-vertex4`).
 Panel 3 lies between hinges 3 and 4 at one height (a34 = 0), so it gets a slab of its own: thickness
 a23 below its hinges, flush with panels 2 and 4. With the heights h = (0, a12, a12 + a23, ...) creases 1, 3
 and 4 join the same faces and fold freely for rho1 < 0 (rho3 = rho4 = -rho1/2 > 0) but collide at once the
-other way; the mixed-face creases 2 and 5 collide at |rho2| = pi/2 (digest M10/M12), i.e. rho1 = -2 pi/3
-for any alpha: tan(pi/4 + alpha/2) tan(|rho1|/4) = 1.
+other way; the mixed-face creases 2 and 5 collide at |rho2| = pi/2 (derived here, as for `thick-vertex4`),
+i.e. rho1 = -2 pi/3 for any alpha: tan(pi/4 + alpha/2) tan(|rho1|/4) = 1.
 """
 
 import dataclasses
@@ -68,7 +68,7 @@ def thick_vertex5_mechanism(kinematics: ThickVertex5, length: float) -> Mechanis
     return dataclasses.replace(mechanism, bodies=bodies)
 
 
-@register("thick-vertex5", "thick-panel five-crease vertex = Myard linkage (seed 003 M12), input rho1", PARAMS)
+@register("thick-vertex5", "thick-panel five-crease vertex = Myard linkage (Peng 2018, §4.3), input rho1", PARAMS)
 def build(alpha: float, b: float, length: float) -> Scene:
     kinematics = ThickVertex5(alpha, b)
     return Scene(

@@ -1,10 +1,11 @@
-"""Scene `triangle-twist`: the generalised triangle twist of seed 000 §3.2-3.3 (digest M2), input rho_AB.
+"""Scene `triangle-twist`: the generalised triangle twist of Feng 2018, §3.2-3.3, input rho_AB.
 
 Seven faces (`kinematics.triangle_twist`), nine crease hinges, the triangle T fixed, edge AB driven; the three
-per-vertex loops are closed by connects on three cut creases. `scheme` (1 to 8) picks one of the digest's
+per-vertex loops are closed by connects on three cut creases. `scheme` (1 to 8) picks one of Feng 2018's
 rigid-foldable scheme classes RIGID_SCHEMES (PPQ, PQQ, PRS, PSS, QRS, QRR, PSR, QSR) and builds its EXAMPLES
-realisation, epsilon from the digest's formula; scheme 4 (PSS) is the seed's Fig. 3-5 pattern (55, 50, 50, 45
-deg, epsilon = 35.4368 deg). Nothing imposes the M/V assignment: the sheet's only motion is the rigid scheme.
+realisation, epsilon from the thesis's formula (eqns 3-12 to 3-37); scheme 4 (PSS) is its Fig. 3-5 pattern
+(55, 50, 50, 45 deg, epsilon = 35.4368 deg). Nothing imposes the M/V assignment: the sheet's only motion is the
+rigid scheme.
 
 `assigned` builds a sheet with one scheme imposed by exact linear joint couplings rho_z3 = rho_z1 (mode C) or
 -rho_z1 (mode S) at every vertex: a flat-foldable vertex's two modes meet only at flat, so the coupled sheet has
@@ -45,7 +46,7 @@ def _scene(name: str, kinematics: TriangleTwist, params: dict, couplings: tuple,
 
 
 @register("triangle-twist", "generalised triangle twist, zero thickness: three flat-foldable vertices round a "
-          "triangle (seed 000 M2), one rigid M-V scheme per `scheme`, input rho_AB", PARAMS)  # fmt: skip
+          "triangle (Feng 2018, §3.2-3.3), one rigid M-V scheme per `scheme`, input rho_AB", PARAMS)  # fmt: skip
 def build(scheme: float, d: float, pleat: float) -> Scene:
     name = choice("scheme", scheme, RIGID_SCHEMES)
     types, angles = example_angles(name)

@@ -1,6 +1,6 @@
-"""Scene `truncated-octahedron`: the truncated octahedron <-> cube transformation of seed 001 ch. 5.
+"""Scene `truncated-octahedron`: the truncated octahedron <-> cube transformation of Yang 2017, ch. 5.
 
-The seed's 1-DOF design: 6 squares and 12 bars, two threefold-symmetric Bricard linkages, R joints at A3,
+The thesis's 1-DOF design: 6 squares and 12 bars, two threefold-symmetric Bricard linkages, R joints at A3,
 B3, C3 joining squares A, B, C to the bars A3E3, B3F3, C3D3, and 9 spherical joints (E3, F3, D3 and both
 ends of the bars A4F4, B4D4, C4E4), which MuJoCo models as ball joints (`mechanism.ball_joint`). The S-S bars'
 idle spins are free coordinates of the loop system and of MuJoCo, not counted as mobility.
@@ -76,7 +76,7 @@ def _spherical() -> tuple[list[Body], list[Joint]]:
 
 def assembly(zeta: float = 0.0) -> Mechanism:
     """
-    The 1-DOF truncated-octahedron assembly (seed 001 §2.7); root square A, joint 'A1' kept in the spanning
+    The 1-DOF truncated-octahedron assembly (Yang 2017, §5.3); root square A, joint 'A1' kept in the spanning
     tree as the input.
     """
     spacers, balls = _spherical()
@@ -85,22 +85,22 @@ def assembly(zeta: float = 0.0) -> Mechanism:
 
 @register(
     "truncated-octahedron",
-    "truncated octahedron <-> cube (seed 001 ch. 5): two threefold Bricards, 15 R + 9 S joints, input A1",
+    "truncated octahedron <-> cube (Yang 2017, ch. 5): two threefold Bricards, 15 R + 9 S joints, input A1",
     (Param("zeta", "deg", 0.0, "deviation of the A3, B3, C3 axes from the direction to the centre",
            lo=ANGLE_MARGIN - 90, hi=90 - ANGLE_MARGIN),),
 )
 def build(zeta: float) -> Scene:
     """
-    The scene of a design whose path reaches the cube with A1 rising monotonically (digest §2.7, zeta in about
-    [-60.7, 18.9] deg); ParameterError naming zeta and how its path ends otherwise (`interference_scene` builds
-    such a design for simulation from the deployed pose).
+    The scene of a design whose path reaches the cube with A1 rising monotonically (measured here: zeta in
+    about [-60.7, 18.9] deg; Yang 2017, §5.5 gives -60.9 to 19.5); ParameterError naming zeta and how its path
+    ends otherwise (`interference_scene` builds such a design for simulation from the deployed pose).
     """
     model = TruncatedOctahedronCube(zeta)
     outcome = model.outcome()
     if not outcome.drivable:
         raise ParameterError(
             f"zeta = {np.rad2deg(zeta):.6g} deg: {describe(outcome)}; the closed form follows only designs whose "
-            "path reaches the cube (rho1 = rho2 = 0 together) with theta rising monotonically (seed 001 §2.7: "
+            "path reaches the cube (rho1 = rho2 = 0 together) with theta rising monotonically (Yang 2017, §5.5: "
             "feasible -60.9 <= zeta <= 19.5 deg); simulate it with interference_scene(zeta)"
         )
     return interference_scene(zeta, model)
@@ -156,8 +156,9 @@ def interference_scene(zeta: float, model: TruncatedOctahedronCube | None = None
         # and 1.1e-2 (too short at 15 deg).
         preset="fast",
         sweep_time_scale=16.0,
-        # Squares share no joint: every pair may collide (faces passing through each other, digest §5); the
-        # collision plates touch 9.8 mrad of A1 before the cube, where the servo stops (blockage study).
+        # Squares share no joint: every pair may collide (faces passing through each other, Yang 2017's
+        # "interference"); the collision plates touch 9.8 mrad of A1 before the cube, where the servo stops
+        # (blockage study).
         contact_pairs=SQUARE_PAIRS,
         notes="input A1 = theta - theta_d (rad); S joints as MuJoCo ball joints; outputs the 15 R joints",
     )

@@ -1,4 +1,4 @@
-"""Scenes `truncated-tetrahedron-i` and `-ii`: the truncated tetrahedron <-> tetrahedron of seed 001 ch. 6.
+"""Scenes `truncated-tetrahedron-i` and `-ii`: the truncated tetrahedron <-> tetrahedron of Yang 2017, ch. 6.
 
 Bodies: the 4 triangles (thin plates)
 and the 6 bars (`linkage.bar`) of `kinematics.truncated_tetrahedron`, every body frame the deployed world
@@ -46,7 +46,7 @@ TRIANGLE_PAIRS = tuple(itertools.combinations(TRIANGLES, 2))  # no two triangles
 def model(scheme: str, delta: float = 0.0) -> Transformation:
     """The closed form of scheme 'I' or 'II' with axis deviation delta (rad)."""
     if scheme not in INPUT_JOINT:
-        raise ParameterError(f"scheme {scheme!r} is not one of 'I', 'II' (seed 001 §6.3)")
+        raise ParameterError(f"scheme {scheme!r} is not one of 'I', 'II' (Yang 2017, §6.3-6.4)")
     return SchemeI(delta) if scheme == "I" else SchemeII(delta)
 
 
@@ -114,7 +114,7 @@ def _ball_bodies(name: str) -> tuple[str, str]:
 
 def assembly(scheme: str = "II", delta: float = 0.0) -> Mechanism:
     """
-    The 1-DOF truncated-tetrahedron assembly of scheme 'I' or 'II' (seed 001 §2.8) with axis deviation delta
+    The 1-DOF truncated-tetrahedron assembly of scheme 'I' or 'II' (Yang 2017, ch. 6) with axis deviation delta
     (rad, delta1 or delta2); root triangle ABG, the input hinge (`INPUT_JOINT`) kept in the spanning tree.
     """
     return assembly_of(model(scheme, delta))
@@ -179,8 +179,8 @@ FAST_STEP_SCALE = 1.25
 
 @register(
     "truncated-tetrahedron-i",
-    "truncated tetrahedron <-> tetrahedron, scheme I (seed 001 ch. 6): Bricard + S joints at K, L, M, input G",
-    (Param("delta", "deg", 0.0, "delta1: turn of the G, H, J axes (seed 001 §2.8); <= -3.5 deg reaches the end",
+    "truncated tetrahedron <-> tetrahedron, scheme I (Yang 2017, ch. 6): Bricard + S joints at K, L, M, input G",
+    (Param("delta", "deg", 0.0, "delta1: turn of the G, H, J axes (Yang 2017, §6.5); <= -3.5 deg reaches the end",
            lo=ANGLE_MARGIN - 90, hi=90 - ANGLE_MARGIN),),
 )
 def build_scheme_1(delta: float) -> Scene:
@@ -189,8 +189,8 @@ def build_scheme_1(delta: float) -> Scene:
 
 @register(
     "truncated-tetrahedron-ii",
-    "truncated tetrahedron <-> tetrahedron, scheme II (seed 001 ch. 6): Bricard + S joints at G, H, J, input A",
-    (Param("delta", "deg", 0.0, "delta2: turn of the K, L, M axes (seed 001 §2.8); >= 0 reaches the tetrahedron",
+    "truncated tetrahedron <-> tetrahedron, scheme II (Yang 2017, ch. 6): Bricard + S joints at G, H, J, input A",
+    (Param("delta", "deg", 0.0, "delta2: turn of the K, L, M axes (Yang 2017, §6.5); >= 0 reaches the tetrahedron",
            lo=ANGLE_MARGIN - 90, hi=90 - ANGLE_MARGIN),),
 )
 def build_scheme_2(delta: float) -> Scene:

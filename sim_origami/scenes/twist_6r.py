@@ -1,4 +1,4 @@
-"""Scene `triangle-twist-6r`: the 6R linkage of the triangle-twist kirigami (seed 000 §3.4, digest M3), input theta1.
+"""Scene `triangle-twist-6r`: the 6R linkage of the triangle-twist kirigami (Feng 2018, §3.4), input theta1.
 
 Six D-H links (`kinematics.twist_6r`, eqn 3-38, or eqn 3-40 when gamma = delta) built by `linkage.dh_mechanism`:
 link 6 (panel O_A) is ground, joint 1 (pleat A3) driven, joint 6 cut and closed by two connects on its axis.
@@ -14,7 +14,7 @@ from .base import SECTOR, Param, Scene, register
 PARAMS = (
     Param("alpha", "deg", 55.0, "triangle corner at A", **SECTOR),
     Param("beta", "deg", 50.0, "triangle corner at B", **SECTOR),
-    Param("gamma", "deg", 50.0, "pleat angle at A; gamma = delta gives the seed's 'new' 6R (eqn 3-40)", **SECTOR),
+    Param("gamma", "deg", 50.0, "pleat angle at A; gamma = delta gives Feng 2018's 'new' 6R (eqn 3-40)", **SECTOR),
     Param("delta", "deg", 45.0, "pleat angle at B", **SECTOR),
     Param("d", "m", 1.0, "triangle side AB"),
 )
@@ -25,8 +25,8 @@ PATH = (0.5, 2.4)
 SWEEP_TIME_SCALE = 8.0
 
 
-@register("triangle-twist-6r", "6R linkage of the triangle-twist kirigami (seed 000 M3): octahedral Bricard "
-          "(gamma != delta) or the seed's 'new' 6R (gamma = delta), input theta1", PARAMS)  # fmt: skip
+@register("triangle-twist-6r", "6R linkage of the triangle-twist kirigami (Feng 2018, §3.4): octahedral Bricard "
+          "(gamma != delta) or the thesis's 'new' 6R (gamma = delta), input theta1", PARAMS)  # fmt: skip
 def build(alpha: float, beta: float, gamma: float, delta: float, d: float) -> Scene:
     kinematics = TwistSixR(compatible_angles(alpha, beta, gamma, delta), d)
     start, stop = np.array(PATH) + kinematics.flat_input

@@ -1,4 +1,4 @@
-"""Scene `vertex4`: a general developable degree-4 vertex driven by crease 1 (seed 003 ch. 2-3)."""
+"""Scene `vertex4`: a general developable degree-4 vertex driven by crease 1 (Peng 2018, ch. 2-3)."""
 
 import numpy as np
 

@@ -1,8 +1,8 @@
-"""Scenes `waterbomb-vertex`, `waterbomb-thick` and `waterbomb-sheet`: the symmetric waterbomb (seed 000 ch. 5).
+"""Scenes `waterbomb-vertex`, `waterbomb-thick` and `waterbomb-sheet`: the symmetric waterbomb (Feng 2018, ch. 5).
 
 Both are the same two-vertex cell (`kinematics.waterbomb`): ten triangular faces, eleven crease hinges, the
 periodic copies B1 = A4 and B5 = A6 as joint couplings, driven at crease A4. The zero-thickness cell also
-carries the seed's symmetry couplings (A3 = A5 = A6 = A2, B6 = B2) and has four branches from flat; the thick
+carries the thesis's symmetry couplings (A3 = A5 = A6 = A2, B6 = B2) and has four branches from flat; the thick
 cell (hinges on panel surfaces) carries none and has one, path I, with the same fold angles: the thick
 model is kinematically equivalent to the zero-thickness path I and loses the bifurcation.
 Thick faces are the convex hulls of their hinge lines (`solids.hinge_hull`; border edges at the height of the
@@ -11,8 +11,8 @@ highest hinge would bury the middle hinge (B2 in face A12), so each hull keeps e
 Faces that share no vertex collide (solids inset RELIEF x a from every edge). They never touch on path I of
 the defaults (closest 0.071 m, down to rho_A4 = -3.14); they touch first for alpha > 45 deg, faces A43 and
 B12, at rho_A4 = -3.14 (alpha 45.5), -2.83 (46), -2.23 (50), -1.78 (55), for every beta, mu and a tried
-(beta 20-40, mu 0.5-2, a 0.005-0.05): the seed's "to avoid the interference at vertex A, 0 < alpha <= pi/4"
-(seed 000 section 5.4), which the digest lists as an unverified collision claim.
+(beta 20-40, mu 0.5-2, a 0.005-0.05): Feng 2018's "to avoid the interference at vertex A, 0 < alpha <= pi/4"
+(§5.4), which the thesis states without a collision check and these runs confirm.
 `waterbomb-sheet` is the zero-thickness tessellation of rows x cols bases (`kinematics.waterbomb_sheet`): every
 crease folds as its type in the cell, checked by the sheet's own closure at A, B and C vertices.
 """
@@ -74,7 +74,7 @@ def _scene(name: str, kinematics: Waterbomb, params: dict[str, float], notes: st
     )
 
 
-@register("waterbomb-vertex", "symmetric waterbomb cell, zero thickness: two spherical 6R vertices (seed 000 M8), "
+@register("waterbomb-vertex", "symmetric waterbomb cell, zero thickness: two spherical 6R vertices (Feng 2018, §5.3), "
           "input rho_A4", ANGLES)  # fmt: skip
 def build_vertex(alpha: float, beta: float, t: float) -> Scene:
     return _scene(
@@ -84,7 +84,7 @@ def build_vertex(alpha: float, beta: float, t: float) -> Scene:
 
 
 @register("waterbomb-thick", "symmetric waterbomb cell with thick panels: two plane-symmetric Bricard linkages "
-          "(seed 000 M9), input rho_A4", ANGLES + THICK)  # fmt: skip
+          "(Feng 2018, §5.4), input rho_A4", ANGLES + THICK)  # fmt: skip
 def build_thick(alpha: float, beta: float, t: float, mu: float, a: float) -> Scene:
     kinematics = Waterbomb(alpha, beta, t, mu, a)
     touching = set(kinematics.pattern.touching_faces())
@@ -113,8 +113,8 @@ SHEET = (
 )
 
 
-@register("waterbomb-sheet", "zero-thickness waterbomb tessellation of rows x cols bases in the seed's symmetric "
-          "folding (seed 000 M8), input one A4 crease", ANGLES + SHEET)  # fmt: skip
+@register("waterbomb-sheet", "zero-thickness waterbomb tessellation of rows x cols bases in the symmetric "
+          "folding of Feng 2018, §5.3, input one A4 crease", ANGLES + SHEET)  # fmt: skip
 def build_sheet(alpha: float, beta: float, t: float, rows: float, cols: float) -> Scene:
     kinematics = WaterbombSheet(alpha, beta, t, rows, cols)
     pattern, drive = kinematics.pattern, kinematics.input_crease

@@ -1,11 +1,12 @@
-"""Scene `waterbomb-tube`: the generalized waterbomb tube on its radial contraction (seed 004 §2, seed 000 ch. 6).
+"""Scene `waterbomb-tube`: the generalized waterbomb tube on its radial contraction (Feng, Ma and Chen 2020,
+§2; Feng 2018, ch. 6).
 
 Every triangular face is a body (6nm) and every crease a hinge (9nm - 2n). The flat strip
 (`kinematics.waterbomb_tube`) gives the bodies and the strip's creases (`origami.pattern_mechanism`); the 2m - 1
 seam creases are added as hinges whose two frames sit on their two copies, 2 n a apart in the flat sheet, so
 that the spanning tree may keep them or cut them like any other crease: the tree is the shortest-path one from
 the input crease's face round the whole tube (`WaterbombTube.tree_creases`), and the connects on its cut
-creases roll the strip into a tube. The free tube has 4n - 6 DOF; the seeds' symmetry (units alike round a row,
+creases roll the strip into a tube. The free tube has 4n - 6 DOF; the sources' symmetry (units alike round a row,
 plane-symmetric units, equatorial mirror or half-turn) is imposed by joint couplings, every tree crease to the
 first of its symmetry class (`WaterbombTube.couplings`, 98 on the 6 x 3 tube, 164 on the 6 x 5: redundant,
 4n - 7 would do), which leaves the 1-DOF contraction, driven at the equatorial row's top midline A<r0>_0_1
@@ -58,13 +59,14 @@ SWEEP_TIME_SCALE = 8.0
 FAST_STEP_SCALE = 1.25
 ANCHORS = (0.5, 1.0)
 # Collision solids: each face's plate (NOMINAL_THICKNESS x the longest crease thick) inset from every edge by INSET * a.
-# Panels that share a vertex of the tube (across the seam too: `TubePattern`) never collide, so only the seeds'
-# "physical interference" does (seed 004 Fig. 8c, n6 m7 beta 40: middle-row collisions from alpha = 54.6 deg, digest
-# B.6). Measured with INSET = 0.003: onset at alpha = 54.593 deg (bare triangles 54.578, seed 54.6); at alpha = 56
-# deg contact from the bottom of the range (88.786 deg, seed 88.79) to theta = 95.130 deg (bare triangles 95.168,
-# seed 95.04), where a force-limited servo driven inward stops (95.107 deg). The end moves with the inset: 95.777,
-# 95.377, 94.881, 93.329 deg for 0, 0.002, 0.004, 0.01 a. The default tube's solids touch only below theta = 60.83
-# deg (middle row folded flat, its A's on the axis), clear of its sweep. tests/test_waterbomb_tube_contact.py.
+# Panels that share a vertex of the tube (across the seam too: `TubePattern`) never collide, so only the sources'
+# "physical interference" does (Feng, Ma and Chen 2020, Fig. 8c, n6 m7 beta 40: middle-row collisions from
+# alpha = 54.6 deg). Measured with INSET = 0.003: onset at alpha = 54.593 deg (bare triangles 54.578, paper 54.6); at
+# alpha = 56 deg contact from the bottom of the range (88.786 deg; an independent triangle test: 88.79) to theta =
+# 95.130 deg (bare triangles 95.168, the independent test 95.04), where a force-limited servo driven inward stops
+# (95.107 deg). The end moves with the inset: 95.777, 95.377, 94.881, 93.329 deg for 0, 0.002, 0.004, 0.01 a. The
+# default tube's solids touch only below theta = 60.83 deg (middle row folded flat, its A's on the axis), clear of
+# its sweep. tests/test_waterbomb_tube_contact.py.
 INSET = 0.003
 
 
@@ -132,8 +134,9 @@ def default_path(kinematics: WaterbombTube) -> tuple[float, float]:
     return lo + margin, hi - margin
 
 
-@register("waterbomb-tube", "generalized waterbomb tube, n units x m rows, radial contraction under the seeds' "
-          "symmetry (seed 004 §2, seed 000 M10-M11), input rho of the equatorial top midline", PARAMS)  # fmt: skip
+@register("waterbomb-tube", "generalized waterbomb tube, n units x m rows, radial contraction under the "
+          "sources' symmetry (Feng, Ma and Chen 2020, §2; Feng 2018, §6.1-6.2), input rho of the equatorial top "
+          "midline", PARAMS)  # fmt: skip
 def build(n: float, m: float, alpha: float, beta: float, a: float) -> Scene:
     check_size(n, m)
     kinematics = WaterbombTube(n, m, alpha, beta, a)

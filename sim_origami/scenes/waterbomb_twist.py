@@ -1,5 +1,5 @@
-"""Scene `waterbomb-twist`: the generalized waterbomb tube twisting from its fully folded middle row (seed 004 §3,
-seed 000 §6.4).
+"""Scene `waterbomb-twist`: the generalized waterbomb tube twisting from its fully folded middle row (Feng, Ma and
+Chen 2020, §3; Feng 2018, §6.4).
 
 The mechanism is the tube's (`scenes.waterbomb_tube.tube_mechanism`: every triangular face a body, every crease a
 hinge, the seam creases closed by connects), driven at the middle row's upper-right diagonal A<r0>_0_2 (eta02 =
@@ -8,8 +8,9 @@ of the twisted tube plus the plane symmetry of each half; 163 on the 6 x 5 tube,
 contraction keeps those symmetries too, so the coupled mechanism carries both motions; the scene's branches are the
 two twist senses and the contraction, which meet at the fully folded middle row (the sweeps stay clear of it).
 `tube_mechanism` reads only pattern, layout, input_crease and couplings, which `WaterbombTwist` has as well.
-With `row` != 0 (at beta = beta_max, e.g. `-p row=1 -p beta=42.0105238`) that seed row twists instead, driven at its
-own A<row + r0>_0_2 (seed 004 Fig 16 paths I, III; `WaterbombTwist`, "Other rows"), on the two twist senses only.
+With `row` != 0 (at beta = beta_max, e.g. `-p row=1 -p beta=42.0105238`) that row twists instead, driven at its
+own A<row + r0>_0_2 (Feng, Ma and Chen 2020, Fig 16 paths I, III; `WaterbombTwist`, "Other rows"), on the two
+twist senses only.
 """
 
 from ..kinematics.waterbomb_twist import WaterbombTwist
@@ -20,13 +21,16 @@ PARAMS = (
     Param("n", "", 6, "units round the tube (>= 3)", **TUBE_UNITS),
     # 3 rows by default: a full `validate` of the 6 x 5 tube (3 branches, 258 creases) measured 7.6 min of CPU, 2.3 of
     # them in the bifurcation study (since shortened to the preset's own sweep time), against 1.4 min for 6 x 3;
-    # `-p m=5` gives the seed's 6 x 5 tube (numbers below)
+    # `-p m=5` gives the 6 x 5 tube of Feng, Ma and Chen 2020 (numbers below)
     Param("m", "", 3, "rows, odd (a middle row to fold)", **TUBE_ROWS),
-    Param("alpha", "deg", 40.0, "design angle alpha, below atan(1 / cos(180/n)) (seed 004 eqn 38)", **ACUTE),
-    Param("beta", "deg", 40.0, "design angle beta, at most beta_max(alpha) (seed 004 eqn 40)", **ACUTE),
+    Param("alpha", "deg", 40.0, "design angle alpha, below atan(1 / cos(180/n)) (Feng, Ma and Chen 2020, eqn 38)",
+          **ACUTE),
+    Param("beta", "deg", 40.0, "design angle beta, at most beta_max(alpha) (Feng, Ma and Chen 2020, eqn 40)",
+          **ACUTE),
     Param("a", "m", 0.5, "half-width of a unit"),
-    # rows other than 0 twist from the contraction's end only at beta = beta_max (seed 004 Fig 16 paths I, III)
-    Param("row", "", 0.0, "seed row that twists: 0 the middle row, +1 .. (m-1)/2 above, -1 .. below",
+    # rows other than 0 twist from the contraction's end only at beta = beta_max (Feng, Ma and Chen 2020, Fig 16
+    # paths I, III)
+    Param("row", "", 0.0, "row that twists: 0 the middle row, +1 .. (m-1)/2 above, -1 .. below",
           lo=-TUBE_ROWS["hi"], hi=TUBE_ROWS["hi"], integer=True),
 )
 # The symmetry couplings are soft (MuJoCo joint equalities) and set the path error, which falls as the square of
@@ -47,8 +51,8 @@ FAST_STEP_SCALE = 1.25
 
 
 @register("waterbomb-twist", "generalized waterbomb tube, n units x m rows (m odd), twist of the fully folded middle "
-          "row (any row at beta_max, Fig 16) under the twist's symmetry (seed 004 §3, seed 000 M13), input rho of the "
-          "twisting row's upper-right diagonal", PARAMS)  # fmt: skip
+          "row (any row at beta_max, Fig 16) under the twist's symmetry (Feng, Ma and Chen 2020, §3; Feng 2018, "
+          "§6.4), input rho of the twisting row's upper-right diagonal", PARAMS)  # fmt: skip
 def build(n: float, m: float, alpha: float, beta: float, a: float, row: float) -> Scene:
     check_size(n, m)
     kinematics = WaterbombTwist(n, m, alpha, beta, a, row)
@@ -58,7 +62,7 @@ def build(n: float, m: float, alpha: float, beta: float, a: float, row: float) -
         kinematics=kinematics, mechanism=tube_mechanism(kinematics), loop_joints=kinematics.crease_names,
         drive_joint=kinematics.input_crease, drive_scale=1.0, path=(lo, hi),
         sweep_time_scale=SWEEP_TIME_SCALE, preset=PRESET, fast_step_scale=FAST_STEP_SCALE, pattern=kinematics.pattern,
-        notes=f"{int(n)} x {int(m)} tube, seed row {kinematics.row} twisting; {len(kinematics.couplings)} "
+        notes=f"{int(n)} x {int(m)} tube, row {kinematics.row} twisting; {len(kinematics.couplings)} "
         "twist-symmetry couplings; "
         f"{len(kinematics.layout.seam)} seam creases closed by connects",
     )  # fmt: skip

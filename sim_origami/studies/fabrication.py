@@ -1,5 +1,5 @@
-"""Fabrication errors of the Bennett linkage and of its non-overconstrained forms (seed 001 ch. 3; digest §1.7,
-§2.2, §2.3). Numpy only.
+"""Fabrication errors of the Bennett linkage and of its non-overconstrained forms (Yang 2017, ch. 3: §3.3 Bennett
+-> RSSR, §3.4 Myard, §3.5 errors). Numpy only.
 
 Fabrication errors (Sec. 3.5): x1 = alpha, x2 = a1 / a2; an error of scale k in [-1, 1] gives alpha + k d_alpha,
 a1 + k d_l, a2 - k d_l (3-44), so k = +1 means a1 longer and a2 shorter. The output error of a built RSSR is
@@ -7,10 +7,10 @@ th2_built - th2_nominal at the same th1 (exact), or (3-41) with the partial deri
 evaluated in the K form above, which is (3-42) rewritten and stays finite at th1 = 0). The error is odd in th1
 (th2(-th1) = -th2(th1)), so its peaks come in pairs +-th1; `peak` reports the one in (0, pi).
 
-Ball-joint waggle (3-46...3-50): the angle between bar CD of the built RSSR and the nominal Bennett axis z_D
-(frame D: x along DA, z_A at the nominal beta from z_D about x), |90 deg - angle(CD, z_D)|. CORRECTION (3-49):
-|CD| = a1R, not a2R (digest §4.1 #7). [NEW] Its maximum over th1 is |beta_R - beta| exactly, beta_R the built
-RSSR's implied beta: the balls turn about the implied Bennett's axes.
+Ball-joint waggle (3-46...3-50): the angle between bar CD of the built RSSR and the nominal Bennett axis z_D (frame D: x
+along DA, z_A at the nominal beta from z_D about x), |90 deg - angle(CD, z_D)|. CORRECTION (3-49): |CD| = a1R, not the
+printed a2R: only a1R gives the thesis's waggles 0.58 and 1.22 deg. [NEW] Its maximum over th1 is |beta_R - beta|
+exactly, beta_R the built RSSR's implied beta: the balls turn about the implied Bennett's axes.
 
 Overconstrained forms. A Bennett linkage built with the errors above (opposite sides still equal, ground twist
 beta nominal) closes only at its two folded poses, theta1 = 0, theta2 = pi and theta1 = pi, theta2 = 0, where the
@@ -20,7 +20,7 @@ either. Forced together at one configuration (one axis tilted, `tilted`) either 
 (`screw_mobility`: freedoms minus the rank of the joint twists of a single closed loop), while its
 non-overconstrained forms (balls in place of some R joints) keep mobility 1 with the same error.
 
-Units: angles in radians; lengths in any one unit (the seed's example is in mm).
+Units: angles in radians; lengths in any one unit (the thesis's example is in mm).
 """
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -35,7 +35,7 @@ from ..kinematics.dh import DHRow
 from ..kinematics.rssr import RSSR, positive_length
 
 DEG = np.pi / 180
-# Seed 001 Sec. 3.5: the nominal design (mm, rad) and the ISO 2768 tolerances of (3-43).
+# Yang 2017, §3.5: the nominal design (mm, rad) and the ISO 2768 tolerances of (3-43).
 NOMINAL = (100.0, 70.72, 45 * DEG)  # a1R, a2R, alpha_R
 VERY_COARSE = (1 * DEG, 1.5)  # d_alpha (rad), d_l (mm)
 FINE_LENGTH = 0.15  # d_l (mm), class "fine"
@@ -127,7 +127,7 @@ def peak(f: Callable[[NDArray], NDArray], lo: float = 0.0, hi: float = np.pi, sa
 
 @dataclass(frozen=True)
 class ErrorStudy:
-    """One row of the seed's Sec. 3.5 study: exact and linearised peak output errors (rad), built implied beta."""
+    """One row of Yang 2017's §3.5 study: exact and linearised peak output errors (rad), built implied beta."""
 
     error: FabricationError
     exact: Peak

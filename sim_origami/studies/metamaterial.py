@@ -1,11 +1,11 @@
-"""Double-corrugated metamaterial elements 1, 2 and 3 (seed 003 §3.2.3, digest M8 eqns 3-24 to 3-28) measured on
+"""Double-corrugated metamaterial elements 1, 2 and 3 (Peng 2018, §3.2.3, eqns 3-24 to 3-28) measured on
 the simulated geometry of the double-corrugated sheet (numpy only).
 
 Input is geometry, never a MuJoCo object: vertex positions (n, V, 3) of the P-unit sheet of
 `kinematics.corrugated_sheet` (`poisson.vertex_positions` of a motion's body poses) and the input phi. Lengths in
-metres (every crease l = 1 in the seed), angles in radians.
+metres (every crease l = 1 in the thesis), angles in radians.
 
-Seed formulas. phi is the dihedral angle of crease A2B2 (pi flat, 0 folded flat), whose neighbours A2A1 and A2A3
+The thesis's formulas. phi is the dihedral angle of crease A2B2 (pi flat, 0 folded flat), whose neighbours A2A1 and A2A3
 make sectors pi - alpha (= gamma) and beta with it: the spherical law of cosines gives the angle psi = A1A2A3, so
 W = |A1A3|; H is the height of B2 above the plane A1A2A3 (B2' its foot there) and L twice the in-plane
 component of A2B2 along the bisector of psi. Element 2 has the same W and twice H and L. Element 3 (3-26, 3-27)
@@ -13,28 +13,28 @@ turns this round at B5: theta is the dihedral angle of B4B5, whose neighbours B5
 pi - alpha and pi - beta with it, so L = |A5C5| is the chord of the angle A5B5C5, H twice the height of B4 above
 the plane A5B5C5 and W four times the in-plane component of B5B4 along the bisector of A5B5C5.
 
-Placement (reconstructed here; the seed's Fig 3-11 is lost). In the sheet's lattice (vertex (i, j), i along u,
-j along v; `corrugated_sheet` docstring) the seed's labels read letter = i (A = 1) and digit = j: A2 = (1, 2),
-A1 = (1, 1), A3 = (1, 3), so that A2B2 = u1_2, the crease between A2's sectors gamma and beta, and phi =
-pi - |rho_u1_2| on every element:
+Placement (reconstructed here; the thesis's Fig 3-11 is lost in our copy). In the sheet's lattice (vertex (i, j), i
+along u, j along v; `corrugated_sheet` docstring) the thesis's labels read letter = i (A = 1) and digit = j: A2 = (1,
+2), A1 = (1, 1), A3 = (1, 3), so that A2B2 = u1_2, the crease between A2's sectors gamma and beta, and phi = pi -
+|rho_u1_2| on every element:
 
-* element 1 = branch SCSC (the seed's P1): the u row (k, 2) is a zig-zag of period two steps, translated along
+* element 1 = branch SCSC (the thesis's P1): the u row (k, 2) is a zig-zag of period two steps, translated along
   the bisector of psi; L = |A2C2|, H = distance of B2 from the plane A1A2A3 (every u crease folds with |x|);
 * element 2 = branch SCCS: the u row climbs two steps and comes down two, heights 0, H1, 2 H1, H1, 0 (the
-  seed's C' = C reflected in the plane B1B2D1D2); L = |A2E2|, H = distance of C2 from the plane A1A2A3;
+  thesis's C' = C reflected in the plane B1B2D1D2); L = |A2E2|, H = distance of C2 from the plane A1A2A3;
 * element 3 = branch CCSS: u creases at odd j fold with |x|, those at even j (A2B2 among them) with tan-half
   gain 0.101, every v crease with 0.1645 (at alpha = 3 pi/4, beta = pi/3). The even-j vertices stay in one plane,
-  the seed's A2A4B2B4, and the rows j = 1, 5 and j = 3 in two planes parallel to it at equal distances either
+  the thesis's A2A4B2B4, and the rows j = 1, 5 and j = 3 in two planes parallel to it at equal distances either
   side, mirror images in it (measured <= 1.5e-14 m): W = |B1B5|, L = |A5C5|, H = distance of B3 from the plane
   A5B5C5 (twice that of B4), theta = pi - |rho_v2_4|. Its L equals element 1's at every phi (measured 6.7e-16 m).
 
-All three agree with the seed's formulas to rounding at every phi (tests/test_metamaterial.py). Element 1's
-vertices also follow eqn 3-24 on CCSS (the seed's original pattern P2, tentatively; there A2B2 folds with gain
+All three agree with the thesis's formulas to rounding at every phi (tests/test_metamaterial.py). Element 1's
+vertices also follow eqn 3-24 on CCSS (the thesis's original pattern P2, tentatively; there A2B2 folds with gain
 0.101, so phi stays near pi unless x nears pi) and on CSSC; on CSCS, SCCS and SSCC they do not (L misses by
 >= 0.6 m). Element 2's follow eqn 3-25 on SCCS only, element 3's eqns 3-26/3-27 on CCSS only (W, H or L
 >= 1.25 m off).
 
-Seed-reading note, element 3 (digest M8 warns that 3-26 gives theta < 0 at alpha = 3 pi/4, beta = pi/3). Only
+Reading note, element 3 (as printed, 3-26 gives theta < 0 at alpha = 3 pi/4, beta = pi/3). Only
 cos(theta) enters 3-27, so the sign is harmless; the magnitude is not. As printed, tan(theta/2) =
 tan(phi/2) cos((beta + alpha)/2) / cos((beta - alpha)/2) has gain -0.1645: theta's crease folds 6.08 times as
 fast as A2B2. On the sheet only a u crease against a v crease has that ratio, but cos(A5B5C5) = cos(beta)
@@ -42,8 +42,8 @@ cos(alpha) + sin(beta) sin(alpha) cos(theta) needs B4B5 between sectors summing 
 that), which are the v creases. Measured on the 3 x 3 P and Q sheets, all six rigid strings of each, with every
 crease as A2B2 and every crease, at either end, as B4B5: none is both at the printed theta and at 3-27's L, H/2,
 W/4 there (0 hits); the printed formula's W, H, L miss the CCSS sheet's vertex distances by up to 1.38 m. With
-the neighbour sector of A2B2 that the seed itself uses in 3-24, gamma = pi - alpha in place of alpha (the hint
-of the mode multiplier, digest M6),
+the neighbour sector of A2B2 that the thesis itself uses in 3-24, gamma = pi - alpha in place of alpha (the hint
+of the mode multipliers of its §3.2.1),
 
     theta = 2 arctan(tan(phi/2) cos((beta + gamma)/2) / cos((beta - gamma)/2))    (gain 0.614 > 0),
 
@@ -70,7 +70,7 @@ from .poisson import poisson_ratio, thin
 @dataclass(frozen=True)
 class Placement:
     """
-    An element on the P sheet: its rigid mode string, the seed's labels -> lattice vertices (i, j), and its
+    An element on the P sheet: its rigid mode string, the thesis's labels -> lattice vertices (i, j), and its
     measures by label: W, L = |first second|, H = distance of `apex` from the plane of `base`.
     """
 
@@ -108,14 +108,14 @@ class ElementDimensions:
 
 def _check_element(element: int) -> Placement:
     if element not in ELEMENTS:
-        raise ParameterError(f"element = {element}; elements 1, 2 and 3 are modelled (seed 003 §3.2.3)")
+        raise ParameterError(f"element = {element}; elements 1, 2 and 3 are modelled (Peng 2018, §3.2.3)")
     return ELEMENTS[element]
 
 
 def element3_theta(phi, alpha: float, beta: float):
     """
     Dihedral angle theta of B4B5 (rad) at phi: eqn 3-26 with gamma = pi - alpha in place of alpha (module
-    docstring, seed-reading note); phi may be complex (complex-step derivative).
+    docstring, reading note); phi may be complex (complex-step derivative).
     """
     gamma = np.pi - alpha
     return 2 * np.arctan(np.tan(phi / 2) * np.cos((beta + gamma) / 2) / np.cos((beta - gamma) / 2))
@@ -136,7 +136,7 @@ def element3_dimensions(theta, alpha: float, beta: float):
 
 
 def _raw(phi, alpha: float, beta: float, element: int):
-    """The seed's eqns 3-24/3-25 literally, 3-26/3-27 as read here, l = 1; phi may be complex (complex step)."""
+    """Peng 2018's eqns 3-24/3-25 literally, 3-26/3-27 as read here, l = 1; phi may be complex (complex step)."""
     if element == 3:
         return element3_dimensions(element3_theta(phi, alpha, beta), alpha, beta)
     cos_psi = -np.cos(beta) * np.cos(alpha) + np.sin(beta) * np.sin(alpha) * np.cos(phi)
@@ -156,9 +156,9 @@ def _check_angles(phi: NDArray[np.float64], alpha: float, beta: float, element: 
     if not 0 < alpha < np.pi:
         raise ParameterError(f"alpha = {alpha:g} rad; a sector angle lies in (0, pi)")
     if element == 3 and not alpha > np.pi / 2:
-        raise ParameterError(f"alpha = {alpha:g} rad; the seed's arctan(PB4'/PB5) needs PB5 = -cos(alpha) > 0")
+        raise ParameterError(f"alpha = {alpha:g} rad; Peng 2018's arctan(PB4'/PB5) needs PB5 = -cos(alpha) > 0")
     if element != 3 and not 0 < beta < np.pi / 2:
-        raise ParameterError(f"beta = {beta:g} rad; the seed's arctan(PB2'/PA2) needs PA2 = cos(beta) > 0")
+        raise ParameterError(f"beta = {beta:g} rad; Peng 2018's arctan(PB2'/PA2) needs PA2 = cos(beta) > 0")
     if not 0 < beta < np.pi:
         raise ParameterError(f"beta = {beta:g} rad; a sector angle lies in (0, pi)")
     if np.any(~np.isfinite(phi)) or np.any((phi <= 0) | (phi >= np.pi)):
@@ -166,7 +166,7 @@ def _check_angles(phi: NDArray[np.float64], alpha: float, beta: float, element: 
 
 
 def element_formulas(phi: ArrayLike, alpha: float, beta: float, element: int) -> ElementDimensions:
-    """The seed's W, H, L (n,) of element 1, 2 or 3 (l = 1) at dihedral angles phi (n,) in (0, pi)."""
+    """Peng 2018's W, H, L (n,) of element 1, 2 or 3 (l = 1) at dihedral angles phi (n,) in (0, pi)."""
     _check_element(element)
     phi = np.atleast_1d(np.asarray(phi, dtype=float))
     _check_angles(phi, alpha, beta, element)
@@ -230,7 +230,7 @@ def element_dimensions(pattern: CreasePattern, positions: ArrayLike, phi: ArrayL
 @dataclass(frozen=True)
 class ElementCheck:
     """
-    Measured dimensions and Poisson's ratios against the seed's at the measured phi; `samples` are the thinned
+    Measured dimensions and Poisson's ratios against the thesis's at the measured phi; `samples` are the thinned
     path samples the ratios use. Errors are absolute (m for dimensions, 1 for ratios).
     """
 
@@ -261,12 +261,12 @@ def check_element(
     samples `min_step` apart.
     """
     dims = element_dimensions(pattern, positions, phi, element)
-    seed = element_formulas(dims.phi, alpha, beta, element)
+    thesis = element_formulas(dims.phi, alpha, beta, element)
     k = thin(dims.phi, min_step)
     nu_in = poisson_ratio(dims.L[k], dims.W[k], dims.phi[k])
     nu_out = poisson_ratio(dims.H[k], dims.W[k], dims.phi[k])
     f_in, f_out = formula_poisson(dims.phi[k], alpha, beta, element)
-    dim_err = max(float(np.max(np.abs(m - f))) for m, f in ((dims.W, seed.W), (dims.H, seed.H), (dims.L, seed.L)))
+    dim_err = max(float(np.max(np.abs(m - f))) for m, f in ((dims.W, thesis.W), (dims.H, thesis.H), (dims.L, thesis.L)))
     return ElementCheck(
         measured=dims, samples=k, nu_in=nu_in, nu_out=nu_out, formula_nu_in=f_in, formula_nu_out=f_out,
         dimension_error=dim_err, nu_in_error=float(np.max(np.abs(nu_in - f_in))),

@@ -1,17 +1,17 @@
-"""Poisson's ratios measured from a simulated motion against the seed's closed forms (numpy only).
+"""Poisson's ratios measured from a simulated motion against the closed forms of Peng 2018 (numpy only).
 
 Input is geometry, never a MuJoCo object: body poses (n, 4, 4) per face of a crease pattern (e.g.
 `Mechanism.body_poses` of a trajectory's joint angles), from which every pattern vertex is placed. Lengths in
 metres, angles in radians, the world frame of the flat sheet (normal +z).
 
 A Poisson's ratio of a response dimension R to a load dimension D along a one-parameter motion x is
-nu = -(dR/R) / (dD/D) = -(D/R) (dR/dx) / (dD/dx) (seed 003 eqns 3-28, 3-32), here from second-order finite
+nu = -(dR/R) / (dD/D) = -(D/R) (dR/dx) / (dD/dx) (Peng 2018, eqns 3-28, 3-32), here from second-order finite
 differences on the simulated samples, thinned to a minimum step in x so that the integrator's noise is not
 divided by a vanishing step where the minimum-jerk drive starts and stops.
 
-Square-twist metamaterial unit (seed 003 §3.3 Fig 3-18, digest M9 eqns 3-30 to 3-32) [RECON: the figure is
-lost]. On the square twist of `kinematics.square_twist` with vertex A in mode C, theta = rho_AB and phi =
-rho_DA (creases 2 and 3 of A), and the central square fixed in the plane z = 0 with AB along +x, the seed's
+Square-twist metamaterial unit (Peng 2018, §3.3, Fig 3-18, eqns 3-30 to 3-32) [RECON: the figure is lost in our
+copy]. On the square twist of `kinematics.square_twist` with vertex A in mode C, theta = rho_AB and phi =
+rho_DA (creases 2 and 3 of A), and the central square fixed in the plane z = 0 with AB along +x, the thesis's
 three dimensions are exactly these distances between pattern vertices (a = pleat, 2b = 2c = side):
 
 * L = y(end of pleat C4) - y(end of pleat A1) = 2c + a(cos alpha + sin alpha cos theta): A1 turns about AB (an
@@ -145,7 +145,7 @@ def check_square_twist(
     min_step: float = 0.002,
 ) -> PoissonCheck:
     """
-    The square twist's measured L, S, H and nu_SL = -(S/L) dL/dS, nu_HL = -(L/H) dH/dL against the seed's
+    The square twist's measured L, S, H and nu_SL = -(S/L) dL/dS, nu_HL = -(L/H) dH/dL against the thesis's
     formulas (`kinematics.square_twist.metamaterial_unit` with a = pleat, b = c = side / 2) at the measured
     theta (n,) in (0, pi); phi (n,) is the measured rho_DA, compared with eqn 3-31's.
     """

@@ -30,7 +30,7 @@ from sim_origami.kinematics.waterbomb_twist import middle_input
 DOCUMENT = "Feng 2018"
 DEG = np.pi / 180
 
-# Validation case 15 of chapter 4: offsets that expose the sign of eqn 4-6c.
+# A geometry with offsets R2, R3 (worked here, not in the thesis): it exposes the sign of eqn 4-6c.
 OFFSETS = Geometry(1.3, 0.7, 1.1, 0.9, 0.4, 1.2, 0.3, -0.5)
 # Chapter 4 prints angles to 4 decimals (degrees): half a unit of the last place, plus rounding of the printed
 # inputs (e.g. 158.5428 deg); the largest difference measured is 5.0e-5 deg.
@@ -86,6 +86,7 @@ def _bricard_row(where: str, geometry, branch: str, theta2: float, printed: str,
 
 _T41 = "test_published_configurations_of_table_4_1"
 _F45 = "test_published_configurations_of_the_fig_4_5_geometry_and_the_offset_case"
+_OFFSETS_WHERE = "eqns 4-5, 4-6 (4-6c corrected), our geometry with offsets R2, R3"
 _BEN = "test_fig_4_5_bennett_branch_published_values"
 _BIF = "test_case_10_bifurcations_are_the_two_collinear_configurations_on_both_paths"
 _C9 = "test_case_9_bennett_branch_closes_and_meets_both_halves_at_the_published_configurations"
@@ -118,9 +119,9 @@ BRICARD = (
                  "33.2749, 150, 17.8935, -40.4613, 17.8935, 150", _T41),
     _bricard_row("Fig 4-5", "fig", "all_joints_move", 60, "113.7818, 60, -136.7224, 170.0617, -136.7224, 60", _F45),
     _bricard_row("Fig 4-5", "fig", "all_joints_move", 120, "138.8478, 120, 146.9081, 37.1804, 146.9081, 120", _F45),
-    _bricard_row("ch. 4, offsets case", "offsets", "theta3_m63_at_theta2_m80", -110,
+    _bricard_row(_OFFSETS_WHERE, "offsets", "theta3_m63_at_theta2_m80", -110,
                  "-80.8970, -110, -49.5009, 96.0363, -49.5009, -110", _F45),
-    _bricard_row("ch. 4, offsets case", "offsets", "theta3_m124_at_theta2_m80", -110,
+    _bricard_row(_OFFSETS_WHERE, "offsets", "theta3_m124_at_theta2_m80", -110,
                  "97.6558, -110, -97.2543, -29.8270, -97.2543, -110", _F45),
     _bricard_row("Fig 4-5", "fig", "bennett_theta3_pi", 158.5428, "30, 158.5428, 180, 30, 180, 158.5428", _BEN),
     _bricard_row("Fig 4-5", "fig", "bennett_theta3_pi", 109.4712, "90, 109.4712, 180, 90, 180, 109.4712", _BEN),
@@ -193,19 +194,20 @@ def _tt(where, quantity, printed, ours, tol, test, unit="deg") -> Number:
     return Number(where, quantity, printed, ours, tol, _TT + test, unit=unit, in_text=False)
 
 
-_VERTEX = "test_case1_2_spherical_4r_vertex_families"
-_EPS = "test_case3_compatible_epsilon_against_the_seed"
-_C5 = "test_case5_dh_data_and_motion_against_the_seed"
-_C6 = "test_case6_parallel_pleats_the_new_6r"
-_HELD = "test_case5_one_held_joint_admits_one_configuration"
-_C5_PATH = (
+_VERTEX = "test_spherical_4r_vertex_i_and_ii_of_eqn_3_3"
+_EPS = "test_compatible_epsilon_against_feng2018"
+_SOLID = "test_dh_data_and_motion_against_feng2018"
+_DASHED = "test_new_6r_of_eqn_3_40_with_parallel_pleats"
+_HELD = "test_derived_6r_with_one_held_joint_admits_one_configuration"
+_NEW_6R = "eqn 3-40, 55/50/45/45"  # the 6R of Fig 3-14's dashed lines
+_SOLID_PATH = (
     (30, "-66.0696, -47.4736"),
     (60, "-108.9688, -86.9116"),
     (90, "-135.2111, -117.2886"),
     (120, "-153.2360, -141.2359"),
     (150, "-167.3989, -161.4540"),
 )
-_C5_HELD = (
+_SOLID_HELD = (
     (0, "17.19, -40.28, -27.86, 17.19, -40.28, 27.86"),
     (1, "-7.13, 17.19, 11.67, -7.13, 17.19, -11.67"),
     (2, "-10.52, 25.20, 17.19, -10.52, 25.20, -17.19"),
@@ -213,52 +215,52 @@ _C5_HELD = (
 )
 
 
-def _c5_row(t1: int, t2_t3: str) -> Number:
+def _solid_row(t1: int, t2_t3: str) -> Number:
     t2, t3 = t2_t3.split(", ")
     return _tt(
-        "Fig 3-14, case 5",
+        "Fig 3-14, solid lines (55/50/50/45)",
         f"theta1..theta6 at theta1 = {t1} deg (theta4 = theta1, theta5 = theta2, theta6 = -theta3)",
         f"{t1}, {t2}, {t3}, {t1}, {t2}, {-float(t3):.4f}",
         lambda: np.rad2deg(twist_6r(*FIG_3_5).joint_angles("SSP", t1 * DEG)[0]),
         5e-5,
-        _C5,
+        _SOLID,
     )
 
 
 TRIANGLE_TWIST = (
-    *(_tt("eqn 3-3, case 1-2", f"mode {mode} vertex (twists 0.6, 1.2 rad) rho1..rho4 at rho1 = 0.3 rad", printed,
+    *(_tt("eqn 3-3", f"mode {mode} vertex (twists 0.6, 1.2 rad) rho1..rho4 at rho1 = 0.3 rad", printed,
           lambda mode=mode: Vertex4([0.6, 1.2, np.pi - 0.6, np.pi - 1.2]).joint_angles(mode, 0.3)[0], 5e-5, _VERTEX,
           unit="rad") for mode, printed in (("S", "0.3, -0.7621, -0.3, -0.7621"), ("C", "0.3, -0.1960, 0.3, 0.1960"))),
     *(_tt(f"eqn 3-12, {scheme} {angles}", "compatible epsilon", printed,
           lambda scheme=scheme, angles=angles: epsilon_formula(scheme, *(v * DEG for v in angles)) / DEG, 5e-5, _EPS)
       for scheme, angles, printed in (("SSP", (55, 50, 50, 45), "35.4368"), ("SSP", (55, 50, 45, 45), "33.5166"),
                                       ("PSR", (30, 80, 90, 45), "7.0355"), ("PSR", (60, 60, 90, 45), "-25.5288"))),
-    _tt("eqn 3-38, case 5", "D-H twists alpha12..alpha61", "-5, 130, -9.5632, 105, 14.5632, 125",
-        lambda: np.rad2deg(wrap([r.alpha for r in twist_6r(*FIG_3_5).rows])), 5e-5, _C5),
-    _tt("eqn 3-38, case 5", "D-H offsets R1..R6 (d = 1)",
+    _tt("eqn 3-38, 55/50/50/45", "D-H twists alpha12..alpha61", "-5, 130, -9.5632, 105, 14.5632, 125",
+        lambda: np.rad2deg(wrap([r.alpha for r in twist_6r(*FIG_3_5).rows])), 5e-5, _SOLID),
+    _tt("eqn 3-38, 55/50/50/45", "D-H offsets R1..R6 (d = 1)",
         "8.11314, -8.789374, 2.959639, -3.609461, -2.416104, 1.828703",
-        lambda: [r.R for r in twist_6r(*FIG_3_5).rows], 5e-6, _C5, unit=""),
-    _tt("eqn 3-39, case 5", "Ka, Kb", "1.641116, 1.478778", lambda: [twist_6r(*FIG_3_5).ka, twist_6r(*FIG_3_5).kb],
-        5e-7, _C5, unit=""),
-    _tt("eqn 3-39, case 5", "Ka Kb", "2.4268", lambda: twist_6r(*FIG_3_5).ka * twist_6r(*FIG_3_5).kb, 5e-5, _C5,
+        lambda: [r.R for r in twist_6r(*FIG_3_5).rows], 5e-6, _SOLID, unit=""),
+    _tt("eqn 3-39, 55/50/50/45", "Ka, Kb", "1.641116, 1.478778", lambda: [twist_6r(*FIG_3_5).ka, twist_6r(*FIG_3_5).kb],
+        5e-7, _SOLID, unit=""),
+    _tt("eqn 3-39, 55/50/50/45", "Ka Kb", "2.4268", lambda: twist_6r(*FIG_3_5).ka * twist_6r(*FIG_3_5).kb, 5e-5, _SOLID,
         unit=""),
-    *(_c5_row(t1, t2_t3) for t1, t2_t3 in _C5_PATH),
-    *(_tt("case 5", f"the only configuration with joint {j + 1} held at 0.3 rad (numeric solve, 2 decimals)",
-          printed, lambda j=j: held_joint_pose(j), 0.005, _HELD) for j, printed in _C5_HELD),
-    _tt("Fig 3-14, case 6", "compatible epsilon of the 6R with gamma = delta = 45", "33.5166",
-        lambda: twist_6r(55, 50, 45, 45).angles.epsilon / DEG, 5e-5, _C6),
-    _tt("case 6", "D-H twists alpha12..alpha61", "0, 130, -11.4834, 105, 11.4834, 125",
-        lambda: np.rad2deg(wrap([r.alpha for r in twist_6r(55, 50, 45, 45).rows])), 5e-5, _C6),
-    _tt("case 6", "D-H offsets R1..R6 (d = 1)", "0, -0.707107, 2.352154, -3.012110, -2.816828, 2.199659",
-        lambda: [r.R for r in twist_6r(55, 50, 45, 45).rows], 5e-7, _C6, unit=""),
-    _tt("case 6", "D-H length a12", "0.707107", lambda: twist_6r(55, 50, 45, 45).rows[0].a, 5e-7, _C6, unit=""),
-    _tt("case 6", "eqn 2-14's sum with R1 = 0", "4.685016", lambda: twist_6r(55, 50, 45, 45).bricard_sum(), 5e-7, _C6,
+    *(_solid_row(t1, t2_t3) for t1, t2_t3 in _SOLID_PATH),
+    *(_tt("§3.4, 55/50/50/45", f"the only configuration with joint {j + 1} held at 0.3 rad (numeric solve, 2 decimals)",
+          printed, lambda j=j: held_joint_pose(j), 0.005, _HELD) for j, printed in _SOLID_HELD),
+    _tt("Fig 3-14, dashed lines (55/50/45/45)", "compatible epsilon of the 6R with gamma = delta = 45", "33.5166",
+        lambda: twist_6r(55, 50, 45, 45).angles.epsilon / DEG, 5e-5, _DASHED),
+    _tt(_NEW_6R, "D-H twists alpha12..alpha61", "0, 130, -11.4834, 105, 11.4834, 125",
+        lambda: np.rad2deg(wrap([r.alpha for r in twist_6r(55, 50, 45, 45).rows])), 5e-5, _DASHED),
+    _tt(_NEW_6R, "D-H offsets R1..R6 (d = 1)", "0, -0.707107, 2.352154, -3.012110, -2.816828, 2.199659",
+        lambda: [r.R for r in twist_6r(55, 50, 45, 45).rows], 5e-7, _DASHED, unit=""),
+    _tt(_NEW_6R, "D-H length a12", "0.707107", lambda: twist_6r(55, 50, 45, 45).rows[0].a, 5e-7, _DASHED, unit=""),
+    _tt(_NEW_6R, "eqn 2-14's sum with R1 = 0", "4.685016", lambda: twist_6r(55, 50, 45, 45).bricard_sum(), 5e-7,
+        _DASHED, unit=""),
+    _tt(_NEW_6R, "Ka, Ka Kb", "1.5498, 2.2918",
+        lambda: [twist_6r(55, 50, 45, 45).ka, twist_6r(55, 50, 45, 45).ka * twist_6r(55, 50, 45, 45).kb], 5e-5, _DASHED,
         unit=""),
-    _tt("case 6", "Ka, Ka Kb", "1.5498, 2.2918",
-        lambda: [twist_6r(55, 50, 45, 45).ka, twist_6r(55, 50, 45, 45).ka * twist_6r(55, 50, 45, 45).kb], 5e-5, _C6,
-        unit=""),
-    _tt("case 6", "theta1..theta6 at theta1 = 0.5 rad", "28.648, -60.977, -138.111, 118.648, -150.977, 138.111",
-        lambda: np.rad2deg(twist_6r(55, 50, 45, 45).joint_angles("SSP", 0.5)[0]), 5e-4, _C6),
+    _tt(_NEW_6R, "theta1..theta6 at theta1 = 0.5 rad", "28.648, -60.977, -138.111, 118.648, -150.977, 138.111",
+        lambda: np.rad2deg(twist_6r(55, 50, 45, 45).joint_angles("SSP", 0.5)[0]), 5e-4, _DASHED),
 )  # fmt: skip
 
 
@@ -288,7 +290,7 @@ CORRECTIONS_3 = (
     Correction("eqn 3-39", "tan(theta2/2) = +Ka Kb tan(theta1/2), theta4 = -theta1, theta5 = theta2, theta6 = theta3",
                "the closed form of kinematics/twist_6r.py (theta4 = theta1, theta6 = -theta3)",
                "loop closure residual (m and rad), Fig 3-5 6R, theta1 from -3 to 3 rad", eqn_3_39_residuals,
-               _TT + _C5, 1e-12, 1.0),
+               _TT + _SOLID, 1e-12, 1.0),
 )  # fmt: skip
 
 
@@ -312,7 +314,7 @@ def dihedrals(model: Waterbomb, branch: str, phi1_deg: float, order=B_ORDER) -> 
     return np.rad2deg([np.pi - abs(q[c]) for c in order])
 
 
-def case_18b_row(alpha: float, beta: float, phi1: float) -> np.ndarray:
+def vertex_b_sweep_row(alpha: float, beta: float, phi1: float) -> np.ndarray:
     """(phi3, path I phi2, path II phi2, path II phi4) in degrees at phi1 (deg); phi4 < 0 is crease B4 folded past
     flat (rho_B4 beyond -pi, wrapped to (0, pi])."""
     model = waterbomb(alpha, beta)
@@ -322,7 +324,7 @@ def case_18b_row(alpha: float, beta: float, phi1: float) -> np.ndarray:
     return np.array([line[2], line[1], dihedrals(model, WATERBOMB_PLANE, phi1)[1], phi4])
 
 
-def case_20_omega() -> np.ndarray:
+def thick_vertex_b_omega() -> np.ndarray:
     """Vertex B's D-H angles omega1..omega6 (deg, modulo 360) of the thick cell 35/45, mu = 0.5, t = 0.05 at
     phi1 = 90 deg (eqn 5-12)."""
     fb = dihedrals(waterbomb(35, 45, 0.5, 0.05), WATERBOMB_LINE, 90)
@@ -333,32 +335,33 @@ def _wb(where, quantity, printed, ours, tol, test, **kw) -> Number:
     return Number(where, quantity, printed, ours, tol, _WB + test, unit="deg", in_text=False, **kw)
 
 
-_B18 = "test_case18_vertex_b_dihedrals"
+_VERTEX_B = "test_waterbomb_vertex_b_dihedrals_on_paths_i_and_ii"
 WATERBOMB = (
-    *(_wb(f"case 18, alpha/beta = {a}/{b}", f"vertex B dihedrals phi1..phi6 on path {p} at phi1 = 90 deg", printed,
-          lambda a=a, b=b, branch=branch: dihedrals(waterbomb(a, b), branch, 90), WATERBOMB_DEG, _B18)
+    *(_wb(f"eqns 5-8, 5-9, alpha/beta = {a}/{b}", f"vertex B dihedrals phi1..phi6 on path {p} at phi1 = 90 deg",
+          printed, lambda a=a, b=b, branch=branch: dihedrals(waterbomb(a, b), branch, 90), WATERBOMB_DEG, _VERTEX_B)
       for a, b, p, branch, printed in (
           (40, 40, "I", WATERBOMB_LINE, "90, 19.7022, 74.9074, 90, 74.9074, 19.7022"),
           (40, 40, "II", WATERBOMB_PLANE, "90, 60.8109, 74.9074, 31.6217, 74.9074, 60.8109"),
           (35, 45, "I", WATERBOMB_LINE, "90, 19.7022, 78.6454, 90, 78.6454, 19.7022"),
           (35, 45, "II", WATERBOMB_PLANE, "90, 83.2113, 78.6454, 1.2332, 78.6454, 83.2113"))),
-    *(_wb("case 17, alpha = beta = 40", f"vertex A's phi2 at phi1 = {phi1} deg (path I)", printed,
+    *(_wb("eqn 5-4, alpha = beta = 40", f"vertex A's phi2 at phi1 = {phi1} deg (path I)", printed,
           lambda phi1=phi1: dihedrals(waterbomb(40, 40), WATERBOMB_LINE, phi1, order=("A2",)), WATERBOMB_DEG,
-          "test_case17_vertex_a") for phi1, printed in ((90, "74.9074"), (150, "141.4421"), (30, "23.1990"))),
-    *(_wb(f"case 18b, alpha/beta = {a}/{b}", f"phi3, path I phi2, path II phi2, path II phi4 at phi1 = {phi1} deg "
-          "(3 decimals)", printed, lambda a=a, b=b, phi1=phi1: case_18b_row(a, b, phi1), 5e-4,
-          "test_case18b_sweeps_including_blocked_phi4")
+          "test_waterbomb_vertex_a_of_section_5_3")
+      for phi1, printed in ((90, "74.9074"), (150, "141.4421"), (30, "23.1990"))),
+    *(_wb(f"eqns 5-8, 5-9, alpha/beta = {a}/{b}", f"phi3, path I phi2, path II phi2, path II phi4 at phi1 = {phi1} deg "
+          "(3 decimals)", printed, lambda a=a, b=b, phi1=phi1: vertex_b_sweep_row(a, b, phi1), 5e-4,
+          "test_waterbomb_vertex_b_sweeps_including_blocked_phi4")
       for a, b, phi1, printed in ((40, 40, 150, "141.442, 65.892, 130.916, 111.833"),
                                   (40, 40, 60, "47.717, 11.450, 37.433, 14.866"),
                                   (35, 45, 120, "109.647, 33.479, 105.903, 48.135"),
                                   (35, 45, 60, "50.622, 11.450, 71.965, -44.050"))),
-    *(_wb(f"case 19, alpha/beta = {a}/{b}", "phi1 where path II blocks (pi + x*)", printed,
+    *(_wb(f"§5.3 (blockage, eqn 5-9c), alpha/beta = {a}/{b}", "phi1 where path II blocks (pi + x*)", printed,
           lambda a=a, b=b: 180 + np.rad2deg(plane_blockage(a * DEG, b * DEG)), 5e-4,
-          "test_case19_blockage_onsets_of_path_two")
+          "test_waterbomb_blockage_onsets_of_path_two")
       for a, b, printed in ((35, 45, "89.148"), (50, 50, "90.488"), (40, 55, "109.972"))),
-    _wb("case 20, eqn 5-12", "thick vertex B's D-H angles omega1..omega6 (35/45, mu = 0.5, t = 0.05, phi1 = 90 deg)",
-        "-90, 160.2978, 78.6454, -90, 78.6454, 160.2978", case_20_omega, WATERBOMB_DEG, "test_case20_thick_b_dh_angles",
-        angle=True),
+    _wb("§5.4, eqn 5-12", "thick vertex B's D-H angles omega1..omega6 (35/45, mu = 0.5, t = 0.05, phi1 = 90 deg)",
+        "-90, 160.2978, 78.6454, -90, 78.6454, 160.2978", thick_vertex_b_omega, WATERBOMB_DEG,
+        "test_thick_waterbomb_vertex_b_dh_angles_of_eqn_5_12", angle=True),
 )  # fmt: skip
 
 
@@ -378,14 +381,14 @@ def m7_state(theta: float) -> np.ndarray:
     return np.array([[rows[kind, i][c][0] for i in range(4)] for kind, c in (("A", 0), ("B", 0), ("A", 1))]).ravel()
 
 
-_M7 = "test_seed000_m7_events_against_the_thesis"
+_M_7_EVENTS = "test_feng2018_m7_events_against_the_thesis"
 _LIMITS = "test_twist_limits_and_thresholds_closed_forms"
 TUBE = (
     Number("ch. 6, eqn 6-18", "corner-to-corner length (eqn 6-18), n6 m3 45/45 at theta = 60, 100 deg",
            "4.28477, 4.78041", lambda: tube(6, 3, 45, 45).length(np.array([60, 100]) * DEG - np.pi, corners=True),
-           5e-6, _TUBE + "test_case12_and_case14_radii_and_uniform_states", unit="m", in_text=False),
+           5e-6, _TUBE + "test_tube_radii_uniform_states_and_axial_lengths", unit="m", in_text=False),
     *(Number("ch. 6, n6 m7 45/45", f"r_A, r_B, z_A of rows 0..3 from the equator outward at theta = {t} deg", printed,
-             lambda t=t: m7_state(t), 5e-6, _TUBE + "test_seed000_case23_m7_tube_states", unit="m", in_text=False)
+             lambda t=t: m7_state(t), 5e-6, _TUBE + "test_feng2018_m7_tube_states", unit="m", in_text=False)
       for t, printed in (
           (60, "0, 0.01361, 0.05118, 0.10327, 1.0, 1.0333, 1.08128, 1.13116, 0, 1.1644, 2.33061, 3.50043"),
           (100, "0.68404, 0.5642, 0.27854, -0.05363, 1.53209, 1.27821, 0.94061, 0.64657, "
@@ -397,17 +400,18 @@ TUBE = (
     Number("eqn 6-33", "alpha_min for n = 5, 6, 8, 12", "44.1788, 44.6530, 44.9024, 44.9822",
            lambda: [alpha_min(n) / DEG for n in (5, 6, 8, 12)], 5e-5, _TUBE + _LIMITS, unit="deg", in_text=False),
     Number("ch. 6, n6 m7 45/45", "uniform-radius states (the thesis samples theta on a 0.06-0.12 deg grid)",
-           "65.88, 144.0", lambda: m7_events("uniform_radius"), 0.12, _TUBE + _M7, unit="deg"),
+           "65.88, 144.0", lambda: m7_events("uniform_radius"), 0.12, _TUBE + _M_7_EVENTS, unit="deg"),
     Number("ch. 6, n6 m7 45/45", "locks: fully folded, interference begins and ends (0.12 deg grid)",
-           "60, 90.72, 128.52", lambda: m7_events("lock"), 0.12, _TUBE + _M7, unit="deg"),
+           "60, 90.72, 128.52", lambda: m7_events("lock"), 0.12, _TUBE + _M_7_EVENTS, unit="deg"),
     Number("ch. 6, n6 m7 45/45", "theta_max, the turning point (0.12 deg grid)", "144.24",
-           lambda: m7_events("turning_point"), 0.12, _TUBE + _M7, unit="deg"),
+           lambda: m7_events("turning_point"), 0.12, _TUBE + _M_7_EVENTS, unit="deg"),
     Number("ch. 6, n6 m7 45/45", "uniform-radius states and interference limits, exact (3 decimals)",
            "65.937, 144.063, 90.751, 128.475",
-           lambda: np.concatenate([m7_events("uniform_radius"), m7_events("lock")[1:]]), 5e-4, _TUBE + _M7,
+           lambda: np.concatenate([m7_events("uniform_radius"), m7_events("lock")[1:]]), 5e-4, _TUBE + _M_7_EVENTS,
            unit="deg", in_text=False),
     Number("ch. 6, n6 m7 45/45", "top row's r_A at theta = 100 deg", "-0.05363",
-           lambda: tube(6, 7, 45, 45).radii(100 * DEG - np.pi)[0, -1], 5e-6, _TUBE + _M7, unit="m", in_text=False),
+           lambda: tube(6, 7, 45, 45).radii(100 * DEG - np.pi)[0, -1], 5e-6, _TUBE + _M_7_EVENTS, unit="m",
+           in_text=False),
 )  # fmt: skip
 
 
@@ -423,7 +427,7 @@ def _square_twist_at_tilt(zeta: float, names: list[str]) -> np.ndarray:
     return twist_angles(twist(6, 3, 45, 45), TWIST_CCW, np.rad2deg(np.pi - x[0]), names)
 
 
-_TW = "test_waterbomb_twist.py::test_seed000_square_tube_twist"
+_TW = "test_waterbomb_twist.py::test_feng2018_square_tube_twist"
 SQUARE_TWIST = (
     Number("ch. 6, n6 m3 45/45", "eta02 where the tube is untwisted (3 decimals)", "44.415",
            lambda: 180 - twist(6, 3, 45, 45).start / DEG, 5e-4, _TW, unit="deg", in_text=False),

@@ -44,7 +44,7 @@ def _worked(where, quantity, printed, ours, tol, test, **kw) -> Number:
     return Number(where, quantity, printed, ours, tol, _TEST + test, unit=kw.pop("unit", "deg"), in_text=False, **kw)
 
 
-CASE1_THETA = [10, 20, 30, 40, 45, 50, 54]
+SWEEP_THETA = [10, 20, 30, 40, 45, 50, 54]
 _LOCKS = (((30, 60), "54.7356"), ((60, 30), "54.7356"), ((20, 70), "48.8063"), ((40, 50), "67.3780"),
           ((50, 80), "51.0652"), ((70, 80), "59.4884"), ((45, 45), "90.0"), ((60, 60), "90.0"))  # fmt: skip
 _FOLDS = ((10, "-20, 34.4709, 20, 19.6999"), (30, "-60, 100.3889, 60, 52.6590"), (50, "-100, 164.0130, 100, 69.7434"))
@@ -52,36 +52,36 @@ _FOLDS = ((10, "-20, 34.4709, 20, 19.6999"), (30, "-60, 100.3889, 60, 52.6590"),
 NUMBERS: tuple[Number, ...] = (
     _worked("sectors 30/60", "phi at theta = 10, 20, 30, 40, 45, 50, 54 deg",
             "16.9774, 32.0720, 44.0307, 52.1183, 54.4567, 55.4107, 54.9574",
-            lambda: deg_outputs(miura(30, 60), "miura", CASE1_THETA)[:, PHI], FOUR_DECIMALS_DEG,
-            "test_published_projection_angles_case1"),
+            lambda: deg_outputs(miura(30, 60), "miura", SWEEP_THETA)[:, PHI], FOUR_DECIMALS_DEG,
+            "test_published_projection_angles_of_the_30_60_vertex"),
     _worked("sectors 30/60", "psi at theta = 10, 20, 30, 40, 45, 50, 54 deg",
             "1.5418, 6.5056, 15.5928, 28.3376, 34.9864, 40.8309, 44.4588",
-            lambda: deg_outputs(miura(30, 60), "miura", CASE1_THETA)[:, PSI], FOUR_DECIMALS_DEG,
-            "test_published_projection_angles_case1"),
+            lambda: deg_outputs(miura(30, 60), "miura", SWEEP_THETA)[:, PSI], FOUR_DECIMALS_DEG,
+            "test_published_projection_angles_of_the_30_60_vertex"),
     _worked("sectors 30/60", "spinal crease unit vector a at theta = 30 deg", "0.704918, 0.196721, 0.681463",
             lambda: spinal_crease(np.deg2rad(30), np.deg2rad(60), np.deg2rad(30))[0], 5e-7,
-            "test_published_spinal_crease_case1", unit=""),
+            "test_published_spinal_crease_of_the_30_60_vertex", unit=""),
     *(_worked("sectors 30/60", f"fold angles rho_a, rho_b, rho_c, rho_d at theta = {t} deg (tolerance 1e-3 deg)",
               printed, lambda t=t: deg_outputs(miura(30, 60), "miura", [t])[0, RHO], 1e-3,
-              "test_published_fold_angles_case2") for t, printed in _FOLDS),
+              "test_published_fold_angles_of_the_30_60_vertex") for t, printed in _FOLDS),
     _worked("sectors 30/60", "rho_b, rho_d near the lock, theta = 54 deg (tolerance 1e-3 deg)", "177.4631, 70.5089",
             lambda: deg_outputs(miura(30, 60), "miura", [54])[0, [RHO_B, RHO_D]], 1e-3,
-            "test_published_fold_angles_near_lock_case2"),
+            "test_published_fold_angles_near_the_lock"),
     *(_worked(f"sectors {a}/{b}", "lock angle theta_limit", printed,
               lambda a=a, b=b: np.rad2deg(miura(a, b).theta_limit), FOUR_DECIMALS_DEG,
-              "test_published_lock_angle_case4_and_6") for (a, b), printed in _LOCKS),
+              "test_published_lock_angles") for (a, b), printed in _LOCKS),
     _worked("sectors 30/60", "phi at the lock theta_limit", "54.7356",
             lambda: np.rad2deg(miura(30, 60).joint_angles("miura", miura(30, 60).theta_limit)[0, PHI]),
-            FOUR_DECIMALS_DEG, "test_phi_at_lock_equals_lock_angle_case4"),
+            FOUR_DECIMALS_DEG, "test_phi_at_lock_equals_lock_angle"),
     *(_worked(f"sectors {a}/{a}", "phi at theta = 30 deg (symmetric vertex)", printed,
               lambda a=a: deg_outputs(miura(a, a), "miura", [30])[0, PHI], FOUR_DECIMALS_DEG,
-              "test_symmetric_vertex_has_zero_psi_and_closed_form_phi_case6") for a, printed in ((45, "53.1301"),
-                                                                                             (60, "81.7868"))),
+              "test_symmetric_vertex_has_zero_psi_and_closed_form_phi") for a, printed in ((45, "53.1301"),
+                                                                                           (60, "81.7868"))),
     _worked("sectors 30/60", "phi's interior maximum, and theta there (tolerance 0.01 deg, grid step 5.5e-4 deg)",
-            "55.4185, 50.475", phi_maximum, 0.01, "test_phi_is_non_monotonic_with_published_maximum_case5"),
+            "55.4185, 50.475", phi_maximum, 0.01, "test_phi_is_non_monotonic_with_published_maximum"),
     _worked("sectors 50/80", "phi, psi at theta = 45 deg (psi past 90 deg: atan2)", "100.4486, 105.7768",
             lambda: deg_outputs(miura(50, 80), "miura", [45])[0, [PHI, PSI]], FOUR_DECIMALS_DEG,
-            "test_psi_uses_atan2_past_ninety_degrees_case7"),
+            "test_psi_uses_atan2_past_ninety_degrees"),
 )  # fmt: skip
 
 
@@ -121,5 +121,5 @@ CORRECTIONS: tuple[Correction, ...] = (
 
 CHECKED_ELSEWHERE = (
     ("sectors 50/80", "a_x of the spinal crease changes sign at theta = 33.6005 deg (a bracket)",
-     _TEST + "test_spinal_crease_x_changes_sign_at_published_angle_case7"),
+     _TEST + "test_spinal_crease_x_changes_sign_at_published_angle"),
 )  # fmt: skip

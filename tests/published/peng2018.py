@@ -24,7 +24,7 @@ SIX_DECIMALS = 5e-7
 _V4 = "test_kinematics_vertex4.py::"
 
 # The generic developable vertex (2-34) and the flat-foldable vertex of Fig 3-2 (types I and II).
-CASE4_ALPHA = (np.pi / 2, 7 * np.pi / 18, np.pi / 3, 7 * np.pi / 9)
+GENERIC_ALPHA = (np.pi / 2, 7 * np.pi / 18, np.pi / 3, 7 * np.pi / 9)
 TYPE_I_ALPHA = (3 * np.pi / 4, np.pi / 3, np.pi / 4, 2 * np.pi / 3)
 TYPE_II_ALPHA = (3 * np.pi / 4, 2 * np.pi / 3, np.pi / 4, np.pi / 3)
 TYPES = {"I": TYPE_I_ALPHA, "II": TYPE_II_ALPHA}
@@ -36,21 +36,21 @@ def _w(where, quantity, printed, ours, tol, test, unit="rad", **kw) -> Number:
 
 VERTEX4 = (
     *(_w("eqn 2-34, generic developable vertex", f"rho2, rho3, rho4 on {branch} at rho1 = {x} rad", printed,
-         lambda x=x, branch=branch: Vertex4(np.array(CASE4_ALPHA)).joint_angles(branch, x)[0, 1:], SIX_DECIMALS,
-         _V4 + "test_published_generic_vertex_case4")
+         lambda x=x, branch=branch: Vertex4(np.array(GENERIC_ALPHA)).joint_angles(branch, x)[0, 1:], SIX_DECIMALS,
+         _V4 + "test_published_generic_vertex_of_eqn_2_34")
       for x, branch, printed in ((0.5, "odd2", "-0.084225, 0.443379, 0.109452"),
                                  (0.5, "odd3", "0.849175, -0.443379, 1.129539"),
                                  (-0.5, "odd3", "-0.849175, 0.443379, -1.129539"),
                                  (-0.5, "odd2", "0.084225, -0.443379, -0.109452"))),
     *(_w("eqn 2-34, generic developable vertex", f"rho2, rho3, rho4 on {branch} near flat, rho1 = 1e-4 rad "
          "(7 significant digits, the last off by up to 1.1 units)", printed,
-         lambda branch=branch: Vertex4(np.array(CASE4_ALPHA)).joint_angles(branch, 1e-4)[0, 1:], 1e-6,
-         _V4 + "test_published_generic_vertex_case4_near_flat", relative=True)
+         lambda branch=branch: Vertex4(np.array(GENERIC_ALPHA)).joint_angles(branch, 1e-4)[0, 1:], 1e-6,
+         _V4 + "test_published_generic_vertex_of_eqn_2_34_near_flat", relative=True)
       for branch, printed in (("odd2", "-1.656368e-5, 8.887416e-5, 2.152044e-5"),
                               ("odd3", "1.843836e-4, -8.887416e-5, 2.395610e-4"))),
     *(_w(f"Fig 3-2, type {t}", f"rho1..rho4 in mode {mode} at rho1 = 1 rad", printed,
          lambda t=t, mode=mode: Vertex4(np.array(TYPES[t])).joint_angles(mode, 1.0)[0], SIX_DECIMALS,
-         _V4 + "test_published_flat_foldable_case7")
+         _V4 + "test_published_flat_foldable_vertex_of_fig_3_2")
       for t, mode, printed in (("I", "S", "1, 1.454216, -1, 1.454216"), ("I", "C", "1, 0.179279, 1, -0.179279"),
                                ("II", "S", "1, 2.556551, -1, 2.556551"), ("II", "C", "1, 0.647286, 1, -0.647286"))),
     *(_w(f"Fig 3-2, type {t}", f"the four fold-angle multipliers of mode {mode}", printed,
@@ -103,21 +103,21 @@ THICK = (
     _w("eqn 4-22, alpha = 30 deg, a23 = 1 m, a12 = 0.5 m", "fold angles q1..q5 at rho1 = pi/2",
        "1.570796, -1.244669, -0.785398, -0.785398, -1.244669",
        lambda: thick_vertex5().joint_angles(VERTEX5_BRANCH, np.pi / 2)[0], SIX_DECIMALS,
-       _T5 + "test_case15_published_fold_and_dihedral_angles"),
+       _T5 + "test_thick_five_crease_vertex_angles_of_eqn_4_22"),
     _w("eqn 4-22, alpha = 30 deg, a23 = 1 m, a12 = 0.5 m", "dihedral angles phi2..phi5 at rho1 = pi/2",
        "1.896924, 2.356194, 2.356194, 1.896924",
        lambda: dihedral(thick_vertex5().joint_angles(VERTEX5_BRANCH, np.pi / 2))[0, 1:], SIX_DECIMALS,
-       _T5 + "test_case15_published_fold_and_dihedral_angles"),
+       _T5 + "test_thick_five_crease_vertex_angles_of_eqn_4_22"),
     _w("eqn 4-38, alpha = 30 deg, p = 0.3, q = 0.5, r = 0.8 m", "rho2, rho3, rho5, rho6 and phi2 = pi + rho2 at "
        "rho1 = pi/2", "-1.714144, -1.714144, -1.714144, -1.714144, 1.427449", _diamond_main, SIX_DECIMALS,
-       _TD + "test_case16_heights_and_published_main_branch"),
+       _TD + "test_thick_diamond_heights_and_main_branch_of_eqn_4_38"),
     _w("alpha = 30 deg, p = 0.3, q = 0.5, r = 0.8 m", "rho2..rho6 on the second flat branch at rho1 = 0.5 rad "
        "(4 decimals)", "-0.0844, 0.2242, -0.0342, 0.2242, -0.0844",
        lambda: thick_diamond().joint_angles(COUNTER, 0.5)[0, 1:], 5e-5,
-       _TD + "test_case16_second_flat_branch_at_q1_0_5"),
+       _TD + "test_thick_diamond_second_flat_branch_at_q1_0_5"),
     _w("r = 0.7 m (r != p + q)", "phi2, phi3, phi4 at phi1 = pi/2 on the curve next to 'diamond'",
        "1.257179, 1.047198, 1.010984", diamond_r07_dihedrals, SIX_DECIMALS,
-       _TD + "test_case16_r_0_7_is_refused_and_moves_along_another_curve"),
+       _TD + "test_thick_diamond_r_0_7_is_refused_and_moves_along_another_curve"),
 )  # fmt: skip
 
 
@@ -167,7 +167,7 @@ CORRECTIONS_4 = (
 # --- chapter 3: square twist and double-corrugated metamaterials ------------------------------------------------
 
 _SQ = "test_square_twist.py::"
-_CASE11 = (
+_SQUARE_TWIST_TABLE = (
     (150, 30, "0.869038, 1.566987, 1.456756, 0.631854, -0.398480, 9.186190"),
     (150, 60, "1.570796, 1.383975, 1.133975, 0.933013, -0.614521, 0.856406"),
     (150, 90, "2.094395, 1.133975, 0.883975, 0.933013, -1.039382, -0.526279"),
@@ -211,14 +211,15 @@ def element_row(element: int, phi_deg: float) -> np.ndarray:
 CHAPTER_3 = (
     *(_w("Fig 3-15, alpha = 150 deg", f"edge multiplier of mode {mode}", printed,
          lambda mode=mode: edge_multipliers(5 * np.pi / 6)[mode], SIX_DECIMALS,
-         _SQ + "test_case10_multipliers_against_the_digest", unit="") for mode, printed in (("C", "1.732051"),
-                                                                                            ("S", "-0.577350"))),
+         _SQ + "test_multipliers_against_peng2018", unit="") for mode, printed in (("C", "1.732051"),
+                                                                                   ("S", "-0.577350"))),
     *(_w(f"eqns 3-30 to 3-32, alpha = {a} deg", f"phi, L, S, H, nu_SL, nu_HL at theta = {t} deg (a = b = c = 1)",
-         printed, lambda a=a, t=t: square_twist_unit(a, t), SIX_DECIMALS, _SQ + "test_case11_metamaterial_tables",
-         unit="") for a, t, printed in _CASE11),
+         printed, lambda a=a, t=t: square_twist_unit(a, t), SIX_DECIMALS,
+         _SQ + "test_square_twist_metamaterial_tables_of_eqns_3_30_to_3_32", unit="")
+      for a, t, printed in _SQUARE_TWIST_TABLE),
     *(_w(f"eqns 3-24 to 3-28, element {e}", f"W, H, L at phi = {p} deg (sectors 135/60 deg)", printed,
          lambda e=e, p=p: element_row(e, p), SIX_DECIMALS,
-         "test_metamaterial.py::test_formulas_reproduce_the_digest_table", unit="m") for e, p, printed in _ELEMENTS),
+         "test_metamaterial.py::test_formulas_reproduce_the_element_table", unit="m") for e, p, printed in _ELEMENTS),
 )  # fmt: skip
 
 NUMBERS: tuple[Number, ...] = (*VERTEX4, *THICK, *CHAPTER_3)
@@ -227,7 +228,7 @@ CORRECTIONS: tuple[Correction, ...] = CORRECTIONS_4
 CHECKED_ELSEWHERE = (
     ("eqns 3-30 to 3-32", "L, S, H of the square twist at alpha = 150, 135, 120 deg measured on its vertices, "
      "and the Poisson's ratios as differences of the measured geometry (rows as above)",
-     "test_poisson.py::test_closed_form_geometry_reproduces_the_digest_tables"),
+     "test_poisson.py::test_closed_form_geometry_reproduces_the_poisson_tables"),
     ("eqn 3-26", "element 3's theta as printed (-0.189408, -0.326128, -0.555214) and the gain 0.614014 of the reading "
      "with gamma for alpha", "test_metamaterial.py::test_element_3_theta_is_the_printed_3_26_with_gamma_for_alpha"),
 )  # fmt: skip

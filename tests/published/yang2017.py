@@ -35,7 +35,7 @@ FOUR_DECIMALS_DEG = 5e-5
 _B3 = "test_bricard_threefold.py::"
 
 
-# --- §2.5 and §6 case 8: the threefold-symmetric Bricard linkage -------------------------------------------------
+# --- ch. 2 example (eqns 2-8 to 2-11): the threefold-symmetric Bricard linkage -----------------------------------
 
 
 @cache
@@ -81,7 +81,7 @@ def ch2_fitted_points() -> tuple[np.ndarray, float]:
     return fitted.ravel(), d
 
 
-_CASE8 = (
+_THREEFOLD_PHI = (
     (0.0, "120.0, -120.0"),
     (30.0, "103.0036, -133.5265"),
     (60.0, "80.4156, -144.8241"),
@@ -94,8 +94,9 @@ _CASE8 = (
 
 THREEFOLD = (
     *(Number("ch. 2 example (twists 300/60)", f"phi on the branches along and against at theta = {t:g} deg", printed,
-             lambda t=t: threefold_phi(300.0, t), FOUR_DECIMALS_DEG, _B3 + "test_case8_phi_roots", unit="deg",
-             angle=True, in_text=False) for t, printed in _CASE8),
+             lambda t=t: threefold_phi(300.0, t), FOUR_DECIMALS_DEG,
+             _B3 + "test_threefold_bricard_phi_of_the_chapter_2_example", unit="deg", angle=True, in_text=False)
+      for t, printed in _THREEFOLD_PHI),
     Number("eqn 2-9 (axes at B, D, F reversed: twists 120/240)",
            "phi on the branches against and along at theta = 129.31 deg", "19.9903, 166.2084",
            lambda: threefold_phi(120.0, 129.31)[::-1], FOUR_DECIMALS_DEG,
@@ -105,7 +106,7 @@ THREEFOLD = (
            _B3 + "test_ch2_joint_coordinates_are_reproduced_up_to_a_rigid_motion", unit="m", strict=True),
     *(Number("ch. 2, Myard example", f"Myard theta1..theta5 at theta3 = 40 deg, alpha12 = {a:g} deg", printed,
              lambda a=a: np.rad2deg(Myard(1.0, a * DEG).joint_angles(MYARD_BRANCH, 40 * DEG)[0]), FOUR_DECIMALS_DEG,
-             "test_myard.py::test_seed001_example_theta3_40_deg", unit="deg", angle=True, in_text=False)
+             "test_myard.py::test_yang2017_example_theta3_40_deg", unit="deg", angle=True, in_text=False)
       for a, printed in ((50.0, "100, 90, 40, 220, 270"), (30.0, "100, 64.4559, 40, 220, 295.5441"),
                          (70.0, "100, 128.3039, 40, 220, 231.6961"))),
 )  # fmt: skip
@@ -178,7 +179,7 @@ _PATH = (
     "0.0100, 0.0084, 0.0050, 1.4159, 1.4175, 1.4209",
     "0.0010, 0.0008, 0.0005, 1.4144, 1.4145, 1.4149",
 )
-_BEN = _CO + "test_bennett_parameters_match_case_10"
+_BEN = _CO + "test_cuboctahedron_bennett_parameters_match_eqn_4_7"
 _PT = "ch. 4, path by the truss method"
 _MAXIMA = (("AC", "1.5492", "1.02"), ("EH", "1.5492", "0.78"), ("BJ", "1.7836", "0.90"))
 
@@ -192,17 +193,17 @@ CUBOCTAHEDRON = (
            "1.951800, 0.243975, 5.25, -4.860556, 1.125", design_terms, 1e-6,
            _CO + "test_deployed_design_equations", in_text=False),
     *(Number("ch. 4 example", f"phi at theta = {t} deg (3 decimals)", phi,
-             lambda t=t: cuboctahedron().phi(t * DEG) / DEG, 5e-4, _CO + "test_bennett_samples_case_10", unit="deg",
-             in_text=False) for t, phi in ((120, "110.570"), (90, "136.397"))),
+             lambda t=t: cuboctahedron().phi(t * DEG) / DEG, 5e-4, _CO + "test_cuboctahedron_bennett_samples",
+             unit="deg", in_text=False) for t, phi in ((120, "110.570"), (90, "136.397"))),
     *(Number("ch. 4 example", f"diagonals AC, BD at theta = {t} deg (tolerance 1e-5)", d,
              lambda t=t: [cuboctahedron().diagonals(t * DEG)[k][0] for k in ("AC", "BD")], 1e-5,
-             _CO + "test_bennett_samples_case_10", unit="m", in_text=False)
+             _CO + "test_cuboctahedron_bennett_samples", unit="m", in_text=False)
       for t, d in ((120, "1.54826, 0.97136"), (90, "1.49712, 0.51643"))),
     Number("eqns 4-41 (corrected), 4-42", "theta_f and phi at the fold (B = D)", "58.4119, 154.7912",
            lambda: np.array([cuboctahedron().domain[0], cuboctahedron().phi(cuboctahedron().domain[0])]) / DEG, 1e-4,
-           _CO + "test_fold_case_10", unit="deg", in_text=False),
+           _CO + "test_cuboctahedron_bennett_fold_of_eqn_4_41_corrected", unit="deg", in_text=False),
     *(Number(_PT + " (4 decimals)", f"BD, AI, EF, AC, EH, BJ where BD = {row[:6]} (truss tolerance)", row,
-             lambda row=row: path_row(float(row.split(",")[0])), 3e-4, _CO + "test_path_matches_seed_table",
+             lambda row=row: path_row(float(row.split(",")[0])), 3e-4, _CO + "test_path_matches_the_worked_table",
              unit="m", strict=True, in_text=False) for row in _PATH),
     *(Number(_PT, f"largest {key} on 20001 samples", peak, lambda key=key: path_maximum(key)[0], 1e-4,
              _CO + "test_path_maxima", unit="m", in_text=False)
@@ -245,7 +246,7 @@ def _peaks(name: str) -> np.ndarray:
     return np.array([s.exact.value, s.linearised.value]) / DEG
 
 
-_STUDY = _FAB + "test_seed_output_errors"
+_STUDY = _FAB + "test_yang2017_output_errors"
 _RSSR = (
     ((100, 70.72, 45), "30.0044", "-4.665482, 1.249732"),
     ((101.5, 69.22, 45), "28.8309", "-4.270901, 1.238316"),
@@ -272,7 +273,7 @@ FABRICATION = (
     Number("§3.5, eqn 3-5", "output error at theta1 = 170, 179 deg, d_l = 1.5 mm, k = +1 (3 decimals)", "3.431, 0.394",
            lambda: output_error(nominal_rssr(), FABRICATION_ERRORS["d_l = 1.5 mm, k = +1"].built(nominal_rssr()),
                                 np.array([170.0, 179.0]) * DEG) / DEG, 5e-4,
-           _FAB + "test_output_error_near_half_turn_matches_digest", unit="deg", in_text=False),
+           _FAB + "test_output_error_falls_towards_the_half_turn", unit="deg", in_text=False),
     *(Number("eqn 3-50 (corrected)", f"largest ball waggle, {name} (3 decimals; the thesis prints {thesis})",
              printed, lambda err=err: max_waggle(nominal_rssr(), err.built(nominal_rssr())).value / DEG, 5e-4,
              _FAB + "test_waggle_corrected_3_50", unit="deg", in_text=False)
@@ -352,7 +353,7 @@ _TO_PATH = (
     "30.01, 68.06, 113.55, 139.87, 138.78, 98.63",
     "9.97, 37.09, 97.75, 119.12, 157.38, 131.83",
 )
-_TO_CASE = _TO + "test_bricard_parameters_match_case_12"
+_TO_CASE = _TO + "test_truncated_octahedron_bricard_parameters"
 
 TRUNCATED_OCTAHEDRON = (
     Number("ch. 5, Bricard linkage", "link length a (6 decimals)", "0.713234", lambda: truncated_octahedron().bricard.a,
@@ -366,7 +367,7 @@ TRUNCATED_OCTAHEDRON = (
     *(Number("ch. 5, path by the truss method (+/-0.1 deg)",
              f"rho1, rho2, delta_A, delta_D, Bricard 1 and 2's odd joint angles where rho1 = {row.split(',')[0]}",
              row, lambda row=row: octahedron_path_row(float(row.split(",")[0])), 0.1,
-             _TO + "test_path_matches_seed_table", unit="deg", in_text=False) for row in _TO_PATH),
+             _TO + "test_path_matches_the_worked_table", unit="deg", in_text=False) for row in _TO_PATH),
 )  # fmt: skip
 
 # --- chapter 6: the truncated tetrahedron ------------------------------------------------------------------------
@@ -416,8 +417,9 @@ _TABLE_I = (
     ("59.94", "50.29, 26.98, 143.12", "0.7416, 0.8498"),
     ("4.99", "10.90, 9.90, 120.92", "0.1883, 0.1899"),
 )
-_C16 = _TT + "test_bricard_parameters_match_case_16"
-_PATH_II, _PATH_I = _TT + "test_scheme_ii_path_matches_seed_table", _TT + "test_scheme_i_path_matches_seed_table"
+_C16 = _TT + "test_truncated_tetrahedron_bricard_parameters"
+_PATH_II = _TT + "test_scheme_ii_path_matches_the_worked_table"
+_PATH_I = _TT + "test_scheme_i_path_matches_the_worked_table"
 _MISS = _TT + "test_scheme_i_misses_the_tetrahedron"
 
 TRUNCATED_TETRAHEDRON = (
@@ -492,9 +494,9 @@ CHECKED_ELSEWHERE = (
     ("ch. 2 example", "the closed path sampled by the truss continuation (2 decimals, tolerance scaled by the slope)",
      _B3 + "test_sampled_closed_path_crosses_to_the_other_branch_at_each_bundle"),
     *(("ch. 1-2", f"truss counts j, b, r, m, s of the {what}", f"test_truss.py::{test}")
-      for what, test in (("Bennett linkage, and with a tilted axis", "test_seed001_bennett_counts_tilt_and_release"),
-                         ("RSSR", "test_seed001_rssr_truss"),
+      for what, test in (("Bennett linkage, and with a tilted axis", "test_yang2017_bennett_counts_tilt_and_release"),
+                         ("RSSR", "test_yang2017_rssr_truss"),
                          ("Myard linkage and its non-overconstrained forms",
-                          "test_seed001_myard_counts_and_non_overconstrained_forms"),
-                         ("threefold-symmetric Bricard linkage", "test_seed001_threefold_bricard_counts"))),
+                          "test_yang2017_myard_counts_and_non_overconstrained_forms"),
+                         ("threefold-symmetric Bricard linkage", "test_yang2017_threefold_bricard_counts"))),
 )  # fmt: skip

@@ -1,0 +1,89 @@
+"""The path engine (`sim_origami.path`): its arc-length mode through a turning point and a bifurcation, and its
+given-values mode with several inputs, each against a closed form (no stored output of earlier code)."""
+
+import numpy as np
+import pytest
+
+from sim_origami.errors import ParameterError
+from sim_origami.kinematics.vertex4 import Vertex4
+from sim_origami.path import BIFURCATION_RTOL, ArcSystem, follow_arc
+
+
+class Curves(ArcSystem):
+    """Points (x, y, z) with F(x) = 0 over all three coordinates (no ground); the chart is x itself."""
+
+    def __init__(self, residual, jacobian):
+        self._residual, self._jacobian = residual, jacobian
+        super().__init__(3, 2, 1.0, 1e-13, 1e-9)
+
+    def residual(self, x, ref):
+        return self._residual(x)
+
+    def jacobian(self, x):
+        return self._jacobian(x)
+
+    def move(self, x, d):
+        return x + d
+
+    def chart(self, x, ref):
+        return x.copy()
+
+    def chart_rate(self, x, k):
+        return np.eye(3)[k]
+
+
+def crossing() -> Curves:
+    """x^2 = y^2, z = x y: the branches (t, t, t^2) and (t, -t, -t^2) cross at the origin (mobility 2 there)."""
+    return Curves(lambda p: np.array([p[0] ** 2 - p[1] ** 2, p[2] - p[0] * p[1]]),
+                  lambda p: np.array([[2 * p[0], -2 * p[1], 0.0], [-p[1], -p[0], 1.0]]))  # fmt: skip
+
+
+@pytest.mark.parametrize(("choice", "sign"), [("keep", 1.0), ("switch", -1.0)])
+def test_follow_arc_locates_the_crossing_and_keeps_or_switches_branch(choice, sign):
+    start = np.array([-1.0, -1.0, 1.0])
+    run = follow_arc(crossing(), start, start, 0, 1.0, choice=choice)
+    assert run.reached
+    (event,) = run.events
+    assert (event.mobility, event.directions) == (2, 2) and event.point.sigma2 < BIFURCATION_RTOL
+    # located to about the square root of the corrector tolerance (as on the scenes' bifurcations)
+    assert np.abs(event.point.x).max() < 1e-6
+    x = np.array([p.x for p in run.points])
+    before, after = x[: event.index], x[event.index + 1 :]
+    # before the crossing: the branch y = x; after it: y = x ('keep') or y = -x ('switch'), z = x y (closed form)
+    assert np.abs(before[:, 1] - before[:, 0]).max() < 1e-12
+    assert np.abs(after[:, 1] - sign * after[:, 0]).max() < 1e-12
+    assert np.abs(x[:, 2] - x[:, 0] * x[:, 1]).max() < 1e-12
+    assert x[-1, 0] == pytest.approx(1.0, abs=1e-14) and np.all(np.diff(x[:, 0]) > 0)
+
+
+def test_follow_arc_passes_a_turning_point_of_an_undriven_coordinate():
+    # the circle x^2 + y^2 = 1, z = x driven by y from -0.5 rad of arc to y = 0.9: x turns at y = 0, where a
+    # natural-parameter continuation in x could not pass
+    circle = Curves(lambda p: np.array([p[0] ** 2 + p[1] ** 2 - 1.0, p[2] - p[0]]),
+                    lambda p: np.array([[2 * p[0], 2 * p[1], 0.0], [-1.0, 0.0, 1.0]]))  # fmt: skip
+    start = np.array([np.cos(-0.5), np.sin(-0.5), np.cos(-0.5)])
+    run = follow_arc(circle, start, start, 1, 0.9)
+    x = np.array([p.x for p in run.points])
+    assert run.reached and not run.events and x[-1, 1] == pytest.approx(0.9, abs=1e-14)
+    assert np.argmax(x[:, 0]) not in (0, len(x) - 1)  # x rose, then fell
+    assert np.abs(x[:, 0] - np.sqrt(1.0 - x[:, 1] ** 2)).max() < 1e-12 and np.abs(x[:, 2] - x[:, 0]).max() < 1e-12
+
+
+def test_follow_arc_rejects_bad_choice_step_and_a_start_of_mobility_two():
+    start = np.array([-1.0, -1.0, 1.0])
+    with pytest.raises(ParameterError, match="'sideways'"):
+        follow_arc(crossing(), start, start, 0, 1.0, choice="sideways")
+    with pytest.raises(ParameterError, match="positive"):
+        follow_arc(crossing(), start, start, 0, 1.0, step=0.0)
+    with pytest.raises(ParameterError, match="mobility 1 at the start"):
+        follow_arc(crossing(), np.zeros(3), np.zeros(3), 0, 1.0)
+
+
+def test_sweep_with_several_inputs_follows_the_closed_form():
+    # `LoopSystem.follow` with inputs as rows (n, k) takes the secant in the inputs' arc length: a vertex driven
+    # through its input as a (n, 1) path, out and back, equals the closed form (Peng 2018, Eq. 2-34 vertex)
+    vertex = Vertex4(np.array([np.pi / 2, 7 * np.pi / 18, np.pi / 3, 7 * np.pi / 9]))
+    x = np.r_[np.linspace(0.3, 1.2, 20), np.linspace(1.2, 0.3, 20)[1:]]
+    exact = vertex.joint_angles("odd2", x)
+    numeric = vertex.loop_system().follow(exact[0], (0,), x[:, None])
+    np.testing.assert_allclose(numeric, exact, atol=1e-12, rtol=0)
