@@ -121,6 +121,11 @@ class LoopSystem:
         loop = np.r_[np.ones(3), np.full(3, 1.0 / self.length_scale)]
         return np.r_[np.tile(loop, len(self.loops)), np.ones(len(self.couplings))]
 
+    def residual_size(self, r: ArrayLike) -> NDArray[np.float64]:
+        """Largest component of residuals r (..., n_residuals) as `solve` weighs them (translations in units of
+        `length_scale`), (...); 0 for an open chain."""
+        return np.max(np.abs(np.asarray(r) * self._weights), axis=-1, initial=0.0)
+
     def residual_norm(self, q: ArrayLike) -> NDArray[np.float64]:
         """Largest absolute closure residual component, (...); 0 for an open chain."""
         return np.max(np.abs(self.residual(q)), axis=-1, initial=0.0)

@@ -12,6 +12,11 @@ Three modes share one set of parts (predictor, correctors, step control, numeric
   the orientation of its bordered form), location (golden section), branch directions at second order and branch
   switching (`truss.follow`).
 
+A traced path is then read between its nodes by `ChordPolish`: interpolated poses (straight or cubic Hermite
+guesses) closed by the chord method, Gauss-Newton steps with the Jacobian of each pose's nearest node factorised
+once (a sparse LU or a dense pseudo-inverse), all poses at once, and the full solve for any the chord does not close
+(`evaluate` of `kinematics.numeric_pattern.PatternPath` and `kinematics.linkage_path.LinkagePath`).
+
 Correctors: damped Gauss-Newton (`levenberg_marquardt`, tolerant of the rank-deficient Jacobians of overconstrained
 loops) for `sweep` and `trace`; Newton with the rank-truncated pseudo-inverse (`ArcSystem.correct`) for
 `follow_arc`. Step control (`Step`): halving on a rejected step, growth by GROWTH on an accepted one.
@@ -43,7 +48,7 @@ from typing import Protocol
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy import sparse as sp
-from scipy.sparse.linalg import spsolve
+from scipy.sparse.linalg import splu, spsolve
 
 from .errors import AssemblyError, ConvergenceError, ParameterError
 
@@ -66,6 +71,10 @@ RANK_RTOL = 1e-6
 SPARSE_RANK_STRIDE = 10
 # A `stop_when` reason is located to this (path parameter, rad) by bisection between two nodes.
 STOP_WHEN_TOL = 1e-9
+
+# -- ChordPolish --
+# Chord steps before the full solve takes over (and Gauss-Newton steps to the rounding floor).
+CHORD_ITER = 30
 
 # -- follow_arc --
 # Newton corrector: at most this many iterations to bring every residual component below `ArcSystem.tol`.
@@ -198,9 +207,11 @@ def sweep(close: Callable[[NDArray[np.float64], int], NDArray[np.float64]], x0: 
 
 
 class ClosureSystem(Protocol):
-    """What `trace` follows (a `closure.LoopSystem` is one): residual and Jacobian over `n_joints` coordinates."""
+    """What `trace` follows and `ChordPolish` closes (a `closure.LoopSystem` is one): residual, Jacobian and solve
+    over `n_joints` coordinates."""
 
     n_joints: int
+    n_residuals: int
     sparse: bool  # solve with sparse normal equations; then `jacobian_sparse` is used
 
     def residual(self, q: ArrayLike) -> NDArray[np.float64]: ...
@@ -208,6 +219,10 @@ class ClosureSystem(Protocol):
     def jacobian(self, q: ArrayLike) -> NDArray[np.float64]: ...
 
     def jacobian_sparse(self, q: ArrayLike) -> sp.csc_matrix: ...
+
+    def residual_size(self, r: ArrayLike) -> NDArray[np.float64]: ...
+
+    def solve(self, q0: ArrayLike, fixed: ArrayLike, *, tol: float) -> NDArray[np.float64]: ...
 
 
 @dataclass(frozen=True)
@@ -485,6 +500,154 @@ def _first(
         else:
             s1, q1, why = sm, qm, reason
     return s0, q0, s1, why
+
+
+# -- polish: closing poses near a traced path ------------------------------------------------------------------
+
+
+def nearest_nodes(s_nodes: NDArray[np.float64], x: ArrayLike) -> NDArray[np.int64]:
+    """Index of the node nearest each parameter x (n,) among ascending `s_nodes` (the upper one on a tie)."""
+    x = np.asarray(x, dtype=float)
+    i = np.clip(np.searchsorted(s_nodes, x), 0, len(s_nodes) - 1)
+    return np.where((i > 0) & (np.abs(s_nodes[i - 1] - x) < np.abs(s_nodes[i] - x)), i - 1, i)
+
+
+class ChordPolish:
+    """
+    Close poses near a traced path by the chord method: Gauss-Newton steps with the closure Jacobian of each pose's
+    nearest trace node (the `fixed` joints held), all poses at once (one batched residual a step), then a full
+    solve for any pose the chord does not close in CHORD_ITER steps. The chord contracts by about the distance to
+    the node per step, so nodes a trace step apart close an interpolated pose in a few steps.
+
+    The Jacobian of a node is factorised once and kept: a sparse system (`loops.sparse`) keeps the sparse LU of its
+    normal matrix (480 creases: one factorisation a few ms, a dense one 0.2 s), a dense one the pseudo-inverse with
+    singular values below RANK_RTOL of the largest dropped (as in the rank count).
+
+    Residuals are measured as `loops.residual_size` weighs them (that of the full solve). A pose is closed below
+    `tol`. With `floor`, the rounding floor of large systems (about 4e-15 on the 16 x 16 Miura sheet, above a
+    `tol` of 1e-15) is accepted below `floor`: a pose stops where its residual stops falling, one left above
+    `floor` or 10 x the batch's median gets Gauss-Newton with fresh Jacobians from its best, and the full solve if
+    still above `floor`. Without, a pose not closed below `tol` is solved again from its guess (a singular pose,
+    where the chord need not contract: the solve, and `correct` to `close_tol` where Newton converges only
+    linearly).
+    """
+
+    def __init__(self, loops: ClosureSystem, nodes: NDArray[np.float64], fixed: NDArray[np.bool_], *, tol: float,
+                 close_tol: float, floor: bool = False):  # fmt: skip
+        self.loops, self.nodes, self.fixed = loops, nodes, np.asarray(fixed, dtype=bool)
+        self.tol, self.close_tol, self.floor = tol, close_tol, floor
+        self._factors: dict[int, tuple] = {}  # node -> (free columns of J, factorisation, fixed columns of J)
+
+    def _factor(self, q: NDArray[np.float64]) -> tuple:
+        free = ~self.fixed
+        if self.loops.sparse:
+            full = self.loops.jacobian_sparse(q)
+            J = full[:, free]
+            normal = (J.T @ J).tocsc()
+            return J, splu(normal + 1e-300 * sp.identity(normal.shape[0], format="csc")), full[:, ~free]
+        full = self.loops.jacobian(q)
+        return full[:, free], np.linalg.pinv(full[:, free], rcond=RANK_RTOL), full[:, ~free]
+
+    def factor(self, node: int) -> tuple:
+        """(free columns of the Jacobian, its factorisation, fixed columns) at trace node `node`, kept."""
+        if node not in self._factors:
+            self._factors[node] = self._factor(self.nodes[node])
+        return self._factors[node]
+
+    def _solve(self, factor: tuple, r: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The least-squares step (m, n_free) of the free joints that cancels residuals r (m, rows) to first order."""
+        J, f, _ = factor
+        return f.solve(np.asarray(J.T @ r.T)).T if self.loops.sparse else r @ f.T
+
+    def _step(self, nodes: NDArray[np.int64], r: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Chord steps (m, n_free) for residuals r (m, rows) with the Jacobians of `nodes` (m,)."""
+        if not self.loops.sparse:  # small pseudo-inverses: one batched product
+            return np.einsum("mij,mj->mi", np.stack([self.factor(int(k))[1] for k in nodes]), r)
+        out = np.empty((len(nodes), int(np.sum(~self.fixed))))
+        for node in np.unique(nodes):
+            mine = nodes == node
+            out[mine] = self._solve(self.factor(int(node)), r[mine])
+        return out
+
+    def tangent(self, node: int) -> NDArray[np.float64]:
+        """The path's tangent dq/dx at a node when one fixed joint is the input x: the free joints' least-squares
+        rates, the fixed one's 1."""
+        J, f, J_fixed = self.factor(node)
+        out = np.ones(len(self.fixed))
+        rhs = np.asarray(J_fixed @ out[self.fixed]).ravel()
+        out[~self.fixed] = -(f.solve(np.asarray(J.T @ rhs).ravel()) if self.loops.sparse else f @ rhs)
+        return out
+
+    def hermite(self, s_nodes: NDArray[np.float64], x: NDArray[np.float64]) -> NDArray[np.float64]:
+        """
+        Guesses at inputs x (one fixed joint, the input its value) by cubic Hermite interpolation between the nodes
+        (at `s_nodes`) with their tangents. On the 16 x 16 Miura sheet (nodes up to 0.05 rad apart) the guesses'
+        median residual is 2.5e-9 instead of 7.3e-5 from straight lines, and the chord takes 6.4 steps a guess
+        instead of 9.4.
+        """
+        i = np.clip(np.searchsorted(s_nodes, x) - 1, 0, len(s_nodes) - 2)
+        h = s_nodes[i + 1] - s_nodes[i]
+        t = ((x - s_nodes[i]) / h)[:, None]
+        tangents = {int(k): self.tangent(int(k)) for k in np.unique(np.r_[i, i + 1])}
+        d0 = np.array([tangents[int(k)] for k in i]) * h[:, None]
+        d1 = np.array([tangents[int(k)] for k in i + 1]) * h[:, None]
+        out = ((2 * t**3 - 3 * t**2 + 1) * self.nodes[i] + (t**3 - 2 * t**2 + t) * d0
+               + (3 * t**2 - 2 * t**3) * self.nodes[i + 1] + (t**3 - t**2) * d1)  # fmt: skip
+        out[:, self.fixed] = x[:, None]
+        return out
+
+    def polish(self, guesses: NDArray[np.float64], nearest: NDArray[np.int64]) -> NDArray[np.float64]:
+        """The guesses (m, n_joints) closed, each by chord steps with the Jacobian of its node `nearest` (m,)."""
+        if not self.loops.n_residuals:
+            return guesses.copy()
+        columns = np.flatnonzero(~self.fixed)
+        q = guesses.copy()
+        best_q, best = q.copy(), np.full(len(q), np.inf)
+        active = np.ones(len(q), dtype=bool)
+        bar = self.close_tol if self.floor else self.tol  # below it, a residual that stops falling is the floor
+        for _ in range(CHORD_ITER):
+            index = np.flatnonzero(active)
+            r = self.loops.residual(q[index])
+            size = self.loops.residual_size(r)
+            better = size < best[index]
+            best_q[index[better]], best[index[better]] = q[index[better]], size[better]
+            done = (size < self.tol) | (~better & (best[index] < bar))
+            active[index[done]] = False
+            if not np.any(active):
+                break
+            q[index[~done][:, None], columns[None, :]] -= self._step(nearest[index[~done]], r[~done])
+        if self.floor:
+            # the floor is the loops' rounding, the same for every pose: a pose above 10x the batch's median sat
+            # where the chord's node is far in conditioning (16 x 16 Miura near its folded end, cond 4100: 9.3e-14
+            # against 3.6e-15)
+            for k in np.flatnonzero((best >= self.close_tol) | (best > max(10 * np.median(best), self.tol))):
+                q_k, size_k = self._newton(best_q[k])
+                best_q[k] = q_k if size_k < self.close_tol else self._full(q_k)
+        else:
+            for k in np.flatnonzero(best >= self.tol):
+                best_q[k] = self._full(guesses[k])
+        return best_q
+
+    def _newton(self, q: NDArray[np.float64]) -> tuple[NDArray[np.float64], float]:
+        """Gauss-Newton with a fresh Jacobian each step, to the residual's rounding floor (9 of 1000 inputs on the
+        16 x 16 Miura sheet): (q, its residual size)."""
+        best_q, best = q.copy(), float(self.loops.residual_size(self.loops.residual(q)))
+        for _ in range(CHORD_ITER):
+            q = q.copy()
+            q[~self.fixed] -= self._solve(self._factor(q), self.loops.residual(q)[None])[0]
+            size = float(self.loops.residual_size(self.loops.residual(q)))
+            if size >= best:
+                break
+            best_q, best = q, size
+        return best_q, best
+
+    def _full(self, q: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The full solve from q; `correct` to `close_tol` where it does not converge (at a singular pose Newton
+        converges only linearly)."""
+        try:
+            return self.loops.solve(q, self.fixed, tol=self.tol)
+        except ConvergenceError:
+            return correct(self.loops, q, self.fixed, self.close_tol, max_iter=200)[0]
 
 
 # -- follow_arc: along the mechanism mode, through turning points and bifurcations ------------------------------

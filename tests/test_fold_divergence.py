@@ -50,7 +50,7 @@ def test_a_one_point_motion_exits_1_with_a_report(tmp_path, capsys):
 
 
 def test_a_sparse_pattern_is_polished_to_the_rounding_floor(tmp_path):
-    """Patterns above SPARSE_FROM creases polish by chord steps (`PatternPath._polish_chord`): to the residual's floor,
+    """Patterns above SPARSE_FROM creases polish by chord steps (`path.ChordPolish`): to the residual's floor,
     not to 1e-13, which near the 16 x 16 Miura sheet's folded end left the reference 3.7e-12 rad off."""
     sheet = MiuraSheet(8, 8, 0.5, 0.5, np.deg2rad(60.0)).pattern
     assert len(sheet.creases) > SPARSE_FROM

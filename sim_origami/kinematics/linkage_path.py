@@ -14,8 +14,8 @@ A link between two spherical joints spins freely about the line through their ce
 system holds one hinge per spin at 0 (`gauge`), so it has the mechanism's true mobility, and the outputs leave out
 the angles the spin moves (`observed`; `loop_angles` fills them back in by closing the loops).
 
-`evaluate` closes interpolated poses by chord steps (all inputs at once) and the full solve where those do not
-close, so values close the loops to 1e-15 where the path is regular; within SINGULAR_ZONE of a meeting it
+`evaluate` closes interpolated poses by chord steps (all inputs at once, `path.ChordPolish`) and the full solve where
+those do not close, so values close the loops to 1e-15 where the path is regular; within SINGULAR_ZONE of a meeting it
 extrapolates from regular poses either side. Angles in radians; translations in the loops' length unit.
 """
 
@@ -27,9 +27,9 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import minimize_scalar
 
 from ..closure import Coupling, LoopSystem
-from ..errors import ConvergenceError, ParameterError
+from ..errors import ParameterError
 from ..geometry import wrap
-from ..path import Polyline, TracedPath, correct, trace
+from ..path import ChordPolish, Polyline, TracedPath, correct, nearest_nodes, trace
 from .base import Branch, Event, Kinematics
 from .numeric_pattern import CLOSE_TOL, POLISH_TOL
 
@@ -53,10 +53,6 @@ START_SHARE = 0.382
 FIRST_STEP = 0.01
 MAX_STEP = 0.05
 STALL_STEP = 1e-7
-# `evaluate` closes interpolated poses by at most CHORD_ITER chord steps (the Jacobian of the nearest trace node,
-# singular values below CHORD_RCOND of the largest dropped as in the rank count) before the full solve takes over.
-CHORD_ITER = 30
-CHORD_RCOND = 1e-6
 # Two branches meet at a bifurcation where their poses differ by less than MEET_RAD (rad, every joint): searched
 # near the local minima below MEET_GRID of their distance on MEET_SAMPLES inputs of the interpolated traces.
 MEET_RAD = 1e-4
@@ -162,7 +158,7 @@ class LinkagePath(Kinematics):
                              f"assembl{'y' if len(starts) == 1 else 'ies'} found, path-1 starts at ({shown}) deg")
         self.start_input = x0
         self.traces: dict[str, tuple[TracedPath, TracedPath]] = {}
-        self._chords: dict[tuple[str, int], NDArray[np.float64]] = {}
+        self._polishers: dict[str, ChordPolish] = {}  # per branch: its nodes' factorisations, kept
         self.nodes: dict[str, tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.int64]]] = {}
         for q in starts:
             self._trace(f"path-{len(self.nodes) + 1}", q)
@@ -342,52 +338,20 @@ class LinkagePath(Kinematics):
         return values, valid
 
     def _polished(self, branch: str, x: NDArray[np.float64], valid: NDArray[np.bool_]) -> NDArray[np.float64]:
-        """
-        Interpolated poses closed with the input held (NaN where not `valid`): chord steps for all inputs at once
-        (the pseudo-inverse of the Jacobian at each input's nearest trace node, one batched residual per step),
-        then the full solve for any input the chord has not closed in CHORD_ITER steps.
-        """
+        """Interpolated poses closed with the input held (NaN where not `valid`), by `path.ChordPolish` on the
+        branch's nodes (each pose to POLISH_TOL, else solved again from its guess)."""
         values = np.full((len(x), self._loops.n_joints), np.nan)
         if not np.any(valid):
             return values
-        s, _, _ = self.nodes[branch]
-        fixed = np.zeros(self._loops.n_joints, dtype=bool)
-        fixed[self.input_index] = True
+        if branch not in self._polishers:
+            fixed = np.zeros(self._loops.n_joints, dtype=bool)
+            fixed[self.input_index] = True
+            self._polishers[branch] = ChordPolish(self._loops, self.nodes[branch][1], fixed, tol=POLISH_TOL,
+                                                  close_tol=CLOSE_TOL)  # fmt: skip
         guess = self._interp(branch, x[valid])
         guess[:, self.input_index] = x[valid]
-        q = guess.copy()
-        near = np.clip(np.searchsorted(s, x[valid]), 0, len(s) - 1)
-        near = np.where((near > 0) & (np.abs(s[near - 1] - x[valid]) < np.abs(s[near] - x[valid])), near - 1, near)
-        steps = np.stack([self._chord(branch, k) for k in near]) if self._loops.n_residuals else None
-        scale = np.r_[np.ones(3), np.full(3, 1.0 / self._loops.length_scale)]
-        open_ = np.ones(len(q), dtype=bool)
-        for _ in range(CHORD_ITER if steps is not None else 0):
-            r = self._loops.residual(q[open_])
-            worst = np.max(np.abs(r[:, : 6 * len(self._loops.loops)].reshape(len(r), -1, 6) * scale), axis=(1, 2),
-                           initial=0.0)  # fmt: skip
-            worst = np.maximum(worst, np.max(np.abs(r[:, 6 * len(self._loops.loops) :]), axis=1, initial=0.0))
-            closed = worst < POLISH_TOL
-            rows = np.flatnonzero(open_)
-            open_[rows[closed]] = False
-            if not np.any(open_):
-                break
-            q[np.ix_(open_, ~fixed)] -= np.einsum("mij,mj->mi", steps[open_], r[~closed])
-        for k in np.flatnonzero(open_):  # near a singular pose the chord may not contract: the full solve
-            try:
-                q[k] = self._loops.solve(guess[k], fixed, tol=POLISH_TOL)
-            except ConvergenceError:  # at a singular pose Newton converges only linearly: keep the corrector's
-                q[k] = correct(self._loops, guess[k], fixed, CLOSE_TOL, max_iter=200)[0]
-        values[valid] = q
+        values[valid] = self._polishers[branch].polish(guess, nearest_nodes(self.nodes[branch][0], x[valid]))
         return values
-
-    def _chord(self, branch: str, node: int) -> NDArray[np.float64]:
-        """The pseudo-inverse (free joints x residual rows) of the closure Jacobian's free columns at a node."""
-        key = (branch, node)
-        if key not in self._chords:
-            free = np.arange(self._loops.n_joints) != self.input_index
-            self._chords[key] = np.linalg.pinv(self._loops.jacobian(self.nodes[branch][1][node])[:, free],
-                                               rcond=CHORD_RCOND)  # fmt: skip
-        return self._chords[key]
 
     def events(self) -> tuple[Event, ...]:
         return self._events

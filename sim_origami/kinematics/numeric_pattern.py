@@ -15,7 +15,8 @@ with k driven creases (the inputs) moved along a path in their space. Two ways t
   With one input x is its angle;
   with several, the arc length (rad) along the inputs' path from flat.
 
-`evaluate` polishes an interpolated guess with the solver at each input, so values close the loops to the
+`evaluate` polishes an interpolated guess with the solver at each input (above SPARSE_FROM creases by chord steps
+on the trace's nodes, `path.ChordPolish`, to the residual's rounding floor), so values close the loops to the
 solver's 1e-15 wherever the path is regular. F creases are locked flat by couplings (`lock_flat`); U creases
 and NaN entries are free.
 
@@ -24,16 +25,16 @@ Signs and frames are those of `sim_origami.creases` (rho > 0 valley seen from +z
 
 from collections.abc import Sequence
 from dataclasses import replace
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy import sparse as sp
-from scipy.sparse.linalg import lsqr, splu
+from scipy.sparse.linalg import lsqr
 
 from ..closure import Coupling, LoopSystem
 from ..creases import CreasePattern
 from ..errors import ParameterError
-from ..path import PathStop, Polyline, TracedPath, correct, trace
+from ..path import ChordPolish, PathStop, Polyline, TracedPath, correct, nearest_nodes, trace
 from .base import Branch, Event, JointSpaceKinematics
 from .self_contact import SelfContact
 
@@ -52,8 +53,6 @@ MAX_STEP = 0.05
 STALL_STEP = 1e-6
 # A crease held to the sign of its M/V letter may cross zero by this much (rad) before it counts as flipping.
 SIGN_SLACK = 1e-9
-# Chord steps of `evaluate`'s polish on sparse systems before the full solve takes over.
-CHORD_ITER = 30
 # `evaluate` keeps the values of this many input arrays (a validation asks for about four different ones).
 EVALUATE_MEMO = 8
 # Residual (rad, m) to which the target and the trace's nodes are closed, and to which `evaluate` polishes
@@ -147,7 +146,6 @@ class PatternPath(JointSpaceKinematics):
             if state is not None and state.shape[-1] != n:
                 raise ParameterError(f"{name} has {state.shape[-1]} fold angles for {n} creases")
         self.stops: list[PathStop] = []
-        self._factors: dict[int, tuple] = {}  # trace node -> (Jacobian, LU of its normal matrix), for `evaluate`
         self._evaluated: dict[bytes, tuple] = {}  # the last EVALUATE_MEMO inputs evaluated and their values
         self.rank_events: list[PathStop] = []
         self.path: Polyline | None = None
@@ -373,6 +371,16 @@ class PatternPath(JointSpaceKinematics):
         values, valid = self._evaluated[key]
         return values.copy(), valid.copy()
 
+    @cached_property
+    def _polisher(self) -> ChordPolish:
+        """`evaluate`'s polish of a sparse system: chord steps on the trace's nodes (their factorisations kept), to
+        the residual's rounding floor (near a singular end a residual of 1e-13 still left the angles 3.7e-12 rad
+        off, the Jacobian's smallest singular value 3.7e-3 there; at the floor they are 1e-13 from MuJoCo's
+        projection)."""
+        fixed = np.zeros(len(self.joint_names), dtype=bool)
+        fixed[self.driven] = True
+        return ChordPolish(self._loops, self.nodes, fixed, tol=POLISH_TOL, close_tol=CLOSE_TOL, floor=True)
+
     def _evaluate(self, x: NDArray, valid: NDArray, held: NDArray) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
         values = np.full((len(x), len(self.joint_names)), np.nan)
         fixed = np.zeros(len(self.joint_names), dtype=bool)
@@ -386,101 +394,13 @@ class PatternPath(JointSpaceKinematics):
             values[valid] = guesses
         elif self._loops.sparse:
             if self.path_is_input and len(self.driven) == 1:
-                guesses = self._hermite(x[valid], ~fixed)
+                guesses = self._polisher.hermite(self.s_nodes, x[valid])
                 guesses[:, self.driven] = held[valid]
-            values[valid] = self._polish_chord(x[valid], guesses, fixed)
+            values[valid] = self._polisher.polish(guesses, nearest_nodes(self.s_nodes, x[valid]))
         else:
             for k, guess in zip(np.flatnonzero(valid), guesses, strict=True):
                 values[k] = self._loops.solve(guess, fixed, tol=POLISH_TOL)
         return values, valid
-
-    def _polish_chord(self, x: NDArray, guesses: NDArray, fixed: NDArray) -> NDArray:
-        """
-        Close the guesses by the chord method: Gauss-Newton steps with the Jacobian of the trace's nearest node,
-        factorised once per node (a sparse LU, kept for later calls); the residuals of every guess are evaluated
-        together each step. Each guess is stepped until its residual stops falling (the rounding floor, about 4e-15
-        on the 16 x 16 Miura sheet) or falls below POLISH_TOL: near a singular end a residual of 1e-13 still left
-        the angles 3.7e-12 rad off (the Jacobian's smallest singular value 3.7e-3 there); at the floor they are
-        1e-13 from MuJoCo's projection. The nodes lie within MAX_STEP of every input, so the chord contracts by
-        about that much per step; a guess still above CLOSE_TOL after CHORD_ITER steps gets the full solve.
-        """
-        free = ~fixed
-        columns = np.flatnonzero(free)
-        q = guesses.copy()
-        nearest = np.argmin(np.abs(self.s_nodes[None, :] - x[:, None]), axis=1)
-        best_q, best = q.copy(), np.full(len(x), np.inf)
-        active = np.ones(len(x), dtype=bool)
-        for _ in range(CHORD_ITER):
-            index = np.flatnonzero(active)
-            r = self._loops.residual(q[index])
-            size = np.max(np.abs(r), axis=1)
-            better = size < best[index]
-            best_q[index[better]], best[index[better]] = q[index[better]], size[better]
-            # converged, or no longer falling below the trace's tolerance (the rounding floor)
-            done = (size < POLISH_TOL) | (~better & (best[index] < CLOSE_TOL))
-            active[index[done]] = False
-            if not np.any(active):
-                break
-            for node in np.unique(nearest[index[~done]]):
-                J, lu, _ = self._chord_factor(int(node), free)
-                mine = ~done & (nearest[index] == node)
-                q[index[mine][:, None], columns[None, :]] -= lu.solve(np.asarray(J.T @ r[mine].T)).T
-        # a chord step can stall above the floor where the node is far in conditioning (16 x 16 Miura near its
-        # folded end, cond 4100: 9.3e-14 against 3.6e-15): the floor is the loops' rounding, the same for every
-        # input, so a guess above 10x the batch's median residual gets Gauss-Newton with its own Jacobian
-        for k in np.flatnonzero((best >= CLOSE_TOL) | (best > max(10 * np.median(best), POLISH_TOL))):
-            best_q[k] = self._gauss_newton(best_q[k], fixed)
-        return best_q
-
-    def _gauss_newton(self, q: NDArray, fixed: NDArray) -> NDArray:
-        """Gauss-Newton with a fresh sparse Jacobian each step, to the residual's rounding floor (a guess the chord
-        steps left above it: 9 of 1000 inputs on the 16 x 16 Miura sheet); the damped solve if above CLOSE_TOL."""
-        free = ~fixed
-        best_q, best = q.copy(), np.max(np.abs(self._loops.residual(q)))
-        for _ in range(CHORD_ITER):
-            J = self._loops.jacobian_sparse(q)[:, free]
-            normal = (J.T @ J).tocsc()
-            q = q.copy()
-            q[free] -= splu(normal + 1e-300 * sp.identity(normal.shape[0], format="csc")).solve(
-                J.T @ self._loops.residual(q))
-            size = np.max(np.abs(self._loops.residual(q)))
-            if size >= best:
-                break
-            best_q, best = q, size
-        return best_q if best < CLOSE_TOL else self._loops.solve(best_q, fixed, tol=POLISH_TOL)
-
-    def _chord_factor(self, node: int, free: NDArray) -> tuple:
-        """
-        The free columns of the closure Jacobian at trace node `node`, the sparse LU of its normal matrix, and the
-        path's tangent dq/dx there (one driven crease: the free joints' least-squares rates, the driven one 1).
-        """
-        if node not in self._factors:
-            full = self._loops.jacobian_sparse(self.nodes[node])
-            J = full[:, free]
-            normal = (J.T @ J).tocsc()
-            lu = splu(normal + 1e-300 * sp.identity(normal.shape[0], format="csc"))
-            tangent = np.zeros(len(free))
-            tangent[~free] = 1.0
-            tangent[free] = -lu.solve(np.asarray(J.T @ (full[:, ~free] @ tangent[~free])).ravel())
-            self._factors[node] = (J, lu, tangent)
-        return self._factors[node]
-
-    def _hermite(self, x: NDArray, free: NDArray) -> NDArray:
-        """
-        Guesses at inputs x (one driven crease, the input its angle) by cubic Hermite interpolation between the trace's
-        nodes with their tangents. On the 16 x 16 Miura sheet (nodes up to MAX_STEP apart) the guesses' median residual
-        is 2.5e-9 instead of 7.3e-5 from straight lines, and the chord takes 6.4 steps a guess instead of 9.4.
-        """
-        i = np.clip(np.searchsorted(self.s_nodes, x) - 1, 0, len(self.s_nodes) - 2)
-        h = self.s_nodes[i + 1] - self.s_nodes[i]
-        t = ((x - self.s_nodes[i]) / h)[:, None]
-        tangents = {int(k): self._chord_factor(int(k), free)[2] for k in np.unique(np.r_[i, i + 1])}
-        d0 = np.array([tangents[int(k)] for k in i]) * h[:, None]
-        d1 = np.array([tangents[int(k)] for k in i + 1]) * h[:, None]
-        out = ((2 * t**3 - 3 * t**2 + 1) * self.nodes[i] + (t**3 - 2 * t**2 + t) * d0
-               + (3 * t**2 - 2 * t**3) * self.nodes[i + 1] + (t**3 - t**2) * d1)  # fmt: skip
-        out[:, ~free] = x[:, None]
-        return out
 
     def events(self) -> tuple[Event, ...]:
         out = []
