@@ -519,6 +519,7 @@ BASES = {
 }
 
 
+@pytest.mark.slow
 @settings(max_examples=400, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.sampled_from(sorted(BASES)), st.sampled_from(FIELDS), JSON, st.integers(-1, 3))
 def test_any_field_replaced_reads_or_fails_cleanly(base, field, value, frame):

@@ -379,6 +379,7 @@ def test_describe_linkage_prints_the_reference_header_of_the_example_curves(caps
     assert "give a SCENE or --linkage FILE" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_branches_meeting_at_the_range_ends_are_bifurcations(tmp_path):
     """The threefold Bricard over a whole turn: its two motions meet at theta1 = +-180 deg (Yang 2017, section 2.5),
     the ends of the range; found there to 1e-12 rad, with closed poses (one-sided extrapolation)."""
@@ -392,6 +393,7 @@ def test_branches_meeting_at_the_range_ends_are_bifurcations(tmp_path):
             assert kin.loop_system().residual_norm(kin.evaluate(branch, [x])[0])[0] < 1e-13
 
 
+@pytest.mark.slow
 def test_myard_rsrrr_file_follows_the_myard_on_one_of_its_two_motions():
     """myard-rsrrr.toml (the Myard with a ball at joint 2): path-2 is the built-in myard scene's numeric path to
     1e-12 rad, its ball turning about joint 2's former axis only; path-1 tilts the ball; they meet at theta3 = 90 deg
@@ -409,6 +411,7 @@ def test_myard_rsrrr_file_follows_the_myard_on_one_of_its_two_motions():
     assert abs(meeting - np.pi / 2) < 1e-9 and linkage.path[1] < meeting
 
 
+@pytest.mark.slow
 def test_a_sweep_through_the_rsrrr_singular_pose_fails_naming_it():
     """The same file swept through theta3 = 90 deg: MuJoCo's path error on the Myard motion peaks just past the
     meeting (measured 1.1e-3 rad at 90.32 deg, 2.6e-8 rad beyond 100 deg), where the closure constraints lose rank
