@@ -1,4 +1,4 @@
-"""Linkage files (`validate --linkage FILE`): readers, the two forms, the seed linkages, the Goldberg 5R example
+"""Linkage files (`validate --linkage FILE`): readers, the two forms, the built-in linkages, the Goldberg 5R example
 with its reference curves, and bad input (one line, exit 2, the field named)."""
 
 import dataclasses
@@ -52,7 +52,7 @@ def numeric_path(scene, branch: str, x: np.ndarray) -> np.ndarray:
     [("bennett", "bennett.toml"), ("myard", "myard.toml"), ("bricard-plane", "bricard-plane.json"),
      ("bricard-threefold", "bricard-threefold.json")],
 )  # fmt: skip
-def test_seed_linkage_files_give_the_builtin_numeric_paths(builtin, file):
+def test_builtin_linkage_files_give_the_builtin_numeric_paths(builtin, file):
     """Each built-in branch is one file branch, to 1e-12 rad at the built-in sweep's inputs; the others are far."""
     scene, linkage = scenes.get(builtin).build(), linkage_scene(EXAMPLES / file)
     assert len(linkage.kinematics.branches()) == len(scene.kinematics.branches())

@@ -34,8 +34,9 @@ from .base import Branch, Event, Kinematics
 from .numeric_pattern import CLOSE_TOL, POLISH_TOL
 
 # Random starts of the assembly search at the start input; two assemblies closer than SAME_ASSEMBLY (rad, every
-# joint, modulo 2 pi) are one. 8 starts found every assembly of the four seed linkage examples (1, 1, 2, 2) under
-# each of 4 random seeds; 24 keeps a margin (the threefold Bricard's scene builds in 0.60 s of CPU, 0.86 s with 64).
+# joint, modulo 2 pi) are one. 8 starts found every assembly of the four built-in linkages written as examples
+# (1, 1, 2, 2) under each of 4 random seeds; 24 keeps a margin (the threefold Bricard's scene builds in 0.60 s of
+# CPU, 0.86 s with 64).
 ASSEMBLY_STARTS = 24
 SAME_ASSEMBLY = 1e-6
 # When none closes, the smallest residual reported is the least of MISS_STARTS damped-Newton runs of MISS_ITER steps
