@@ -238,6 +238,15 @@ def test_cli_mobility_table(capsys, monkeypatch):
     assert "redundant bars at at 129.3100 deg (24)" in out and "mobilities agree" in out
 
 
+def test_cli_mobility_takes_the_idle_spin_off_as_validation_does(capsys, monkeypatch):
+    """The RSSR's coupler CD spins freely between its balls: the loop ranks and MuJoCo count 2, the truss 1. The
+    command used to print 'MOBILITIES DIFFER' and exit 1 on this built-in scene."""
+    code, out, _ = run_cli(capsys, monkeypatch, "mobility", "rssr")
+    start = next(line.split() for line in out.splitlines() if line.strip().startswith("start"))
+    assert code == 0 and start[6] == start[9] == start[10] == "1", out
+    assert "1 idle spin(s)" in out and "mobilities agree" in out
+
+
 @pytest.mark.parametrize(
     ("argv", "needle"),
     [

@@ -3,8 +3,10 @@
 At the branch's start pose (or at --at) and at each of its bifurcation events: the truss counts (Yang 2017,
 §2.3: nodes j, bars b, couplings c, rank r, mobility m = 3j - 6 - r, states of self-stress s, Maxwell's
 3j - 6 - b - c) next to the instantaneous mobility from the numeric loop closure's Jacobian and from
-MuJoCo's constraint Jacobian, then the redundant bars (those carrying self-stress) at each pose.
-Exit 0 when the three mobilities agree at every pose, 1 otherwise, 2 on bad input.
+MuJoCo's constraint Jacobian, then the redundant bars (those carrying self-stress) at each pose. The idle spins of
+links held by two spherical joints are free in the loop system and in MuJoCo but not in the truss: they are taken
+off the numeric and MuJoCo counts, as validation does. Exit 0 when the three mobilities agree at every pose, 1
+otherwise, 2 on bad input.
 """
 
 import argparse
@@ -46,13 +48,16 @@ def run(args: argparse.Namespace) -> int:
     branch = args.branch or kin.branches()[0].name
     rows, stresses = [], []
     loops = kin.loop_system()
+    idle = scene.mechanism.idle_spins
     for label, x in _poses(scene, branch, args.at):
         q = scene.pose(branch, x)
         truss = truss_mobility(scene, q)
-        numeric = loops.mobility(scene.mechanism_to_loop(q)[0])
-        rows.append((label, x, truss, numeric, mujoco_mobility(scene, q)))
+        numeric = loops.mobility(scene.mechanism_to_loop(q)[0]) - idle
+        rows.append((label, x, truss, numeric, mujoco_mobility(scene, q) - idle))
         stresses.append((label, x, truss.redundant))
     print(f"{scene.name}, branch {branch}: truss method (Yang 2017, §2.3) vs Jacobian rank; input {kin.input_name}")
+    if idle:
+        print(f"  {idle} idle spin(s) of links held by two spherical joints taken off the numeric and MuJoCo counts")
     print(f"  {'pose':12s} {'input deg':>10s} {'j':>4s} {'b':>4s} {'c':>3s} {'r':>4s} {'truss m':>7s} {'s':>3s} "
           f"{'Maxwell':>7s} {'numeric m':>9s} {'MuJoCo m':>8s}")  # fmt: skip
     for label, x, t, numeric, mujoco in rows:
