@@ -103,11 +103,16 @@ def failed_run(scene, args, out: Path, err: SimulationError) -> dict:
     return doc
 
 
+def number(value: float | None, spec: str) -> str:
+    """A report.json number as printed: JSON's null (an inf or NaN value) says so."""
+    return "null (inf or nan)" if value is None else format(value, spec)
+
+
 def summary_line(doc: dict) -> str:
     status = "PASS" if doc["passed"] else "FAIL"
     return (f"| {doc['scene']} | {status} | {doc['preset']} | "
             f"{', '.join(b['branch_followed'] or '-' for b in doc['branches'])} | "
-            f"{doc['angle_error_max_rad']:.2e} | {doc['closure_residual_max_m']:.2e} | "
+            f"{number(doc['angle_error_max_rad'], '.2e')} | {number(doc['closure_residual_max_m'], '.2e')} | "
             f"{doc['timings_s']['mujoco_step_cpu_s'] * 1e3:.1f} |")  # fmt: skip
 
 
@@ -176,8 +181,7 @@ def validate_scene(scene, args: argparse.Namespace) -> int:
         print("\n".join([HEADER, summary_line(doc)]))
         for v in doc["verdicts"] + [v for b in doc["branches"] for v in b["verdicts"]]:
             mark = "ok  " if v["passed"] else "FAIL"
-            measured = "null (inf or nan)" if v["measured"] is None else f"{v['measured']:.3g}"  # JSON's null
-            print(f"  {mark} {v['name']}: {measured} (tolerance {v['tolerance']:g})")
+            print(f"  {mark} {v['name']}: {number(v['measured'], '.3g')} (tolerance {v['tolerance']:g})")
             if not v["passed"]:  # why it failed: the samples over tolerance, a singular pose crossed, ...
                 print(f"       {v['detail']}")
         if "reference" in doc:
