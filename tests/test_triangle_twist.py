@@ -339,8 +339,8 @@ def test_validate_6r(gamma):
         ((0, 50, 50, 45, 35), "alpha = 0 deg; it must lie in"),
         ((55, 50, 50, 180, 35), "delta = 180 deg; it must lie in"),
         ((100, 80, 50, 45, 35), "alpha \\+ beta = 180 deg; a triangle needs"),
-        ((55, 50, 55, 45, 35), "vertex A: pleat angle 55 deg equals c = 55 deg"),
-        ((55, 50, 50, 130, 35), "vertex B: pleat angle 130 deg equals 180 - c = 130 deg"),
+        ((55, 50, 55, 45, 35), "vertex A: pleat angle gamma = 55 deg equals alpha = 55 deg"),
+        ((55, 50, 50, 130, 35), "vertex B: pleat angle delta = 130 deg equals 180 - beta = 130 deg"),
     ],
 )
 def test_bad_angles_are_refused(values, match):
@@ -376,7 +376,7 @@ def test_bad_schemes_and_patterns_are_refused():
         ("triangle-twist", {"scheme": 2.5}, "scheme = 2.5; it must be a whole number"),
         ("triangle-twist", {"d": -1.0}, r"d = -1 m; it must be a number in \[0\.0001, 10000\] m"),
         ("triangle-twist-6r", {"gamma": 0.0}, r"gamma = 0 deg; it must be a number in \[0\.001, 179\.999\] deg"),
-        ("triangle-twist-6r", {"gamma": 125 * DEG}, "vertex A: pleat angle 125 deg equals 180 - c = 125 deg"),
+        ("triangle-twist-6r", {"gamma": 125 * DEG}, "vertex A: pleat angle gamma = 125 deg equals 180 - alpha = 125 deg"),
         ("triangle-twist-6r", {"d": 0.0}, r"d = 0 m; it must be a number in \[0\.0001, 10000\] m"),
     ],
 )

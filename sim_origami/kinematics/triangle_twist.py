@@ -112,12 +112,15 @@ class TwistAngles:
             raise ParameterError(
                 f"alpha + beta = {np.rad2deg(self.alpha + self.beta):.6g} deg; a triangle needs alpha + beta < 180 deg"
             )
-        for v, (c, p) in zip(VERTICES, self.corners_and_pleats(), strict=True):
-            for bound, rule in ((c, "c"), (np.pi - c, "180 - c")):
+        # the parameters behind each vertex's (corner, pleat), named in the refusal
+        names = (("alpha", "gamma"), ("beta", "delta"), ("180 - alpha - beta", "epsilon"))
+        for v, (c, p), (cn, pn) in zip(VERTICES, self.corners_and_pleats(), names, strict=True):
+            for bound, rule in ((c, cn), (np.pi - c, f"180 - ({cn})" if " " in cn else f"180 - {cn}")):
                 if abs(p - bound) < COLLINEAR_TOL:
                     raise ParameterError(
-                        f"vertex {v}: pleat angle {np.rad2deg(p):.6g} deg equals {rule} = {np.rad2deg(bound):.6g} deg "
-                        "(corner c); two of its creases are collinear and its M-V type is undefined (Feng 2018, §3.3)"
+                        f"vertex {v}: pleat angle {pn} = {np.rad2deg(p):.6g} deg equals {rule} = "
+                        f"{np.rad2deg(bound):.6g} deg (its corner); two of its creases are collinear and its M-V type "
+                        "is undefined (Feng 2018, §3.3)"
                     )
 
     def corners_and_pleats(self) -> tuple[tuple[float, float], ...]:
