@@ -334,6 +334,14 @@ def test_negative_values_work_for_other_options(capsys):
     assert code == 0 and "delta      = -2" in out
 
 
+@pytest.mark.parametrize("scene", ["truncated-tetrahedron-i", "truncated-tetrahedron-ii"])
+def test_a_delta_whose_path_misses_the_fold_names_delta(capsys, scene):
+    """delta = 89.999 deg (inside the declared range) sends the path to the Bricard's fold B = D = F: it exited 2 with
+    "the closure did not converge ... (residual 1.33e-14 m)", naming no parameter; now the rule and its limits."""
+    line = refused(capsys, "describe", scene, "-p", "delta=89.999", naming="delta")
+    assert "B = D = F" in line and "(measured)" in line
+
+
 def test_the_same_parameter_twice_is_refused(capsys):
     refused(capsys, "describe", "bennett", "-p", "a=1", "-p", "a=2", naming="a is given twice")
 

@@ -175,6 +175,27 @@ def test_scheme_ii_negative_delta_over_opens():
         _ = kinematics.domain
 
 
+def test_a_path_toward_the_other_fold_is_refused():
+    """delta2 = -40 deg: the direction d psi > 0 runs theta down to the fold B = D = F (-106.0 deg), where the trace
+    stalled (ConvergenceError at residual 3.2e-14 m); it is a ParameterError naming delta2 and its measured limits."""
+    with pytest.raises(ParameterError, match=r"delta2 = -40 deg: .* B = D = F .*\(-27.56, 58.52\)"):
+        _ = SchemeII(-40 * DEG).trace
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(
+    ("scheme", "inside", "outside"),
+    [(SchemeI, -62.01, -62.03), (SchemeI, 56.94, 56.96), (SchemeII, -27.55, -27.57), (SchemeII, 58.51, 58.53)],
+)
+def test_the_limits_of_the_path_toward_the_fold(scheme, inside, outside):
+    """Either side of the limits in `_reach`: just inside the path rises to theta_f (A = C = E, or turns back in
+    theta_G: another ParameterError), just outside it heads for B = D = F."""
+    kinematics = scheme(inside * DEG)
+    assert kinematics.trace[1][-1, 0] == pytest.approx(kinematics.theta_f, abs=1e-3)  # the fold or the tetrahedron
+    with pytest.raises(ParameterError, match="B = D = F"):
+        _ = scheme(outside * DEG).trace
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("entry", checked_by(yang2017.NUMBERS, "test_scheme_ii_path_matches_the_worked_table"), ids=str)
 def test_scheme_ii_path_matches_the_worked_table(entry):

@@ -29,8 +29,10 @@ scheme's R-joint angle (q_G or q_K, 0 deployed), obeys three equations, the clos
 The 1-D solution set is traced from the deployed state (pseudo-arclength, step 0.02) in the direction in
 which KLM turns positively about z (d psi > 0: the thesis's KLM rotation 0 -> 30 deg), up to the Bricard fold
 theta_f (A = C = E, Yang 2017, §6.3.2), where the path ends: beyond it the Bricard's links pass through each
-other. A path that reaches the tetrahedron ends exactly on its state (`tetrahedron_state`), where theta turns
-back; one that misses it (scheme I, delta1 >= -3 deg) ends at theta_f with K short of B (`end_gap`).
+other. For delta beyond measured limits the direction d psi > 0 heads instead for the Bricard's other fold
+B = D = F (theta falling to theta_b = -106.0 deg): a ParameterError (`_heads_for_bdf`). A path that reaches the
+tetrahedron ends exactly on its state (`tetrahedron_state`), where theta turns back; one that misses it (scheme I,
+delta1 >= -3 deg) ends at theta_f with K short of B (`end_gap`).
 Queries are solved by Newton from a cubic Hermite guess on the trace. The R-joint angles alone (`hinge_angles`,
 what `evaluate` reports; no poses) need only theta and q: KLM turns and slides on the Bricard's threefold axis,
 so the closure reduces to one equation, the distance of K (scheme I) or G (scheme II) from that axis
@@ -190,6 +192,7 @@ class Transformation:
     REVOLUTE: tuple[str, ...]
     _input: int  # index of the input in the state u = (theta, q, psi, h)
     _symbol: str  # "delta1" or "delta2", for messages
+    _reach: str  # the open delta interval (deg) whose paths head for the fold A = C = E (`_heads_for_bdf`)
 
     def __init__(self, delta: float = 0.0):
         if not (np.isfinite(delta) and abs(delta) < np.pi / 2):
@@ -264,6 +267,15 @@ class Transformation:
             lo, hi = (mid, hi) if y_a(mid) > 0 else (lo, mid)
         return 0.5 * (lo + hi)
 
+    @cached_property
+    def theta_b(self) -> float:
+        """Bricard angle (rad) at its other fold B = D = F (-106.0 deg), theta falling from theta_d: the sampled
+        minimum of |BD| on [-130, -80] deg (0.01 deg apart), the frame of `bricard_motion` being undefined there."""
+        theta = np.deg2rad(np.linspace(-130.0, -80.0, 5001))
+        M = self._chain(theta) @ self._deployed_inv
+        gap = _apply(M[:, 0], VERTICES["B"]) - _apply(M[:, 2], VERTICES["D"])
+        return float(theta[np.argmin(np.linalg.norm(gap, axis=-1))])
+
     # --- the top: scheme equations -------------------------------------------------------------------
 
     def _setup_axes(self) -> None:
@@ -327,6 +339,8 @@ class Transformation:
             ts.append(self._tangent(self._jacobian(u), ts[-1]))
             us.append(u)
             s.append(s[-1] + float(np.linalg.norm(u - us[-2])))
+            if u[0] < self.theta_b / 2:
+                self._heads_for_bdf()
             # The tetrahedron solves the equations for every delta (the axes stay in their bisecting planes) and
             # theta turns back there, so a step can jump it: a path that reaches it passes within the chord error
             # of a step (<= 6e-5 measured), one that misses passes >= 0.012 away (delta1 = -3 deg).
@@ -345,6 +359,24 @@ class Transformation:
         ts[-1] = self._tangent(self._jacobian(us[-1]), ts[-2])
         self._tangents = np.array(ts)
         return np.array(s), np.array(us)
+
+    def _heads_for_bdf(self) -> None:
+        """
+        ParameterError: the path heads for the fold B = D = F, not A = C = E (called once theta < theta_b / 2).
+
+        Paths that reach A = C = E dip at most to theta = -25.2 deg before rising (delta2 = -27.55 deg); past a critical
+        delta the direction d psi > 0 instead runs down to B = D = F, where the symmetric frame (triangle BDF)
+        degenerates: Newton's residual stalled at 1.3e-14 m (rounding 6e-15 m there, 1.3e-15 deployed) at
+        theta = -104 deg, |BD| = 0.03 m (delta1 = 89.999 deg), or the trace jumped branches (delta2 = -28 deg:
+        theta -824 deg). theta_b / 2 = -53 deg lies between the two. The limits (`_reach`) were bisected to 0.005 deg;
+        the other direction is a different design (e.g. delta2 = 89.999 deg: KLM turns the other way and
+        ends 1.36 m short of the tetrahedron), not this scene's.
+        """
+        raise ParameterError(
+            f"{self._symbol} = {np.rad2deg(self.delta):.6g} deg: the path from the truncated tetrahedron heads for "
+            f"the Bricard's other fold B = D = F (theta = {np.rad2deg(self.theta_b):.1f} deg), not for the fold "
+            f"A = C = E or the tetrahedron: {self._symbol} must lie in {self._reach} deg (measured)"
+        )
 
     def tetrahedron_state(self) -> NDArray[np.float64]:
         """The state u (4,) of the tetrahedron (6-3): theta = theta_f, K on B (so L on D, M on F), the bar GK on BF."""
@@ -594,6 +626,7 @@ class SchemeI(Transformation):
     REVOLUTE = REVOLUTE_I
     _input = 1
     _symbol = "delta1"
+    _reach = "(-62.02, 56.95)"  # `_heads_for_bdf`
 
     def _setup_axes(self) -> None:
         self.s_g = axis_g(self.delta)
@@ -657,6 +690,7 @@ class SchemeII(Transformation):
     REVOLUTE = REVOLUTE_II
     _input = 0
     _symbol = "delta2"
+    _reach = "(-27.56, 58.52)"  # `_heads_for_bdf`
 
     def _setup_axes(self) -> None:
         self.s_k = axis_k(self.delta)
