@@ -376,7 +376,8 @@ def test_bad_schemes_and_patterns_are_refused():
         ("triangle-twist", {"scheme": 2.5}, "scheme = 2.5; it must be a whole number"),
         ("triangle-twist", {"d": -1.0}, r"d = -1 m; it must be a number in \[0\.0001, 10000\] m"),
         ("triangle-twist-6r", {"gamma": 0.0}, r"gamma = 0 deg; it must be a number in \[0\.001, 179\.999\] deg"),
-        ("triangle-twist-6r", {"gamma": 125 * DEG}, "vertex A: pleat angle gamma = 125 deg equals 180 - alpha = 125 deg"),
+        ("triangle-twist-6r", {"gamma": 125 * DEG},
+         "vertex A: pleat angle gamma = 125 deg equals 180 - alpha = 125 deg"),
         ("triangle-twist-6r", {"d": 0.0}, r"d = 0 m; it must be a number in \[0\.0001, 10000\] m"),
     ],
 )
