@@ -152,6 +152,7 @@ def test_a_non_rigid_pattern_stalls(tmp_path):
     assert path.branch(BRANCH).domain[1] - path.branch(BRANCH).domain[0] < MIN_SWEEP_RAD
 
 
+@pytest.mark.slow
 def test_letters_only_miura_finds_the_rigid_motion(tmp_path):
     sheet = MiuraSheet(3, 3, 0.5, 0.5, np.deg2rad(60.0))
     scene = fold_scene(write_fold(tmp_path / "letters.fold", sheet.pattern))

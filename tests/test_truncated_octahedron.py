@@ -61,6 +61,7 @@ def test_deployed_state_is_the_truncated_octahedron(model):
     assert np.max(np.abs(model.state(model.theta_d))) == pytest.approx(model.theta_d, abs=1e-15)
 
 
+@pytest.mark.slow
 def test_end_state_is_the_cube(model):
     """The end is the cube (5-2) up to a rigid motion; A1B1, A2E3, C3D2, D1E1 reach 0 together."""
     P = model.vertices(model.theta_f)[0]
@@ -75,6 +76,7 @@ def test_end_state_is_the_cube(model):
     assert model.state(model.theta_f)[0, 0] == pytest.approx(model.theta_f, abs=1e-9)
 
 
+@pytest.mark.slow
 def test_volume_ratio(model):
     """Ch. 5 abstract: 11.3 (printed to 0.1); exactly 8 sqrt 2 for unit edges."""
     deployed, cube = volume(model.vertices(np.array(model.domain)))
