@@ -172,6 +172,11 @@ def rank(J, rtol: float = RANK_RTOL) -> int:
         sv = np.sqrt(np.clip(np.linalg.eigvalsh((J.T @ J).toarray()), 0.0, None))
     else:
         sv = np.linalg.svd(J, compute_uv=False)
+    return rank_of(sv, rtol)
+
+
+def rank_of(sv: NDArray[np.float64], rtol: float = RANK_RTOL) -> int:
+    """Numerical rank from singular values: those above rtol times the largest (at least 1)."""
     return int(np.sum(sv > rtol * max(sv.max(initial=0.0), 1.0)))
 
 
@@ -315,7 +320,7 @@ def independent_joints(loops: ClosureSystem, q: ArrayLike, k: int | None = None,
     J = loops.jacobian(q)
     if J.size:
         _, sv, vt = np.linalg.svd(J)
-        r = int(np.sum(sv > RANK_RTOL * max(sv.max(initial=0.0), 1.0)))
+        r = rank_of(sv)
         null = vt[r:].T  # (n_joints, mobility)
     else:
         null = np.eye(loops.n_joints)

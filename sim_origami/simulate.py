@@ -27,6 +27,7 @@ from numpy.typing import NDArray
 
 from .errors import DomainError, ParameterError, SimulationError
 from .mjcf import ModelOptions, build_xml, closures, mujoco_joints, preset_duration, preset_number
+from .path import rank
 from .scenes.base import Scene
 from .stabilize import StepFunction, run_step
 
@@ -552,8 +553,7 @@ def mujoco_mobility(scene: Scene, q: NDArray[np.float64], rtol: float = 1e-6) ->
     mujoco.mj_fwdPosition(model, data)
     rows = data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY
     J = constraint_jacobian(model, data)[rows]
-    s = np.linalg.svd(J, compute_uv=False) if J.size else np.zeros(0)
-    return model.nv - int(np.sum(s > rtol * max(s.max(initial=0.0), 1.0)))
+    return model.nv - rank(J, rtol)
 
 
 @dataclass(frozen=True)
