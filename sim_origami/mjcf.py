@@ -50,7 +50,7 @@ class ModelSetup:
     """
     What a model holds beyond its mechanism, whatever the run: its name and note, the driven joints, which collision
     solids may touch, gravity, which hinges are creases of paper (drawn as paper and crease lines) and the fast
-    preset's step scale. `scenes.base.Scene.model_setup` fills it from a scene.
+    preset's step and regulariser scales. `scenes.base.Scene.model_setup` fills it from a scene.
 
     Contact: `contact_pairs` (body, body) may touch; with `self_contact_exclude` not None, every collision solid
     may touch every other except those pairs (bodies that touch in every pose, e.g. faces sharing a vertex).
@@ -64,6 +64,7 @@ class ModelSetup:
     gravity: tuple[float, float, float] | None = None
     creases: frozenset[str] = frozenset()
     fast_step_scale: float = 1.0
+    fast_regularization_scale: float = 1.0
 
     @property
     def has_contact(self) -> bool:
@@ -368,6 +369,22 @@ def _note_preset(root: ET.Element, preset: str) -> None:
     ))  # fmt: skip
 
 
+def _keyframes(mechanism: Mechanism, keyframes: dict[str, np.ndarray]) -> ET.Element:
+    frames = ET.Element("keyframe")
+    for name, q in keyframes.items():
+        ET.SubElement(frames, "key", name=f"start_{name}", qpos=_fmt(keyframe_qpos(mechanism, q)))
+    return frames
+
+
+def with_keyframes(xml: str, mechanism: Mechanism, keyframes: dict[str, np.ndarray]) -> str:
+    """`build_xml`'s text without keyframes, with them added: the same text as building with them (the keyframe
+    section comes last and is not tidied), without building the model again."""
+    frames = _keyframes(mechanism, keyframes)
+    ET.indent(frames, space="  ", level=1)
+    head, tail = xml.rsplit("</mujoco>", 1)
+    return f"{head}  {ET.tostring(frames, encoding='unicode')}\n</mujoco>{tail}"
+
+
 def build_xml(
     mechanism: Mechanism, setup: ModelSetup, options: ModelOptions, keyframes: dict[str, np.ndarray] | None = None
 ) -> str:
@@ -395,6 +412,9 @@ def build_xml(
         _merge(root, template(name))
     if options.preset == "fast" and setup.fast_step_scale != 1.0:
         _scale_step(root, setup.fast_step_scale)
+    if options.preset == "fast" and setup.fast_regularization_scale != 1.0:
+        numeric = root.find("custom/numeric[@name='regularization_scale']")
+        numeric.set("data", _fmt(float(numeric.get("data")) * setup.fast_regularization_scale))
     if contact:
         root.find("option/flag").set("contact", "enable")
     if options.gravity:
@@ -461,9 +481,7 @@ def build_xml(
             ET.SubElement(pairs, "pair", geom1=f"{a}_collision", geom2=f"{b}_collision").set("class", "contact")
 
     if keyframes:
-        frames = _section(root, "keyframe")
-        for name, q in keyframes.items():
-            ET.SubElement(frames, "key", name=f"start_{name}", qpos=_fmt(keyframe_qpos(mechanism, q)))
+        root.append(_keyframes(mechanism, keyframes))
 
     groups = sorted(attach_comments(root), key=lambda g: ORDER.index(g[-1].tag) if g[-1].tag in ORDER else -1)
     root[:] = [e for g in groups for e in g]

@@ -82,6 +82,9 @@ def tidy(root: ET.Element, size: float) -> None:
             del element.attrib["quat"]
 
 
+_TRIPLES = np.array(list(itertools.combinations(range(7), 3)))
+
+
 def box_of(mesh: trimesh.Trimesh, tol: float = 1e-9) -> tuple[NDArray, NDArray, NDArray] | None:
     """
     (centre (3,), quaternion (4,), half sizes (3,)) if the mesh is a rectangular box (8 vertices, 12 faces, its
@@ -93,16 +96,17 @@ def box_of(mesh: trimesh.Trimesh, tol: float = 1e-9) -> tuple[NDArray, NDArray, 
     centre = V.mean(axis=0)
     scale = float(np.max(np.linalg.norm(V - centre, axis=1)))
     D = V[1:] - V[0]  # a box's are its three edges from V[0], their pairwise sums and the diagonal
-    for triple in itertools.combinations(range(7), 3):
-        edges = D[list(triple)]
-        lengths = np.linalg.norm(edges, axis=1)
-        if np.any(lengths <= tol * scale):
-            continue
-        axes = edges / lengths[:, None]
-        if np.max(np.abs(axes @ axes.T - np.eye(3))) <= tol:
-            break
-    else:
+    length = np.linalg.norm(D, axis=1)
+    unit = D / np.where(length > tol * scale, length, np.inf)[:, None]  # too short: never an edge (cosines 0, below)
+    cosines = np.abs(unit @ unit.T)
+    # the first triple (in combinations order) of long, pairwise orthogonal ones: its three edges
+    i, j, k = _TRIPLES.T
+    fits = np.flatnonzero((length[_TRIPLES] > tol * scale).all(axis=1) & (cosines[i, j] <= tol) & (cosines[i, k] <= tol)
+                          & (cosines[j, k] <= tol))  # fmt: skip
+    if not len(fits):
         return None
+    triple = _TRIPLES[fits[0]]
+    axes, lengths = unit[triple], length[triple]
     # order and sign the edges so that the box's frame is nearest the body's (identity when aligned)
     order = [int(np.argmax(np.abs(axes[:, k]))) for k in range(3)]
     if sorted(order) == [0, 1, 2]:

@@ -163,16 +163,21 @@ class Step:
 
 def rank(J, rtol: float = RANK_RTOL) -> int:
     """Numerical rank of a Jacobian, dense or sparse (rows may be empty): singular values above rtol times the
-    largest (at least 1). A sparse one is ranked by the eigenvalues of its Gram matrix J^T J (n_joints square, far
-    smaller than J for big patterns; eigenvalue errors of 1e-16 |J|^2 leave singular values near rtol = 1e-6
-    resolved)."""
+    largest (at least 1)."""
     if not J.shape[0] or not J.shape[1]:
         return 0
+    return rank_of(singular_values(J), rtol)
+
+
+def singular_values(J) -> NDArray[np.float64]:
+    """Singular values of a matrix, largest first, padded by zeros to its column count when it has fewer rows. A
+    sparse one's come from the eigenvalues of its Gram matrix J^T J (columns square, far smaller than J for big
+    patterns and trusses); their errors of 1e-16 |J|^2 leave singular values above about 1e-8 |J| resolved, and
+    rank's rtol = 1e-6 well inside that."""
     if sp.issparse(J):
-        sv = np.sqrt(np.clip(np.linalg.eigvalsh((J.T @ J).toarray()), 0.0, None))
-    else:
-        sv = np.linalg.svd(J, compute_uv=False)
-    return rank_of(sv, rtol)
+        return np.sqrt(np.clip(np.linalg.eigvalsh((J.T @ J).toarray()), 0.0, None))[::-1]
+    sv = np.linalg.svd(J, compute_uv=False)
+    return np.concatenate([sv, np.zeros(J.shape[1] - len(sv))])
 
 
 def rank_of(sv: NDArray[np.float64], rtol: float = RANK_RTOL) -> int:

@@ -26,7 +26,7 @@ import scipy.linalg
 from numpy.typing import NDArray
 
 from .errors import DomainError, ParameterError, SimulationError
-from .mjcf import ModelOptions, build_xml, closures, mujoco_joints, preset_duration, preset_number
+from .mjcf import ModelOptions, build_xml, closures, mujoco_joints, preset_duration, with_keyframes
 from .path import rank
 from .scenes.base import Scene
 from .stabilize import StepFunction, run_step
@@ -105,8 +105,8 @@ def scene_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, NDArray[
     of the last XML_MEMO (scene, options) pairs is kept: a validation compiles the same model for its run, its
     projection and its mobility count (the 16 x 16 Miura FOLD sheet's text takes 0.42 s of CPU to build).
     """
-    if keyframes is not None:
-        return build_xml(scene.mechanism, scene.model_setup(), options, keyframes)
+    if keyframes:
+        return with_keyframes(scene_xml(scene, options), scene.mechanism, keyframes)
     key = (id(scene), options)
     kept = _XML.get(key)
     if kept is not None and kept[0]() is scene:  # the same scene object, not a later one at a reused id
@@ -119,9 +119,10 @@ def scene_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, NDArray[
 
 
 def compile_model(scene: Scene, options: ModelOptions) -> tuple[mujoco.MjModel, mujoco.MjData]:
-    """Compile the scene's MJCF for these options, with the preset's regularisation scale applied."""
+    """Compile the scene's MJCF for these options, with the regularisation scale it states (the preset's, times the
+    scene's `fast_regularization_scale` under fast) applied."""
     model = mujoco.MjModel.from_xml_string(scene_xml(scene, options))
-    scale_regularization(model, preset_number(options.preset, "regularization_scale"))
+    scale_regularization(model, float(model.numeric("regularization_scale").data[0]))
     return model, mujoco.MjData(model)
 
 

@@ -36,7 +36,7 @@ from .errors import AssemblyError, ParameterError
 from .geometry import invert, wrap
 from .graph import DisjointSets
 from .mechanism import Mechanism
-from .path import ArcSystem, follow_arc, padded_svd
+from .path import ArcSystem, follow_arc, padded_svd, singular_values
 
 if TYPE_CHECKING:
     from .scenes.base import Scene
@@ -388,8 +388,8 @@ class Counts:
 
     nodes j, bars b, couplings c, rank r of [C; K], mobility m = 3j - 6 - r, self_stress s = b + c - r,
     maxwell = 3j - 6 - b - c (= m - s), redundant: names of the bars that carry a state of self-stress
-    (each one can be removed without changing r), kept / dropped: the smallest singular value counted in
-    the rank and the largest one counted as zero, both relative to the largest.
+    (each one can be removed without changing r; None when not asked for), kept / dropped: the smallest singular
+    value counted in the rank and the largest one counted as zero, both relative to the largest.
     """
 
     nodes: int
@@ -399,20 +399,31 @@ class Counts:
     mobility: int
     self_stress: int
     maxwell: int
-    redundant: tuple[str, ...]
+    redundant: tuple[str, ...] | None
     kept: float
     dropped: float
 
 
-def analyse(truss: Truss, x: ArrayLike | None = None, rtol: float = RANK_RTOL) -> Counts:
-    """Mobility, self-stress and redundant bars of `truss` at positions x (default: its own)."""
+def analyse(truss: Truss, x: ArrayLike | None = None, rtol: float = RANK_RTOL, stresses: bool = True) -> Counts:
+    """
+    Mobility, self-stress and redundant bars of `truss` at positions x (default: its own).
+
+    With stresses False only the counts, from the singular values alone (`redundant` is None): the 16 x 16 Miura
+    sheet's [C; K] (1800 x 1611) in 1.25 s instead of 2.2 s. (Its sparse Gram matrix would take 0.37 s, but leaves
+    zero singular values at 1e-8 relative, above RANK_RTOL.)
+    """
     M = constraints(truss, x)
-    U, s, _ = padded_svd(M)
+    if stresses:
+        U, s, _ = padded_svd(M)
+    else:
+        s = singular_values(M)
     rel = s / s.max()
     r = int(np.sum(rel > rtol))
     j, b, c = len(truss.nodes), len(truss.bars), len(truss.couplings)
-    stress = U[:b, r:]
-    redundant = tuple(n for n, w in zip(truss.bar_names(), stress, strict=True) if np.linalg.norm(w) > STRESS_TOL)
+    redundant = None
+    if stresses:
+        stress = U[:b, r:]
+        redundant = tuple(n for n, w in zip(truss.bar_names(), stress, strict=True) if np.linalg.norm(w) > STRESS_TOL)
     kept = float(rel[r - 1]) if r else 0.0
     dropped = float(rel[r]) if r < len(rel) else 0.0
     return Counts(j, b, c, r, 3 * j - 6 - r, b + c - r, 3 * j - 6 - b - c, redundant, kept, dropped)
@@ -608,9 +619,9 @@ def follow(
 # -- scenes ----------------------------------------------------------------------------------------------------
 
 
-def truss_mobility(scene: "Scene", q: ArrayLike, rtol: float = RANK_RTOL) -> Counts:
-    """Truss counts of `scene`'s mechanism (a `scenes.Scene`) at mechanism joint angles q (rad)."""
-    return analyse(truss_of(scene.mechanism, q), rtol=rtol)
+def truss_mobility(scene: "Scene", q: ArrayLike, rtol: float = RANK_RTOL, stresses: bool = True) -> Counts:
+    """Truss counts of `scene`'s mechanism (a `scenes.Scene`) at mechanism joint angles q (rad); `analyse`."""
+    return analyse(truss_of(scene.mechanism, q), rtol=rtol, stresses=stresses)
 
 
 @dataclass(frozen=True)

@@ -8,7 +8,7 @@ import pytest
 
 from sim_origami import scenes
 from sim_origami.checks.paths import compare
-from sim_origami.mjcf import ModelOptions, preset_duration
+from sim_origami.mjcf import ModelOptions, build_xml, preset_duration, with_keyframes
 from sim_origami.mjcf_tidy import box_of, short
 from sim_origami.report import write
 from sim_origami.simulate import Bindings, drive_targets, scale_regularization, scene_xml, start_input, track
@@ -94,3 +94,16 @@ def test_box_of_finds_bars_and_refuses_other_solids():
     assert np.allclose(quat, [1, 0, 0, 0]) and np.allclose(2 * half, bar.extents) and np.allclose(centre, bar.centroid)
     vertex = scenes.get("vertex4").build()
     assert box_of(vertex.mechanism.bodies[0].solid) is None  # a sector prism (6 vertices)
+
+
+@pytest.mark.parametrize("name", ["bennett", "waterbomb-vertex", "thick-diamond"])
+def test_keyframes_added_to_a_built_model_give_the_text_built_with_them(name):
+    """model.xml adds the start poses to the run's cached MJCF text rather than building the model again: the
+    same text, comments, order and indentation included."""
+    scene = scenes.get(name).build()
+    branches = [b.name for b in scene.kinematics.branches()]
+    keys = {b: scene.pose(b, scene.branch_path(b)[0]) for b in branches}
+    for options in (ModelOptions(preset="fast"), ModelOptions(render=True)):
+        built = build_xml(scene.mechanism, scene.model_setup(), options, keys)
+        assert with_keyframes(build_xml(scene.mechanism, scene.model_setup(), options), scene.mechanism, keys) == built
+        assert built.count("<key ") == len(branches)

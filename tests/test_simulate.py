@@ -253,6 +253,16 @@ def test_compiled_models_carry_the_presets_regulariser_scale(preset):
     np.testing.assert_allclose(model.dof_invweight0, scale * plain.dof_invweight0, rtol=1e-15, atol=0)
 
 
+def test_a_scenes_regulariser_scale_multiplies_the_fast_presets_and_is_written_in_the_model():
+    """Scene.fast_regularization_scale reaches the MJCF's numeric (a plain load can repeat the run) under fast only."""
+    scene = replace(scenes.get("thick-diamond").build(), fast_regularization_scale=0.01)
+    for preset, expected in (("fast", 1e-4), ("stiff", 0.01)):
+        plain = mujoco.MjModel.from_xml_string(scene_xml(scene, ModelOptions(preset=preset)))
+        model, _ = compile_model(scene, ModelOptions(preset=preset))
+        assert model.numeric("regularization_scale").data[0] == pytest.approx(expected, rel=1e-15)
+        np.testing.assert_allclose(model.body_invweight0, expected * plain.body_invweight0, rtol=1e-14, atol=0)
+
+
 def test_the_scaled_regulariser_is_what_makes_the_thin_loop_accurate():
     """thick-diamond's thin loop, fast on the bench's 2 s sweep: the preset against the same setting with MuJoCo's
     own regulariser (pareto.measure, one run each): measured 1.8e-8 against 1.7e-6 rad (93x)."""

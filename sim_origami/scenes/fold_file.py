@@ -39,10 +39,16 @@ SWEEP_FROM = 0.3
 # twist 1.17e-6 / 2.85e-7 / 7.06e-8 rad, Miura sheet 2 x 2 1.04e-6 / 2.62e-7 / 6.63e-8, corrugated unit
 # 1.56e-7 / 3.82e-8 / 9.59e-9; x4 keeps 14x below the 1e-6 rad tolerance (the square-twist scene's own choice).
 SWEEP_TIME_SCALE = 4.0
-# Patterns solved sparse (over SPARSE_FROM creases) lag more near a lock, where their closure is ill-conditioned: the
-# 16 x 16 letters-only Miura sheet (480 creases, swept to where a crease folds flat) measured 1.84e-6 / 7.97e-7 /
-# 4.39e-7 rad at x4 / x6 / x8 (fast; 1/T^2 again), so they sweep x8, 2.3x below the tolerance, for about 1.6x the CPU.
-LARGE_SWEEP_TIME_SCALE = 8.0
+# Patterns solved sparse (over SPARSE_FROM creases) lag more near a lock, where their closure is ill-conditioned (the
+# 16 x 16 letters-only Miura sheet, 480 creases swept to where a crease folds flat: smallest non-zero singular value
+# 0.08 at the sweep's start, 0.006 near its end). What lets the lag through is MuJoCo's regulariser R, not the step:
+# at fast x2, 7.6e-6 rad at the preset's R, 7.6e-7 at R / 10, 1.2e-7 at R / 100 (4.9e-7 at x1, 2.0e-6 at x0.5;
+# R / 1000 no better than R / 100), the error then peaking mid-path, where it is the step's. Slowing the sweep where
+# the singular value is small (time per radian as its -1/2 or -1 power) gained only 1.4x, and stiffer closures
+# (refsafe off) 4.5x with more error mid-path. So they run at R / 100 and x2 (8x below the tolerance, a quarter of
+# the steps x8 at the preset's R took for 4.4e-7).
+LARGE_SWEEP_TIME_SCALE = 2.0
+LARGE_REGULARIZATION_SCALE = 0.01
 # Exact frame angles may be this far (rad) from the rigid motion through them: FOLD writers round angles (the
 # same allowance as `numeric_pattern.TARGET_TOL`).
 FRAMES_TOL = TARGET_TOL
@@ -136,10 +142,12 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
         sweep = (SWEEP_FROM * motion_end(kinematics), motion_end(kinematics))
     multi = not kinematics.path_is_input
     source = "frames" if several is not None else "M/V letters" if letters_only else "folded state"
+    large = len(pattern.creases) > SPARSE_FROM
     return Scene(
         name=f"fold-{Path(path).stem}", params={"size_m": size}, kinematics=kinematics, mechanism=mechanism,
         loop_joints=tuple(names), drive_joint=inputs[0], drive_scale=1.0, path=(float(sweep[0]), float(sweep[1])),
-        sweep_time_scale=LARGE_SWEEP_TIME_SCALE if len(pattern.creases) > SPARSE_FROM else SWEEP_TIME_SCALE,
+        sweep_time_scale=LARGE_SWEEP_TIME_SCALE if large else SWEEP_TIME_SCALE,
+        fast_regularization_scale=LARGE_REGULARIZATION_SCALE if large else 1.0,
         notes=f"from {Path(path).name} ({source}), lengths in units of its longest edge {size:.6g} m, inputs "
         f"{', '.join(inputs)}; {kinematics.summary()}",
         pattern=pattern, drive_joints=tuple(inputs) if multi else (), drive_path=kinematics.path if multi else None,
