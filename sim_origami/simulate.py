@@ -557,6 +557,33 @@ def mujoco_mobility(scene: Scene, q: NDArray[np.float64], rtol: float = 1e-6) ->
     return model.nv - rank(J, rtol)
 
 
+def projection_conditions(scene: Scene, q: NDArray[np.float64], rtol: float = 1e-6) -> NDArray[np.float64]:
+    """
+    How much the rounding of MuJoCo's closure residuals can move the free hinges at mechanism angles q (k, n_joints)
+    (rad), per pose (k,): the sites' largest distance from the world origin (m) over the smallest singular value of
+    efc_J's closure rows over the free hinges (m per rad; values below rtol of the largest left out, as in
+    `mujoco_mobility`). Site positions round to eps times their coordinates, and a least-squares step turns a residual
+    r into angles of up to |r| / s_min: a thin-panelled sheet (6 x 6 Miura of 25:1 panels, 6 units long, s_min 8.5e-4)
+    reads 7000 where the loop closure's own condition number is 207.
+    """
+    model, data = compile_model(scene, ModelOptions())
+    for name in scene.drives:
+        data.eq_active[model.equality(f"drive_{name}").id] = 0
+    held = {model.jnt_dofadr[model.joint(name).id] for name in scene.drives}
+    free = np.array([a for a in range(model.nv) if a not in held], dtype=int)
+    binds = Bindings(scene, model)
+    out = np.empty(len(q))
+    for k, pose in enumerate(np.atleast_2d(q)):
+        binds.set_pose(data, pose)
+        mujoco.mj_fwdPosition(model, data)
+        rows = data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY
+        sv = np.linalg.svd(constraint_jacobian(model, data)[rows][:, free], compute_uv=False)
+        sv = sv[sv > rtol * sv.max(initial=0.0)]
+        extent = float(np.max(np.linalg.norm(data.site_xpos, axis=1), initial=1.0))
+        out[k] = extent / sv.min() if len(sv) else 1.0
+    return out
+
+
 @dataclass(frozen=True)
 class FreeRun:
     """Free motion under gravity: joint angles, total energy (J) and CPU time (s) of the stepping."""

@@ -19,7 +19,15 @@ from .checks.verdict import Verdict
 from .errors import ParameterError
 from .mjcf import PRESETS, preset_duration
 from .scenes.base import Scene
-from .simulate import Trajectory, contact_input, mujoco_mobility, project, simulate, simulate_free
+from .simulate import (
+    Trajectory,
+    contact_input,
+    mujoco_mobility,
+    project,
+    projection_conditions,
+    simulate,
+    simulate_free,
+)
 from .tolerances import TOLERANCES
 from .truss import truss_mobility
 
@@ -225,8 +233,10 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
     start, stop = scene.branch_path(branch)
     proj_traj = project(scene, branch, np.linspace(start, stop, ANALYTIC_SAMPLES), preset=preset)
     proj = compare(scene, branch, proj_traj.q)
-    proj_error, proj_tol, proj_where = floor_verdict_values(scene, branch, proj, TOLERANCES.projection_rad,
-                                                            TOLERANCES.projection_cond_factor)  # fmt: skip
+    proj_error, proj_tol, proj_where = floor_verdict_values(
+        scene, branch, proj, TOLERANCES.projection_rad, TOLERANCES.projection_cond_factor,
+        other_condition=lambda k: projection_conditions(scene, proj_traj.q[k]),
+    )  # fmt: skip
     mobility = mobility_report(scene, branch, start)
     disagree = sum(
         len({p["numeric"], p["mujoco"], p["truss"]}) > 1 for p in [mobility["start"], *mobility["bifurcations"]]

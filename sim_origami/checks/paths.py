@@ -1,5 +1,6 @@
 """Path error: simulated outputs against the closed form at the simulated input."""
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -66,25 +67,33 @@ def closure_condition(scene: Scene, branch: str, x: float, values: NDArray[np.fl
 
 
 def floor_verdict_values(
-    scene: Scene, branch: str, path: PathComparison, base: float, factor: float
+    scene: Scene, branch: str, path: PathComparison, base: float, factor: float,
+    other_condition: Callable[[NDArray[np.int64]], NDArray[np.float64]] | None = None,
 ) -> tuple[float, float, str]:
     """
     (error, tolerance, where) of a comparison held to a rounding floor: every sample's error against
     max(base, factor eps cond), cond the closure Jacobian's condition number there (`closure_condition`, computed
     only at samples whose error exceeds `base`); the sample with the largest error over tolerance is reported.
-    """
+    `other_condition` (sample indices -> condition numbers) is the other side's, asked only where a sample exceeds
+    the closure's tolerance, and the larger one holds there (MuJoCo's projection: `simulate.projection_conditions`).
+    """  # fmt: skip
     err = np.max(path.error, axis=1)
     if not np.all(np.isfinite(err)):
         return float("inf"), base, "the input left the branch's domain"
     above = np.flatnonzero(err > base)
     if not len(above):
         return float(np.max(err, initial=0.0)), base, "every sample within the base tolerance"
-    ratio, out = -1.0, (0.0, base, "")
-    for k in above:
-        cond = closure_condition(scene, branch, float(path.input[k]), path.analytic[k])
-        tol = max(base, factor * np.finfo(float).eps * cond)
-        if err[k] / tol > ratio:
-            ratio = err[k] / tol
-            out = (float(err[k]), tol, f"worst against its tolerance at input {path.input[k]:.6g} rad, where the "
-                   f"closure Jacobian's condition number is {cond:.3g} ({len(above)} samples above {base:g})")
-    return out
+    eps = np.finfo(float).eps
+    cond = np.array([closure_condition(scene, branch, float(path.input[k]), path.analytic[k]) for k in above])
+    what = np.full(len(above), "the closure Jacobian's condition number", dtype=object)
+    over = np.flatnonzero(err[above] > factor * eps * cond)
+    if other_condition is not None and len(over):
+        other = other_condition(above[over])
+        larger = over[other > cond[over]]
+        cond[larger] = other[other > cond[over]]
+        what[larger] = "MuJoCo's closure rows' extent over smallest singular value"
+    tol = np.maximum(base, factor * eps * cond)
+    worst = int(np.argmax(err[above] / tol))
+    k = above[worst]
+    return (float(err[k]), float(tol[worst]), f"worst against its tolerance at input {path.input[k]:.6g} rad, where "
+            f"{what[worst]} is {cond[worst]:.3g} ({len(above)} samples above {base:g})")  # fmt: skip

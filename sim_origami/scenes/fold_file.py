@@ -39,21 +39,26 @@ SWEEP_FROM = 0.3
 # twist 1.17e-6 / 2.85e-7 / 7.06e-8 rad, Miura sheet 2 x 2 1.04e-6 / 2.62e-7 / 6.63e-8, corrugated unit
 # 1.56e-7 / 3.82e-8 / 9.59e-9; x4 keeps 14x below the 1e-6 rad tolerance (the square-twist scene's own choice).
 SWEEP_TIME_SCALE = 4.0
-# Patterns solved sparse (over SPARSE_FROM creases) lag more near a lock, where their closure is ill-conditioned (the
-# 16 x 16 letters-only Miura sheet, 480 creases swept to where a crease folds flat: smallest non-zero singular value
-# 0.08 at the sweep's start, 0.006 near its end). What lets the lag through is MuJoCo's regulariser R, not the step:
-# at fast x2, 7.6e-6 rad at the preset's R, 7.6e-7 at R / 10, 1.2e-7 at R / 100 (4.9e-7 at x1, 2.0e-6 at x0.5;
-# R / 1000 no better than R / 100), the error then peaking mid-path, where it is the step's. Slowing the sweep where
-# the singular value is small (time per radian as its -1/2 or -1 power) gained only 1.4x, and stiffer closures
-# (refsafe off) 4.5x with more error mid-path. So they run at R / 100 and x2 (8x below the tolerance, a quarter of
-# the steps x8 at the preset's R took for 4.4e-7).
+# MuJoCo's regulariser R (the preset's) times this. A file's pattern may be ill-conditioned where the registered
+# scenes are not, and what lets MuJoCo's lag through there is R, not the step (fast, x2 unless said):
+# - the 16 x 16 letters-only Miura sheet (480 creases), swept to where a crease folds flat (smallest non-zero
+#   singular value 0.08 at the sweep's start, 0.006 near its end): 7.6e-6 rad at R, 7.6e-7 at R / 10, 1.2e-7 at
+#   R / 100 (R / 1000 no better), the error then peaking mid-path, where it is the step's; slowing the sweep where the
+#   singular value is small (time per radian as its -1/2 or -1 power) gained only 1.4x, stiffer closures (refsafe
+#   off) 4.5x with more error mid-path;
+# - a 6 x 6 Miura sheet of 25:1 panels (60 creases, x4): 1.62e-6 rad at R, 3.1e-8 at R / 100.
+REGULARIZATION_SCALE = 0.01
+# Patterns solved sparse (over SPARSE_FROM creases) sweep x2, not x4: at R / 100 the 16 x 16 sheet's error is
+# 1.2e-7 rad and its closure gap 9.8e-7 m (tolerance 2.7e-6), 4.9e-7 and 3.9e-6 at x1; x8 at R took four times the
+# steps for 4.4e-7.
 LARGE_SWEEP_TIME_SCALE = 2.0
-LARGE_REGULARIZATION_SCALE = 0.01
 # Exact frame angles may be this far (rad) from the rigid motion through them: FOLD writers round angles (the
 # same allowance as `numeric_pattern.TARGET_TOL`).
 FRAMES_TOL = TARGET_TOL
 # A step of the motion in which no crease turns more than this (rad) says nothing about their rates (repeated frames).
 MOVING = 1e-9
+# Creases along other directions tried when the first driven crease's trace cannot leave its start (`_trial`).
+RETRIES = 6
 
 
 def longest_edge(pattern: CreasePattern) -> float:
@@ -124,6 +129,9 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     # the input choice's one-input trial trace is this very path when its crease is the one chosen (half the build)
     kinematics = trial if trial is not None and trial.inputs == inputs else \
         PatternPath(pattern, inputs, None if several is not None else target, **kwargs)  # fmt: skip
+    if trial is not None and len(kinematics.s_nodes) == 1 < len(trial.s_nodes):
+        # the steadiest crease's own trace from flat stopped at its first step, where the trial's did not (`_trial`)
+        inputs, kinematics = trial.inputs, trial
     if frames_tolerance is not None and frames_tolerance < 0:
         raise ParameterError(f"frames tolerance {frames_tolerance:g} rad: it must be >= 0")
     from_coords = getattr(fold, "frames_from_coords", False)
@@ -147,7 +155,7 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
         name=f"fold-{Path(path).stem}", params={"size_m": size}, kinematics=kinematics, mechanism=mechanism,
         loop_joints=tuple(names), drive_joint=inputs[0], drive_scale=1.0, path=(float(sweep[0]), float(sweep[1])),
         sweep_time_scale=LARGE_SWEEP_TIME_SCALE if large else SWEEP_TIME_SCALE,
-        fast_regularization_scale=LARGE_REGULARIZATION_SCALE if large else 1.0,
+        fast_regularization_scale=REGULARIZATION_SCALE,
         notes=f"from {Path(path).name} ({source}), lengths in units of its longest edge {size:.6g} m, inputs "
         f"{', '.join(inputs)}; {kinematics.summary()}",
         pattern=pattern, drive_joints=tuple(inputs) if multi else (), drive_path=kinematics.path if multi else None,
@@ -179,7 +187,7 @@ def _choose_inputs(pattern: CreasePattern, target, frames, signs) -> tuple[tuple
     first = int(np.argmax(np.where(usable, np.abs(np.nan_to_num(state)), -1.0)))
     if frames is not None:
         first = steadiest(frames, usable, first)
-    trial = PatternPath(pattern, names[first], target, frames=frames, signs=signs)
+    first, trial = _trial(pattern, first, usable, target, frames, signs)
     if frames is None:
         end = motion_end(trial)
         on = (trial.s_nodes * np.sign(end) >= 0) & (np.abs(trial.s_nodes) <= abs(end))
@@ -194,6 +202,39 @@ def _choose_inputs(pattern: CreasePattern, target, frames, signs) -> tuple[tuple
     allowed = np.array([c.assignment != "F" for c in pattern.creases]) & given
     picked = independent_joints(trial.loop_system(), trial.nodes[middle], m, among=allowed, first=(first,))
     return tuple(names[k] for k in picked), trial
+
+
+def _trial(pattern: CreasePattern, first: int, usable: np.ndarray, target, frames, signs) -> tuple[int, PatternPath]:
+    """
+    The one-input trace driven by crease `first`; when it cannot leave its start (frames aside), the first of the
+    usable creases along other directions whose trace can, up to RETRIES of them. Near a square grid a Miura sheet
+    driven by a zigzag crease stops at its first step from flat (0.063 rad: the closest closed pose folds another
+    zigzag crease against its letter, as the square grid's straight-crease-only motion would), while driven by a
+    straight crease it folds to its lock (6 x 6, 80-88 deg).
+    """
+    names = [c.name for c in pattern.creases]
+    trial = PatternPath(pattern, names[first], target, frames=frames, signs=signs)
+    if frames is not None or len(trial.s_nodes) > 1:
+        return first, trial
+    seen = {_line_direction(pattern, first)}
+    for k in np.flatnonzero(usable):
+        direction = _line_direction(pattern, int(k))
+        if direction in seen:
+            continue
+        seen.add(direction)
+        other = PatternPath(pattern, names[k], target, frames=frames, signs=signs)
+        if len(other.s_nodes) > 1:
+            return int(k), other
+        if len(seen) > RETRIES:
+            break
+    return first, trial
+
+
+def _line_direction(pattern: CreasePattern, k: int) -> int:
+    """Crease k's direction in the sheet, as a whole number of milliradians in [0, pi): creases along one line share
+    it."""
+    d = pattern.direction(pattern.creases[k])
+    return round(1000 * float(np.arctan2(d[1], d[0]) % np.pi)) % round(1000 * np.pi)
 
 
 def steadiest(states: np.ndarray, usable: np.ndarray, default: int, swept: np.ndarray | None = None) -> int:
