@@ -4,15 +4,17 @@ closure's Jacobian rank, MuJoCo's constraint Jacobian and the closed forms."""
 import numpy as np
 import pytest
 
-from sim_origami import cli, scenes
+from sim_origami import cli, scenes, truss
 from sim_origami.cli import mobility
 from sim_origami.errors import AssemblyError, ParameterError
 from sim_origami.geometry import rotation, wrap
 from sim_origami.path import BIFURCATION_RTOL
 from sim_origami.simulate import mujoco_mobility
 from sim_origami.truss import (
+    GRAM_FROM,
     RANK_RTOL,
     analyse,
+    constraints,
     follow,
     follow_scene,
     removable_bars,
@@ -54,6 +56,22 @@ def test_truss_mobility_equals_jacobian_mobility(name):
         # The rank decision is clear-cut: measured kept >= 1.5e-4 (triangle-twist-6r), dropped <= 1e-15 of the
         # largest singular value over every scene's poses here.
         assert counts.kept > 1e3 * RANK_RTOL and counts.dropped < 1e-3 * RANK_RTOL
+
+
+def test_large_truss_counts_from_the_gram_matrix_equal_the_svd_counts(monkeypatch):
+    # The waterbomb tube's truss (446 x 306) is over GRAM_FROM coordinates: counts only come from the Gram matrix
+    # and M on its near-null eigenvectors, the same rank as the full SVD's, its smallest kept singular value to 1e-9.
+    scene = scenes.get("waterbomb-tube").build()
+    for branch, x in poses(scene):
+        t = truss_of(scene.mechanism, scene.pose(branch, x))
+        assert constraints(t).shape[1] > GRAM_FROM
+        fast, full = analyse(t, stresses=False), analyse(t)
+        assert (fast.rank, fast.mobility, fast.self_stress) == (full.rank, full.mobility, full.self_stress)
+        assert fast.kept == pytest.approx(full.kept, rel=1e-9) and fast.dropped < 1e-3 * RANK_RTOL
+    # too few eigenpairs to reach past the near-null singular values (6 rigid motions at least): the SVD decides
+    monkeypatch.setattr(truss, "GRAM_LOW", 4)
+    assert truss._gram_counts(constraints(t), RANK_RTOL) is None
+    assert analyse(t, stresses=False).rank == full.rank
 
 
 def test_yang2017_bennett_counts_tilt_and_release():
