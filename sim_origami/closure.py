@@ -98,9 +98,9 @@ class LoopSystem:
         out = np.empty((*q.shape[:-1], self.n_residuals))
         per_loop = out[..., : 6 * len(self.loops)].reshape(*q.shape[:-1], len(self.loops), 6)
         for ms, joints, signs, links in self._batches:
-            T = np.broadcast_to(np.eye(4), (*q.shape[:-1], len(ms), 4, 4))
             angles = signs * q[..., joints]
-            for k in range(joints.shape[1]):
+            T = transform_z(angles[..., 0]) @ links[:, 0]  # = I Rz L: the identity's product is exact
+            for k in range(1, joints.shape[1]):
                 T = T @ transform_z(angles[..., k]) @ links[:, k]
             per_loop[..., ms, :3] = rotation_vector(T[..., :3, :3])
             per_loop[..., ms, 3:] = T[..., :3, 3]
@@ -167,15 +167,20 @@ class LoopSystem:
         rows_out, cols_out, vals_out = [], [], []
         for ms, joints, signs, links in self._batches:
             g, n = joints.shape
-            T = np.broadcast_to(np.eye(4), (g, 4, 4))
             axes, points = np.zeros((g, n, 3)), np.zeros((g, n, 3))
             angles = signs * q[joints]
+            T = transform_z(angles[:, 0])  # the product starts at the first rotation (I Rz = Rz exactly)
             for k in range(n):
-                T = T @ transform_z(angles[:, k])
+                if k:
+                    T = T @ transform_z(angles[:, k])
                 axes[:, k], points[:, k] = signs[:, k, None] * T[:, :3, 2], T[:, :3, 3]
                 T = T @ links[:, k]
             rot = left_jacobian_inverse(rotation_vector(T[:, :3, :3])) @ np.swapaxes(axes, 1, 2)  # (g, 3, n)
-            move = np.swapaxes(np.cross(axes, T[:, None, :3, 3] - points), 1, 2)
+            d = T[:, None, :3, 3] - points
+            # axes x d written out (as np.cross computes it, the same values in a third of the time)
+            move = np.stack([axes[..., 1] * d[..., 2] - axes[..., 2] * d[..., 1],
+                             axes[..., 2] * d[..., 0] - axes[..., 0] * d[..., 2],
+                             axes[..., 0] * d[..., 1] - axes[..., 1] * d[..., 0]], axis=1)  # fmt: skip
             rows = 6 * ms[:, None, None] + np.arange(6)[None, :, None]
             rows_out.append(np.broadcast_to(rows, (g, 6, n)).ravel())
             cols_out.append(np.broadcast_to(joints[:, None, :], (g, 6, n)).ravel())
