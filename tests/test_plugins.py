@@ -55,6 +55,7 @@ def cli(env, *argv, cwd) -> subprocess.CompletedProcess:
 @pytest.fixture
 def registry():
     """Restore the registry and the plugin state after a test that loads plugins in this process."""
+    scenes.load_builtins()  # registered on first use: kept in the saved registry
     saved, failed, loaded = dict(REGISTRY), list(plugins.FAILED), plugins._loaded
     yield
     REGISTRY.clear()

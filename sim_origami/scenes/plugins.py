@@ -87,6 +87,9 @@ def _guarded(ep: EntryPoint, name: str, build: Callable[..., Scene]) -> Callable
 def load_plugins(*, force: bool = False) -> tuple[str, ...]:
     """Load every plugin of the group once (again with `force`); returns the scene names they added."""
     global _loaded
+    from . import load_builtins  # at call time: this module is imported by the package's own __init__
+
+    load_builtins()  # before any plugin: a plugin may not replace a built-in scene
     if _loaded and not force:
         return ()
     _loaded = True
