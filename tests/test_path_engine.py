@@ -6,10 +6,11 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from scipy import sparse as sp
 
 from sim_origami.errors import ParameterError
 from sim_origami.kinematics.vertex4 import Vertex4
-from sim_origami.path import BIFURCATION_RTOL, ArcSystem, ChordPolish, follow_arc, nearest_nodes
+from sim_origami.path import BIFURCATION_RTOL, ArcSystem, BandedNormal, ChordPolish, follow_arc, nearest_nodes
 
 
 class Curves(ArcSystem):
@@ -112,3 +113,22 @@ def test_chord_polish_closes_poses_between_nodes_to_the_closed_form(sparse, floo
         np.testing.assert_allclose(closed, exact, atol=1e-13, rtol=0)  # measured 4.3e-15
         assert np.max(loops.residual_norm(closed)) < 1e-13
     assert len(polish._factors) == len(s)  # one factorisation per node, kept
+
+
+def test_banded_normal_equations_solve_as_a_dense_solve():
+    # A Jacobian whose columns are scattered (the ordering must find the band), with a column no row touches.
+    rng = np.random.default_rng(3)
+    J = (sp.random(300, 120, density=0.03, random_state=rng) + sp.eye(300, 120)).tocsc()
+    J = J[:, np.r_[0:50, 51:120]]  # column 50 of the identity part dropped: rows 50.. keep their other entries
+    J = sp.hstack([J, sp.csc_matrix((300, 1))]).tocsc()
+    r = rng.standard_normal(300)
+    A = (J.T @ J).toarray()
+    layout = BandedNormal(J)
+    assert layout.band < J.shape[1] - 1
+    step = layout.step(J.data, r, 1e-3)
+    damped = A + 1e-3 * np.diag(np.diag(A) + 1e-12)
+    assert np.allclose(damped @ step, -(J.T @ r), rtol=0, atol=1e-12)
+    b = rng.standard_normal((J.shape[1], 2))
+    b[-1] = 0.0  # the empty column's row of J^T J is 1e-300: only b = 0 there has a finite solution
+    x = layout.factor(J.data).solve(b)
+    assert np.allclose(A @ x, b, rtol=0, atol=1e-10) and x.shape == b.shape
