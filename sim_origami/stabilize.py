@@ -69,7 +69,7 @@ def drive_step(
     return step_function(model, data, mode, skip=skip, frozen=frozen, iterations=iterations)
 
 
-def _make_constraint(model: mujoco.MjModel, data: mujoco.MjData) -> None:
+def make_constraint(model: mujoco.MjModel, data: mujoco.MjData) -> None:
     """efc_J and efc_pos at the current qpos: the part of mj_fwdPosition the rows need (no inertia, no collision)."""
     mujoco.mj_kinematics(model, data)
     mujoco.mj_comPos(model, data)
@@ -144,13 +144,13 @@ def step_function(model: mujoco.MjModel, data: mujoco.MjData, mode: str, skip: t
                 mujoco.mj_fwdPosition(m, d)
                 full_m(m, d, M)  # once per step: it moves O(gap)
             else:
-                _make_constraint(m, d)
+                make_constraint(m, d)
             J, index = rows(m, d)
             integrate(
                 m, qpos, correction(J, np.ascontiguousarray(d.efc_pos[index])), -1.0
             )  # hinges add, balls turn their quaternion
         if velocity:
-            _make_constraint(m, d)
+            make_constraint(m, d)
             J, _ = rows(m, d)
             qvel[:] -= correction(J, J @ qvel)  # J (k, nv) times a vector: below BLAS's threading sizes
 
