@@ -421,11 +421,11 @@ def _least_squares(J: NDArray[np.float64]) -> Callable[[NDArray[np.float64]], ND
     column rank (its factor's diagonal spans under CHOLESKY_SPAN); else the pseudo-inverse of J's thin SVD without
     the singular values lstsq would drop (rcond = eps max(J.shape)): idle spins, bifurcations.
     """
-    try:
-        factor = scipy.linalg.cho_factor(J.T @ J)
+    try:  # J comes from a finite pose (project stops at a non-finite residual): no finiteness scans per solve
+        factor = scipy.linalg.cho_factor(J.T @ J, check_finite=False)
         diagonal = np.abs(np.diag(factor[0]))
         if diagonal.min(initial=np.inf) > diagonal.max(initial=0.0) / CHOLESKY_SPAN:
-            return lambda r: scipy.linalg.cho_solve(factor, J.T @ r)
+            return lambda r: scipy.linalg.cho_solve(factor, J.T @ r, check_finite=False)
     except np.linalg.LinAlgError:
         pass
     U, s, Vt = np.linalg.svd(J, full_matrices=False)
