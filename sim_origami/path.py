@@ -14,8 +14,9 @@ Three modes share one set of parts (predictor, correctors, step control, numeric
 
 A traced path is then read between its nodes by `ChordPolish`: interpolated poses (straight or cubic Hermite
 guesses) closed by the chord method, Gauss-Newton steps with the Jacobian of each pose's nearest node factorised
-once (a sparse LU or a dense pseudo-inverse), all poses at once, and the full solve for any the chord does not close
-(`evaluate` of `kinematics.numeric_pattern.PatternPath` and `kinematics.linkage_path.LinkagePath`).
+once (a band LU of its normal matrix or a dense pseudo-inverse), all poses at once, and the full solve for any the
+chord does not close (`evaluate` of `kinematics.numeric_pattern.PatternPath` and `kinematics.linkage_path.LinkagePath`).
+The sparse corrector's and the chord's normal equations share one band layout per sparsity pattern (`BandedNormal`).
 
 Correctors: damped Gauss-Newton (`levenberg_marquardt`, tolerant of the rank-deficient Jacobians of overconstrained
 loops) for `sweep` and `trace`; Newton with the rank-truncated pseudo-inverse (`ArcSystem.correct`) for
