@@ -348,3 +348,38 @@ def test_square_twist_with_flat_foldable_letters_does_not_fold_rigidly(tmp_path,
     assert "e1 would fold against its M letter" in stop["detail"] and abs(stop["input_rad"]) < 0.1
     swept = next(v for v in branch["verdicts"] if "swept range" in v["name"])
     assert not swept["passed"]
+
+
+def holed(deg: float = 90.0) -> dict:
+    """A 3 x 3 sheet creased along x = 1 (valley) and x = 2 (mountain), its middle square cut out by a loop of C
+    edges, as Oripa writes it (no faces, target in degrees): the paper round the hole is a ring of four panels."""
+    verts = [[0, 0], [1, 0], [2, 0], [3, 0], [3, 3], [2, 3], [1, 3], [0, 3], [1, 1], [2, 1], [2, 2], [1, 2]]
+    edges = [[0, 1], [1, 2], [2, 3], [3, 4], [4, 5], [5, 6], [6, 7], [7, 0], [8, 9], [9, 10], [10, 11], [11, 8]]
+    assign = ["B"] * 8 + ["C"] * 4
+    edges += [[1, 8], [6, 11], [2, 9], [5, 10]]
+    assign += ["V", "V", "M", "M"]
+    fold = [0.0] * 12 + [deg, deg, -deg, -deg]
+    return _doc(verts, edges, assign, creator="Oripa", edges_foldAngle=fold)
+
+
+def test_a_hole_is_a_loop_of_creases_and_its_cut_out_piece_is_left_out():
+    """The ring round a hole closes on itself: its creases along one line must fold alike (mobility 2, not 4), which
+    no vertex's loop says (every vertex of the ring is on a border). The square cut out is a piece joined to nothing:
+    it used to reach MuJoCo as a body not connected to the root (exit 2)."""
+    got = read_fold(holed())
+    assert len(got.pattern.faces) == 4 and any("left out" in note for note in got.notes)
+    names = [c.name for c in got.pattern.creases]
+    assert names == ["e12", "e13", "e14", "e15"] and not got.pattern.interior_vertices()
+    loops = got.pattern.loop_system()
+    a, b = 0.7, -0.4
+    np.testing.assert_allclose(loops.residual([a, a, b, b]), 0.0, atol=1e-15)  # each line folds as one hinge
+    assert np.max(np.abs(loops.residual([a, a + 0.1, b, b]))) > 0.05
+    assert loops.mobility(np.array([a, a, b, b])) == 2
+
+
+@pytest.mark.slow
+def test_a_holed_sheet_validates_three_ways(tmp_path):
+    code, report = validated(tmp_path, "holed", holed())
+    branch = report["branches"][0]
+    assert code == 0 and report["passed"] and branch["mobility"]["inputs"] == 2
+    assert report["angle_error_max_rad"] < 1e-6
