@@ -16,7 +16,7 @@ from .checks.branches import classify
 from .checks.paths import PathComparison, compare, floor_verdict_values
 from .checks.reference import ReferenceCheck, ReferenceCurves, compare_reference
 from .checks.verdict import Verdict
-from .errors import ParameterError
+from .errors import ConvergenceError, ParameterError
 from .mjcf import PRESETS, preset_duration
 from .scenes.base import Scene
 from .simulate import (
@@ -96,22 +96,26 @@ def closed_form_verdicts(scene: Scene, branch: str, x: np.ndarray) -> tuple[Verd
     values = kin.joint_angles(branch, x)
     q = kin.loop_angles(values)
     joints, held = kin.loop_inputs(x)
-    numeric = loops.follow(q[0], joints[0], held[:, 0]) if len(joints) == 1 else loops.follow(q[0], joints, held)
+    residual = Verdict(
+        f"{branch}: closed-form closure residual",
+        float(np.max(loops.residual_norm(q))),
+        TOLERANCES.loop_residual(scene.length_scale),
+        "max |rotation vector, translation| of the loop product",
+    )
+    name = f"{branch}: closed form vs numeric closure (rad)"
+    try:
+        numeric = loops.follow(q[0], joints[0], held[:, 0]) if len(joints) == 1 else loops.follow(q[0], joints, held)
+    except ConvergenceError as err:
+        # the continuation could not close where the reference did: this check fails (exit 1, with the report),
+        # the input is not bad (a 10 x 10 triangulated grid, 37 inputs held along one folded line, its loops
+        # singular round every flat crease: 2.7e-12 where 1e-12 is asked)
+        return residual, Verdict(name, float("inf"), TOLERANCES.closed_form_rad, f"damped-Newton continuation over "
+                                 f"the same inputs did not reach the reference's states: {err}")  # fmt: skip
     error, tol, where = floor_verdict_values(scene, branch, PathComparison(x, kin.observe(numeric), values),
                                              TOLERANCES.closed_form_rad, TOLERANCES.closed_form_cond_factor)
     return (
-        Verdict(
-            f"{branch}: closed-form closure residual",
-            float(np.max(loops.residual_norm(q))),
-            TOLERANCES.loop_residual(scene.length_scale),
-            "max |rotation vector, translation| of the loop product",
-        ),
-        Verdict(
-            f"{branch}: closed form vs numeric closure (rad)",
-            error,
-            tol,
-            f"damped-Newton continuation over the same inputs, no closed form used; {where}",
-        ),
+        residual,
+        Verdict(name, error, tol, f"damped-Newton continuation over the same inputs, no closed form used; {where}"),
     )
 
 

@@ -15,6 +15,7 @@ from sim_origami.cli import main
 from sim_origami.fold import read_fold
 from sim_origami.kinematics.numeric_pattern import LOCK_MARGIN
 from sim_origami.scenes.fold_file import fold_scene
+from sim_origami.validation import closed_form_verdicts
 
 DEG = np.pi / 180
 
@@ -383,3 +384,31 @@ def test_a_holed_sheet_validates_three_ways(tmp_path):
     branch = report["branches"][0]
     assert code == 0 and report["passed"] and branch["mobility"]["inputs"] == 2
     assert report["angle_error_max_rad"] < 1e-6
+
+
+def triangulated(n: int = 10) -> dict:
+    """An n x n square grid, each square split by its rising diagonal, as a grid editor writes a tessellation's
+    ground: the main diagonal line folded 60 deg (valley), every other crease unassigned (U) at 0."""
+    pts = {(i, j): (float(i), float(j)) for j in range(n + 1) for i in range(n + 1)}
+    pairs = [((i, j), (i + 1, j)) for j in range(n + 1) for i in range(n)]
+    pairs += [((i, j), (i, j + 1)) for j in range(n) for i in range(n + 1)]
+    pairs += [((i, j), (i + 1, j + 1)) for j in range(n) for i in range(n)]
+
+    def letter(a, b):
+        if (a[1] == b[1] and a[1] in (0, n)) or (a[0] == b[0] and a[0] in (0, n)):
+            return "B"
+        return "V" if a[0] == a[1] and b[0] == b[1] else "U"
+
+    verts, edges, assign = _grid_edges(pts, pairs, letter)
+    fold = [60.0 if a == "V" else 0.0 for a in assign]
+    return _doc(verts, edges, assign, creator="a grid editor", edges_foldAngle=fold)
+
+
+def test_a_continuation_that_cannot_close_is_a_failed_check_not_bad_input(tmp_path):
+    """A triangulated grid folded along one line sits where most of its loops are singular (4 x 4: 13 inputs, the
+    generic count, where the traced path's mobility is 19): the closed-form check's continuation cannot reach the
+    reference's states. That used to leave validate with a ConvergenceError (exit 2, no report)."""
+    scene = fold_scene(write(tmp_path, "grid", triangulated(4)))
+    branch = scene.kinematics.branches()[0].name
+    _, check = closed_form_verdicts(scene, branch, np.linspace(*scene.path, 50))
+    assert not check.passed and check.measured == np.inf and "did not reach" in check.detail
