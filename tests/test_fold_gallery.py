@@ -404,11 +404,35 @@ def triangulated(n: int = 10) -> dict:
     return _doc(verts, edges, assign, creator="a grid editor", edges_foldAngle=fold)
 
 
-def test_a_continuation_that_cannot_close_is_a_failed_check_not_bad_input(tmp_path):
-    """A triangulated grid folded along one line sits where most of its loops are singular (4 x 4: 13 inputs, the
-    generic count, where the traced path's mobility is 19): the closed-form check's continuation cannot reach the
-    reference's states. That used to leave validate with a ConvergenceError (exit 2, no report)."""
+GENERIC_INPUTS = "e40,e52,e43,e51,e54,e36,e7,e48,e42,e44,e41,e50,e4"  # 40 creases - 3 x 9 vertices: 13
+
+
+def test_inputs_are_as_many_as_the_traced_motions_freedoms(tmp_path):
+    """A triangulated grid folded along one line sits where most of its loops are singular: the generic count of
+    inputs (13 on a 4 x 4 grid, counted on the one-input trial's motion) leaves 6 of the traced motion's 19 freedoms
+    undriven, and the closed-form check's continuation could not follow the reference (it raised). Now 19 inputs,
+    and the continuation agrees to 1e-13 rad."""
     scene = fold_scene(write(tmp_path, "grid", triangulated(4)))
+    k = scene.kinematics
+    assert len(k.inputs) == int(np.max(k.mobility)) == 19
+    assert set(GENERIC_INPUTS.split(",")) < set(k.inputs)
+    _, check = closed_form_verdicts(scene, k.branches()[0].name, np.linspace(*scene.path, 50))
+    assert check.passed and check.measured < 1e-13
+
+
+def test_a_continuation_that_cannot_close_is_a_failed_check_not_bad_input(tmp_path):
+    """Driven by the generic 13 inputs (given), the same grid's closed-form continuation cannot reach the
+    reference's states: a failed check (exit 1 with its report), where it used to leave validate with a
+    ConvergenceError (exit 2, no report)."""
+    scene = fold_scene(write(tmp_path, "grid", triangulated(4)), input_crease=GENERIC_INPUTS)
     branch = scene.kinematics.branches()[0].name
     _, check = closed_form_verdicts(scene, branch, np.linspace(*scene.path, 50))
     assert not check.passed and check.measured == np.inf and "did not reach" in check.detail
+
+
+@pytest.mark.slow
+def test_a_280_crease_triangulated_grid_validates_three_ways(tmp_path):
+    code, report = validated(tmp_path, "grid", triangulated(10))
+    branch = report["branches"][0]
+    assert code == 0 and report["passed"] and branch["mobility"]["inputs"] == 109
+    assert report["angle_error_max_rad"] < 1e-6

@@ -140,6 +140,18 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     if trial is not None and len(kinematics.s_nodes) == 1 < len(trial.s_nodes):
         # the steadiest crease's own trace from flat stopped at its first step, where the trial's did not (`_trial`)
         inputs, kinematics = trial.inputs, trial
+    # the inputs were counted on the one-input trial's motion; the motion traced may be more singular (a
+    # triangulated grid folded along one line: 37 inputs, the generic count, where that motion has 109 freedoms to
+    # first order, so the held inputs leave the rest undetermined and the closed-form check's continuation drifted
+    # off, 0.14 rad on a 3 x 3 grid): then as many inputs as it has there, the ones picked first kept
+    middle = len(kinematics.nodes) // 2
+    more = int(kinematics.mobility[middle]) - len(inputs)
+    if more > 0 and input_crease is None:
+        allowed = np.array([c.assignment != "F" for c in pattern.creases])
+        picked = independent_joints(kinematics.loop_system(), kinematics.nodes[middle], len(inputs) + more,
+                                    among=allowed, first=tuple(names.index(n) for n in inputs))  # fmt: skip
+        inputs = tuple(names[k] for k in picked)
+        kinematics = PatternPath(pattern, inputs, None if several is not None else target, **kwargs)
     if frames_tolerance is not None and frames_tolerance < 0:
         raise ParameterError(f"frames tolerance {frames_tolerance:g} rad: it must be >= 0")
     from_coords = getattr(fold, "frames_from_coords", False)
