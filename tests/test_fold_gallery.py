@@ -282,6 +282,7 @@ GALLERY = {
     "degree-4 vertex": (lambda: vertex([70, 95, 110, 85], "MVVV"), 4, 4, 1),
     "degree-4 vertex, 1 deg sector": (lambda: vertex([1, 100, 179, 80], "VMMM"), 4, 4, 1),
     "degree-4 vertex in degrees": (lambda: vertex([80, 100, 100, 80], "MVVV", [-180, 180, 180, 180]), 4, 4, 1),
+    "degree-6 vertex, 3 freedoms": (lambda: vertex([50, 70, 60, 55, 65, 60], "MVMVVV"), 6, 6, 1),
     "fan": (lambda: fan(), 6, 5, 0),
     "fan, 3-D folded form": (lambda: fan(5, [30, 40, 50, 60, 20]), 6, 5, 0),
     "strip, Origami Simulator frames": (lambda: strip_frames(), 4, 3, 0),
@@ -376,6 +377,16 @@ def test_a_hole_is_a_loop_of_creases_and_its_cut_out_piece_is_left_out():
     np.testing.assert_allclose(loops.residual([a, a, b, b]), 0.0, atol=1e-15)  # each line folds as one hinge
     assert np.max(np.abs(loops.residual([a, a + 0.1, b, b]))) > 0.05
     assert loops.mobility(np.array([a, a, b, b])) == 2
+
+
+def test_a_hole_left_out_of_the_faces_is_a_loop_too(tmp_path):
+    """The same ring written with faces_vertices and the hole's sides B (no face there): the reference counted 4
+    freedoms, so 4 inputs, one of them outside MuJoCo's spanning tree (an internal error at compile)."""
+    doc = holed()
+    doc["edges_assignment"] = ["B" if a == "C" else a for a in doc["edges_assignment"]]
+    doc["faces_vertices"] = [[0, 1, 8, 11, 6, 7], [1, 2, 9, 8], [2, 3, 4, 5, 10, 9], [11, 10, 5, 6]]
+    scene = fold_scene(write(tmp_path, "ring", doc))
+    assert len(scene.kinematics.inputs) == int(np.max(scene.kinematics.mobility)) == 2
 
 
 @pytest.mark.slow
