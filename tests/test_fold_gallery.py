@@ -291,6 +291,7 @@ GALLERY = {
 NOT_RIGID = {
     "square twist": (lambda: square_twist(), 9, 12, 4),
     "square twist 2 x 2": (lambda: square_twist(2), 25, 40, 16),
+    "square twist 4 x 4": (lambda: square_twist(4), 81, 144, 64),
 }
 
 
@@ -447,3 +448,15 @@ def test_a_280_crease_triangulated_grid_validates_three_ways(tmp_path):
     branch = report["branches"][0]
     assert code == 0 and report["passed"] and branch["mobility"]["inputs"] == 109
     assert report["angle_error_max_rad"] < 1e-6
+
+
+def test_a_trace_stopped_at_its_first_node_evaluates_there(tmp_path):
+    """The 4 x 4 square twist (144 creases, solved sparse) stops at its first step from flat. Its one node has no
+    interval to interpolate in: the guesses were NaN (0 / 0), and the chord's sparse LU then raised 'Factor is exactly
+    singular' (an internal error, after 45 s of CPU)."""
+    scene = fold_scene(write(tmp_path, "twists", square_twist(4)))
+    k = scene.kinematics
+    assert len(k.s_nodes) == 1
+    values, valid = k.evaluate(k.branches()[0].name, np.full(3, k.s_nodes[0]))
+    assert np.all(valid) and np.all(np.isfinite(values))
+    np.testing.assert_allclose(values, np.broadcast_to(k.nodes[0], values.shape), atol=1e-12)

@@ -393,7 +393,8 @@ class PatternPath(JointSpaceKinematics):
         if not self._loops.n_residuals:
             values[valid] = guesses
         elif self._loops.sparse:
-            if self.path_is_input and len(self.driven) == 1:
+            # (a trace that stopped at its first node has no interval to interpolate in: its node is the guess)
+            if self.path_is_input and len(self.driven) == 1 and len(self.s_nodes) > 1:
                 guesses = self._polisher.hermite(self.s_nodes, x[valid])
                 guesses[:, self.driven] = held[valid]
             values[valid] = self._polisher.polish(guesses, nearest_nodes(self.s_nodes, x[valid]))
