@@ -315,6 +315,11 @@ def _input_count_verdict(scene: Scene, branch: str, mobility: dict) -> tuple[Ver
         worst = float("inf") if any(d is None for d in far) else max(far)
         frames = (Verdict(f"{branch}: frames' distance from the rigid motion (rad)", worst, tolerance,
                           f"{len(far)} frames; beyond the traced motion counts as infinite"),)  # fmt: skip
+    unfolded = kin.unfolded_letters() if hasattr(kin, "unfolded_letters") else None
+    if unfolded is not None:
+        frames += (Verdict(f"{branch}: M/V creases the motion leaves flat", float(len(unfolded)), 0.0,
+                           f"{', '.join(unfolded[:8])}{' ...' if len(unfolded) > 8 else ''}: the letters do not fold "
+                           "rigidly with them folded" if unfolded else "every M/V crease folds"),)  # fmt: skip
     return (*frames, Verdict(f"{branch}: freedoms not driven (mobility along the path - inputs)",
                     float(max(along["typical"] - mobility["inputs"], 0)), 0.0,
                     f"mobility {along['typical']} along the traced path (min {along['min']}, max {along['max']}), "

@@ -84,6 +84,15 @@ def yoshimura(cols=4, rows=4, w=1.0, h=0.6) -> dict:
     return _doc(verts, edges, assign, creator="Origami Simulator")
 
 
+def diamonds(doc: dict) -> dict:
+    """The Yoshimura sheet with its interior horizontal (valley) lines left out: each pair of triangles one flat
+    diamond panel, two families of crossing mountain lines."""
+    keep = [k for k, a in enumerate(doc["edges_assignment"]) if a != "V"]
+    doc["edges_vertices"] = [doc["edges_vertices"][k] for k in keep]
+    doc["edges_assignment"] = [doc["edges_assignment"][k] for k in keep]
+    return doc
+
+
 def kresling(cols=5, rows=3, w=1.0, h=0.7, shift=0.4) -> dict:
     """Kresling sheet: parallelogram cells split by one diagonal; horizontals valley, slanted sides mountain,
     diagonals valley; letters only, lower case."""
@@ -460,3 +469,24 @@ def test_a_trace_stopped_at_its_first_node_evaluates_there(tmp_path):
     values, valid = k.evaluate(k.branches()[0].name, np.full(3, k.s_nodes[0]))
     assert np.all(valid) and np.all(np.isfinite(values))
     np.testing.assert_allclose(values, np.broadcast_to(k.nodes[0], values.shape), atol=1e-12)
+
+
+def test_letters_whose_motion_leaves_some_flat_do_not_fold_rigidly(tmp_path):
+    """The diamond Yoshimura's only motion from flat with its letters folds one family of its crossing lines and
+    leaves the other flat (16 of 32 M creases at 0): that is not its letters folding. It used to pass."""
+    scene = fold_scene(write(tmp_path, "diamonds", diamonds(yoshimura())))
+    flat = scene.kinematics.unfolded_letters()
+    assert len(flat) == 16 and len(scene.pattern.creases) == 32
+    names = [c.name for c in scene.pattern.creases]
+    turned = np.max(np.abs(scene.kinematics.nodes), axis=0)
+    folding = [k for k, n in enumerate(names) if n not in flat]
+    assert np.min(turned[folding]) > 1.0  # the other family folds by more than a radian
+    miura_sheet = fold_scene(write(tmp_path, "miura", miura([1] * 4, [1] * 3)))
+    assert miura_sheet.kinematics.unfolded_letters() == ()
+
+
+@pytest.mark.slow
+def test_the_diamond_yoshimura_fails_naming_the_creases_left_flat(tmp_path):
+    code, report = validated(tmp_path, "diamonds", diamonds(yoshimura()))
+    verdict = next(v for v in report["branches"][0]["verdicts"] if "leaves flat" in v["name"])
+    assert code == 1 and verdict["measured"] == 16 and "do not fold rigidly" in verdict["detail"]
