@@ -214,6 +214,8 @@ class CreasePattern:
                 continue
             cycle = [start]
             while nxt[cycle[-1]][0] != start:
+                if nxt[cycle[-1]][0] not in nxt or len(cycle) > len(nxt):
+                    return ()  # a border that does not close (faces not one oriented sheet): no hole to tell
                 cycle.append(nxt[cycle[-1]][0])
             seen.update(cycle)
             p = v[cycle]
@@ -223,13 +225,12 @@ class CreasePattern:
             ks, dirs, at_v = [], [], []
             for i in range(len(cycle) - 1, -1, -1):
                 at, after, before = cycle[i], cycle[(i + 1) % len(cycle)], cycle[i - 1]
-                angle = lambda b, at=at: float(np.arctan2(*(v[b] - v[at])[::-1]))  # noqa: E731
-                start_angle = angle(after)
-                span = (angle(before) - start_angle) % (2 * np.pi)
+                start_angle = self._angle(at, after)
+                span = (self._angle(at, before) - start_angle) % (2 * np.pi)
                 round_v = []
                 for b in self._out_edges.get(at, []):
                     k = self._crease_of_edge.get((min(at, b), max(at, b)))
-                    turn = (angle(b) - start_angle) % (2 * np.pi)
+                    turn = (self._angle(at, b) - start_angle) % (2 * np.pi)
                     if k is not None and 0.0 < turn < span:
                         round_v.append((turn, k, b))
                 for _, k, b in sorted(round_v):
@@ -261,6 +262,11 @@ class CreasePattern:
             Loop(tuple(ks_list[s : s + n]), links[s : s + n], (1,) * n) for s, n in zip(starts, lengths, strict=True)
         )
         return LoopSystem(len(self.creases), loops + self._hole_closures(holes), couplings)
+
+    def _angle(self, a: int, b: int) -> float:
+        """Direction (rad) of the side from vertex a to vertex b."""
+        d = self.vertices[b] - self.vertices[a]
+        return float(np.arctan2(d[1], d[0]))
 
     def _hole_closures(self, holes: tuple) -> tuple[Loop, ...]:
         """The PoE closure of each of `hole_loops`: hinge frames along its creases from the hole's vertices, at

@@ -734,7 +734,8 @@ def _drop_loose(faces: list[Face], notes: list[str]) -> list[Face]:
         return faces
     notes.append(f"{len(loose)} face(s) cut free all round (face(s) {', '.join(map(str, loose[:5]))} of the built "
                  "or given faces: a hole's cut-out) left out: they share no crease with the rest")  # fmt: skip
-    return [face for f, face in enumerate(faces) if f not in set(loose)]
+    dropped = set(loose)
+    return [face for f, face in enumerate(faces) if f not in dropped]
 
 
 def _measured(sheet: _Sheet, value: Any, field: str) -> NDArray[np.float64]:

@@ -107,8 +107,8 @@ def closed_form_verdicts(scene: Scene, branch: str, x: np.ndarray) -> tuple[Verd
         numeric = loops.follow(q[0], joints[0], held[:, 0]) if len(joints) == 1 else loops.follow(q[0], joints, held)
     except ConvergenceError as err:
         # the continuation could not close where the reference did: this check fails (exit 1, with the report),
-        # the input is not bad (a 10 x 10 triangulated grid, 37 inputs held along one folded line, its loops
-        # singular round every flat crease: 2.7e-12 where 1e-12 is asked)
+        # the input is not bad (a triangulated grid folded along one line and driven by fewer inputs than its
+        # motion's freedoms, as --input may ask: 10 x 10, 37 of 109, 2.7e-12 where 1e-12 is asked)
         return residual, Verdict(name, float("inf"), TOLERANCES.closed_form_rad, f"damped-Newton continuation over "
                                  f"the same inputs did not reach the reference's states: {err}")  # fmt: skip
     error, tol, where = floor_verdict_values(scene, branch, PathComparison(x, kin.observe(numeric), values),
@@ -303,7 +303,8 @@ def _singular_crossings(scene: Scene, branch: str, x: np.ndarray, error: np.ndar
 def _input_count_verdict(scene: Scene, branch: str, mobility: dict) -> tuple[Verdict, ...]:
     """A numerically traced reference must be driven in every freedom it has: more freedoms than inputs leave the
     motion undetermined (MuJoCo and the reference may then part along the free directions). With a frames'
-    tolerance (exact frame angles, or asked for), each frame's distance from the rigid motion is checked too."""
+    tolerance (exact frame angles, or asked for), each frame's distance from the rigid motion is checked too; on a
+    trace of M/V letters, that it folds every lettered crease (`PatternPath.unfolded_letters`)."""
     along = mobility.get("along_path")
     if along is None:
         return ()
