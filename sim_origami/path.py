@@ -554,7 +554,12 @@ class ChordPolish:
             full = self.loops.jacobian_sparse(q)
             J = full[:, free]
             normal = (J.T @ J).tocsc()
-            return J, splu(normal + 1e-300 * sp.identity(normal.shape[0], format="csc")), full[:, ~free]
+            try:
+                return J, splu(normal), full[:, ~free]
+            except RuntimeError:  # singular: fewer inputs than the motion's freedoms (--input), whose check fails
+                # the steps then leave the undriven directions (damped 1e-12 of the largest diagonal) where they are
+                shift = 1e-12 * max(float(normal.diagonal().max(initial=0.0)), 1.0)
+                return J, splu(normal + shift * sp.identity(normal.shape[0], format="csc")), full[:, ~free]
         full = self.loops.jacobian(q)
         return full[:, free], np.linalg.pinv(full[:, free], rcond=RANK_RTOL), full[:, ~free]
 

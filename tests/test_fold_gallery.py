@@ -490,3 +490,34 @@ def test_the_diamond_yoshimura_fails_naming_the_creases_left_flat(tmp_path):
     code, report = validated(tmp_path, "diamonds", diamonds(yoshimura()))
     verdict = next(v for v in report["branches"][0]["verdicts"] if "leaves flat" in v["name"])
     assert code == 1 and verdict["measured"] == 16 and "do not fold rigidly" in verdict["detail"]
+
+
+# The first 18 of the 7 x 7 grid's 55 inputs by rank: a user's --input that leaves most of its freedoms undriven.
+GRID7_INPUTS = "e112,e154,e118,e117,e147,e159,e116,e140,e153,e105,e13,e115,e133,e126,e114,e139,e157,e14"
+
+
+@pytest.mark.slow
+def test_mujoco_diverging_on_a_users_file_is_a_failed_check_with_its_report(tmp_path, capsys):
+    """Driven at 18 of its 55 freedoms, the 7 x 7 grid makes MuJoCo diverge (mjWARN_BADQACC at step 191 of 500,
+    measured): exit 1, not 2 (bad input) or 3, with report.json naming the run's configuration and where it went
+    wrong."""
+    path, out = write(tmp_path, "grid", triangulated(7)), tmp_path / "out"
+    code = main(["validate", "--fold", str(path), "--input", GRID7_INPUTS, "--out", str(out)])
+    printed = capsys.readouterr().out
+    assert code == 1, printed
+    report = json.loads((out / "report.json").read_text())
+    (verdict,) = report["verdicts"]
+    assert not report["passed"] and verdict["name"] == "MuJoCo run finished without a warning"
+    assert "preset fast" in verdict["detail"] and "first went wrong at step" in verdict["detail"]
+    assert "mjWARN_BADQACC" in verdict["detail"] and "FAIL fold-grid" in printed
+
+
+@pytest.mark.slow
+def test_too_few_inputs_fail_their_check_rather_than_the_reference(tmp_path, capsys):
+    """15 of the 55: the reference polish's normal matrix is singular along the undriven freedoms, and the factor
+    raised (internal error, exit 3); now the undriven directions are left where they are and the check says so."""
+    path, out = write(tmp_path, "grid", triangulated(7)), tmp_path / "out"
+    code = main(["validate", "--fold", str(path), "--input", GRID7_INPUTS.rsplit(",", 3)[0], "--out", str(out)])
+    printed = capsys.readouterr().out
+    assert code == 1, printed
+    assert "FAIL through-target: freedoms not driven (mobility along the path - inputs): 40" in printed
