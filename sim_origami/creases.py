@@ -28,6 +28,10 @@ from .errors import ParameterError
 from .geometry import frame_along, frames_along, invert
 from .graph import spanning_edges
 
+# A border cycle walked with the paper on its left whose area is at most this times the pattern's extent squared
+# is a hole's (clockwise, or none for an inner slit); a piece's outer border has the piece's area.
+HOLE_AREA_RTOL = 1e-12
+
 # M mountain, V valley, U unassigned (free), F flat (a crease present but meant to stay unfolded).
 ASSIGNMENTS = ("M", "V", "U", "F")
 
@@ -186,11 +190,65 @@ class CreasePattern:
         order = np.lexsort((np.arctan2(d[:, 1], d[:, 0]), np.repeat(np.arange(len(vertices)), counts)))
         return np.asarray(ks, dtype=int)[order], d[order], counts
 
+    def hole_loops(self) -> tuple[tuple[tuple[int, ...], NDArray[np.float64], NDArray[np.float64]], ...]:
+        """
+        The loop of creases round each hole (crease indices, outward unit directions (n, 3) from the hole's
+        vertices, those vertices (n, 2)), in the order a walk round the hole through the paper crosses them. A hole
+        is a boundary cycle other than a piece's outer one: walked with the paper on its left it turns clockwise
+        (area <= 0; an inner slit's cycle has none). Round each of its vertices v the paper spans counter-clockwise
+        from the side to the next vertex to the side to the previous one, so the walk goes round the cycle backwards
+        and crosses v's creases in that order, from the right of each outward direction to its left, as a vertex's
+        loop does.
+        """
+        nxt: dict[int, list[int]] = {}
+        for a, b in self._edge_face:
+            if (b, a) not in self._edge_face:
+                nxt.setdefault(a, []).append(b)
+        if any(len(out) > 1 for out in nxt.values()):
+            return ()  # a vertex where the border touches itself: its cycles are not unique (none found so far)
+        v = self.vertices
+        scale = float(np.max(np.ptp(v, axis=0))) ** 2
+        loops, seen = [], set()
+        for start in nxt:
+            if start in seen:
+                continue
+            cycle = [start]
+            while nxt[cycle[-1]][0] != start:
+                if nxt[cycle[-1]][0] not in nxt or len(cycle) > len(nxt):
+                    return ()  # a border that does not close (faces not one oriented sheet): no hole to tell
+                cycle.append(nxt[cycle[-1]][0])
+            seen.update(cycle)
+            p = v[cycle]
+            area = 0.5 * float(np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1]))
+            if area > HOLE_AREA_RTOL * scale:
+                continue  # a piece's outer border
+            ks, dirs, at_v = [], [], []
+            for i in range(len(cycle) - 1, -1, -1):
+                at, after, before = cycle[i], cycle[(i + 1) % len(cycle)], cycle[i - 1]
+                start_angle = self._angle(at, after)
+                span = (self._angle(at, before) - start_angle) % (2 * np.pi)
+                round_v = []
+                for b in self._out_edges.get(at, []):
+                    k = self._crease_of_edge.get((min(at, b), max(at, b)))
+                    turn = (self._angle(at, b) - start_angle) % (2 * np.pi)
+                    if k is not None and 0.0 < turn < span:
+                        round_v.append((turn, k, b))
+                for _, k, b in sorted(round_v):
+                    d = v[b] - v[at]
+                    ks.append(k)
+                    dirs.append([*(d / np.linalg.norm(d)), 0.0])
+                    at_v.append(at)
+            if ks:
+                loops.append((tuple(ks), np.array(dirs), v[at_v]))
+        return tuple(loops)
+
     def loop_system(self, couplings: tuple[Coupling, ...] = ()) -> LoopSystem:
-        """One PoE closure per interior vertex over the crease angles (in `creases` order)."""
+        """One PoE closure per interior vertex over the crease angles (in `creases` order), then one round each
+        hole (`hole_loops`): the ring of paper round a hole closes on itself as the paper round a vertex does."""
         interior = self.interior_vertices()
+        holes = self.hole_loops()
         if not interior:
-            return LoopSystem(len(self.creases), (), couplings)
+            return LoopSystem(len(self.creases), self._hole_closures(holes), couplings)
         # every hinge frame and link at once (the same numbers as vertex by vertex)
         ks, d, lengths = self._around(interior)
         heights = np.array([c.height for c in self.creases])[ks]
@@ -203,4 +261,20 @@ class CreasePattern:
         loops = tuple(
             Loop(tuple(ks_list[s : s + n]), links[s : s + n], (1,) * n) for s, n in zip(starts, lengths, strict=True)
         )
-        return LoopSystem(len(self.creases), loops, couplings)
+        return LoopSystem(len(self.creases), loops + self._hole_closures(holes), couplings)
+
+    def _angle(self, a: int, b: int) -> float:
+        """Direction (rad) of the side from vertex a to vertex b."""
+        d = self.vertices[b] - self.vertices[a]
+        return float(np.arctan2(d[1], d[0]))
+
+    def _hole_closures(self, holes: tuple) -> tuple[Loop, ...]:
+        """The PoE closure of each of `hole_loops`: hinge frames along its creases from the hole's vertices, at
+        their heights, linked as a vertex loop's are."""
+        out = []
+        for ks, d, at in holes:
+            heights = np.array([self.creases[k].height for k in ks])
+            frames = frames_along(d, np.column_stack([at, heights]))
+            links = invert(frames) @ frames[np.r_[1 : len(ks), 0]]
+            out.append(Loop(tuple(ks), links, (1,) * len(ks)))
+        return tuple(out)

@@ -692,6 +692,7 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
     if cuts or joins:
         _check_incidence(new_edges, new_letters, faces)
     _check_faces(faces, xy)
+    faces = _drop_loose(faces, notes)
     heights = np.zeros(len(edges))
     if HEIGHT_KEY in frame:
         heights = scale * _heights(frame[HEIGHT_KEY], letters)
@@ -704,8 +705,9 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
         Crease(f"e{fold_index[j]}", *new_edges[j], table[new_letters[j]], float(heights[fold_index[j]]))
         for j in crease_edges
     )
+    kept = {key(*side) for face in faces for side in _sides(face)}
     border = tuple((*new_edges[j], float(heights[fold_index[j]])) for j, letter in enumerate(new_letters)
-                   if letter == "B" and np.isfinite(heights[fold_index[j]]))  # fmt: skip
+                   if letter == "B" and np.isfinite(heights[fold_index[j]]) and key(*new_edges[j]) in kept)  # fmt: skip
     pattern = CreasePattern(xy, tuple(faces), creases, tuple(f"f{k}" for k in range(len(faces))), border)
     tol = DEVELOPABLE_TOL
     if not flat:  # an unfolded form closes round its vertices only as well as its coordinates allow
@@ -718,6 +720,22 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
         pattern, tuple(fold_index[j] for j in crease_edges), source, hinges, signs, sign, n,
         frame["edges_vertices"], scale, None if flat else xyz, notes,
     )  # fmt: skip
+
+
+def _drop_loose(faces: list[Face], notes: list[str]) -> list[Face]:
+    """
+    `faces` without the loose ones: a face that shares no side with another (cut free all round, as the square
+    inside a loop of C edges that cuts a hole) takes no part in any motion, and would be a body joined to nothing.
+    Kept when no face has a neighbour (a pattern without creases: said elsewhere). A note names what was dropped.
+    """
+    count = Counter(key(*side) for face in faces for side in _sides(face))
+    loose = [f for f, face in enumerate(faces) if all(count[key(*side)] == 1 for side in _sides(face))]
+    if not loose or len(loose) == len(faces):
+        return faces
+    notes.append(f"{len(loose)} face(s) cut free all round (face(s) {', '.join(map(str, loose[:5]))} of the built "
+                 "or given faces: a hole's cut-out) left out: they share no crease with the rest")  # fmt: skip
+    dropped = set(loose)
+    return [face for f, face in enumerate(faces) if f not in dropped]
 
 
 def _measured(sheet: _Sheet, value: Any, field: str) -> NDArray[np.float64]:

@@ -176,13 +176,21 @@ class BandedNormal:
         self.n = n
 
     def factor(self, data: NDArray[np.float64]) -> "BandLU":
-        """The LU factorisation of J^T J + 1e-300 I (a singular node's normal matrix stays factorisable) for the
-        Jacobian values `data`, to solve J^T J x = b again and again (`ChordPolish`)."""
+        """
+        The LU factorisation of J^T J for the Jacobian values `data`, to solve J^T J x = b again and again
+        (`ChordPolish`). A singular one (fewer inputs than the motion's freedoms, --input: a pivot at rounding, n eps
+        of the largest, or zero) is factored with 1e-12 of its largest diagonal added: the steps then leave the
+        undriven directions where they are.
+        """
         n, band = self.n, self.band
         # dgbtrf's storage: band rows of fill-in above solve_banded's layout
-        ab = np.bincount(self.flat + band * n, weights=data[self.a] * data[self.b], minlength=(3 * band + 1) * n)
-        ab[self.diagonal + band * n] += 1e-300
-        lu, pivots, info = dgbtrf(ab.reshape(3 * band + 1, n), band, band, overwrite_ab=True)
+        normal = np.bincount(self.flat + band * n, weights=data[self.a] * data[self.b], minlength=(3 * band + 1) * n)
+        lu, pivots, info = dgbtrf(normal.reshape(3 * band + 1, n), band, band)
+        pivot = np.abs(lu[2 * band])  # U's diagonal
+        if info > 0 or pivot.min(initial=np.inf) <= n * np.finfo(float).eps * pivot.max(initial=0.0):
+            shifted = normal.copy()
+            shifted[self.diagonal + band * n] += 1e-12 * max(float(normal[self.diagonal + band * n].max()), 1.0)
+            lu, pivots, info = dgbtrf(shifted.reshape(3 * band + 1, n), band, band, overwrite_ab=True)
         if info < 0:
             raise ValueError(f"dgbtrf: argument {-info} is illegal")
         return BandLU(lu, pivots, band, self.order)

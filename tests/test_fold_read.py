@@ -11,6 +11,7 @@ import json
 
 import numpy as np
 import pytest
+from fold_fixtures import miura_letters_only  # tests/fold_fixtures.py (pytest puts tests/ on sys.path)
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -368,24 +369,6 @@ def test_flat_folded_form_needs_its_crease_pattern():
 
 
 # 6. Faces from the planar edge graph ------------------------------------------------------------------------------
-
-
-def miura_letters_only(rows: int, cols: int) -> dict:
-    """A Miura-ori crease pattern as a CP editor exports it: coordinates, edges and letters, no faces."""
-    xs, zig = np.arange(cols + 1, dtype=float), 0.3
-    verts = [[x, j + (zig if x % 2 else 0.0)] for j in range(rows + 1) for x in xs]
-    vid = lambda i, j: j * (cols + 1) + i  # noqa: E731
-    edges, assign = [], []
-    for j in range(rows + 1):
-        for i in range(cols):
-            edges.append([vid(i, j), vid(i + 1, j)])
-            assign.append("b" if j in (0, rows) else ("m" if j % 2 else "v"))
-    for j in range(rows):
-        for i in range(cols + 1):
-            edges.append([vid(i, j), vid(i, j + 1)])
-            assign.append("b" if i in (0, cols) else ("v" if (i + j) % 2 else "m"))
-    return {"file_spec": 1.1, "file_creator": "Rabbit Ear", "vertices_coords": verts, "edges_vertices": edges,
-            "edges_assignment": assign}  # fmt: skip
 
 
 def test_faces_built_from_the_edge_graph():

@@ -7,29 +7,12 @@ import json
 
 import numpy as np
 import pytest
+from fold_fixtures import miura_letters_only  # tests/fold_fixtures.py (pytest puts tests/ on sys.path)
 
 from sim_origami.checks.paths import closure_condition, compare
 from sim_origami.cli import main
 from sim_origami.scenes.fold_file import fold_scene
 from sim_origami.simulate import project, projection_conditions
-
-
-def miura(rows: int, cols: int, dx: float, dy: float, zig: float) -> dict:
-    """Columns dx apart, rows dy apart, every odd column raised by zig (the zigzag); straight creases along x."""
-    verts = [[i * dx, j * dy + (zig if i % 2 else 0.0)] for j in range(rows + 1) for i in range(cols + 1)]
-    vid = lambda i, j: j * (cols + 1) + i  # noqa: E731
-    edges, assign = [], []
-    for j in range(rows + 1):
-        for i in range(cols):
-            edges.append([vid(i, j), vid(i + 1, j)])
-            assign.append("b" if j in (0, rows) else ("m" if j % 2 else "v"))
-    for j in range(rows):
-        for i in range(cols + 1):
-            edges.append([vid(i, j), vid(i, j + 1)])
-            assign.append("b" if i in (0, cols) else ("v" if (i + j) % 2 else "m"))
-    return {"file_spec": 1.1, "file_creator": "Rabbit Ear", "vertices_coords": verts, "edges_vertices": edges,
-            "edges_assignment": assign}  # fmt: skip
-
 
 SHEETS = {
     "plain": (3, 4, 1.0, 1.0, 0.3),
@@ -41,7 +24,7 @@ SHEETS = {
 @pytest.mark.parametrize("name", list(SHEETS))
 def test_letters_only_sheet_folds_to_its_lock_and_validates(tmp_path, capsys, name):
     path = tmp_path / f"{name}.fold"
-    path.write_text(json.dumps(miura(*SHEETS[name])))
+    path.write_text(json.dumps(miura_letters_only(*SHEETS[name])))
     out = tmp_path / "out"
     assert main(["validate", "--fold", str(path), "--preset", "fast", "--out", str(out)]) == 0, capsys.readouterr().out
     report = json.loads((out / "report.json").read_text())
@@ -56,7 +39,7 @@ def test_a_thin_panelled_sheets_projection_is_held_to_mujocos_own_floor(tmp_path
     resolve the hinges only to their smallest singular value (the panels are 0.04 wide): the projection's floor is
     set by that ratio, several times the loop closure's condition number."""
     path = tmp_path / "thin.fold"
-    path.write_text(json.dumps(miura(*SHEETS["thin-panels"])))
+    path.write_text(json.dumps(miura_letters_only(*SHEETS["thin-panels"])))
     scene = fold_scene(path)
     branch = scene.kinematics.branches()[0].name
     x = np.linspace(*scene.branch_path(branch), 12)

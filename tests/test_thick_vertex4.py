@@ -9,6 +9,7 @@ from sim_origami.cli import main
 from sim_origami.errors import ParameterError
 from sim_origami.kinematics.thick_vertex4 import ThickVertex4
 from sim_origami.kinematics.vertex4 import Vertex4
+from sim_origami.simulate import contact_distance, contact_input
 
 
 def thick(alpha1_deg: float, alpha2_deg: float, layout: str) -> ThickVertex4:
@@ -60,3 +61,15 @@ def test_cli_refuses_alpha1_90_in_one_line_with_exit_2(capsys):
     err = capsys.readouterr().err
     assert code == 2
     assert err.count("\n") == 1 and "alpha1 must differ from alpha2" in err
+
+
+@pytest.mark.parametrize("zigzag", [0.0, 1.0])
+def test_both_layouts_sweep_the_way_their_slabs_leave_room(zigzag):
+    """The validation sweep and the blockage run start apart and meet where the slabs block the fold: the zigzag
+    layout swept rho1 > 0, where its slabs overlap from the start (blockage stopped at 0.017 rad, contact at 0.4)."""
+    scene = scenes.get("thick-vertex4").build(zigzag=zigzag)
+    branch = scene.kinematics.branches()[0].name
+    start = scene.branch_path(branch)[0]
+    assert contact_distance(scene, branch, np.array([start]))[0] > 0
+    touch = contact_input(scene, branch, start, scene.kinematics.branch(branch).domain[0])
+    assert touch == pytest.approx({0.0: -0.5246, 1.0: -1.5728}[zigzag], abs=2e-4)

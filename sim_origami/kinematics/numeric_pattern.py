@@ -58,6 +58,10 @@ EVALUATE_MEMO = 8
 # Residual (rad, m) to which the target and the trace's nodes are closed, and to which `evaluate` polishes
 # (MuJoCo's projection is compared with these values at 1e-13 rad).
 CLOSE_TOL = 1e-13
+# A lettered crease that never turns beyond this (rad) along a letters trace is left flat by it: the trace holds a
+# crease its motion does not fold at its letter's bound, within SIGN_SLACK of 0, where a folding one turns by
+# radians.
+UNFOLDED = 1e-6
 POLISH_TOL = 1e-15
 # A target may be off by this much (rad) from the closed state it stands for (FOLD files round angles).
 TARGET_TOL = 1e-2
@@ -338,6 +342,18 @@ class PatternPath(JointSpaceKinematics):
                 parts.append(f"{e.kind} at {e.input:.6g} rad: {e.detail}")
         return "; ".join(parts)
 
+    def unfolded_letters(self) -> tuple[str, ...] | None:
+        """
+        Names of the M/V creases that the traced motion leaves flat (never beyond UNFOLDED rad), when the trace
+        follows the letters (None otherwise, or when it never left its start): such a motion is that of another
+        assignment, those creases F. A Yoshimura sheet with flat diamond panels (two families of crossing
+        lines, all M) folds one family and leaves the other flat: its letters do not fold rigidly.
+        """
+        if not self.letters_only or len(self.s_nodes) < 2:
+            return None
+        still = (self.signs != 0) & (np.max(np.abs(self.nodes), axis=0) <= UNFOLDED)
+        return tuple(self.pattern.creases[k].name for k in np.flatnonzero(still))
+
     @property
     def open_chain(self) -> bool:
         """No closed loop and no coupling: nothing to close (MuJoCo on a tree)."""
@@ -393,7 +409,8 @@ class PatternPath(JointSpaceKinematics):
         if not self._loops.n_residuals:
             values[valid] = guesses
         elif self._loops.sparse:
-            if self.path_is_input and len(self.driven) == 1:
+            # (a trace that stopped at its first node has no interval to interpolate in: its node is the guess)
+            if self.path_is_input and len(self.driven) == 1 and len(self.s_nodes) > 1:
                 guesses = self._polisher.hermite(self.s_nodes, x[valid])
                 guesses[:, self.driven] = held[valid]
             values[valid] = self._polisher.polish(guesses, nearest_nodes(self.s_nodes, x[valid]))

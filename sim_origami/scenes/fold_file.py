@@ -27,7 +27,7 @@ import numpy as np
 from ..creases import CreasePattern
 from ..errors import ParameterError
 from ..fold import read_fold
-from ..kinematics.numeric_pattern import SPARSE_FROM, TARGET_TOL, PatternPath, assignment_signs, lock_flat
+from ..kinematics.numeric_pattern import LOCK_MARGIN, SPARSE_FROM, TARGET_TOL, PatternPath, assignment_signs, lock_flat
 from ..origami import pattern_mechanism
 from ..path import independent_joints
 from .base import Scene
@@ -112,6 +112,15 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     signs = assignment_signs(pattern)
     if target is not None and not np.any(np.nan_to_num(target) != 0):
         target = None
+    several = frames if frames is not None and len(frames) > 1 else None
+    folded = np.abs(target[np.nan_to_num(target) != 0]) if target is not None else None
+    fully = several is None and folded is not None and bool(np.all(folded >= np.pi - LOCK_MARGIN))
+    if fully:
+        # every folded crease at +-180 deg is how most FOLD writers mark "fully folded": the same statement as M/V
+        # letters, a side per crease, so it is traced as letters are (from flat, each crease kept on its side, the
+        # branch picked by those sides). Traced as a direction instead, a 4 x 3 Miura sheet driven by a straight
+        # crease left flat on the branch where only straight creases fold (mobility 3, one input: 0.38 rad error)
+        signs, target = np.sign(np.nan_to_num(target)), None
     if target is None and not np.any(signs):
         raise ParameterError(
             f"{path}: no folded state (edges_foldAngle all zero or absent in every frame) and no M/V letters; the "
@@ -119,7 +128,6 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
             "the file needs one of them"
         )
     letters_only = target is None
-    several = frames if frames is not None and len(frames) > 1 else None
     inputs = parse_inputs(input_crease, pattern)
     kwargs = {"frames": several, "signs": signs if letters_only else None}
     reference = None if several is not None else target
@@ -132,6 +140,18 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     if trial is not None and len(kinematics.s_nodes) == 1 < len(trial.s_nodes):
         # the steadiest crease's own trace from flat stopped at its first step, where the trial's did not (`_trial`)
         inputs, kinematics = trial.inputs, trial
+    # the inputs were counted on the one-input trial's motion; the motion traced may be more singular (a
+    # triangulated grid folded along one line: 37 inputs, the generic count, where that motion has 109 freedoms to
+    # first order, so the held inputs leave the rest undetermined and the closed-form check's continuation drifted
+    # off, 0.14 rad on a 3 x 3 grid): then as many inputs as it has there, the ones picked first kept
+    middle = len(kinematics.nodes) // 2
+    more = int(kinematics.mobility[middle]) - len(inputs)
+    if more > 0 and input_crease is None:
+        allowed = np.array([c.assignment != "F" for c in pattern.creases])
+        picked = independent_joints(kinematics.loop_system(), kinematics.nodes[middle], len(inputs) + more,
+                                    among=allowed, first=tuple(names.index(n) for n in inputs))  # fmt: skip
+        inputs = tuple(names[k] for k in picked)
+        kinematics = PatternPath(pattern, inputs, None if several is not None else target, **kwargs)
     if frames_tolerance is not None and frames_tolerance < 0:
         raise ParameterError(f"frames tolerance {frames_tolerance:g} rad: it must be >= 0")
     from_coords = getattr(fold, "frames_from_coords", False)
@@ -149,7 +169,8 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     else:
         sweep = (SWEEP_FROM * motion_end(kinematics), motion_end(kinematics))
     multi = not kinematics.path_is_input
-    source = "frames" if several is not None else "M/V letters" if letters_only else "folded state"
+    source = "frames" if several is not None else "+-180 deg fold angles, as M/V sides" if fully else \
+        "M/V letters" if letters_only else "folded state"  # fmt: skip
     large = len(pattern.creases) > SPARSE_FROM
     return Scene(
         name=f"fold-{Path(path).stem}", params={"size_m": size}, kinematics=kinematics, mechanism=mechanism,
