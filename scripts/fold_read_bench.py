@@ -15,28 +15,22 @@ took 22 s to read.
 import sys
 import time
 from collections import Counter
+from pathlib import Path
 
 import numpy as np
 
 from sim_origami.fold import read_fold
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from fold_fixtures import miura_letters_only  # the tests' fixture: a CP editor's letters-only Miura
+
 
 def miura(rows: int, cols: int, faces: bool, fold: float = 0.0) -> dict:
-    """A Miura-ori of rows x cols parallelograms (zig 0.3, unit sides); `fold` > 0 folds it rigidly (3-D)."""
+    """A Miura-ori of rows x cols parallelograms (zig 0.3, unit sides) as the tests write it; `fold` > 0 folds it
+    rigidly (3-D)."""
     zig = 0.3
-    xy = np.array([[i, j + (zig if i % 2 else 0.0)] for j in range(rows + 1) for i in range(cols + 1)], dtype=float)
+    doc = miura_letters_only(rows, cols, zig=zig)
     vid = lambda i, j: j * (cols + 1) + i  # noqa: E731
-    edges, letters = [], []
-    for j in range(rows + 1):
-        for i in range(cols):
-            edges.append([vid(i, j), vid(i + 1, j)])
-            letters.append("B" if j in (0, rows) else ("M" if j % 2 else "V"))
-    for j in range(rows):
-        for i in range(cols + 1):
-            edges.append([vid(i, j), vid(i, j + 1)])
-            letters.append("B" if i in (0, cols) else ("V" if (i + j) % 2 else "M"))
-    doc = {"file_spec": 1.1, "file_creator": "generated", "vertices_coords": xy.tolist(), "edges_vertices": edges,
-           "edges_assignment": letters}  # fmt: skip
     if faces or fold:
         doc["faces_vertices"] = [[vid(i, j), vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1)]
                                  for j in range(rows) for i in range(cols)]  # fmt: skip
