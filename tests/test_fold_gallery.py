@@ -10,6 +10,7 @@ from itertools import pairwise
 
 import numpy as np
 import pytest
+from scipy.optimize import linprog
 
 from sim_origami.cli import main
 from sim_origami.fold import read_fold
@@ -521,3 +522,19 @@ def test_too_few_inputs_fail_their_check_rather_than_the_reference(tmp_path, cap
     printed = capsys.readouterr().out
     assert code == 1, printed
     assert "FAIL through-target: freedoms not driven (mobility along the path - inputs): 40" in printed
+
+
+@pytest.mark.parametrize(("letters", "folds"), [("MVMVVV", True), ("MMVVVV", False)])
+def test_a_degree_6_vertex_folds_from_flat_exactly_when_its_letters_allow_it_to_first_order(tmp_path, letters, folds):
+    """Leaving flat, the creases' small fold angles rho_i must close the vertex to first order: sum rho_i e_i = 0 over
+    the creases' in-plane directions e_i, with every rho_i of its letter's sign. A linear program says whether such
+    rho exist (independently of the tool); the trace leaves flat exactly when they do. MMVVVV on these sectors has
+    none, so stopping at the first step ("e1 would fold against its M") is the true verdict."""
+    sectors = [50, 70, 60, 55, 65, 60]
+    angles = np.deg2rad(np.cumsum([0, *sectors[:-1]]))
+    signs = np.array([-1.0 if c == "M" else 1.0 for c in letters])
+    directions = np.c_[np.cos(angles), np.sin(angles)] * signs[:, None]
+    feasible = linprog(np.zeros(6), A_eq=directions.T, b_eq=np.zeros(2), bounds=[(1, None)] * 6).status == 0
+    assert feasible == folds
+    scene = fold_scene(write(tmp_path, "vertex", vertex(sectors, letters)))
+    assert (len(scene.kinematics.s_nodes) > 1) == folds
