@@ -228,10 +228,11 @@ def _choose_inputs(pattern: CreasePattern, target, frames, signs) -> tuple[tuple
 def _trial(pattern: CreasePattern, first: int, usable: np.ndarray, target, frames, signs) -> tuple[int, PatternPath]:
     """
     The one-input trace driven by crease `first`; when it cannot leave its start (frames aside), the first of the
-    usable creases along other directions whose trace can, up to RETRIES of them. Near a square grid a Miura sheet
-    driven by a zigzag crease stops at its first step from flat (0.063 rad: the closest closed pose folds another
-    zigzag crease against its letter, as the square grid's straight-crease-only motion would), while driven by a
-    straight crease it folds to its lock (6 x 6, 80-88 deg).
+    usable creases along other directions whose trace can, up to RETRIES of them. A Miura sheet driven by a zigzag
+    crease may stop at its first step from flat (0.063 rad: the closest closed pose folds another zigzag crease
+    against its letter, as a square grid's straight-crease-only motion would), while driven by a straight crease it
+    folds to its lock: a 3 x 4 sheet of 73-deg parallelograms as Rabbit Ear writes it (a zigzag crease first), 6 x 6
+    sheets at 80-89.5 deg.
     """
     names = [c.name for c in pattern.creases]
     trial = PatternPath(pattern, names[first], target, frames=frames, signs=signs)
