@@ -13,7 +13,7 @@ import numpy as np
 
 from .checks.blockage import Blockage, assess
 from .checks.branches import classify
-from .checks.paths import PathComparison, compare, floor_verdict_values
+from .checks.paths import PathComparison, closure_condition, compare, floor_verdict_values
 from .checks.reference import ReferenceCheck, ReferenceCurves, compare_reference
 from .checks.verdict import Verdict
 from .errors import ConvergenceError, ParameterError
@@ -254,7 +254,8 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
         Verdict(f"{branch}: MuJoCo {preset} path error (rad)", dyn.max_error(),
                 TOLERANCES.angle(preset),
                 "max over samples and joints of |sim - closed form at the simulated input|"
-                + _singular_crossings(scene, branch, dyn.input, dyn.error, mobility)),
+                + _singular_crossings(scene, branch, dyn.input, dyn.error, mobility)
+                + _conditioning(scene, branch, dyn, TOLERANCES.angle(preset))),
         Verdict(f"{branch}: MuJoCo {preset} closure residual (m)", float(np.max(dynamic.closure_residual)),
                 TOLERANCES.residual(preset, scene.length_scale), "largest gap between paired closure sites"),
         Verdict(f"{branch}: MuJoCo projection path error (rad)", proj_error, proj_tol,
@@ -298,6 +299,22 @@ def _singular_crossings(scene: Scene, branch: str, x: np.ndarray, error: np.ndar
         parts.append(f"the sweep crosses a singular pose: the bifurcation at {e.input:.6g} rad ({e.detail}{count}); "
                      f"the largest error lies {abs(worst - e.input):.3g} rad from it, at {worst:.6g} rad")
     return "; " + "; ".join(parts)
+
+
+def _conditioning(scene: Scene, branch: str, path: PathComparison, tol: float) -> str:
+    """
+    For a path error over `tol`: where it peaks and the closure Jacobian's condition number there and at the sweep's
+    start, as a clause for the check's detail. MuJoCo's soft closures let more lag through where the path is
+    ill-conditioned (truncated-tetrahedron-i at delta = -62 deg, 0.02 deg inside its limit: 4.7e-4 rad where the
+    condition number is 986, 32 at the start). Empty when the check passes or the error is not finite.
+    """
+    error = path.error.reshape(len(path.input), -1).max(axis=1)
+    if not np.all(np.isfinite(error)) or np.max(error, initial=0.0) <= tol:
+        return ""
+    k = int(np.argmax(error))
+    at, start = (closure_condition(scene, branch, float(path.input[i]), path.analytic[i]) for i in (k, 0))
+    return (f"; largest at input {path.input[k]:.6g} rad, where the closure Jacobian's condition number is {at:.3g} "
+            f"({start:.3g} at the sweep's start)")
 
 
 def _input_count_verdict(scene: Scene, branch: str, mobility: dict) -> tuple[Verdict, ...]:

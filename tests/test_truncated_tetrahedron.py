@@ -2,11 +2,14 @@
 `scenes.truncated_tetrahedron`) against Yang 2017, ch. 6 and the numeric loop closure of the whole assembly (9 R
 hinges, 3 spherical joints, 3 loops) and MuJoCo (ball joints)."""
 
+import re
+
 import numpy as np
 import pytest
 from published import check_every, checked_by, yang2017
 
 from sim_origami import scenes
+from sim_origami.checks.paths import compare
 from sim_origami.errors import DomainError, ParameterError
 from sim_origami.geometry import invert, transform_z, wrap
 from sim_origami.kinematics.truncated_tetrahedron import (
@@ -32,7 +35,8 @@ from sim_origami.scenes.truncated_tetrahedron import (
     model,
     revolute_axes,
 )
-from sim_origami.validation import validate
+from sim_origami.simulate import simulate
+from sim_origami.validation import _conditioning, validate
 
 DEG = np.pi / 180
 INDEX = {v: k for k, v in enumerate(NAMES)}
@@ -328,3 +332,15 @@ def test_mujoco_follows_the_transformation(name):
     assert vertex.measured < 1e-6  # issue 6 target, unit edges (measured 9.4e-8 (I), 4.8e-8 (II); stiff 16x)
     start = run.mobility["start"]
     assert (start["numeric"], start["mujoco"], start["truss"]) == (1, 1, 1)
+
+
+def test_a_path_error_near_the_critical_delta_names_the_ill_conditioned_pose():
+    """0.02 deg inside the refused limit the path passes near the Bricard's other fold: fast misses by 4.7e-4 rad
+    (measured), and the failing check says where and how ill-conditioned the closure is there, against the start."""
+    scene = scenes.get("truncated-tetrahedron-i").build_from_user({"delta": -62.0})
+    branch = scene.kinematics.branches()[0].name
+    path = compare(scene, branch, simulate(scene, branch).q)
+    clause = _conditioning(scene, branch, path, 1e-6)
+    worst, start = (float(v) for v in re.findall(r"condition number is (\S+) \((\S+) at", clause)[0])
+    assert path.max_error() > 1e-4 and worst > 10 * start
+    assert _conditioning(scene, branch, path, 1.0) == ""
