@@ -2,7 +2,7 @@
 
 The reference is the thesis's printed number where it prints one (the headers quote those it prints to fewer places)
 and otherwise a worked value of its equations at its own example, computed independently of this package; rows
-marked [NEW] are results the thesis does not state.
+marked (derived here) are results the thesis does not state.
 
 The RSSR's output errors (exact (3-5) and linearised (3-41...3-45)), its ball-joint waggle (corrected (3-50)),
 the overconstrained Bennett with the same errors (closure gap, mobility forced together), and the Myard against
@@ -69,9 +69,9 @@ def rssr_tables(nominal: RSSR) -> None:
     cases = [
         ("twist 1 deg, k = +1", FabricationError(d_alpha, 0.0, 1), 0.584, 155.7, 0.577),
         ("length 1.5 mm, k = +1", FabricationError(0.0, d_l, 1), 5.061, 154.7, 5.447),
-        ("length 1.5 mm, k = -1", FabricationError(0.0, d_l, -1), 5.639, 156.9, "[NEW]"),
+        ("length 1.5 mm, k = -1", FabricationError(0.0, d_l, -1), 5.639, 156.9, "(derived here)"),
         ("length 0.15 mm, k = +1", FabricationError(0.0, FINE_LENGTH, 1), 0.530, 155.7, 0.534),
-        ("length 0.15 mm, k = -1", FabricationError(0.0, FINE_LENGTH, -1), 0.536, 155.9, "[NEW]"),
+        ("length 0.15 mm, k = -1", FabricationError(0.0, FINE_LENGTH, -1), 0.536, 155.9, "(derived here)"),
     ]
     for name, error, value, at, linear in cases:
         s = study(nominal, error)
@@ -110,8 +110,8 @@ def bennett_tables(nominal: RSSR) -> None:
             start = good.loop_angles(good.joint_angles("bennett", theta))
             gaps.append(closure_gap(bad.loop_system(), start, nominal.a1, fixed=(0,)).translation)
         row(f"{name}: closure gap (mm) at theta1 = 0", "0 (folded)", gaps[0], 6)
-        row("  closure gap (mm) at theta1 = 1 rad [NEW]", "> 0", gaps[1])
-        row("  closure gap (mm) at theta1 = 2 rad [NEW]", "> 0", gaps[2])
+        row("  closure gap (mm) at theta1 = 1 rad (derived here)", "> 0", gaps[1])
+        row("  closure gap (mm) at theta1 = 2 rad (derived here)", "> 0", gaps[2])
         row("  closure gap (mm) at theta1 = pi", "0 (folded)", gaps[3], 6)
         folded = dh_axes(bad.rows, [0, np.pi, 0, -np.pi])
         row("  screw mobility at the folded pose", "locks", screw_mobility(*folded), 0)
@@ -143,7 +143,7 @@ def myard_tables() -> None:
     dirs = tilted(dirs, 5, DEG)
     rows, angles = dh_from_axes(points, dirs)
     c = analyse(truss_of(dh_mechanism(rows, anchor=0.5, input_joint=3), angles))
-    row("axis 5 tilted 1 deg: 5R truss m [NEW]", 0.0, c.mobility, 0)
+    row("axis 5 tilted 1 deg: 5R truss m (derived here)", 0.0, c.mobility, 0)
     for ball, name in ((1, "RRSRR"), (2, "RSRRR")):
         form = reduced_form(rows, (ball,), anchor=0.5, input_joint=3)
         c = analyse(truss_of(form, form.angles_from_poses(chain_poses(rows, angles))[0]))
@@ -151,8 +151,8 @@ def myard_tables() -> None:
     perturbed = list(model.rows)
     perturbed[3] = DHRow(0.0, perturbed[3].a, perturbed[3].alpha + DEG)
     gap = closure_gap(dh_loop(tuple(perturbed)), q, 1.0, fixed=(2,))
-    row("alpha45 + 1 deg: 5R closure gap at theta3 = 40, rotation (rad) [NEW]", "> 0", gap.rotation, 4)
-    row("  translation (units of a23) [NEW]", "> 0", gap.translation, 4)
+    row("alpha45 + 1 deg: 5R closure gap at theta3 = 40, rotation (rad) (derived here)", "> 0", gap.rotation, 4)
+    row("  translation (units of a23) (derived here)", "> 0", gap.translation, 4)
 
 
 def main() -> None:

@@ -114,7 +114,7 @@ def test_path_one_holds_for_every_a_equal_b_plus_c_and_path_two_needs_b_equal_c(
     for beta in (-0.4, 0.3, 1.1, 2.0):
         family = Geometry(3.1, 1.2, 1.9, np.pi - 2 * beta, beta, -beta)  # a = b + c, b != c
         loops = model(family).loop_system()
-        # Measured 4.7e-15: eqn 4-33 is not limited to case 10 [NEW].
+        # Measured 4.7e-15: eqn 4-33 is not limited to case 10 (derived here).
         assert np.max(loops.residual_norm(path_one(beta, x))) <= TOLERANCES.closed_form_residual
         # Measured >= 8.3e-2: path II is case 10's alone (b = c).
         assert np.max(loops.residual_norm(path_two(beta, x))) > 1e-3
@@ -218,7 +218,7 @@ def test_case_7_is_a_rigid_structure_assembled_only_at_theta2_pi():
     # -16.00000000000001.
     assert kin.classification().delta_range[1] == pytest.approx(-16.0, abs=1e-9)
     [(x0, q)] = kin.isolated_assemblies()
-    # [NEW] At theta2 = pi (m infinite, outside eqn 4-15) the loop closes: measured residual 9.5e-16,
+    # Derived here: At theta2 = pi (m infinite, outside eqn 4-15) the loop closes: measured residual 9.5e-16,
     # so "the loop cannot be assembled" (Feng 2018, Table 4-1, case 7) holds only for finite theta2.
     assert x0 == pytest.approx(np.pi)
     np.testing.assert_allclose(wrap(q - np.array([0, np.pi, np.pi, 0, np.pi, np.pi])), 0.0, atol=1e-9)

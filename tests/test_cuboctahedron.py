@@ -113,7 +113,7 @@ def test_deployed_design_equations(model):
     # tan(theta3), tan(theta4) of (4-30) corrected and the terms of (4-33), to 1e-6
     check_every(yang2017.NUMBERS, "test_deployed_design_equations")
     t3, t4, term_a, term_b, term_c = yang2017.design_terms()
-    assert term_b**2 - 4 * term_a * term_c == pytest.approx(0.0, abs=1e-12)  # [NEW] discriminant 0 (measured 1.1e-14)
+    assert term_b**2 - 4 * term_a * term_c == pytest.approx(0.0, abs=1e-12)  # discriminant 0, derived here (1.1e-14)
     a = -term_b / (2 * term_a)  # (4-32)
     assert a == pytest.approx(model.rows[0].a, abs=1e-13)
     c, d = 1 / (2 * cg1) - t3 * a, 1 / (2 * cg2) + t4 * a  # (4-31)
@@ -246,8 +246,8 @@ def test_closed_form_matches_numeric_assembly(model, mechanism):
 
 
 def test_mobility(model, mechanism):
-    """One DOF on the path (Yang 2017, ch. 4: truss m = 1), two at the octahedron ([NEW], where the thesis claims no
-    singularity)."""
+    """One DOF on the path (Yang 2017, ch. 4: truss m = 1), two at the octahedron (derived here, where the thesis
+    claims no singularity)."""
     loops = mechanism.loop_system()
     theta = np.array([THETA_F, THETA_F + 2 * DEG, 100 * DEG, THETA_D])
     q = mechanism.angles_from_poses(model.body_poses(theta))
@@ -272,8 +272,8 @@ def test_mobility_of_yang2017_variants(mechanism, revolute, dof):
 
 
 def test_octahedron_second_branch(model, mechanism):
-    """[NEW] At the octahedron the top pyramid turns about the line E (= F) G (= H), hinges frozen: every loop stays
-    closed, but its faces cut through the bottom ones for either sign of the turn; on the path no faces cut."""
+    """Derived here: at the octahedron the top pyramid turns about the line E (= F) G (= H), hinges frozen: every loop
+    stays closed, but its faces cut through the bottom ones for either sign of the turn; on the path no faces cut."""
     loops = mechanism.loop_system()
     psi = np.array([-0.2, -0.01, 0.01, 0.2])
     poses = model.swing_poses(psi)

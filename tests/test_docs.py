@@ -91,7 +91,8 @@ _UNRESOLVABLE_CITATION = re.compile(  # citation-guard pattern
     r"seeds? ?0\d\d|seed\d{3}"  # citation-guard pattern: a source by our file number
     r"|(?<![a-z])digest"  # citation-guard pattern: our notes on the sources
     r"|\bspec(?:\s+[\w.-]+\.md\b|\s*§|\s+M\d+\b)|\bthe spec\b"  # citation-guard pattern: our notes as "spec"
-    r"|\bthe seed(?:['’]s|s['’])",  # citation-guard pattern: "the seed's" for the source document
+    r"|\bthe seed(?:['’]s|s['’])"  # citation-guard pattern: "the seed's" for the source document
+    r"|\[NEW\]",  # citation-guard pattern: our notes' mark for a result of theirs (say "derived here")
     re.IGNORECASE,
 )
 
@@ -144,6 +145,8 @@ def test_no_citation_of_internal_notes():
         ("soft loops take C, as spec mujoco.md 7 found", True),  # citation-guard sample
         ("the seed's Fig. 3-5", True),  # citation-guard sample
         ("the seeds' dihedrals", True),  # citation-guard sample
+        ("closes on six combinations [NEW]", True),  # citation-guard sample
+        ("closes on six combinations (derived here)", False),
     ],
 )
 def test_citation_pattern_tells_citations_from_other_uses(line, cites):

@@ -86,7 +86,7 @@ def test_rssr_closes_the_distance_cd_and_equals_printed_3_5():
 
 @pytest.mark.parametrize("name", list(yang2017.FABRICATION_ERRORS))
 def test_yang2017_output_errors(name):
-    # the thesis prints 0.58, 5.06, 0.53 (k = +1); the k = -1 rows and the linearised values are ours [NEW]
+    # the thesis prints 0.58, 5.06, 0.53 (k = +1); the k = -1 rows and the linearised values are ours (derived here)
     error = yang2017.FABRICATION_ERRORS[name]
     for entry in checked_by(yang2017.NUMBERS, "test_yang2017_output_errors"):
         if entry.quantity.endswith(f"{name} (3 decimals)") or entry.quantity.endswith(f"{name} (0.1 deg)"):
@@ -99,7 +99,7 @@ def test_yang2017_output_errors(name):
 
 
 def test_output_error_falls_towards_the_half_turn():
-    # [NEW] d_l = 1.5 mm, k = +1: 3.431 deg at theta1 = 170 deg, 0.394 at 179 deg
+    # Derived here: d_l = 1.5 mm, k = +1: 3.431 deg at theta1 = 170 deg, 0.394 at 179 deg
     check_every(yang2017.NUMBERS, "test_output_error_falls_towards_the_half_turn")
 
 
@@ -137,7 +137,7 @@ def test_waggle_corrected_3_50(error, printed):
     check_every(yang2017.CORRECTIONS, "test_waggle_corrected_3_50")  # |CD| = a1R: 4.3e-14 mm; a2R misses by 26 mm
     nominal, built = NOMINAL_RSSR, error.built(NOMINAL_RSSR)
     w = max_waggle(nominal, built)
-    # [NEW] the maximum is |beta_R - beta| (measured 1.0e-16 rad apart): the balls turn about the implied axes
+    # Derived here: the maximum is |beta_R - beta| (measured 1.0e-16 rad apart): the balls turn about the implied axes
     assert w.value == pytest.approx(abs(built.beta - nominal.beta), abs=1e-12)
     t1 = CIRCLE
     b = nominal.beta
@@ -166,7 +166,7 @@ def test_perturbed_bennett_closes_only_folded_and_locks():
     for theta in (0.0, 1.0, 2.0, np.pi):
         start = good.loop_angles(good.joint_angles("bennett", theta))
         gap[theta] = closure_gap(bad.loop_system(), start, nominal.a1, fixed=(0,)).translation
-    # [NEW] measured 1.280 mm at 1 rad, 2.275 mm at 2 rad; 0 at the folded poses 0 and pi (1.6e-14, 7.6e-16 mm)
+    # Derived here: measured 1.280 mm at 1 rad, 2.275 mm at 2 rad; 0 at the folded poses 0 and pi (1.6e-14, 7.6e-16 mm)
     assert gap[1.0] == pytest.approx(1.280, abs=5e-4) and gap[2.0] == pytest.approx(2.275, abs=5e-4)
     assert gap[0.0] < 1e-10 and gap[np.pi] < 1e-10
     # folded: rigid (screw rank 4); the nominal Bennett there keeps mobility 1

@@ -145,7 +145,7 @@ def test_example1_closes_only_with_every_vertex_on_one_branch():
 
 @pytest.mark.slow
 def test_two_fold_case_closes_on_six_combinations():
-    """[NEW] A mirror pair sharing a crease on one branch carries equal folds, so the loop closes whenever
+    """Derived here: A mirror pair sharing a crease on one branch carries equal folds, so the loop closes whenever
     A, B and C, D (sharing crease 2) or B, C and D, A (sharing crease 1) are pairwise on one branch."""
     mesh = Kokotsakis(example(3))
     names = [b.name for b in mesh.branches()]
@@ -158,8 +158,8 @@ def test_two_fold_case_closes_on_six_combinations():
 
 
 def test_plane_symmetric_case_moves_on_one_branch_and_a_two_dof_family():
-    """[NEW] Case 4's straight crease lines (creases 1 and 3 collinear at every vertex, which Peng 2018, §2.5 says
-    gives more than 1 DOF): one 1-DOF branch with every vertex alike (the thesis's A = B, C = D = -A in D-H
+    """Derived here: case 4's straight crease lines (creases 1 and 3 collinear at every vertex, which Peng 2018, §2.5
+    says gives more than 1 DOF): one 1-DOF branch with every vertex alike (the thesis's A = B, C = D = -A in D-H
     angles), and a 2-DOF family folding the lines alone, meeting it at flat."""
     mesh = Kokotsakis(example(4))
     corners = crease_pattern(example(4)).vertices[:4]

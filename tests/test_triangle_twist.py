@@ -115,7 +115,7 @@ def test_compatible_epsilon_against_feng2018():
     model = TriangleTwist(angles_deg(*FIG_3_5, 35.436775581528764))
     assert [b.name for b in model.branches()] == ["SSP"]
     assert assignment(model.angles, "SSP") == "VMMVVMMVM"
-    # [NEW] the PSR example realises RSP (A has gamma > alpha: type R), a rotation of PRS
+    # Derived here: the PSR example realises RSP (A has gamma > alpha: type R), a rotation of PRS
     angles = angles_deg(30, 80, 90, 45, 7.035508176743184)
     assert TriangleTwist(angles).branches()[0].name == "RSP" and scheme_class("RSP") == "PRS"
 
@@ -280,7 +280,7 @@ def test_new_6r_of_eqn_3_40_with_parallel_pleats():
 def test_6r_is_the_pattern_without_its_triangle(angles):
     """The pattern's SSP pleat folds (+ the D-H flat offsets) are the 6R's joints: the 6R closed form, the printed
     D-H data and the crease pattern agree. With gamma < delta or delta < epsilon the thesis's absolute values in
-    eqn 3-38 miss closure [NEW]; the signed offsets close."""
+    eqn 3-38 miss closure (derived here); the signed offsets close."""
     six = TwistSixR(compatible_angles(*(v * DEG for v in angles)))
     origami = TriangleTwist(six.angles)
     x = np.linspace(-3.0, 3.0, 61)
@@ -304,7 +304,8 @@ def test_6r_is_the_pattern_without_its_triangle(angles):
 
 
 def test_fig35_modes_always_have_a_compatible_epsilon():
-    """[NEW] Eqn 3-12 gives epsilon in (0, pi) for any corners and pleats: modes S, S, C always fold (module note)."""
+    """Derived here: eqn 3-12 gives epsilon in (0, pi) for any corners and pleats, so modes S, S, C always fold (module
+    note)."""
     rng = np.random.default_rng(11)
     names = set()
     for _ in range(300):

@@ -138,7 +138,7 @@ def test_scheme_ii_reaches_the_tetrahedron(two):
 
 
 def test_scheme_i_misses_the_tetrahedron(one):
-    """Scheme I [NEW]: with s_G ∥ QG (Sec. 6.3.2 says it reaches 0) the path ends at the Bricard fold with
+    """Scheme I (derived here): with s_G ∥ QG (Sec. 6.3.2 says it reaches 0) the path ends at the Bricard fold with
     theta_G = 3.708 deg, |BK| = 0.0585, KLM height 0.0586 m, KLM rotation 29.66 deg; theta_G starts at the printed
     146.44 deg."""
     lo = one.domain[0]

@@ -28,11 +28,11 @@ from nodes a few mrad away (the value is the branch's limit). Simple zeros of G 
 Branches are named by a geometric property, checked on the branch:
 
 * ``theta1_eq_theta4`` - path I of eqn 4-33 (case 10) and the double-root branch of case 8.
-* ``theta1_plus_theta4_eq_2theta2`` - path II of eqn 4-34 (case 10) **[NEW]**: theta1 + theta4 = 2 theta2.
+* ``theta1_plus_theta4_eq_2theta2`` - path II of eqn 4-34 (case 10) (derived here): theta1 + theta4 = 2 theta2.
 * ``bennett_theta3_pi`` - theta3 = theta5 = pi, theta4 = theta1: the Bennett 4R of joints 1, 2, 4, 6
   (eqn 4-31; case 5 and the Fig. 4-5 geometry).
 * ``only_joints_2_6_move`` - theta1 = theta3 = theta4 = theta5 = pi: links 12 and 61 folded together, so
-  joints 2 and 6 are coaxial and the rest turns about them rigidly (case 6) **[NEW]**.
+  joints 2 and 6 are coaxial and the rest turns about them rigidly (case 6) (derived here).
 * ``all_joints_move`` - the one branch, besides those above, on which every joint moves (A == 0 cases).
 * otherwise ``theta3_<deg>_at_theta2_<deg>``: the configuration the branch passes through at the input
   where it is farthest from the other root (e.g. case 9's halves, through the Bennett bifurcations).
@@ -41,7 +41,7 @@ Case 10 family (eqn 4-32) **[NEW, verified]**: path I (eqn 4-33) closes for ever
 alpha = pi - 2 beta, gamma = -beta, R = 0 (so it is case 8's branch too); path II (eqn 4-34) needs b = c.
 Both are evaluated from those explicit forms, which have no 0/0 points.
 
-Case 7 of Table 4-1 **[NEW]**: Delta < 0 for every finite theta2, but at theta2 = pi (m infinite) the loop
+Case 7 of Table 4-1 (derived here): Delta < 0 for every finite theta2, but at theta2 = pi (m infinite) the loop
 closes at the isolated configuration (0, pi, pi, 0, pi, pi), rigid to second order: an assembled structure.
 The model has no branch then; `isolated_assemblies` and an 'isolated_assembly' event report the configuration.
 

@@ -27,13 +27,12 @@ RSRS loops exactly for every theta, with no equation left to solve. Hinge angles
 rotations, so q_I = -q_A, q_J = -q_B, q_K = -q_C, q_L = -q_D.
 
 The path ends at the octahedron, a singular configuration of the whole assembly (found here, though Yang 2017, §4.3
-reports none: the second-smallest singular value of the truss falls linearly to 0 there). [NEW] It is a bifurcation: E =
-F and G = H, so the top pyramid can turn rigidly about the line through them with every hinge frozen (`swing_poses`,
-exact closure), but its faces then cut through the bottom ones for either sign of the turn. Beyond theta_f on the path,
-B and D, A and I, E and F pass through each other (the triangles' edges cross the opposite faces). The cuboctahedron is
-not an end of the Bennett motion (no face crossing up to theta = 180 deg); the thesis's transformation starts there, so
-`domain` is [theta_f, theta_d].
-"""
+reports none: the second-smallest singular value of the truss falls linearly to 0 there). Derived here: it is a
+bifurcation: E = F and G = H, so the top pyramid can turn rigidly about the line through them with every hinge frozen
+(`swing_poses`, exact closure), but its faces then cut through the bottom ones for either sign of the turn. Beyond
+theta_f on the path, B and D, A and I, E and F pass through each other (the triangles' edges cross the opposite faces).
+The cuboctahedron is not an end of the Bennett motion (no face crossing up to theta = 180 deg); the thesis's
+transformation starts there, so `domain` is [theta_f, theta_d]. """
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray

@@ -4,7 +4,7 @@ D-H rows (Yang 2017's convention, eqn 1-19): a_12 = a_51 = a_23 sin(alpha12), a_
 alpha_23 = alpha_45 = pi/2, alpha_51 = pi - alpha12, alpha_34 = pi - 2 alpha12; all R = 0.
 Closure (eqn 1-20): theta1 + theta3 + theta4 = 2 pi, theta2 + theta5 = 2 pi,
 tan(theta4/2) tan(theta5/2) = K, tan(theta2/2) = K tan(theta3/2), K = sin((pi/2 + alpha12)/2) / sin((pi/2 - alpha12)/2);
-hence theta4 = theta3 + pi and theta1 = pi - 2 theta3 (derived here [NEW]).
+hence theta4 = theta3 + pi and theta1 = pi - 2 theta3 (derived here).
 
 The input is theta3 (chosen here): every other joint is a single-valued, smooth function of it,
 whereas theta1 = pi - 2 theta3 meets each value twice per cycle. theta2 is written as

@@ -39,7 +39,7 @@ all cross at the flat state (a bifurcation) and end where every crease folds fla
 
 Metamaterial unit (Peng 2018, eqns 3-30 to 3-32): theta and phi are the fold angles of creases 2 and 3
 of one mode-C vertex (tan(phi/2) = m_C tan(theta/2), eqn 3-31), unit dimensions a, b, c.
-[NEW] H peaks where nu_hl changes sign, at theta = 1.299533 (alpha = 150 deg), 1.143718 (135 deg) and
+Derived here: H peaks where nu_hl changes sign, at theta = 1.299533 (alpha = 150 deg), 1.143718 (135 deg) and
 0.955317 = arccos(1/sqrt(3)) (120 deg), solved here; coarser sampled values, 1.2999 (150 deg) and
 0.9548 (120 deg), miss it: nu_hl = -8.9e-4 and +7.3e-4 there.
 """

@@ -8,12 +8,12 @@ mode C), a = b sin(alpha) (eqn 4-4c with sectors alpha, pi/2), f_k = +1 the thes
 sits at ONE height: walking A -> D -> C -> B, vertex k lifts its crease 3 over its crease 2 by f_k b (S) or
 -f_k b (C), and the four lifts must sum to zero.
 
-Height rule ([NEW], derived and checked here): with the thesis frame at every vertex (all f_k = +1, the
+Height rule (derived and checked here): with the thesis frame at every vertex (all f_k = +1, the
 pattern's 90 deg rotation maps one vertex's layout onto the next) the heights close iff #S = #C, i.e. for
 exactly the six rigid mode strings (`square_twist.RIGID`), and the central square is a single slab (two
 levels) only for the opposite class CSCS / SCSC; the adjacent class leaves it three levels (a hull).
-[NEW] The rule holds only in the thesis frame: mirroring single vertices (f_k = -1) reverses their lift, so every
-sign-consistent mode string (even #S) has three height-consistent layouts up to the global mirror, one of them
+Derived here: the rule holds only in the thesis frame. Mirroring single vertices (f_k = -1) reverses their lift, so
+every sign-consistent mode string (even #S) has three height-consistent layouts up to the global mirror, one of them
 with a single-slab square (`layouts`). Heights do not select the rigid strings, kinematics does: a thick sheet
 on a non-rigid string (loop gain K != 1) is immobile, mobility 0 even at the flat state (measured for all
 three layouts of CCCC and SSSS; the zero-thickness sheet has mobility 4 there).

@@ -34,7 +34,7 @@ rotation fold for the epsilon of the thesis's eqns 3-12 to 3-37.
 At the thesis's Fig. 3-5 angles (55, 50, 50, 45 deg, epsilon = 35.4368 deg) the rigid scheme is SSP with M/V
 AB, BC, CA = V, M, M, A2, A3 = V, V, B2, B3 = M, M, C2, C3 = V, M, as derived here from the vertex types (5 M / 4 V).
 The thesis's PSR example (30, 80, 90, 45 deg) has gamma > alpha, so vertex A is type R, not P: it realises
-RSP, a rotation of PRS, which the formula cannot tell from PSR (mu_r = -mu_p as printed) [NEW].
+RSP, a rotation of PRS, which the formula cannot tell from PSR (mu_r = -mu_p as printed) (derived here).
 PQQ and QQQ fold 6 M / 3 V (up to a global flip), as the thesis's prose says, not 5/4 as its Table 3-1 lists.
 """
 

@@ -39,7 +39,7 @@ Branches, with u = tan(rho_A2 / 2) = -tan(x/2) / cos(alpha) (eqn 5-4, the A vert
   Crease B4 folds past flat onto its neighbour (phi_B4 < 0, blocked) where that denominator vanishes.
 
 The symmetric zero-thickness cell has two more branches, not in the thesis (found by multistart solves of
-the cell's loops, closed to 1e-15) **[NEW]**: creases A1 and A4 are collinear, and so are B1 and B4, so
+the cell's loops, closed to 1e-15) (derived here): creases A1 and A4 are collinear, and so are B1 and B4, so
 
 * ``A-straight-B-degree4``: A folds only about its straight line A1-A4 (A2 = A3 = A5 = A6 = 0) and B, with
   B3 = B5 = 0, is a flat-foldable degree-4 vertex: rho_B4 = -x, tan(rho_B2 / 2) = tan(x/2) / cos(alpha + beta);

@@ -9,14 +9,14 @@ evaluated in the K form above, which is (3-42) rewritten and stays finite at th1
 
 Ball-joint waggle (3-46...3-50): the angle between bar CD of the built RSSR and the nominal Bennett axis z_D (frame D: x
 along DA, z_A at the nominal beta from z_D about x), |90 deg - angle(CD, z_D)|. CORRECTION (3-49): |CD| = a1R, not the
-printed a2R: only a1R gives the thesis's waggles 0.58 and 1.22 deg. [NEW] Its maximum over th1 is |beta_R - beta|
-exactly, beta_R the built RSSR's implied beta: the balls turn about the implied Bennett's axes.
+printed a2R: only a1R gives the thesis's waggles 0.58 and 1.22 deg. Derived here: its maximum over th1 is
+|beta_R - beta| exactly, beta_R the built RSSR's implied beta: the balls turn about the implied Bennett's axes.
 
 Overconstrained forms. A Bennett linkage built with the errors above (opposite sides still equal, ground twist
 beta nominal) closes only at its two folded poses, theta1 = 0, theta2 = pi and theta1 = pi, theta2 = 0, where the
 loop product is [Rz(pi) Tx(a2 -+ a1) Rx(beta -+ alpha)]^2 = I for any lengths and twists, and it is rigid there
-[NEW]; at every other input the loop residual stays (`closure_gap`). A Myard 5R with a twist error does not close
-either. Forced together at one configuration (one axis tilted, `tilted`) either is a structure, mobility 0
+(derived here); at every other input the loop residual stays (`closure_gap`). A Myard 5R with a twist error does not
+close either. Forced together at one configuration (one axis tilted, `tilted`) either is a structure, mobility 0
 (`screw_mobility`: freedoms minus the rank of the joint twists of a single closed loop), while its
 non-overconstrained forms (balls in place of some R joints) keep mobility 1 with the same error.
 
