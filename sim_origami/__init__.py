@@ -12,9 +12,8 @@ __version__ = "0.1.0"
 
 # One OpenBLAS thread unless the environment says otherwise; read when numpy loads OpenBLAS, so it acts only when
 # sim_origami is imported first (the CLI, the tests, scripts that import it first). The harness's dense matrices are at
-# most about 1350 x 480 (the 16 x 16 Miura FOLD sheet's closure rows): there OpenBLAS's two threads on this 2-core
-# machine cost 36x the CPU of one for a Cholesky factorisation and 5x for an SVD, and the sheet's whole validate 82 s
-# of CPU instead of 25 s (docs/performance.md); sweeps run one process per core anyway.
+# most about 1350 x 480 (the 16 x 16 Miura FOLD sheet's closure rows), where threads cost far more CPU than they save
+# (docs/performance.md, FOLD files); sweeps run one process per core anyway.
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 # MUJOCO_GL must be set before the first `import mujoco` anywhere in the process.

@@ -7,10 +7,10 @@ Three modes share one set of parts (predictor, correctors, step control, numeric
   user-curve check, the rigid-foldability test of `kinematics.numeric_pattern`);
 - `trace`: natural-parameter continuation of a `ClosureSystem` while k driven joints move along a `Polyline`, with
   step control, stall, bound and mobility-change reports (`kinematics.numeric_pattern.PatternPath`);
-- `follow_arc`: pseudo-arc-length continuation of an `ArcSystem` along its mechanism mode (Yang 2017, §1.4-1.5),
-  through turning points of the input, with bifurcation detection (the second singular value of the Jacobian and
-  the orientation of its bordered form), location (golden section), branch directions at second order and branch
-  switching (`truss.follow`).
+- `follow_arc`: pseudo-arc-length continuation of an `ArcSystem` along its mechanism mode (Yang 2017, Sec. 2.4, eqns
+  2-12 to 2-18, after Kumar and Pellegrino 2000), through turning points of the input, with bifurcation detection (the
+  second singular value of the Jacobian and the orientation of its bordered form), location (golden section), branch
+  directions at second order and branch switching (`truss.follow`).
 
 A traced path is then read between its nodes by `ChordPolish`: interpolated poses (straight or cubic Hermite
 guesses) closed by the chord method, Gauss-Newton steps with the Jacobian of each pose's nearest node factorised
@@ -119,7 +119,7 @@ def levenberg_marquardt(residual, jacobian, u: NDArray[np.float64], tol: float, 
     """
     Damped Gauss-Newton (Levenberg-Marquardt, tolerant of rank-deficient Jacobians) on residual(u), from u; stops
     below `tol` (largest component), after `max_iter` steps, or when the damping needed exceeds 1e8. A sparse
-    Jacobian keeps the normal equations sparse. Returns (u, residual).
+    Jacobian's normal equations are solved in band storage (`BandedNormal`). Returns (u, residual).
     """
     damping = 1e-6
     r = residual(u)
@@ -1050,7 +1050,9 @@ def follow_arc(f: ArcSystem, x0: NDArray, ref: NDArray, k: int, target: float, *
             leaving, m, n_dir = _leave(f, found, points[replace_from - 1].tangent, f.chart_rate(found.x, k), choice)
             got = _arc_step(f, leaving, control.size)
             if got is None:
-                raise ConvergenceError(f"corrector failed stepping off the bifurcation at {found.chart[k]:.6g} rad")
+                raise ConvergenceError(
+                    f"corrector failed stepping off the bifurcation at {found.chart[k] / unit:.6g} rad"
+                )
             after = got[0]
             landed = (after.chart[k] - target) * sense >= 0
             if landed:

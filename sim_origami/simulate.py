@@ -28,7 +28,7 @@ from numpy.typing import NDArray
 
 from .errors import DomainError, ParameterError, SimulationError
 from .mjcf import ModelOptions, build_xml, closures, mujoco_joints, preset_duration, with_keyframes
-from .path import rank
+from .path import rank, rank_of
 from .scenes.base import Scene
 from .stabilize import StepFunction, make_constraint, run_step
 
@@ -42,7 +42,8 @@ STALL_TOL = 1e-13
 # (corrugated sheet), 1e-16 (ending at the rounding floor) 4.3e-14, every scene's worst branch within 2x of Newton's.
 PROJECTION_TOL = 1e-16
 # A projection step keeps the last factorisation (chord method, across inputs) while each step divides the residual by
-# at least 1 / CHORD_RATE; a slower step above STALL_TOL takes a fresh Jacobian.
+# at least 1 / CHORD_RATE; a slower step takes a fresh Jacobian (below STALL_TOL only once per input: there a slow
+# fresh step is the rounding floor).
 CHORD_RATE = 0.1
 # The projection's normal equations are solved by Cholesky only while its factor's diagonal spans less than this
 # (condition number of J below about 1e6); otherwise by the SVD.
@@ -444,12 +445,8 @@ def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: s
     factorisations and 4.6 s of CPU for 200 inputs with a fresh one per input and per slow step, 201 and 2.5 s now.
     """
     preset = preset or scene.preset
-    model, data = compile_model(scene, ModelOptions(preset=preset))
+    model, data, free = closure_model(scene, ModelOptions(preset=preset))
     binds = Bindings(scene, model)
-    for name in scene.drives:
-        data.eq_active[model.equality(f"drive_{name}").id] = 0
-    held = {model.jnt_dofadr[model.joint(name).id] for name in scene.drives}
-    free = np.array([a for a in range(model.nv) if a not in held])
     inputs = np.asarray(inputs, dtype=float)
     binds.set_pose(data, scene.pose(branch, float(inputs[0])))
     qpos_log, step, rate = np.empty((len(inputs), model.nq)), np.zeros(model.nv), np.zeros(model.nv)
@@ -558,9 +555,7 @@ def mujoco_mobility(scene: Scene, q: NDArray[np.float64], rtol: float = 1e-6) ->
     Instantaneous mobility in MuJoCo at mechanism angles q: hinges minus the numerical rank of
     the closure rows of efc_J (the drive disabled). Redundant connect rows only lower the rank.
     """
-    model, data = compile_model(scene, ModelOptions())
-    for name in scene.drives:
-        data.eq_active[model.equality(f"drive_{name}").id] = 0
+    model, data, _ = closure_model(scene, ModelOptions())
     Bindings(scene, model).set_pose(data, q)
     mujoco.mj_fwdPosition(model, data)
     rows = data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY
@@ -572,27 +567,34 @@ def projection_conditions(scene: Scene, q: NDArray[np.float64], rtol: float = 1e
     """
     How much the rounding of MuJoCo's closure residuals can move the free hinges at mechanism angles q (k, n_joints)
     (rad), per pose (k,): the sites' largest distance from the world origin (m) over the smallest singular value of
-    efc_J's closure rows over the free hinges (m per rad; values below rtol of the largest left out, as in
-    `mujoco_mobility`). Site positions round to eps times their coordinates, and a least-squares step turns a residual
-    r into angles of up to |r| / s_min: a thin-panelled sheet (6 x 6 Miura of 25:1 panels, 6 units long, s_min 8.5e-4)
-    reads 7000 where the loop closure's own condition number is 207.
+    efc_J's closure rows over the free hinges (m per rad; the smallest the rank keeps, `path.rank_of`, as
+    `mujoco_mobility` counts). Site positions round to eps times their coordinates, and a least-squares step turns a
+    residual r into angles of up to |r| / s_min: a thin-panelled sheet (6 x 6 Miura of 25:1 panels, 6 units long,
+    s_min 8.5e-4) reads 7000 where the loop closure's own condition number is 207.
     """
-    model, data = compile_model(scene, ModelOptions())
-    for name in scene.drives:
-        data.eq_active[model.equality(f"drive_{name}").id] = 0
-    held = {model.jnt_dofadr[model.joint(name).id] for name in scene.drives}
-    free = np.array([a for a in range(model.nv) if a not in held], dtype=int)
+    model, data, free = closure_model(scene, ModelOptions())
     binds = Bindings(scene, model)
-    out = np.empty(len(q))
-    for k, pose in enumerate(np.atleast_2d(q)):
+    q = np.atleast_2d(q)
+    out = np.ones(len(q))
+    for k, pose in enumerate(q):
         binds.set_pose(data, pose)
         mujoco.mj_fwdPosition(model, data)
         rows = data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY
         sv = np.linalg.svd(constraint_jacobian(model, data)[rows][:, free], compute_uv=False)
-        sv = sv[sv > rtol * sv.max(initial=0.0)]
-        extent = float(np.max(np.linalg.norm(data.site_xpos, axis=1), initial=1.0))
-        out[k] = extent / sv.min() if len(sv) else 1.0
+        r = rank_of(sv, rtol)
+        if r:
+            out[k] = float(np.max(np.linalg.norm(data.site_xpos, axis=1), initial=1.0)) / sv[r - 1]
     return out
+
+
+def closure_model(scene: Scene, options: ModelOptions) -> tuple[mujoco.MjModel, mujoco.MjData, NDArray[np.int64]]:
+    """The compiled model with its drive equalities off, and the dof addresses of the hinges it leaves free (every one
+    but the driven): what the kinematic projection, the mobility count and the projection's conditioning work on."""
+    model, data = compile_model(scene, options)
+    for name in scene.drives:
+        data.eq_active[model.equality(f"drive_{name}").id] = 0
+    held = {model.jnt_dofadr[model.joint(name).id] for name in scene.drives}
+    return model, data, np.array([a for a in range(model.nv) if a not in held], dtype=int)
 
 
 @dataclass(frozen=True)

@@ -539,7 +539,7 @@ def revolute_names(truss: Truss) -> tuple[str, ...]:
     return tuple(h.name for h in truss.hinges if h.revolute)
 
 
-# -- predictor-corrector path following (Yang 2017, §1.4-1.5), by the path engine (`path.follow_arc`) -----------
+# -- predictor-corrector path following (Yang 2017, Sec. 2.4, eqns 2-12 to 2-18), by `path.follow_arc` ---------------
 
 # Newton corrector: bring every bar-length error below CORRECTOR_TOL x scale.
 CORRECTOR_TOL = 1e-13

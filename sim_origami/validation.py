@@ -13,7 +13,7 @@ import numpy as np
 
 from .checks.blockage import Blockage, assess
 from .checks.branches import classify
-from .checks.paths import PathComparison, closure_condition, compare, floor_verdict_values
+from .checks.paths import PathComparison, closure_conditions, compare, floor_verdict_values
 from .checks.reference import ReferenceCheck, ReferenceCurves, compare_reference
 from .checks.verdict import Verdict
 from .errors import ConvergenceError, ParameterError
@@ -111,7 +111,7 @@ def closed_form_verdicts(scene: Scene, branch: str, x: np.ndarray) -> tuple[Verd
         # motion's freedoms, as --input may ask: 10 x 10, 37 of 109, 2.7e-12 where 1e-12 is asked)
         return residual, Verdict(name, float("inf"), TOLERANCES.closed_form_rad, f"damped-Newton continuation over "
                                  f"the same inputs did not reach the reference's states: {err}")  # fmt: skip
-    error, tol, where = floor_verdict_values(scene, branch, PathComparison(x, kin.observe(numeric), values),
+    error, tol, where = floor_verdict_values(scene, PathComparison(x, kin.observe(numeric), values),
                                              TOLERANCES.closed_form_rad, TOLERANCES.closed_form_cond_factor)
     return (
         residual,
@@ -238,7 +238,7 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
     proj_traj = project(scene, branch, np.linspace(start, stop, ANALYTIC_SAMPLES), preset=preset)
     proj = compare(scene, branch, proj_traj.q)
     proj_error, proj_tol, proj_where = floor_verdict_values(
-        scene, branch, proj, TOLERANCES.projection_rad, TOLERANCES.projection_cond_factor,
+        scene, proj, TOLERANCES.projection_rad, TOLERANCES.projection_cond_factor,
         other_condition=lambda k: projection_conditions(scene, proj_traj.q[k]),
     )  # fmt: skip
     mobility = mobility_report(scene, branch, start)
@@ -255,7 +255,7 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
                 TOLERANCES.angle(preset),
                 "max over samples and joints of |sim - closed form at the simulated input|"
                 + _singular_crossings(scene, branch, dyn.input, dyn.error, mobility)
-                + _conditioning(scene, branch, dyn, TOLERANCES.angle(preset))),
+                + _conditioning(scene, dyn, TOLERANCES.angle(preset))),
         Verdict(f"{branch}: MuJoCo {preset} closure residual (m)", float(np.max(dynamic.closure_residual)),
                 TOLERANCES.residual(preset, scene.length_scale), "largest gap between paired closure sites"),
         Verdict(f"{branch}: MuJoCo projection path error (rad)", proj_error, proj_tol,
@@ -301,7 +301,7 @@ def _singular_crossings(scene: Scene, branch: str, x: np.ndarray, error: np.ndar
     return "; " + "; ".join(parts)
 
 
-def _conditioning(scene: Scene, branch: str, path: PathComparison, tol: float) -> str:
+def _conditioning(scene: Scene, path: PathComparison, tol: float) -> str:
     """
     For a path error over `tol`: where it peaks and the closure Jacobian's condition number there and at the sweep's
     start, as a clause for the check's detail. MuJoCo's soft closures let more lag through where the path is
@@ -312,7 +312,7 @@ def _conditioning(scene: Scene, branch: str, path: PathComparison, tol: float) -
     if not np.all(np.isfinite(error)) or np.max(error, initial=0.0) <= tol:
         return ""
     k = int(np.argmax(error))
-    at, start = (closure_condition(scene, branch, float(path.input[i]), path.analytic[i]) for i in (k, 0))
+    at, start = closure_conditions(scene, path.input[[k, 0]], path.analytic[[k, 0]])
     return (f"; largest at input {path.input[k]:.6g} rad, where the closure Jacobian's condition number is {at:.3g} "
             f"({start:.3g} at the sweep's start)")
 

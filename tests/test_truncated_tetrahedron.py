@@ -340,7 +340,7 @@ def test_a_path_error_near_the_critical_delta_names_the_ill_conditioned_pose():
     scene = scenes.get("truncated-tetrahedron-i").build_from_user({"delta": -62.0})
     branch = scene.kinematics.branches()[0].name
     path = compare(scene, branch, simulate(scene, branch).q)
-    clause = _conditioning(scene, branch, path, 1e-6)
+    clause = _conditioning(scene, path, 1e-6)
     worst, start = (float(v) for v in re.findall(r"condition number is (\S+) \((\S+) at", clause)[0])
     assert path.max_error() > 1e-4 and worst > 10 * start
-    assert _conditioning(scene, branch, path, 1.0) == ""
+    assert _conditioning(scene, path, 1.0) == ""

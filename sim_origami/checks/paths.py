@@ -8,7 +8,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..geometry import wrap
-from ..path import singular_values
+from ..path import rank_of, singular_values
 from ..scenes.base import Scene
 
 
@@ -47,31 +47,34 @@ def compare(scene: Scene, branch: str, q: NDArray[np.float64]) -> PathComparison
     return PathComparison(x, scene.outputs(q), analytic)
 
 
-def closure_condition(scene: Scene, branch: str, x: float, values: NDArray[np.float64]) -> float:
+def closure_conditions(scene: Scene, x: NDArray[np.float64], values: NDArray[np.float64]) -> NDArray[np.float64]:
     """
-    Condition number of the loop-closure Jacobian with the inputs held, at the closed form's outputs `values` (k,)
-    at input x (rad): how much the rounding of a closure residual moves the joint angles. Singular values below
-    1e-6 of the largest (idle spins, redundant freedoms) are left out, as in `LoopSystem.mobility`.
+    Condition numbers (n,) of the loop-closure Jacobian with the inputs held, at the closed form's outputs `values`
+    (n, k) at inputs x (n,) (rad): how much the rounding of a closure residual moves the joint angles. Singular values
+    below RANK_RTOL of the largest (idle spins, redundant freedoms) are left out, as the mobility counts them.
     """
     kin = scene.kinematics
-    loops = kin.loop_system()
-    q = kin.loop_angles(values[None])[0]
+    loops = kin.loop_system()  # built once: registered scenes build theirs on every call (25 ms for the tube)
     free = np.ones(loops.n_joints, dtype=bool)
-    free[list(kin.loop_inputs([x])[0])] = False
-    # a sparse Jacobian's singular values come from its Gram matrix (reliable down to sqrt(eps) of the largest, far
-    # below the cut): 25 ms instead of 100 for the SVD of the 16 x 16 Miura sheet's 1350 x 479 Jacobian
-    s = singular_values((loops.jacobian_sparse(q) if loops.sparse else loops.jacobian(q))[:, free])
-    s = s[s > 1e-6 * max(s.max(initial=0.0), 1.0)]
-    return float(s.max() / s.min()) if len(s) else 1.0
+    free[list(kin.loop_inputs(np.asarray(x)[:1])[0])] = False
+    out = np.ones(len(x))
+    for k, q in enumerate(kin.loop_angles(np.atleast_2d(values))):
+        # a sparse Jacobian's singular values come from its Gram matrix (reliable down to sqrt(eps) of the largest,
+        # far below the cut): 25 ms instead of 100 for the SVD of the 16 x 16 Miura sheet's 1350 x 479 Jacobian
+        s = singular_values((loops.jacobian_sparse(q) if loops.sparse else loops.jacobian(q))[:, free])
+        r = rank_of(s)
+        if r:
+            out[k] = float(s[0] / s[r - 1])
+    return out
 
 
 def floor_verdict_values(
-    scene: Scene, branch: str, path: PathComparison, base: float, factor: float,
+    scene: Scene, path: PathComparison, base: float, factor: float,
     other_condition: Callable[[NDArray[np.int64]], NDArray[np.float64]] | None = None,
 ) -> tuple[float, float, str]:
     """
     (error, tolerance, where) of a comparison held to a rounding floor: every sample's error against
-    max(base, factor eps cond), cond the closure Jacobian's condition number there (`closure_condition`, computed
+    max(base, factor eps cond), cond the closure Jacobian's condition number there (`closure_conditions`, computed
     only at samples whose error exceeds `base`); the sample with the largest error over tolerance is reported.
     `other_condition` (sample indices -> condition numbers) is the other side's, asked only where a sample exceeds
     the closure's tolerance, and the larger one holds there (MuJoCo's projection: `simulate.projection_conditions`).
@@ -83,7 +86,7 @@ def floor_verdict_values(
     if not len(above):
         return float(np.max(err, initial=0.0)), base, "every sample within the base tolerance"
     eps = np.finfo(float).eps
-    cond = np.array([closure_condition(scene, branch, float(path.input[k]), path.analytic[k]) for k in above])
+    cond = closure_conditions(scene, path.input[above], path.analytic[above])
     what = np.full(len(above), "the closure Jacobian's condition number", dtype=object)
     over = np.flatnonzero(err[above] > factor * eps * cond)
     if other_condition is not None and len(over):

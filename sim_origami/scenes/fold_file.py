@@ -133,7 +133,7 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     reference = None if several is not None else target
     trial = None
     if inputs is None:
-        inputs, trial = _choose_inputs(pattern, reference, several, signs if letters_only else None)
+        inputs, trial, allowed = _choose_inputs(pattern, reference, several, signs if letters_only else None)
     # the input choice's one-input trial trace is this very path when its crease is the one chosen (half the build)
     kinematics = trial if trial is not None and trial.inputs == inputs else \
         PatternPath(pattern, inputs, None if several is not None else target, **kwargs)  # fmt: skip
@@ -144,14 +144,8 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     # triangulated grid folded along one line: 37 inputs, the generic count, where that motion has 109 freedoms to
     # first order, so the held inputs leave the rest undetermined and the closed-form check's continuation drifted
     # off, 0.14 rad on a 3 x 3 grid): then as many inputs as it has there, the ones picked first kept
-    middle = len(kinematics.nodes) // 2
-    more = int(kinematics.mobility[middle]) - len(inputs)
-    if more > 0 and input_crease is None:
-        allowed = np.array([c.assignment != "F" for c in pattern.creases])
-        picked = independent_joints(kinematics.loop_system(), kinematics.nodes[middle], len(inputs) + more,
-                                    among=allowed, first=tuple(names.index(n) for n in inputs))  # fmt: skip
-        inputs = tuple(names[k] for k in picked)
-        kinematics = PatternPath(pattern, inputs, None if several is not None else target, **kwargs)
+    if input_crease is None and (more := _by_rank(kinematics, allowed, inputs)) != inputs:
+        inputs, kinematics = more, PatternPath(pattern, more, None if several is not None else target, **kwargs)
     if frames_tolerance is not None and frames_tolerance < 0:
         raise ParameterError(f"frames tolerance {frames_tolerance:g} rad: it must be >= 0")
     from_coords = getattr(fold, "frames_from_coords", False)
@@ -192,11 +186,12 @@ def motion_end(kinematics: PatternPath) -> float:
     return kinematics.target_input if kinematics.target_input is not None else hi if abs(hi) >= abs(lo) else lo
 
 
-def _choose_inputs(pattern: CreasePattern, target, frames, signs) -> tuple[tuple[str, ...], PatternPath]:
+def _choose_inputs(pattern: CreasePattern, target, frames, signs) -> tuple[tuple[str, ...], PatternPath, np.ndarray]:
     """
-    The steadiest crease of the motion (`steadiest`: over the frames, else over each crease's own sweep along a
-    trace driven by the most folded crease), then, when the pattern has more freedoms along its motion than one
-    (the mobility at the middle of a one-input trace), as many as it has, by rank; and that one-input trace.
+    The steadiest crease of the motion (`steadiest`: over the frames, else over each crease's own sweep along the
+    one-input trace of `_trial`), then, when the pattern has more freedoms along its motion than one (the mobility at
+    the middle of that trace), as many as it has, by rank (`_by_rank`); that trace; and the creases an input may be
+    (not F, with an angle).
     """
     names = [c.name for c in pattern.creases]
     # letters only: a U crease has no direction to be driven in (free, as a null angle)
@@ -216,13 +211,23 @@ def _choose_inputs(pattern: CreasePattern, target, frames, signs) -> tuple[tuple
         # driven, crease j would sweep from SWEEP_FROM of its end angle to its end angle
         inside = np.abs(nodes) >= SWEEP_FROM * np.abs(nodes[-1]) - MOVING
         first = steadiest(nodes, usable, first, inside[:-1] & inside[1:])
-    middle = len(trial.nodes) // 2
-    m = int(trial.mobility[middle])
-    if m <= 1:
-        return (names[first],), trial
     allowed = np.array([c.assignment != "F" for c in pattern.creases]) & given
-    picked = independent_joints(trial.loop_system(), trial.nodes[middle], m, among=allowed, first=(first,))
-    return tuple(names[k] for k in picked), trial
+    return _by_rank(trial, allowed, (names[first],)), trial, allowed
+
+
+def _by_rank(kinematics: PatternPath, allowed: np.ndarray, first: tuple[str, ...]) -> tuple[str, ...]:
+    """
+    As many inputs as the traced motion has freedoms at its middle node, the `first` ones kept and the others picked
+    by rank among the `allowed` creases (not F, with an angle); `first` itself when it is enough.
+    """
+    names = [c.name for c in kinematics.pattern.creases]
+    middle = len(kinematics.nodes) // 2
+    m = int(kinematics.mobility[middle])
+    if m <= len(first):
+        return first
+    picked = independent_joints(kinematics.loop_system(), kinematics.nodes[middle], m, among=allowed,
+                                first=tuple(names.index(n) for n in first))  # fmt: skip
+    return tuple(names[k] for k in picked)
 
 
 def _trial(pattern: CreasePattern, first: int, usable: np.ndarray, target, frames, signs) -> tuple[int, PatternPath]:
