@@ -106,36 +106,39 @@ def captured_warnings():
 
 def scene_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, NDArray[np.float64]] | None = None) -> str:
     """
-    The MJCF text of a scene's mechanism and setup for these options (`mjcf.build_xml`). Without keyframes the text
-    of the last XML_MEMO (scene, options) pairs is kept: a validation compiles the same model for its run, its
-    projection and its mobility count (the 16 x 16 Miura FOLD sheet's text takes 0.42 s of CPU to build).
+    The MJCF text of a scene's mechanism and setup for these options (`mjcf.build_xml`), kept for the last XML_MEMO
+    (scene, options) pairs (the 16 x 16 Miura FOLD sheet's text takes 0.42 s of CPU to build); with keyframes, that
+    text with them added (`mjcf.with_keyframes`).
     """
     if keyframes:
         return with_keyframes(scene_xml(scene, options), scene.mechanism, keyframes)
-    key = (id(scene), options)
-    kept = _XML.get(key)
-    if kept is not None and kept[0]() is scene:  # the same scene object, not a later one at a reused id
-        return kept[1]
-    xml = build_xml(scene.mechanism, scene.model_setup(), options)
-    if len(_XML) >= XML_MEMO:
-        _XML.pop(next(iter(_XML)))
-    _XML[key] = (weakref.ref(scene), xml)
-    return xml
+    return _kept(_XML, scene, options, lambda: build_xml(scene.mechanism, scene.model_setup(), options))
 
 
 def compile_model(scene: Scene, options: ModelOptions) -> tuple[mujoco.MjModel, mujoco.MjData]:
     """Compile the scene's MJCF for these options, with the regularisation scale it states (the preset's, times the
-    scene's `fast_regularization_scale` under fast) applied."""
-    key = (id(scene), options)
-    kept = _MODELS.get(key)
-    if kept is None or kept[0]() is not scene:  # not yet, or a later scene at a reused id
+    scene's `fast_regularization_scale` under fast) applied; the compiled model is kept as the text is, so a
+    validation compiles once for its run, its projection and its mobility count, each getting a copy."""
+
+    def compiled() -> mujoco.MjModel:
         model = mujoco.MjModel.from_xml_string(scene_xml(scene, options))
         scale_regularization(model, float(model.numeric("regularization_scale").data[0]))
-        if len(_MODELS) >= XML_MEMO:
-            _MODELS.pop(next(iter(_MODELS)))
-        kept = _MODELS[key] = (weakref.ref(scene), model)
-    model = copy.copy(kept[1])
+        return model
+
+    model = copy.copy(_kept(_MODELS, scene, options, compiled))
     return model, mujoco.MjData(model)
+
+
+def _kept(table: dict, scene: Scene, options: ModelOptions, make: Callable[[], object]) -> object:
+    """`make()` for (scene, options), kept in `table` for the last XML_MEMO pairs (first in, first out); a scene is
+    the same object, not a later one at a reused id."""
+    key = (id(scene), options)
+    kept = table.get(key)
+    if kept is None or kept[0]() is not scene:
+        if len(table) >= XML_MEMO:
+            table.pop(next(iter(table)))
+        kept = table[key] = (weakref.ref(scene), make())
+    return kept[1]
 
 
 def scale_regularization(model: mujoco.MjModel, scale: float) -> None:

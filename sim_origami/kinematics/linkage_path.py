@@ -377,19 +377,21 @@ class LinkagePath(Kinematics):
         values = np.asarray(values, dtype=float).reshape(-1, len(self.joint_names))
         if np.all(self.observed):
             return values
-        column = self.joint_names.index(self.input_name)
-        out = np.empty((len(values), self._loops.n_joints))
-        for k, v in enumerate(values):
-            x = v[column]
-            poses = [self._full(b, x)[0][0] for b in self.nodes if self._covers(b, x)]
-            if not poses:  # outside every domain: the nearest node of any branch
-                poses = [q[int(np.argmin(np.abs(s - x)))] for s, q, _ in self.nodes.values()]
-            gaps = [float(np.max(np.abs(wrap(q[self.observed] - v)))) for q in poses]
-            q = poses[int(np.argmin(gaps))].copy()
-            if min(gaps) > 0.0:
-                q[self.observed] = v
-                q = correct(self._loops, q, self.observed, CLOSE_TOL, max_iter=200)[0]
-            out[k] = q
+        xs = values[:, self.joint_names.index(self.input_name)]
+        # every branch's pose at each input it covers, in one batch per branch (NaN elsewhere)
+        poses = np.full((len(self.nodes), len(values), self._loops.n_joints), np.nan)
+        for m, branch in enumerate(self.nodes):
+            covered = np.array([self._covers(branch, x) for x in xs], dtype=bool)
+            if np.any(covered):
+                poses[m, covered] = self._full(branch, xs[covered])[0]
+        for k in np.flatnonzero(np.all(np.isnan(poses[:, :, 0]), axis=0)):  # outside every domain: nearest nodes
+            poses[:, k] = [q[int(np.argmin(np.abs(s - xs[k])))] for s, q, _ in self.nodes.values()]
+        gaps = np.max(np.abs(wrap(poses[:, :, self.observed] - values)), axis=-1)
+        best = np.argmin(np.where(np.isnan(gaps), np.inf, gaps), axis=0)
+        out = poses[best, np.arange(len(values))]
+        for k in np.flatnonzero(gaps[best, np.arange(len(values))] > 0.0):
+            out[k, self.observed] = values[k]
+            out[k] = correct(self._loops, out[k], self.observed, CLOSE_TOL, max_iter=200)[0]
         return out
 
     def loop_input(self) -> tuple[int, float]:
