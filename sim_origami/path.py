@@ -240,6 +240,12 @@ def _band_layout(J: sp.csc_matrix) -> BandedNormal:
     return _band_layouts[key]
 
 
+def hermite(v0: ArrayLike, v1: ArrayLike, d0: ArrayLike, d1: ArrayLike, w: ArrayLike) -> NDArray[np.float64]:
+    """Cubic Hermite interpolation at w in [0, 1] between values v0, v1 with end slopes d0, d1 (per unit w)."""
+    v0, v1, d0, d1, w = (np.asarray(a, dtype=float) for a in (v0, v1, d0, d1, w))
+    return (2 * w**3 - 3 * w**2 + 1) * v0 + (w**3 - 2 * w**2 + w) * d0 + (3 * w**2 - 2 * w**3) * v1 + (w**3 - w**2) * d1
+
+
 def secant(s_prev: float, x_prev: NDArray, s: float, x: NDArray, s_new: float) -> NDArray[np.float64]:
     """Secant predictor: the line through (s_prev, x_prev) and (s, x), at parameter s_new."""
     return x + (x - x_prev) / (s - s_prev) * (s_new - s)
@@ -701,8 +707,7 @@ class ChordPolish:
         tangents = {int(k): self.tangent(int(k)) for k in np.unique(np.r_[i, i + 1])}
         d0 = np.array([tangents[int(k)] for k in i]) * h[:, None]
         d1 = np.array([tangents[int(k)] for k in i + 1]) * h[:, None]
-        out = ((2 * t**3 - 3 * t**2 + 1) * self.nodes[i] + (t**3 - 2 * t**2 + t) * d0
-               + (3 * t**2 - 2 * t**3) * self.nodes[i + 1] + (t**3 - t**2) * d1)  # fmt: skip
+        out = hermite(self.nodes[i], self.nodes[i + 1], d0, d1, t)
         out[:, self.fixed] = x[:, None]
         return out
 

@@ -64,6 +64,7 @@ from ..geometry import (
     unit,
     wrap,
 )
+from ..path import hermite
 from .base import Event, transformation_inputs
 from .bricard_threefold import ALONG, BricardThreefold, bricard_axis, bricard_trig
 from .dh import DHRow, dh_from_axes
@@ -173,12 +174,6 @@ def _angle_about(u: ArrayLike, v: ArrayLike, axis: ArrayLike) -> NDArray[np.floa
     u = u - np.einsum("...i,...i", u, axis)[..., None] * axis
     v = v - np.einsum("...i,...i", v, axis)[..., None] * axis
     return signed_angle(u, v, axis)
-
-
-def _hermite(v0: ArrayLike, v1: ArrayLike, d0: ArrayLike, d1: ArrayLike, w: float) -> NDArray[np.float64]:
-    """Cubic Hermite interpolation at w in [0, 1] between values v0, v1 with end slopes d0, d1 (per unit w)."""
-    v0, v1, d0, d1 = (np.asarray(a, dtype=float) for a in (v0, v1, d0, d1))
-    return (2 * w**3 - 3 * w**2 + 1) * v0 + (w**3 - 2 * w**2 + w) * d0 + (3 * w**2 - 2 * w**3) * v1 + (w**3 - w**2) * d1
 
 
 class Transformation:
@@ -440,10 +435,10 @@ class Transformation:
         a, b = np.zeros(len(x)), np.ones(len(x))
         for _ in range(60):
             mid = 0.5 * (a + b)
-            below = _hermite(xs[k], xs[k + 1], h * rate[k], h * rate[k + 1], mid) < target
+            below = hermite(xs[k], xs[k + 1], h * rate[k], h * rate[k + 1], mid) < target
             a, b = np.where(below, mid, a), np.where(below, b, mid)
         w = 0.5 * (a + b)[:, None]
-        guess = _hermite(us[k], us[k + 1], h[:, None] * self._tangents[k], h[:, None] * self._tangents[k + 1], w)
+        guess = hermite(us[k], us[k + 1], h[:, None] * self._tangents[k], h[:, None] * self._tangents[k + 1], w)
         out = self._correct_inputs(guess, x - self._offset)
         out[target <= xs[0]], out[target >= xs[-1]] = us[0], us[-1]
         return out
