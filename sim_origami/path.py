@@ -640,19 +640,25 @@ class ChordPolish:
     normal matrix (`BandedNormal.factor`; 480 creases: one factorisation 0.3 ms, a dense one 0.2 s), a dense one the
     pseudo-inverse with singular values below RANK_RTOL of the largest dropped (as in the rank count).
 
-    Residuals are measured as `loops.residual_size` weighs them (that of the full solve). A pose is closed below
-    `tol`. With `floor`, the rounding floor of large systems (about 4e-15 on the 16 x 16 Miura sheet, above a
-    `tol` of 1e-15) is accepted below `floor`: a pose stops where its residual stops falling, one left above
-    `floor` or 10 x the batch's median gets Gauss-Newton with fresh Jacobians from its best, and the full solve if
-    still above `floor`. Without, a pose not closed below `tol` is solved again from its guess (a singular pose,
-    where the chord need not contract: the solve, and `correct` to `close_tol` where Newton converges only
-    linearly).
+    Residuals are measured as `loops.residual_size` weighs them (that of the full solve). A pose is closed below `tol`.
+    With `floor`, the rounding floor of large systems (about 4e-15 on the 16 x 16 Miura sheet, above a `tol` of 1e-15)
+    is accepted below `close_tol` (or twice the residual at the nodes, the loops' own floor): a pose stops where its
+    residual stops falling, one left above it or 10 x the batch's median gets Gauss-Newton with fresh Jacobians from its
+    best, and the full solve if still above it. Without, a pose not closed below `tol` is solved again from its guess (a
+    singular pose, where the chord need not contract: the solve, and `correct` to `close_tol` where Newton converges
+    only linearly).
     """
 
     def __init__(self, loops: ClosureSystem, nodes: NDArray[np.float64], fixed: NDArray[np.bool_], *, tol: float,
                  close_tol: float, floor: bool = False):  # fmt: skip
         self.loops, self.nodes, self.fixed = loops, nodes, np.asarray(fixed, dtype=bool)
         self.tol, self.close_tol, self.floor = tol, close_tol, floor
+        if floor and loops.n_residuals and len(nodes):
+            # the floor is the loops' own: twice the residual the trace's nodes sit at (their median). A file whose
+            # coordinates lie near (700, -300) with 0.067-wide panels has 1.1e-13 at every node, from the coordinates'
+            # rounding; held to 1e-13, each pose went on to the full solve and `correct` (20 s for a 3 x 3 sheet)
+            at_nodes = loops.residual_size(loops.residual(nodes))
+            self.close_tol = max(close_tol, 2.0 * float(np.median(at_nodes)))
         self._factors: dict[int, tuple] = {}  # node -> (free columns of J, factorisation, fixed columns of J)
 
     def _factor(self, q: NDArray[np.float64]) -> tuple:

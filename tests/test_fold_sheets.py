@@ -49,3 +49,17 @@ def test_a_thin_panelled_sheets_projection_is_held_to_mujocos_own_floor(tmp_path
     loops = closure_conditions(scene, x, path_error.analytic)
     assert np.all(ours > 3 * loops)
     assert np.max(path_error.error) <= 40 * np.finfo(float).eps * np.max(ours)
+
+
+def test_a_thin_panelled_sheet_far_from_the_origin_validates(tmp_path, capsys):
+    """Coordinates near (700, -300) with panels 0.067 wide: the file's own rounding (1.1e-13 at 700) leaves the vertex
+    loops a closure floor of 1.1e-13, and the dense polish to 1e-15 raised ConvergenceError (exit 2, as bad input).
+    The polish accepts the rounding floor for dense systems as for sparse ones."""
+    doc = miura_letters_only(3, 3, 0.4, 0.067, 0.0215)
+    doc["vertices_coords"] = (np.array(doc["vertices_coords"]) + np.array([700.0, -300.0])).tolist()
+    path = tmp_path / "far.fold"
+    path.write_text(json.dumps(doc))
+    code = main(["validate", "--fold", str(path), "--out", str(tmp_path / "out")])
+    assert code == 0, capsys.readouterr().out
+    report = json.loads((tmp_path / "out" / "report.json").read_text())
+    assert report["passed"] and report["angle_error_max_rad"] < 1e-6

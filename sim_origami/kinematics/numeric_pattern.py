@@ -389,8 +389,9 @@ class PatternPath(JointSpaceKinematics):
 
     @cached_property
     def _polisher(self) -> ChordPolish:
-        """`evaluate`'s polish of a sparse system: chord steps on the trace's nodes (their factorisations kept), to
-        the residual's rounding floor (near a singular end a residual of 1e-13 still left the angles 3.7e-12 rad
+        """`evaluate`'s polish: chord steps on the trace's nodes (their factorisations kept), to the residual's rounding
+        floor, dense systems as sparse ones (a dense solve to POLISH_TOL raised on Miura sheets of 260:1 panels, their
+        floor 1e-13) (near a singular end a residual of 1e-13 still left the angles 3.7e-12 rad
         off, the Jacobian's smallest singular value 3.7e-3 there; at the floor they are 1e-13 from MuJoCo's
         projection)."""
         fixed = np.zeros(len(self.joint_names), dtype=bool)
@@ -399,8 +400,6 @@ class PatternPath(JointSpaceKinematics):
 
     def _evaluate(self, x: NDArray, valid: NDArray, held: NDArray) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
         values = np.full((len(x), len(self.joint_names)), np.nan)
-        fixed = np.zeros(len(self.joint_names), dtype=bool)
-        fixed[self.driven] = True
         if not np.any(valid):
             return values, valid
         guesses = np.stack([np.interp(x[valid], self.s_nodes, self.nodes[:, j]) for j in range(self.nodes.shape[1])],
@@ -408,15 +407,12 @@ class PatternPath(JointSpaceKinematics):
         guesses[:, self.driven] = held[valid]
         if not self._loops.n_residuals:
             values[valid] = guesses
-        elif self._loops.sparse:
+        else:
             # (a trace that stopped at its first node has no interval to interpolate in: its node is the guess)
             if self.path_is_input and len(self.driven) == 1 and len(self.s_nodes) > 1:
                 guesses = self._polisher.hermite(self.s_nodes, x[valid])
                 guesses[:, self.driven] = held[valid]
             values[valid] = self._polisher.polish(guesses, nearest_nodes(self.s_nodes, x[valid]))
-        else:
-            for k, guess in zip(np.flatnonzero(valid), guesses, strict=True):
-                values[k] = self._loops.solve(guess, fixed, tol=POLISH_TOL)
         return values, valid
 
     def events(self) -> tuple[Event, ...]:
