@@ -17,10 +17,10 @@ from .validation import Report
 # Simulated markers drawn per branch (the CSV keeps every sample); joints named in a legend at most.
 MARKERS = 40
 LEGEND_MAX = 16
-# Reference samples per line: fewer where the joints are too many to tell apart (each is a closed pose; the 16 x 16
-# Miura FOLD sheet's 480 creases at 400 samples took 0.55 s of the plot's 1.2 s of CPU).
+# Reference samples per line where a legend names the joints. More joints are drawn from the closed form the
+# projection was compared with (200 inputs over the sweep, already evaluated: each is a closed pose, and on the
+# 16 x 16 Miura FOLD sheet's 480 creases 100 fresh samples took 0.26 s of CPU).
 DENSE = 400
-DENSE_MANY = 100
 
 
 def plot_report(report: Report, path: str | Path) -> Path:
@@ -32,13 +32,15 @@ def plot_report(report: Report, path: str | Path) -> Path:
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     for col, run in enumerate(runs):
         top, bottom = axes[0, col], axes[1, col]
-        lo, hi = kin.branch(run.requested).domain
-        dense = np.linspace(lo, hi, DENSE if len(kin.joint_names) <= LEGEND_MAX else DENSE_MANY)
-        values, valid = kin.evaluate(run.requested, dense)
         sim = run.dynamic_path
         pick = np.linspace(0, len(sim.input) - 1, MARKERS).astype(int)
         if len(kin.joint_names) > LEGEND_MAX:
-            _many_joints(top, bottom, np.rad2deg(dense[valid]), values[valid], sim, pick, colors)
+            ref = run.projection_path
+            on = np.all(np.isfinite(ref.analytic), axis=1)
+            _many_joints(top, bottom, np.rad2deg(ref.input[on]), ref.analytic[on], sim, pick, colors)
+        else:
+            dense = np.linspace(*kin.branch(run.requested).domain, DENSE)
+            values, valid = kin.evaluate(run.requested, dense)
         for k, name in enumerate(kin.joint_names if len(kin.joint_names) <= LEGEND_MAX else ()):
             c = colors[k % len(colors)]
             top.plot(np.rad2deg(dense[valid]), np.rad2deg(values[valid, k]), color=c, lw=1.2, label=name)
