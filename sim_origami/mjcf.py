@@ -64,6 +64,7 @@ class ModelSetup:
     gravity: tuple[float, float, float] | None = None
     creases: frozenset[str] = frozenset()
     fast_step_scale: float = 1.0
+    fast_timeconst_scale: float = 1.0
     fast_regularization_scale: float = 1.0
 
     @property
@@ -126,14 +127,15 @@ def _drop(tree: ET.Element, comment: ET.Element) -> None:
             return
 
 
-def _scale_step(root: ET.Element, scale: float) -> None:
-    """The merged preset's timestep and its closure and drive solref time constants times `scale`."""
+def _scale_step(root: ET.Element, step: float, timeconst: float) -> None:
+    """The merged preset's timestep times `step`, its closure and drive solref time constants times `step` and
+    `timeconst`."""
     option = root.find("option")
-    option.set("timestep", _fmt(float(option.get("timestep")) * scale))
+    option.set("timestep", _fmt(float(option.get("timestep")) * step))
     for cls in ("closure", "drive"):
         equality = root.find(f".//default[@class='{cls}']/equality")
         tau, *rest = (float(v) for v in equality.get("solref").split())
-        equality.set("solref", _fmt([tau * scale, *rest]))
+        equality.set("solref", _fmt([tau * step * timeconst, *rest]))
 
 
 def _add_meshes(asset: ET.Element, mechanism: Mechanism) -> None:
@@ -410,8 +412,8 @@ def build_xml(
         fragments += ["visual.xml", "render_scene.xml"]
     for name in fragments:
         _merge(root, template(name))
-    if options.preset == "fast" and setup.fast_step_scale != 1.0:
-        _scale_step(root, setup.fast_step_scale)
+    if options.preset == "fast" and (setup.fast_step_scale, setup.fast_timeconst_scale) != (1.0, 1.0):
+        _scale_step(root, setup.fast_step_scale, setup.fast_timeconst_scale)
     if options.preset == "fast" and setup.fast_regularization_scale != 1.0:
         numeric = root.find("custom/numeric[@name='regularization_scale']")
         numeric.set("data", _fmt(float(numeric.get("data")) * setup.fast_regularization_scale))

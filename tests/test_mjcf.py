@@ -1,5 +1,6 @@
 """MJCF generation (`sim_origami.mjcf`): structure, names, options and keyframes of compiled models."""
 
+import dataclasses
 import xml.etree.ElementTree as ET
 
 import mujoco
@@ -249,3 +250,16 @@ def test_a_scenes_fast_step_scale_lengthens_fast_only_and_keeps_tau_over_h():
     rows = [i for i in range(fast.neq) if fast.equality(i).name.startswith(("close_", "couple_", "drive_"))]
     assert rows and np.allclose(fast.eq_solref[rows, 0], 0.025, rtol=0, atol=1e-15)
     assert pareto.scene_presets(scene)["fast"].h == fast.opt.timestep
+
+
+def test_a_scenes_fast_timeconst_scale_softens_the_closures_and_drive_not_the_step():
+    """A large FOLD pattern's closures and drive run at 1.2x fast's time constant (3 steps, not 2.5), its step 8 ms."""
+    scene = dataclasses.replace(scenes.get("waterbomb-vertex").build(), fast_timeconst_scale=1.2)
+    fast, _ = compiled(scene, preset="fast")
+    stiff, _ = compiled(scene, preset="stiff")
+    plain, _ = compiled(scenes.get("waterbomb-vertex").build(), preset="stiff")
+    assert fast.opt.timestep == 0.008
+    rows = [i for i in range(fast.neq) if fast.equality(i).name.startswith(("close_", "couple_", "drive_"))]
+    assert rows and np.allclose(fast.eq_solref[rows, 0], 0.024, rtol=0, atol=1e-15)
+    assert np.array_equal(stiff.eq_solref, plain.eq_solref)
+    assert pareto.scene_presets(scene)["fast"].tau == pytest.approx(0.024)

@@ -51,6 +51,8 @@ def run(args: argparse.Namespace) -> int:
     print(f"mechanism: {len(reduced.bodies)} bodies, {len(reduced.joints) - len(mech.balls)} hinges{spherical}, "
           f"root {mech.root}, loops cut at {', '.join(sorted(cut)) or 'none'}")  # fmt: skip
     scaled = f"; fast at {scene.fast_step_scale:g}x its step and time constant" if scene.fast_step_scale != 1 else ""
+    if scene.fast_timeconst_scale != 1:
+        scaled += f"; fast's time constant {scene.fast_timeconst_scale:g}x its own"
     print(f"preset: {scene.preset}, sweep {scene.sweep_time_scale:g}x the preset's duration{scaled}")
     print("branches:")
     for b in kin.branches():

@@ -172,6 +172,9 @@ class Scene:
     # 1.25: at 8 ms RK4's four force evaluations per step cost what Euler's one per 2 ms does, and MuJoCo's defaults
     # (scripts/fast_vs_defaults.py) matched fast's CPU there; 1.25x costs 1.6x the error at 0.8x the CPU.
     fast_step_scale: float = 1.0
+    # The fast preset's closure and drive time constants times this as well, its step unchanged: softer closures
+    # (under RK4 near its stability limit, stiffer ones ring), measured per scene kind.
+    fast_timeconst_scale: float = 1.0
     # The fast preset's regulariser scale (mjcf_templates/options/fast.xml) times this: MuJoCo softens every constraint
     # row by R, and a large pattern near a lock, where its closure is ill-conditioned, lags by what R lets through.
     fast_regularization_scale: float = 1.0
@@ -231,7 +234,7 @@ class Scene:
             contact_pairs=self.contact_pairs,
             self_contact_exclude=self.pattern.touching_faces() if self.self_contact else None,
             gravity=self.gravity, creases=self.crease_hinges, fast_step_scale=self.fast_step_scale,
-            fast_regularization_scale=self.fast_regularization_scale,
+            fast_timeconst_scale=self.fast_timeconst_scale, fast_regularization_scale=self.fast_regularization_scale,
         )  # fmt: skip
 
     def loop_to_mechanism(self, q_loop: ArrayLike) -> NDArray[np.float64]:

@@ -52,6 +52,17 @@ REGULARIZATION_SCALE = 0.01
 # 1.2e-7 rad and its closure gap 9.8e-7 m (tolerance 2.7e-6), 4.9e-7 and 3.9e-6 at x1; x8 at R took four times the
 # steps for 4.4e-7.
 LARGE_SWEEP_TIME_SCALE = 2.0
+# Their closures (and drive) run at this times the preset's time constant, 3 steps instead of 2.5. Near-square
+# letters-only Miura sheets failed at 2.5: their closure gap peaks mid-path, where the sweep is fastest, and softer
+# closures lower it (12 x 12 at a zigzag of 0.2 / 0.1 edge, 16 x 16 at 0.2: 1.20 / 1.11 / 1.60 of its tolerance ->
+# 0.73 / 0.68 / 0.97), while a sheet of 5:1 panels, whose error is lag near its lock, rises 0.60 -> 0.69 of the angle
+# tolerance; 3.5 and 4 steps trade further the one for the other (docs/fold_files.md).
+LARGE_TIMECONST_SCALE = 1.2
+# ... and sweep slower as the square root of the sheet's flat extent (in units of its longest edge) beyond this: the
+# gap grows in proportion to it (x1.33 from 12 x 12 to 16 x 16, x1.50 from 8 x 8 to 12 x 12) and falls as 1 / T^2.
+# At most 0.043 x the extent of the tolerance was measured at x2, so at most 0.65 of it at any extent (a 20 x 20
+# sheet, extent 27, was 1.03 of it at x2; the 16 x 16 sheet of the speed benchmark, extent 20, sweeps x2.3).
+LARGE_EXTENT = 15.0
 # Exact frame angles may be this far (rad) from the rigid motion through them: FOLD writers round angles (the
 # same allowance as `numeric_pattern.TARGET_TOL`).
 FRAMES_TOL = TARGET_TOL
@@ -166,10 +177,12 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     source = "frames" if several is not None else "+-180 deg fold angles, as M/V sides" if fully else \
         "M/V letters" if letters_only else "folded state"  # fmt: skip
     large = len(pattern.creases) > SPARSE_FROM
+    extent = float(np.linalg.norm(np.ptp(pattern.vertices, axis=0)))  # units of the longest edge (`unit_size`)
     return Scene(
         name=f"fold-{Path(path).stem}", params={"size_m": size}, kinematics=kinematics, mechanism=mechanism,
         loop_joints=tuple(names), drive_joint=inputs[0], drive_scale=1.0, path=(float(sweep[0]), float(sweep[1])),
-        sweep_time_scale=LARGE_SWEEP_TIME_SCALE if large else SWEEP_TIME_SCALE,
+        sweep_time_scale=LARGE_SWEEP_TIME_SCALE * max(1.0, np.sqrt(extent / LARGE_EXTENT)) if large else
+        SWEEP_TIME_SCALE, fast_timeconst_scale=LARGE_TIMECONST_SCALE if large else 1.0,
         fast_regularization_scale=REGULARIZATION_SCALE,
         notes=f"from {Path(path).name} ({source}), lengths in units of its longest edge {size:.6g} m, inputs "
         f"{', '.join(inputs)}; {kinematics.summary()}",

@@ -81,9 +81,10 @@ PROJECTED = preset_setting("fast-projected")
 
 
 def scene_presets(scene: Scene) -> dict[str, Setting]:
-    """The presets as `scene` runs them: fast with its step and time constant times `Scene.fast_step_scale`."""
+    """The presets as `scene` runs them: fast with its step and time constant times `Scene.fast_step_scale`, the
+    time constant times `Scene.fast_timeconst_scale` too."""
     fast, k = PRESETS["fast"], scene.fast_step_scale
-    return PRESETS | {"fast": dataclasses.replace(fast, h=fast.h * k, tau=fast.tau * k)}
+    return PRESETS | {"fast": dataclasses.replace(fast, h=fast.h * k, tau=fast.tau * k * scene.fast_timeconst_scale)}
 
 
 def settings(closures: tuple[str, ...] = ("connect2", "connect1", "independent"),
