@@ -1,7 +1,7 @@
 """What leaving things out of a model saves, measured in one run: CPU time of the same driven sweep with one
-feature put back at a time (contact detection, gravity, render assets, sensors, redundant closure rows), on
-scenes with couplings the closures they imply taken out (`without_implied_closures`), and the cost of rendering
-every N steps. Best of REPEATS; ratios to the pruned model as generated.
+feature put back at a time (contact detection, gravity, island discovery, render assets, sensors, redundant closure
+rows), on scenes with couplings the closures they imply taken out (`without_implied_closures`), and the cost of
+rendering every N steps. Best of REPEATS; ratios to the pruned model as generated.
 
     python scripts/pruning.py [scene ...]      (default: vertex4 miura-sheet)
 """
@@ -62,6 +62,9 @@ def variants(scene) -> dict[str, mujoco.MjModel]:
     gravity = compile_(base)
     gravity.opt.disableflags &= ~int(mujoco.mjtDisableBit.mjDSBL_GRAVITY)
     out["+ gravity"] = gravity
+    islands = compile_(base)  # every model is one mechanism: one island, found again at every step
+    islands.opt.disableflags &= ~int(mujoco.mjtDisableBit.mjDSBL_ISLAND)
+    out["+ island discovery"] = islands
     out["+ render assets (lights, sky)"] = compile_(scene_xml(scene, ModelOptions(render=True)))
     sensors = base.replace(
         "</mujoco>",
