@@ -93,6 +93,11 @@ def preset_duration(preset: str) -> float:
     return preset_number(preset, "sweep_duration")
 
 
+def preset_timestep(preset: str) -> float:
+    """Time step (s) of a preset template."""
+    return float(template(f"options/{preset}.xml").find("option").get("timestep"))
+
+
 def _fmt(values) -> str:
     return " ".join(repr(float(v)) for v in np.ravel(values))  # shortest exact round-trip
 

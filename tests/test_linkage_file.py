@@ -376,6 +376,7 @@ def test_any_field_replaced_by_junk_reads_or_is_refused_in_one_line(tmp_path, so
     ("change", "needle"),
     [(lambda d: d["input"].update(range=[0, 1e308]), "input.range = [0, 1e+308]: it must lie within one turn"),
      (lambda d: d.update(sweep_time_scale=1e6), "sweep_time_scale = 1e+06: it must be at most 100"),
+     (lambda d: d.update(sweep_time_scale=1e-4), "sweep_time_scale = 0.0001: it must be at least 0.008"),
      (lambda d: d["joints"][0].update(a=1e308), "joints[0].a = 1e+308: lengths beyond 1e+09 m are not simulated"),
      (lambda d: d.update(units={"length": "um"}), "units.length: the linkage is 1.5e-06 m across")],
 )  # fmt: skip

@@ -23,6 +23,7 @@ from ..kinematics.base import Kinematics
 from ..kinematics.linkage_path import LinkagePath
 from ..linkage_file import read_linkage
 from ..mechanism import Mechanism
+from ..mjcf import PRESETS, preset_duration, preset_timestep
 from .base import LENGTH_RANGE, Scene
 
 # Share of the sweep's stretch kept clear of a bifurcation at each end it meets one. Measured on the plane-symmetric
@@ -42,6 +43,10 @@ def linkage_scene(path: str | Path) -> Scene:
       residual), or a start configuration that does not close.
     """
     spec = read_linkage(path)
+    least = max(2 * preset_timestep(p) / preset_duration(p) for p in PRESETS)  # before the trace, not at simulate
+    if spec.sweep_time_scale < least:
+        raise ParameterError(f"sweep_time_scale = {spec.sweep_time_scale:g}: it must be at least {least:g} (a sweep "
+                             "of two time steps of every preset)")  # fmt: skip
     mechanism = spec.mechanism
     size = mechanism.length_scale
     if not LENGTH_RANGE[0] <= size <= LENGTH_RANGE[1]:
