@@ -48,9 +48,9 @@ SWEEP_TIME_SCALE = 4.0
 #   off) 4.5x with more error mid-path;
 # - a 6 x 6 Miura sheet of 25:1 panels (60 creases, x4): 1.62e-6 rad at R, 3.1e-8 at R / 100.
 REGULARIZATION_SCALE = 0.01
-# Patterns solved sparse (over SPARSE_FROM creases) sweep x2, not x4: at R / 100 the 16 x 16 sheet's error is
-# 1.2e-7 rad and its closure gap 9.8e-7 m (tolerance 2.7e-6), 4.9e-7 and 3.9e-6 at x1; x8 at R took four times the
-# steps for 4.4e-7.
+# Patterns solved sparse (over SPARSE_FROM creases) sweep x2, not x4: at R / 100 (closures at 2.5 steps of time
+# constant) the 16 x 16 sheet's error was 1.2e-7 rad and its closure gap 9.8e-7 m (tolerance 2.7e-6), 4.9e-7 and
+# 3.9e-6 at x1; x8 at R took four times the steps for 4.4e-7.
 LARGE_SWEEP_TIME_SCALE = 2.0
 # Their closures (and drive) run at this times the preset's time constant, 3 steps instead of 2.5. Near-square
 # letters-only Miura sheets failed at 2.5: their closure gap peaks mid-path, where the sweep is fastest, and softer
