@@ -172,8 +172,9 @@ class Scene:
     # 1.25: at 8 ms RK4's four force evaluations per step cost what Euler's one per 2 ms does, and MuJoCo's defaults
     # (scripts/fast_vs_defaults.py) matched fast's CPU there; 1.25x costs 1.6x the error at 0.8x the CPU.
     fast_step_scale: float = 1.0
-    # The fast preset's closure and drive time constants times this as well, its step unchanged: softer closures
-    # (under RK4 near its stability limit, stiffer ones ring), measured per scene kind.
+    # The fast preset's closure and drive time constants times this as well, its step unchanged: softer closures lower
+    # a large pattern's closure gap, which peaks mid-path where the sweep is fastest, and raise its lag near a lock
+    # (measured on FOLD sheets: docs/fold_files.md).
     fast_timeconst_scale: float = 1.0
     # The fast preset's regulariser scale (mjcf_templates/options/fast.xml) times this: MuJoCo softens every constraint
     # row by R, and a large pattern near a lock, where its closure is ill-conditioned, lags by what R lets through.
