@@ -24,6 +24,13 @@ from .errors import ConvergenceError
 from .geometry import left_jacobian_inverse, rotation_vector, transform_z, wrap
 from .path import levenberg_marquardt, rank, sweep
 
+# `follow`'s first Levenberg-Marquardt damping. From the path engine's 1e-6 its steps near a solution converged only
+# linearly (the 16 x 16 Miura sheet's continuation: 6.8e-5, 2.3e-8, 7.8e-12, 4.5e-16, three Jacobians a solve), from
+# 1e-9 quadratically (6.8e-5, 1.5e-9, 3.9e-16, two). Other solves keep 1e-6: with 1e-9 everywhere the Myard RSRRR
+# file's bifurcation was located 8e-5 rad off (the trace's corrector alone at 1e-9: 2.3e-8, against 1e-9) and the
+# bird base's trace from flat took another branch.
+FOLLOW_DAMPING = 1e-9
+
 
 @dataclass(frozen=True)
 class Loop:
@@ -201,6 +208,7 @@ class LoopSystem:
         *,
         tol: float = 1e-14,
         max_iter: int = 60,
+        damping: float = 1e-6,
     ) -> NDArray[np.float64]:
         """
         Close the loops by moving the joints not in `fixed`, starting from `q0`.
@@ -215,6 +223,8 @@ class LoopSystem:
           Stop when the largest residual component is below this: radians, and translations in units of the
           loops' `length_scale` (a Bricard linkage with 10 km links closes to the same relative precision as one
           with 1 m links; an absolute 1e-14 m was below the rounding of its 1e4 m products).
+        damping : float
+          Levenberg-Marquardt's first damping (`path.levenberg_marquardt`).
 
         Raises
         ------
@@ -233,7 +243,7 @@ class LoopSystem:
         jacobian = self.jacobian_sparse if self.sparse else self.jacobian
         u, r = levenberg_marquardt(
             lambda u: w * self.residual(q_of(u)), lambda u: _scale_rows(jacobian(q_of(u))[:, free], w), q[free], tol,
-            max_iter,
+            max_iter, damping=damping,
         )  # fmt: skip
         q = q_of(u)
         worst = float(np.max(np.abs(r), initial=0.0))
@@ -295,7 +305,7 @@ class LoopSystem:
 
         def close(guess: NDArray[np.float64], k: int) -> NDArray[np.float64]:
             guess[inputs] = values[k]
-            return self.solve(guess, fixed, tol=tol)
+            return self.solve(guess, fixed, tol=tol, damping=FOLLOW_DAMPING)
 
         return sweep(close, q_start, s)
 

@@ -115,16 +115,14 @@ GOLDEN_STOP = 0.05
 # -- parts shared by the modes ---------------------------------------------------------------------------------
 
 
-def levenberg_marquardt(residual, jacobian, u: NDArray[np.float64], tol: float, max_iter: int):
+def levenberg_marquardt(residual, jacobian, u: NDArray[np.float64], tol: float, max_iter: int,
+                        damping: float = 1e-6):  # fmt: skip
     """
     Damped Gauss-Newton (Levenberg-Marquardt, tolerant of rank-deficient Jacobians) on residual(u), from u; stops
-    below `tol` (largest component), after `max_iter` steps, or when the damping needed exceeds 1e8. A sparse
+    below `tol` (largest component), after `max_iter` steps, or when the damping needed exceeds 1e8. `damping` is the
+    first, relative to J^T J's diagonal, cut tenfold on an accepted step and grown tenfold on a rejected one. A sparse
     Jacobian's normal equations are solved in band storage (`BandedNormal`). Returns (u, residual).
     """
-    # relative to J^T J's diagonal; grown tenfold on a rejected step. From 1e-6 the damped steps converged only
-    # linearly near a solution (3e-4 a step on the 16 x 16 Miura sheet's continuation: three Jacobians a solve), from
-    # 1e-9 quadratically (two)
-    damping = 1e-9
     r = residual(u)
     for _ in range(max_iter):
         if np.max(np.abs(r), initial=0.0) < tol:  # an open chain (no residual) is closed

@@ -58,7 +58,7 @@ def write(tmp_path, doc: dict):
 
 
 def test_with_its_marks_flat_the_bird_base_folds_rigidly_with_its_letters_to_a_lock(tmp_path):
-    """Marks F (locked flat): 3 freedoms; three inputs by rank, the steadiest first (e17, e11, e25), driven
+    """Marks F (locked flat): 3 freedoms; three inputs by rank, the steadiest first (e17, e10, e25), driven
     toward +-180 deg along a straight line: every crease keeps its letter's sign all the way to the lock where e12
     (with e13, e20, e21) folds flat, 3.674 rad of input arc from flat (measured), with no self-contact. A straight
     line in other inputs finds less: in e8, e10, e25 (the most folded crease first, the choice before the
