@@ -11,9 +11,9 @@ from dataclasses import dataclass
 @dataclass(frozen=True)
 class Tolerances:
     # Closed form vs numeric loop closure (LM continuation to 1e-14): worst 2.7e-14 rad (Miura
-    # 30/60), 2.2e-13 (symmetric Miura 45/45, near its flat-folded end). Since the continuation's first LM damping is 1e-9
-    # (`closure.FOLLOW_DAMPING`: its steps converge quadratically, to the rounding floor), every registered branch is within 5.3e-14 (truncated
-    # octahedron), most within 1e-14 (they were up to 3.5e-13, waterbomb-thick).
+    # 30/60), 2.2e-13 (symmetric Miura 45/45, near its flat-folded end). Since the continuation's first LM damping is
+    # 1e-9 (`closure.FOLLOW_DAMPING`: its steps converge quadratically, to the rounding floor), every registered branch
+    # is within 5.3e-14 (truncated octahedron), most within 1e-14 (they were up to 3.5e-13, waterbomb-thick).
     closed_form_rad: float = 1e-12
     # The continuation stops once the residual is below 1e-14 (about 45 eps), which leaves the angles up to that over
     # the closure Jacobian's smallest singular value: on ill-conditioned paths a sample is held to
