@@ -152,8 +152,12 @@ def _remove_earlier_run(path: Path) -> None:
 def _write_manifest(path: Path) -> None:
     doc = {"tool": "sim_origami", "pid": os.getpid(), "files": _CLAIMED[path]}
     tmp = path / f".{MANIFEST}.{os.getpid()}.tmp"
-    tmp.write_text(json.dumps(doc, indent=1) + "\n")
-    os.replace(tmp, path / MANIFEST)
+    try:
+        tmp.write_text(json.dumps(doc, indent=1) + "\n")
+        os.replace(tmp, path / MANIFEST)
+    except BaseException:  # a signal between the two (raised as Interrupted) left the temporary file behind in CI
+        tmp.unlink(missing_ok=True)
+        raise
 
 
 def _record(path: Path) -> None:
