@@ -63,6 +63,11 @@ LARGE_TIMECONST_SCALE = 1.2
 # At most 0.043 x the extent of the tolerance was measured at x2, so at most 0.65 of it at any extent (a 20 x 20
 # sheet, extent 27, was 1.03 of it at x2; the 16 x 16 sheet of the speed benchmark, extent 20, sweeps x2.3).
 LARGE_EXTENT = 15.0
+# ... and at R / 10^4, not R / 100: large sheets of thin panels lagged near the lock the sweep ends at by what R lets
+# through (10 x 10 of 25:1 panels: 9.4 x the angle tolerance at R / 100, 0.94 at R / 1000, 0.24 at R / 10^4; 12 x 12
+# of 10:1: 11.5, 1.15, 0.48), while every other large sheet measured kept its error or lowered it (the 16 x 16 of the
+# speed benchmark 8.3e-8 -> 5.5e-8 rad) and its closure gap (docs/fold_files.md).
+LARGE_REGULARIZATION_SCALE = 1e-4
 # Exact frame angles may be this far (rad) from the rigid motion through them: FOLD writers round angles (the
 # same allowance as `numeric_pattern.TARGET_TOL`).
 FRAMES_TOL = TARGET_TOL
@@ -185,7 +190,7 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
         loop_joints=tuple(names), drive_joint=inputs[0], drive_scale=1.0, path=(float(sweep[0]), float(sweep[1])),
         sweep_time_scale=LARGE_SWEEP_TIME_SCALE * max(1.0, np.sqrt(extent / LARGE_EXTENT)) if large else
         SWEEP_TIME_SCALE, fast_timeconst_scale=LARGE_TIMECONST_SCALE if large else 1.0,
-        fast_regularization_scale=REGULARIZATION_SCALE,
+        fast_regularization_scale=LARGE_REGULARIZATION_SCALE if large else REGULARIZATION_SCALE,
         notes=f"from {Path(path).name} ({source}), lengths in units of its longest edge {size:.6g} m, inputs "
         f"{', '.join(inputs)}; {kinematics.summary()}",
         pattern=pattern, drive_joints=tuple(inputs) if multi else (), drive_path=kinematics.path if multi else None,
