@@ -123,11 +123,12 @@ def levenberg_marquardt(residual, jacobian, u: NDArray[np.float64], tol: float, 
     first, relative to J^T J's diagonal, cut tenfold on an accepted step and grown tenfold on a rejected one. A sparse
     Jacobian's normal equations are solved in band storage (`BandedNormal`). Returns (u, residual).
     """
-    r = residual(u)
+    r, J = residual(u), None
     for _ in range(max_iter):
         if np.max(np.abs(r), initial=0.0) < tol:  # an open chain (no residual) is closed
             break
-        J = jacobian(u)
+        if J is None:  # after a rejected step u has not moved: its Jacobian is the same
+            J = jacobian(u)
         if sp.issparse(J):  # large patterns: a few nonzeros per row, so the normal equations stay banded
             J = J.tocsc()
             trial = u + _band_layout(J).step(J.data, r, damping)
@@ -136,7 +137,7 @@ def levenberg_marquardt(residual, jacobian, u: NDArray[np.float64], tol: float, 
             trial = u + np.linalg.solve(JtJ + damping * np.diag(np.diag(JtJ) + 1e-12), -J.T @ r)
         r_trial = residual(trial)
         if np.sum(r_trial**2) < np.sum(r**2):
-            u, r = trial, r_trial
+            u, r, J = trial, r_trial, None
             damping = max(damping * 0.1, 1e-12)
         else:
             damping *= 10.0

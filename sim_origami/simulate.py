@@ -50,7 +50,8 @@ CHORD_RATE = 0.1
 CHOLESKY_SPAN = 1e6
 # A quasi-static sweep moves no joint by this much (rad) in one step: a larger jump marks a divergence.
 JUMP_RAD = 0.5
-# MJCF texts kept by `scene_xml` (scenes are immutable; a scene's text is asked for up to four times a validation).
+# (scene, options) pairs whose MJCF text (`scene_xml`) and compiled model (`compile_model`) are kept: scenes are
+# immutable, and a scene's text is asked for up to four times a validation.
 XML_MEMO = 8
 _XML: dict[tuple[int, ModelOptions], tuple[weakref.ref, str]] = {}
 # The compiled models of the same pairs (a validation's run and projection share one; 32 ms to compile on the 16 x 16
@@ -553,20 +554,23 @@ def contact_input(scene: Scene, branch: str, start: float, stop: float, samples:
     return float(hi)
 
 
-def mujoco_mobility(scene: Scene, q: NDArray[np.float64], rtol: float = 1e-6) -> int:
+def mujoco_mobility(scene: Scene, q: NDArray[np.float64]) -> int:
     """
     Instantaneous mobility in MuJoCo at mechanism angles q: hinges minus the numerical rank of
     the closure rows of efc_J (the drive disabled). Redundant connect rows only lower the rank.
     """
     model, data, _ = closure_model(scene, ModelOptions())
-    Bindings(scene, model).set_pose(data, q)
-    mujoco.mj_fwdPosition(model, data)
-    rows = data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY
-    J = constraint_jacobian(model, data)[rows]
-    return model.nv - rank(J, rtol)
+    return model.nv - rank(_closure_rows(model, data, Bindings(scene, model), q))
 
 
-def projection_conditions(scene: Scene, q: NDArray[np.float64], rtol: float = 1e-6) -> NDArray[np.float64]:
+def _closure_rows(model: mujoco.MjModel, data: mujoco.MjData, binds: Bindings, q: NDArray[np.float64]) -> NDArray:
+    """efc_J's closure rows (dense, every dof) at mechanism angles q, the drives off (`closure_model`)."""
+    binds.set_pose(data, q)
+    make_constraint(model, data)
+    return constraint_jacobian(model, data)[data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY]
+
+
+def projection_conditions(scene: Scene, q: NDArray[np.float64]) -> NDArray[np.float64]:
     """
     How much the rounding of MuJoCo's closure residuals can move the free hinges at mechanism angles q (k, n_joints)
     (rad), per pose (k,): the sites' largest distance from the world origin (m) over the smallest singular value of
@@ -580,11 +584,8 @@ def projection_conditions(scene: Scene, q: NDArray[np.float64], rtol: float = 1e
     q = np.atleast_2d(q)
     out = np.ones(len(q))
     for k, pose in enumerate(q):
-        binds.set_pose(data, pose)
-        mujoco.mj_fwdPosition(model, data)
-        rows = data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY
-        sv = np.linalg.svd(constraint_jacobian(model, data)[rows][:, free], compute_uv=False)
-        r = rank_of(sv, rtol)
+        sv = np.linalg.svd(_closure_rows(model, data, binds, pose)[:, free], compute_uv=False)
+        r = rank_of(sv)
         if r:
             out[k] = float(np.max(np.linalg.norm(data.site_xpos, axis=1), initial=1.0)) / sv[r - 1]
     return out

@@ -10,16 +10,14 @@ from dataclasses import dataclass
 
 @dataclass(frozen=True)
 class Tolerances:
-    # Closed form vs numeric loop closure (LM continuation to 1e-14): worst 2.7e-14 rad (Miura
-    # 30/60), 2.2e-13 (symmetric Miura 45/45, near its flat-folded end). Since the continuation's first LM damping is
-    # 1e-9 (`closure.FOLLOW_DAMPING`: its steps converge quadratically, to the rounding floor), every registered branch
-    # is within 5.3e-14 (truncated octahedron), most within 1e-14 (they were up to 3.5e-13, waterbomb-thick).
+    # Closed form vs numeric loop closure (LM continuation to 1e-14, its steps quadratic: `closure.FOLLOW_DAMPING`):
+    # every registered branch within 5.3e-14 rad (truncated octahedron), most within 1e-14.
     closed_form_rad: float = 1e-12
     # The continuation stops once the residual is below 1e-14 (about 45 eps), which leaves the angles up to that over
     # the closure Jacobian's smallest singular value: on ill-conditioned paths a sample is held to
-    # max(closed_form_rad, closed_form_cond_factor eps cond) (`checks.paths.floor_verdict_values`). The 16 x 16
-    # Miura FOLD sheet measured at most 15 eps cond (1.66e-12 rad at cond 492, near its folded end): 10x that. (With the
-    # quadratic LM steps it is 2.9e-14 rad there; the factor was not re-measured over the FOLD gallery.)
+    # max(closed_form_rad, closed_form_cond_factor eps cond) (`checks.paths.floor_verdict_values`). Set at 10x the 15
+    # eps cond the 16 x 16 Miura FOLD sheet measured with linearly converging steps (1.66e-12 rad at cond 492); with
+    # quadratic ones it reads 2.4e-14 there, so the factor is a margin now, not re-measured over the FOLD gallery.
     closed_form_cond_factor: float = 150.0
     # Closure residual of a closed form (product of joint transforms): worst 7.3e-16 (origami),
     # 5.3e-15 (Myard with a23 = 10 m).
