@@ -94,7 +94,7 @@ def rssr_tables(nominal: RSSR) -> None:
         built = error.built(nominal)
         w = max_waggle(nominal, built)
         row(f"{name}: corrected (3-50)", reference, w.value / DEG)
-        row("  |beta_R - beta| [NEW: equals the max]", reference, abs(built.beta - nominal.beta) / DEG)
+        row("  |beta_R - beta| (derived here: equals the max)", reference, abs(built.beta - nominal.beta) / DEG)
         row("  at theta1", "", w.theta1 / DEG, 1)
 
 

@@ -92,7 +92,7 @@ _UNRESOLVABLE_CITATION = re.compile(  # citation-guard pattern
     r"|(?<![a-z])digest"  # citation-guard pattern: our notes on the sources
     r"|\bspec(?:\s+[\w.-]+\.md\b|\s*§|\s+M\d+\b)|\bthe spec\b"  # citation-guard pattern: our notes as "spec"
     r"|\bthe seed(?:['’]s|s['’])"  # citation-guard pattern: "the seed's" for the source document
-    r"|\[NEW\]",  # citation-guard pattern: our notes' mark for a result of theirs (say "derived here")
+    r"|\[(?:NEW|RECON)\b",  # citation-guard pattern: our notes' marks (say "derived here", "reconstructed here")
     re.IGNORECASE,
 )
 
@@ -146,6 +146,8 @@ def test_no_citation_of_internal_notes():
         ("the seed's Fig. 3-5", True),  # citation-guard sample
         ("the seeds' dihedrals", True),  # citation-guard sample
         ("closes on six combinations [NEW]", True),  # citation-guard sample
+        ("Case 10 family **[NEW, verified]**", True),  # citation-guard sample
+        ("the two-fold case [RECON]", True),  # citation-guard sample
         ("closes on six combinations (derived here)", False),
     ],
 )

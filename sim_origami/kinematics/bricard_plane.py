@@ -37,7 +37,7 @@ Branches are named by a geometric property, checked on the branch:
 * otherwise ``theta3_<deg>_at_theta2_<deg>``: the configuration the branch passes through at the input
   where it is farthest from the other root (e.g. case 9's halves, through the Bennett bifurcations).
 
-Case 10 family (eqn 4-32) **[NEW, verified]**: path I (eqn 4-33) closes for every a = b + c,
+Case 10 family (eqn 4-32) (derived here, verified numerically): path I (eqn 4-33) closes for every a = b + c,
 alpha = pi - 2 beta, gamma = -beta, R = 0 (so it is case 8's branch too); path II (eqn 4-34) needs b = c.
 Both are evaluated from those explicit forms, which have no 0/0 points.
 

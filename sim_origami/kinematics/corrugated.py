@@ -1,7 +1,7 @@
 """Double-corrugated units P and Q: rigid foldability against the mountain-valley assignment (Peng 2018,
 §3.2.1-3.2.2; the §3.2.3 metamaterials are stacks of these units).
 
-Geometry (reconstructed here [RECON] from eqns 3-16, 3-22 and the text; Fig. 3-1 is lost in our copy). Design angles are
+Geometry (reconstructed here from eqns 3-16, 3-22 and the text; Fig. 3-1 is lost in our copy). Design angles are
 the sectors (alpha, beta, gamma, delta) of a type-I vertex, counter-clockwise; every vertex is
 flat-foldable (alpha + gamma = beta + delta = pi) and gamma is the strict minimum (the thesis's case,
 which the M/V counts assume). A type-II vertex has the same sectors clockwise: (alpha, delta, gamma, beta).

@@ -6,7 +6,7 @@ inner creases (AB, BC, CD, DA) and 8 outer creases. Each vertex carries Peng 201
 (sector alpha_k between creases k and k+1); `MeshVertex.previous` is the crease pointing to the previous
 corner (A's previous is D) and a mirrored vertex (a mirror image placement, Peng 2018, §2.3) numbers its creases
 clockwise. Outer creases are named by vertex and thesis number (``a3``, ``b4``, ...). Layout (reconstructed
-here, [RECON]): A = (0, 0), crease A->D along +x, |AB| and |BC| given, D where the line from C meets the x axis;
+here): A = (0, 0), crease A->D along +x, |AB| and |BC| given, D where the line from C meets the x axis;
 side panels are quadrilaterals and corner panels triangles bounded by outer creases of length `outer`.
 
 Signs (`sim_origami.creases`): rho is the crease's own fold angle, 0 flat, > 0 a valley seen from +z. It is
@@ -23,14 +23,14 @@ Cases (`example`), each driven by the inner crease AB:
    vertices in mode S or all in mode C. Mixed modes do not close: each vertex multiplies tan(rho/2) by a
    constant (eqns 3-1, 3-3), so the loop gain m12(A) m23(B) m34(C) m41(D) of a mixed loop is not 1 (it is
    42.66, -0.0234, -1, 1819.7, 5.5e-4, 0.0234 or -42.66) and only the flat and the fully folded states close.
-3. Two-fold case (Path1, eqns 2-15...2-17) [RECON]: B and D are mirror images of A and C, the shared
+3. Two-fold case (Path1, eqns 2-15...2-17; reconstructed here): B and D are mirror images of A and C, the shared
    creases are a2-b2, b1-c1, c2-d2, d1-a1, so every central corner is alpha_12. The central panel is
    planar only for alpha_12 = 90 deg: a rectangle, built with the vertex of Example 1 (which has
    alpha_12 = 90 deg) and |AB| = |BC| = 1. Derived here: It closes on six combinations, not only with every vertex
    alike: a mirror pair on one branch carries equal folds, so the crease it shares with the rest of the loop
    matches whenever A, B and C, D (pairs sharing crease 2) or B, C and D, A (sharing crease 1) are pairwise
    on one branch. The mixed ones are named per vertex (``odd2-odd2-odd3-odd3`` = A, B on odd2, C, D on odd3).
-4. Plane-symmetric case (Path3, eqn 2-19) [RECON]: D and C are mirror images of A and B, the shared creases
+4. Plane-symmetric case (Path3, eqn 2-19; reconstructed here): D and C are mirror images of A and B, the shared creases
    are a2-b2, b3-c3, c2-d2, d1-a1, so the central corners are alpha_12, alpha_23, alpha_23, alpha_12 and a
    planar central panel needs alpha_12 + alpha_23 = 180 deg: an isosceles trapezoid, mirror-symmetric about
    the plane through the midpoints of DA and BC. The thesis's figure vertex (Fig 2-6, its

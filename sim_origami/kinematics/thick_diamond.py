@@ -2,7 +2,7 @@
 
 Sectors (eqn 4-29): alpha12 = alpha34 = alpha45 = alpha61 = alpha, alpha23 = alpha56 = pi - 2 alpha,
 0 < alpha <= pi/4 (flat-foldable). Creases 1-4, 2-5 and 3-6 are collinear in the flat sheet. Hinge k lies
-on the line through (0, 0, h_k) along d_k with h = (0, p, p - q, p - q - r, p - q, p) (reconstructed here [RECON]),
+on the line through (0, 0, h_k) along d_k with h = (0, p, p - q, p - q - r, p - q, p) (reconstructed here),
 so the distances between neighbouring hinges are a12 = a61 = p, a23 = a56 = q, a34 = a45 = r. The
 equivalence with the zero-thickness vertex REQUIRES r = p + q (eqn 4-41c, not only "for compact folding"):
 with r != p + q the plane-symmetric Bricard still moves, but along another curve (checked here on
@@ -13,7 +13,7 @@ conditions: hinge line 4, carried by the chain from panel 1 (turned by rho1/2 ab
 that plane. Both are linear in (cos(rho1/2), sin(rho1/2)); eliminating rho1 leaves, with u = tan(rho2/2),
 v = tan(rho3/2) and k = r/p,
 
-    (u - v) ((p + q) u + p v) = 0                                                 [NEW, derived here]
+    (u - v) ((p + q) u + p v) = 0                                                 (derived here)
 
 so exactly two plane-symmetric branches leave the flat state (instantaneous mobility 2 there):
 

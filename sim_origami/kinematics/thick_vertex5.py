@@ -2,7 +2,7 @@
 
 Sectors (eqn 4-10): alpha12 = alpha51 = alpha, alpha23 = alpha45 = pi/2, alpha34 = pi - 2 alpha, 0 < alpha < pi/2.
 Hinge k lies on the line through (0, 0, h_k) along its flat crease direction d_k with
-h = (0, a12, a12 + a23, a12 + a23, a12) (reconstructed here [RECON]): hinges 3 and 4 at one height (a34 = 0) and
+h = (0, a12, a12 + a23, a12 + a23, a12) (reconstructed here): hinges 3 and 4 at one height (a34 = 0) and
 a12 = a23 sin(alpha) (eqn 4-25c); b = a23 is the thickness scale. Any other a12 leaves the 5R rigid
 (Kutzbach 5 - 6 = -1): with alpha = pi/6 (Fig 4-8) and a23 = 1, a12 = 0.7 misses closure by 0.2 at rho1 = pi/2.
 

@@ -15,7 +15,8 @@ sin(alpha + beta) and CA = d sin(beta) / sin(alpha + beta):
     R5 = -CA sin(gamma) / sin(gamma - epsilon),   R6 = CA sin(epsilon) / sin(gamma - epsilon).
 
 The thesis prints each ratio in absolute value; that equals these signed offsets only for gamma > delta > epsilon
-and gamma > epsilon (its example) [NEW: with gamma < delta the absolute values miss closure, the test shows it].
+and gamma > epsilon (its example) (derived here: with gamma < delta the absolute values miss closure, the test
+shows it).
 R1 R3 R5 + R2 R4 R6 = 0: the doubly collapsible octahedral Bricard condition.
 
 gamma = delta (eqn 3-40, z1 parallel to z2): a12 = d sin(delta), alpha12 = 0; R1 = 0 and R2 = -d cos(delta) (only R1 +

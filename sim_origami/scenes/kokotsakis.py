@@ -5,7 +5,8 @@ inner crease AB driven (`kinematics.kokotsakis`). The spanning tree keeps the fo
 outer crease per corner panel; the other outer crease of each corner panel is cut and closed by connects,
 one per vertex loop. `case` picks Peng 2018's mesh: 1 = Example 1 (rotation case, identical generic vertices,
 eqn 2-34), 2 = Example 2 (variant rotation case, flat-foldable vertices, eqn 2-38), 3 = the two-fold case with
-identical (mirrored) vertices [RECON], 4 = the plane-symmetric case with identical (mirrored) vertices [RECON]:
+identical (mirrored) vertices, 4 = the plane-symmetric case with identical (mirrored) vertices (both
+reconstructed here):
 an isosceles trapezoid with two straight crease lines, so the flat state is also the start of a 2-DOF family.
 """
 
@@ -19,7 +20,7 @@ PARAMS = (
         "case",
         "",
         1.0,
-        "1 = Example 1 (eqn 2-34), 2 = Example 2 (eqn 2-38), 3 = two-fold case [RECON], 4 = plane-symmetric [RECON]",
+        "1 = Example 1 (eqn 2-34), 2 = Example 2 (eqn 2-38), 3 = two-fold case, 4 = plane-symmetric (3, 4 ours)",
         lo=1,
         hi=4,
         integer=True,

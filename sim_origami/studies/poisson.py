@@ -9,8 +9,8 @@ nu = -(dR/R) / (dD/D) = -(D/R) (dR/dx) / (dD/dx) (Peng 2018, eqns 3-28, 3-32), h
 differences on the simulated samples, thinned to a minimum step in x so that the integrator's noise is not
 divided by a vanishing step where the minimum-jerk drive starts and stops.
 
-Square-twist metamaterial unit (Peng 2018, §3.3, Fig 3-18, eqns 3-30 to 3-32) [RECON: the figure is lost in our
-copy]. On the square twist of `kinematics.square_twist` with vertex A in mode C, theta = rho_AB and phi =
+Square-twist metamaterial unit (Peng 2018, §3.3, Fig 3-18, eqns 3-30 to 3-32) (reconstructed here: the figure is lost in
+the text we have). On the square twist of `kinematics.square_twist` with vertex A in mode C, theta = rho_AB and phi =
 rho_DA (creases 2 and 3 of A), and the central square fixed in the plane z = 0 with AB along +x, the thesis's
 three dimensions are exactly these distances between pattern vertices (a = pleat, 2b = 2c = side):
 
