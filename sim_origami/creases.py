@@ -25,6 +25,7 @@ from numpy.typing import NDArray
 
 from .closure import Coupling, Loop, LoopSystem
 from .errors import ParameterError
+from .fold_mesh import signed_areas
 from .geometry import frame_along, frames_along, invert
 from .graph import spanning_edges
 
@@ -218,9 +219,7 @@ class CreasePattern:
                     return ()  # a border that does not close (faces not one oriented sheet): no hole to tell
                 cycle.append(nxt[cycle[-1]][0])
             seen.update(cycle)
-            p = v[cycle]
-            area = 0.5 * float(np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1]))
-            if area > HOLE_AREA_RTOL * scale:
+            if float(signed_areas(v, [tuple(cycle)])[0]) > HOLE_AREA_RTOL * scale:
                 continue  # a piece's outer border
             ks, dirs, at_v = [], [], []
             for i in range(len(cycle) - 1, -1, -1):

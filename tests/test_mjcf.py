@@ -253,8 +253,10 @@ def test_a_scenes_fast_step_scale_lengthens_fast_only_and_keeps_tau_over_h():
 
 
 def test_a_scenes_fast_timeconst_scale_softens_the_closures_and_drive_not_the_step():
-    """A large FOLD pattern's closures and drive run at 1.2x fast's time constant (3 steps, not 2.5), its step 8 ms."""
-    scene = dataclasses.replace(scenes.get("waterbomb-vertex").build(), fast_timeconst_scale=1.2)
+    """A large FOLD pattern's closures and drive run at 1.2x fast's time constant (3 steps, not 2.5), its step 8 ms;
+    its regulariser scale reaches model.xml and the pareto study's fast setting."""
+    scene = dataclasses.replace(scenes.get("waterbomb-vertex").build(), fast_timeconst_scale=1.2,
+                                fast_regularization_scale=0.01)
     fast, _ = compiled(scene, preset="fast")
     stiff, _ = compiled(scene, preset="stiff")
     plain, _ = compiled(scenes.get("waterbomb-vertex").build(), preset="stiff")
@@ -263,3 +265,6 @@ def test_a_scenes_fast_timeconst_scale_softens_the_closures_and_drive_not_the_st
     assert rows and np.allclose(fast.eq_solref[rows, 0], 0.024, rtol=0, atol=1e-15)
     assert np.array_equal(stiff.eq_solref, plain.eq_solref)
     assert pareto.scene_presets(scene)["fast"].tau == pytest.approx(0.024)
+    # the pareto study's "fast as the scene runs it" carries the scene's regulariser, as model.xml does
+    regularization = float(fast.numeric("regularization_scale").data[0])
+    assert regularization == pytest.approx(1e-4) == pareto.scene_presets(scene)["fast"].regularization

@@ -24,6 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import fold_mesh
 from ..creases import CreasePattern
 from ..errors import ParameterError
 from ..fold import read_fold
@@ -184,7 +185,7 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     source = "frames" if several is not None else "+-180 deg fold angles, as M/V sides" if fully else \
         "M/V letters" if letters_only else "folded state"  # fmt: skip
     large = len(pattern.creases) > SPARSE_FROM
-    extent = float(np.linalg.norm(np.ptp(pattern.vertices, axis=0)))  # units of the longest edge (`unit_size`)
+    extent = fold_mesh.size(pattern.vertices)  # units of the longest edge (`unit_size`)
     return Scene(
         name=f"fold-{Path(path).stem}", params={"size_m": size}, kinematics=kinematics, mechanism=mechanism,
         loop_joints=tuple(names), drive_joint=inputs[0], drive_scale=1.0, path=(float(sweep[0]), float(sweep[1])),

@@ -81,10 +81,12 @@ PROJECTED = preset_setting("fast-projected")
 
 
 def scene_presets(scene: Scene) -> dict[str, Setting]:
-    """The presets as `scene` runs them: fast with its step and time constant times `Scene.fast_step_scale`, the
-    time constant times `Scene.fast_timeconst_scale` too."""
+    """The presets as `scene` runs them (`mjcf.build_xml`): fast with its step and time constant times
+    `Scene.fast_step_scale`, the time constant times `Scene.fast_timeconst_scale` too, its regulariser times
+    `Scene.fast_regularization_scale`."""
     fast, k = PRESETS["fast"], scene.fast_step_scale
-    return PRESETS | {"fast": dataclasses.replace(fast, h=fast.h * k, tau=fast.tau * k * scene.fast_timeconst_scale)}
+    return PRESETS | {"fast": dataclasses.replace(fast, h=fast.h * k, tau=fast.tau * k * scene.fast_timeconst_scale,
+                                                  regularization=fast.regularization * scene.fast_regularization_scale)}
 
 
 def settings(closures: tuple[str, ...] = ("connect2", "connect1", "independent"),
