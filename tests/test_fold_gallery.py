@@ -5,14 +5,13 @@ folded form, sheets turned in the plane or lying in XZ. Rigid ones validate thre
 the square twist with its flat-foldable letters does not fold rigidly, and says where. Measured: docs/fold_files.md.
 """
 
-import json
 from itertools import pairwise
 
 import numpy as np
 import pytest
+from fold_fixtures import validated, write  # tests/ is on pytest's sys.path
 from scipy.optimize import linprog
 
-from sim_origami.cli import main
 from sim_origami.fold import read_fold
 from sim_origami.kinematics.numeric_pattern import LOCK_MARGIN
 from sim_origami.scenes.fold_file import _choose_inputs, fold_scene
@@ -305,12 +304,6 @@ NOT_RIGID = {
 }
 
 
-def write(tmp_path, name: str, doc: dict):
-    path = tmp_path / (name.replace(" ", "_").replace(",", "") + ".fold")
-    path.write_text(json.dumps(doc))
-    return path
-
-
 @pytest.mark.parametrize("name", list(GALLERY) + list(NOT_RIGID))
 def test_every_gallery_file_reads(name):
     make, faces, creases, interior = {**GALLERY, **NOT_RIGID}[name]
@@ -328,13 +321,6 @@ def test_fully_folded_angles_are_traced_as_the_letters(tmp_path):
     assert np.max(k.mobility) == 1 and len(k.inputs) == 1
     assert abs(scene.path[1]) > 0.9 * (np.pi - LOCK_MARGIN)
     assert "as M/V sides" in scene.notes
-
-
-def validated(tmp_path, name: str, doc: dict) -> tuple[int, dict]:
-    path = write(tmp_path, name, doc)
-    out = tmp_path / "out"
-    code = main(["validate", "--fold", str(path), "--preset", "fast", "--out", str(out)])
-    return code, json.loads((out / "report.json").read_text())
 
 
 @pytest.mark.slow
@@ -504,11 +490,9 @@ def test_mujoco_diverging_on_a_users_file_is_a_failed_check_with_its_report(tmp_
     """Driven at 15 of its 55 freedoms, the 7 x 7 grid makes MuJoCo diverge (mjWARN_BADQACC at step 263 of 500,
     measured; at 18 it did, at step 191, before large patterns ran at the regulariser / 10^4): exit 1, not 2 (bad
     input) or 3, with report.json naming the run's configuration and where it went wrong."""
-    path, out = write(tmp_path, "grid", triangulated(7)), tmp_path / "out"
-    code = main(["validate", "--fold", str(path), "--input", GRID7_INPUTS.rsplit(",", 3)[0], "--out", str(out)])
+    code, report = validated(tmp_path, "grid", triangulated(7), "--input", GRID7_INPUTS.rsplit(",", 3)[0])
     printed = capsys.readouterr().out
     assert code == 1, printed
-    report = json.loads((out / "report.json").read_text())
     (verdict,) = report["verdicts"]
     assert not report["passed"] and verdict["name"] == "MuJoCo run finished without a warning"
     assert "preset fast" in verdict["detail"] and "first went wrong at step" in verdict["detail"]
@@ -520,8 +504,7 @@ def test_too_few_inputs_fail_their_check_rather_than_the_reference(tmp_path, cap
     """18 of the 55 (15 was an internal error, exit 3): the reference polish's normal matrix is singular along the
     undriven freedoms, and the factor raised; now the undriven directions are left where they are and the check says
     so (MuJoCo, run to the end, strays 1.5 rad along them)."""
-    path, out = write(tmp_path, "grid", triangulated(7)), tmp_path / "out"
-    code = main(["validate", "--fold", str(path), "--input", GRID7_INPUTS, "--out", str(out)])
+    code, _ = validated(tmp_path, "grid", triangulated(7), "--input", GRID7_INPUTS)
     printed = capsys.readouterr().out
     assert code == 1, printed
     assert "FAIL through-target: freedoms not driven (mobility along the path - inputs): 37" in printed

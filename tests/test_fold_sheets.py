@@ -3,14 +3,12 @@ plain sheet, one near a square grid, one of long thin panels. Each of them used 
 "swept range" failed): the trace driven by the file's first crease, a zigzag one, stopped at its first step from flat.
 Real MuJoCo, real files written the way Rabbit Ear writes them."""
 
-import json
 
 import numpy as np
 import pytest
-from fold_fixtures import miura_letters_only  # tests/fold_fixtures.py (pytest puts tests/ on sys.path)
+from fold_fixtures import miura_letters_only, validated, write  # tests/ is on pytest's sys.path
 
 from sim_origami.checks.paths import closure_conditions, compare
-from sim_origami.cli import main
 from sim_origami.scenes.fold_file import fold_scene
 from sim_origami.simulate import project, projection_conditions
 
@@ -23,14 +21,11 @@ SHEETS = {
 
 @pytest.mark.parametrize("name", list(SHEETS))
 def test_letters_only_sheet_folds_to_its_lock_and_validates(tmp_path, capsys, name):
-    path = tmp_path / f"{name}.fold"
-    path.write_text(json.dumps(miura_letters_only(*SHEETS[name])))
-    out = tmp_path / "out"
-    assert main(["validate", "--fold", str(path), "--preset", "fast", "--out", str(out)]) == 0, capsys.readouterr().out
-    report = json.loads((out / "report.json").read_text())
-    swept = report["branches"][0]["verdicts"][0]
+    code, report = validated(tmp_path, name, miura_letters_only(*SHEETS[name]))
+    assert code == 0, capsys.readouterr().out
+    swept = next(v for v in report["branches"][0]["verdicts"] if "swept range" in v["name"])
     assert swept["name"].endswith("swept range (0.001 rad / input range swept)")
-    assert swept["measured"] < 1e-3 / 1.0  # more than a radian of one crease's motion, up to where it locks
+    assert swept["measured"] < 1e-3  # more than a radian of one crease's motion, up to where it locks
     assert report["passed"] is True
 
 
@@ -38,9 +33,7 @@ def test_a_thin_panelled_sheets_projection_is_held_to_mujocos_own_floor(tmp_path
     """MuJoCo rounds site positions to eps times their coordinates (the sheet is 4 units long), and its closure rows
     resolve the hinges only to their smallest singular value (the panels are 0.04 wide): the projection's floor is
     set by that ratio, several times the loop closure's condition number."""
-    path = tmp_path / "thin.fold"
-    path.write_text(json.dumps(miura_letters_only(*SHEETS["thin-panels"])))
-    scene = fold_scene(path)
+    scene = fold_scene(write(tmp_path, "thin", miura_letters_only(*SHEETS["thin-panels"])))
     branch = scene.kinematics.branches()[0].name
     x = np.linspace(*scene.branch_path(branch), 12)
     run = project(scene, branch, x)
@@ -57,11 +50,8 @@ def test_a_thin_panelled_sheet_far_from_the_origin_validates(tmp_path, capsys):
     The polish accepts the rounding floor for dense systems as for sparse ones."""
     doc = miura_letters_only(3, 3, 0.4, 0.067, 0.0215)
     doc["vertices_coords"] = (np.array(doc["vertices_coords"]) + np.array([700.0, -300.0])).tolist()
-    path = tmp_path / "far.fold"
-    path.write_text(json.dumps(doc))
-    code = main(["validate", "--fold", str(path), "--out", str(tmp_path / "out")])
+    code, report = validated(tmp_path, "far", doc)
     assert code == 0, capsys.readouterr().out
-    report = json.loads((tmp_path / "out" / "report.json").read_text())
     assert report["passed"] and report["angle_error_max_rad"] < 1e-6
 
 
@@ -70,13 +60,11 @@ def test_a_large_near_square_sheet_keeps_mujocos_closures_within_tolerance(tmp_p
     """A 12 x 12 letters-only sheet of 79 deg parallelograms (264 creases, solved sparse): MuJoCo's closure gap peaks
     mid-path, where the sweep is fastest, and grows with the sheet's extent. At the closures' former time constant
     (2.5 steps) and a plain x2 sweep it was 1.20 of its tolerance, a failed check on a rigid pattern."""
-    path = tmp_path / "near-square-12.fold"
-    path.write_text(json.dumps(miura_letters_only(12, 12, zig=0.2)))
-    scene = fold_scene(path)
+    doc = miura_letters_only(12, 12, zig=0.2)
+    scene = fold_scene(write(tmp_path, "near-square-12", doc))
     assert scene.fast_timeconst_scale > 1.0 and scene.sweep_time_scale > 2.0  # extent 16.8 edges
-    out = tmp_path / "out"
-    assert main(["validate", "--fold", str(path), "--preset", "fast", "--out", str(out)]) == 0, capsys.readouterr().out
-    report = json.loads((out / "report.json").read_text())
+    code, report = validated(tmp_path, "near-square-12", doc)
+    assert code == 0, capsys.readouterr().out
     gap = next(v for v in report["branches"][0]["verdicts"] if "fast closure residual" in v["name"])
     assert gap["measured"] < 0.8 * gap["tolerance"]
 
@@ -86,9 +74,6 @@ def test_a_large_sheet_of_thin_panels_follows_mujocos_motion_to_its_lock(tmp_pat
     """10 x 10 letters-only sheet of 25:1 panels (180 creases): near the lock the sweep ends at, MuJoCo lagged by what
     its regulariser lets through, 9.4x the angle tolerance at R / 100 (a failed check on a rigid pattern); R / 10^4
     for large patterns: 0.24x."""
-    path = tmp_path / "thin-10.fold"
-    path.write_text(json.dumps(miura_letters_only(10, 10, 1.0, 0.04, 0.02)))
-    out = tmp_path / "out"
-    assert main(["validate", "--fold", str(path), "--preset", "fast", "--out", str(out)]) == 0, capsys.readouterr().out
-    report = json.loads((out / "report.json").read_text())
+    code, report = validated(tmp_path, "thin-10", miura_letters_only(10, 10, 1.0, 0.04, 0.02))
+    assert code == 0, capsys.readouterr().out
     assert report["angle_error_max_rad"] < 0.5e-6

@@ -175,7 +175,7 @@ def _open_axes(doc: dict) -> None:
         (lambda d: d["input"].update(joint="theta9"), "input.joint = 'theta9'"),
         (lambda d: d["input"].update(range=[90, 10]), "input.range"),
         (_unassemblable, "joints: the loops cannot be assembled at theta1 = 65.84 deg: no closed pose from 24 random "
-                         "starts, the smallest closure residual reached is 1.1"),
+                         "starts, the smallest closure residual reached is 1.14 "),
         (_open_axes, "joints: the axes form no closed loop"),
     ],
 )

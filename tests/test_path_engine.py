@@ -129,6 +129,7 @@ def test_banded_normal_equations_solve_as_a_dense_solve():
     damped = A + 1e-3 * np.diag(np.diag(A) + 1e-12)
     assert np.allclose(damped @ step, -(J.T @ r), rtol=0, atol=1e-12)
     b = rng.standard_normal((J.shape[1], 2))
-    b[-1] = 0.0  # the empty column's row of J^T J is 1e-300: only b = 0 there has a finite solution
+    b[-1] = 0.0  # the empty column's row of J^T J is shifted by 1e-12 of the largest diagonal: b = 0 keeps it still
     x = layout.factor(J.data).solve(b)
     assert np.allclose(A @ x, b, rtol=0, atol=1e-10) and x.shape == b.shape
+    assert np.all(x[-1] == 0.0)
