@@ -41,12 +41,13 @@ def plot_report(report: Report, path: str | Path) -> Path:
         else:
             dense = np.linspace(*kin.branch(run.requested).domain, DENSE)
             values, valid = kin.evaluate(run.requested, dense)
-        for k, name in enumerate(kin.joint_names if len(kin.joint_names) <= LEGEND_MAX else ()):
-            c = colors[k % len(colors)]
-            top.plot(np.rad2deg(dense[valid]), np.rad2deg(values[valid, k]), color=c, lw=1.2, label=name)
-            top.plot(np.rad2deg(sim.input[pick]), np.rad2deg(sim.simulated[pick, k]), "o", ms=3.5,
-                     mfc="none", color=c)  # fmt: skip
-            bottom.semilogy(np.rad2deg(sim.input), np.maximum(sim.error[:, k], 1e-17), color=c, lw=1)
+            for k, name in enumerate(kin.joint_names):
+                c = colors[k % len(colors)]
+                top.plot(np.rad2deg(dense[valid]), np.rad2deg(values[valid, k]), color=c, lw=1.2, label=name)
+                top.plot(np.rad2deg(sim.input[pick]), np.rad2deg(sim.simulated[pick, k]), "o", ms=3.5,
+                         mfc="none", color=c)  # fmt: skip
+                bottom.semilogy(np.rad2deg(sim.input), np.maximum(sim.error[:, k], 1e-17), color=c, lw=1)
+            top.legend(fontsize=8, ncol=2)
         if report.reference is not None:  # the user's curves: crosses on the curves, their error to the numeric solve
             ref = report.reference
             on = ref.on(run.requested)
@@ -57,8 +58,6 @@ def plot_report(report: Report, path: str | Path) -> Path:
         top.set_title(f"{report.scene.name}: branch {run.requested}\n(followed {run.followed or '-'})", fontsize=10)
         top.set_xlabel(f"{kin.input_name} (deg)")
         top.set_ylabel("joint angle (deg)")
-        if len(kin.joint_names) <= LEGEND_MAX:
-            top.legend(fontsize=8, ncol=2)
         top.grid(alpha=0.3)
         bottom.set_xlabel(f"{kin.input_name} (deg)")
         bottom.set_ylabel(f"|MuJoCo {report.preset} - closed form| (rad)")
@@ -71,12 +70,12 @@ def plot_report(report: Report, path: str | Path) -> Path:
     return Path(path)
 
 
-def _many_joints(top, bottom, dense_deg, values, sim, pick, colors) -> None:
+def _many_joints(top, bottom, x_deg, values, sim, pick, colors) -> None:
     """The same curves, markers and error lines for more joints than a legend names, one artist per kind: drawn as
     1440 separate lines the 16 x 16 Miura FOLD sheet's 480 creases took 1.5 s of CPU."""
     k = values.shape[1]
     c = [colors[j % len(colors)] for j in range(k)]
-    top.add_collection(LineCollection([np.c_[dense_deg, np.rad2deg(values[:, j])] for j in range(k)], colors=c,
+    top.add_collection(LineCollection([np.c_[x_deg, np.rad2deg(values[:, j])] for j in range(k)], colors=c,
                                       linewidths=1.2))  # fmt: skip
     edges = np.repeat(to_rgba_array(c), len(pick), axis=0)  # joint by joint, as the values below
     top.scatter(np.tile(np.rad2deg(sim.input[pick]), k), np.rad2deg(sim.simulated[pick].T).ravel(), s=12,
