@@ -218,7 +218,7 @@ def test_case_7_is_a_rigid_structure_assembled_only_at_theta2_pi():
     # -16.00000000000001.
     assert kin.classification().delta_range[1] == pytest.approx(-16.0, abs=1e-9)
     [(x0, q)] = kin.isolated_assemblies()
-    # Derived here: At theta2 = pi (m infinite, outside eqn 4-15) the loop closes: measured residual 9.5e-16,
+    # Derived here: at theta2 = pi (m infinite, outside eqn 4-15) the loop closes: measured residual 9.5e-16,
     # so "the loop cannot be assembled" (Feng 2018, Table 4-1, case 7) holds only for finite theta2.
     assert x0 == pytest.approx(np.pi)
     np.testing.assert_allclose(wrap(q - np.array([0, np.pi, np.pi, 0, np.pi, np.pi])), 0.0, atol=1e-9)

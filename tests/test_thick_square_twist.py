@@ -61,7 +61,7 @@ def test_height_rule_in_the_thesis_frame(modes):
 
 @pytest.mark.parametrize("modes", SIGN_CONSISTENT)
 def test_mirrored_vertices_make_every_string_height_consistent_and_kinematics_locks_the_others(modes):
-    """Derived here: Mirrored layouts reverse a vertex's lift: three layouts per string (one single-slab), so heights do
+    """Derived here: mirrored layouts reverse a vertex's lift: three layouts per string (one single-slab), so heights do
     not select the rigid strings; a non-rigid thick sheet is immobile even at flat (zero thickness: 4)."""
     found = layouts(ALPHA, B, modes)
     assert len(found) == 3

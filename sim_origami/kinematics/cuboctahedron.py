@@ -32,7 +32,8 @@ bifurcation: E = F and G = H, so the top pyramid can turn rigidly about the line
 (`swing_poses`, exact closure), but its faces then cut through the bottom ones for either sign of the turn. Beyond
 theta_f on the path, B and D, A and I, E and F pass through each other (the triangles' edges cross the opposite faces).
 The cuboctahedron is not an end of the Bennett motion (no face crossing up to theta = 180 deg); the thesis's
-transformation starts there, so `domain` is [theta_f, theta_d]. """
+transformation starts there, so `domain` is [theta_f, theta_d].
+"""
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray

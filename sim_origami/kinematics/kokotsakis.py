@@ -26,7 +26,7 @@ Cases (`example`), each driven by the inner crease AB:
 3. Two-fold case (Path1, eqns 2-15...2-17; reconstructed here): B and D are mirror images of A and C, the shared
    creases are a2-b2, b1-c1, c2-d2, d1-a1, so every central corner is alpha_12. The central panel is
    planar only for alpha_12 = 90 deg: a rectangle, built with the vertex of Example 1 (which has
-   alpha_12 = 90 deg) and |AB| = |BC| = 1. Derived here: It closes on six combinations, not only with every vertex
+   alpha_12 = 90 deg) and |AB| = |BC| = 1. Derived here: it closes on six combinations, not only with every vertex
    alike: a mirror pair on one branch carries equal folds, so the crease it shares with the rest of the loop
    matches whenever A, B and C, D (pairs sharing crease 2) or B, C and D, A (sharing crease 1) are pairwise
    on one branch. The mixed ones are named per vertex (``odd2-odd2-odd3-odd3`` = A, B on odd2, C, D on odd3).
@@ -37,7 +37,7 @@ Cases (`example`), each driven by the inner crease AB:
    caption's second alpha34 read as alpha41) is not developable (sectors sum to 33 pi/18), so
    the mesh keeps its alpha_12 = 40 and alpha_41 = 100 deg and takes alpha_23 = 140, alpha_34 = 80 deg.
    Creases 1 and 3 of every vertex are then collinear: a3-DA-d3 and b1-BC-c1 are straight lines across the
-   sheet, which the thesis excludes (§2.5: "more than 1 DOF"). Derived here: Both hold: the mesh moves on one 1-DOF
+   sheet, which the thesis excludes (§2.5: "more than 1 DOF"). Derived here: both hold: the mesh moves on one 1-DOF
    branch with every vertex alike (odd1, A = B = C = D in rho, which is A = B, C = D = -A in the thesis's D-H
    angles), and on a 2-DOF family that folds the two straight lines alone (rho_AB = 0 on it, mobility 2
    everywhere on it); the two meet at the flat state (`straight_lines`).

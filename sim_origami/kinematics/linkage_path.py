@@ -288,9 +288,10 @@ class LinkagePath(Kinematics):
         root = float(ends[0] - parting[0, j] * (ends[1] - ends[0]) / (parting[1, j] - parting[0, j]))
         return min(max(root, lo), hi) if abs(root - x) <= MEET_BRACKET else x  # on the traces, ends included
 
-    def _covers(self, branch: str, x: float) -> bool:
+    def _covers(self, branch: str, x: ArrayLike) -> NDArray[np.bool_]:
+        """Whether inputs x lie on the branch's traced nodes (ends included, to 1e-12 rad)."""
         s = self.nodes[branch][0]
-        return bool(s[0] - 1e-12 <= x <= s[-1] + 1e-12)
+        return (np.asarray(x) >= s[0] - 1e-12) & (np.asarray(x) <= s[-1] + 1e-12)
 
     def _interp(self, branch: str, x: ArrayLike) -> NDArray[np.float64]:
         """Linear interpolation of a branch's nodes at inputs x, (..., n_joints)."""
@@ -381,7 +382,7 @@ class LinkagePath(Kinematics):
         # every branch's pose at each input it covers, in one batch per branch (NaN elsewhere)
         poses = np.full((len(self.nodes), len(values), self._loops.n_joints), np.nan)
         for m, branch in enumerate(self.nodes):
-            covered = np.array([self._covers(branch, x) for x in xs], dtype=bool)
+            covered = self._covers(branch, xs)
             if np.any(covered):
                 poses[m, covered] = self._full(branch, xs[covered])[0]
         for k in np.flatnonzero(np.all(np.isnan(poses[:, :, 0]), axis=0)):  # outside every domain: nearest nodes

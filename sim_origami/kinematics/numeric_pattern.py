@@ -389,10 +389,9 @@ class PatternPath(JointSpaceKinematics):
 
     @cached_property
     def _polisher(self) -> ChordPolish:
-        """`evaluate`'s polish: chord steps on the trace's nodes (their factorisations kept), to the residual's rounding
-        floor, dense systems as sparse ones (a dense solve to POLISH_TOL raised on Miura sheets of 260:1 panels, their
-        floor 1e-13) (near a singular end a residual of 1e-13 still left the angles 3.7e-12 rad
-        off, the Jacobian's smallest singular value 3.7e-3 there; at the floor they are 1e-13 from MuJoCo's
+        """`evaluate`'s polish: chord steps on the trace's nodes (their factorisations kept), dense and sparse systems
+        alike, to the residual's rounding floor (near a singular end a residual of 1e-13 still left the angles 3.7e-12
+        rad off, the Jacobian's smallest singular value 3.7e-3 there; at the floor they are 1e-13 from MuJoCo's
         projection)."""
         fixed = np.zeros(len(self.joint_names), dtype=bool)
         fixed[self.driven] = True

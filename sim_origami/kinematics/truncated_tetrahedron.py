@@ -42,7 +42,7 @@ Inputs (the thesis's driving angles): scheme I is driven by theta_G = theta_G0 +
 the signed angle from B - G to K - G about s_G, 146.4427 deg deployed for delta1 = 0), which falls
 monotonically; the Bricard's theta cannot drive it, since theta has a turning point at deployment (delta1 = 0)
 or dips below theta_d first (delta1 < 0, measured here). Scheme II is driven by the Bricard angle theta at A,
-which rises monotonically to theta_f for delta2 >= 0. Derived here: With delta2 = 0 the deployed state is a turning
+which rises monotonically to theta_f for delta2 >= 0. Derived here: with delta2 = 0 the deployed state is a turning
 point of theta too (dtheta/ds = 0; the two directions are distinct motions, of which d psi > 0 reaches the
 tetrahedron): near theta_d the state is fixed by theta only to sqrt(theta - theta_d).
 """

@@ -53,7 +53,7 @@ def compatible_angles(alpha: float, beta: float, gamma: float, delta: float) -> 
     The pattern angles with epsilon from eqn 3-12 (scheme SSP), radians.
 
     Such an epsilon always exists (derived here): two mode-S vertices have |k_A k_B| = 1/(mu_a mu_b) > 1, and mode C
-    at C     sweeps k_C over (-1, 1) as epsilon runs over (0, pi). `TwistAngles` still refuses collinear creases.
+    at C sweeps k_C over (-1, 1) as epsilon runs over (0, pi). `TwistAngles` still refuses collinear creases.
     """
     return TwistAngles(alpha, beta, gamma, delta, epsilon_formula("SSP", alpha, beta, gamma, delta))
 

@@ -40,14 +40,10 @@ SWEEP_FROM = 0.3
 # twist 1.17e-6 / 2.85e-7 / 7.06e-8 rad, Miura sheet 2 x 2 1.04e-6 / 2.62e-7 / 6.63e-8, corrugated unit
 # 1.56e-7 / 3.82e-8 / 9.59e-9; x4 keeps 14x below the 1e-6 rad tolerance (the square-twist scene's own choice).
 SWEEP_TIME_SCALE = 4.0
-# MuJoCo's regulariser R (the preset's) times this. A file's pattern may be ill-conditioned where the registered
-# scenes are not, and what lets MuJoCo's lag through there is R, not the step (fast, x2 unless said):
-# - the 16 x 16 letters-only Miura sheet (480 creases), swept to where a crease folds flat (smallest non-zero
-#   singular value 0.08 at the sweep's start, 0.006 near its end): 7.6e-6 rad at R, 7.6e-7 at R / 10, 1.2e-7 at
-#   R / 100 (R / 1000 no better), the error then peaking mid-path, where it is the step's; slowing the sweep where the
-#   singular value is small (time per radian as its -1/2 or -1 power) gained only 1.4x, stiffer closures (refsafe
-#   off) 4.5x with more error mid-path;
-# - a 6 x 6 Miura sheet of 25:1 panels (60 creases, x4): 1.62e-6 rad at R, 3.1e-8 at R / 100.
+# MuJoCo's regulariser R (the preset's) times this for patterns of up to SPARSE_FROM creases (larger ones:
+# LARGE_REGULARIZATION_SCALE). A file's pattern may be ill-conditioned where the registered scenes are not, and what
+# lets MuJoCo's lag through there is R, not the step: a 6 x 6 Miura sheet of 25:1 panels (60 creases, x4) 1.62e-6
+# rad at R, 3.1e-8 at R / 100 (the 16 x 16 sheet's measurements at R / 100: docs/performance.md, "FOLD files").
 REGULARIZATION_SCALE = 0.01
 # Patterns solved sparse (over SPARSE_FROM creases) sweep x2, not x4: at R / 100 (closures at 2.5 steps of time
 # constant) the 16 x 16 sheet's error was 1.2e-7 rad and its closure gap 9.8e-7 m (tolerance 2.7e-6), 4.9e-7 and
