@@ -707,8 +707,12 @@ class ChordPolish:
         Guesses at inputs x (one fixed joint, the input its value) by cubic Hermite interpolation between the nodes
         (at `s_nodes`) with their tangents. On the 16 x 16 Miura sheet (nodes up to 0.05 rad apart) the guesses'
         median residual is 2.5e-9 instead of 7.3e-5 from straight lines, and the chord takes 6.4 steps a guess
-        instead of 9.4.
+        instead of 9.4. A trace that stopped at its first node has no interval: its node is every guess.
         """
+        if len(s_nodes) < 2:
+            out = np.repeat(self.nodes[:1], len(x), axis=0)
+            out[:, self.fixed] = x[:, None]
+            return out
         i = np.clip(np.searchsorted(s_nodes, x) - 1, 0, len(s_nodes) - 2)
         h = s_nodes[i + 1] - s_nodes[i]
         t = ((x - s_nodes[i]) / h)[:, None]

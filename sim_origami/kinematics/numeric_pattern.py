@@ -401,16 +401,15 @@ class PatternPath(JointSpaceKinematics):
         values = np.full((len(x), len(self.joint_names)), np.nan)
         if not np.any(valid):
             return values, valid
-        guesses = np.stack([np.interp(x[valid], self.s_nodes, self.nodes[:, j]) for j in range(self.nodes.shape[1])],
-                           axis=-1)  # fmt: skip
+        if self._loops.n_residuals and self.path_is_input and len(self.driven) == 1:
+            guesses = self._polisher.hermite(self.s_nodes, x[valid])
+        else:
+            guesses = np.stack([np.interp(x[valid], self.s_nodes, self.nodes[:, j])
+                                for j in range(self.nodes.shape[1])], axis=-1)  # fmt: skip
         guesses[:, self.driven] = held[valid]
         if not self._loops.n_residuals:
             values[valid] = guesses
         else:
-            # (a trace that stopped at its first node has no interval to interpolate in: its node is the guess)
-            if self.path_is_input and len(self.driven) == 1 and len(self.s_nodes) > 1:
-                guesses = self._polisher.hermite(self.s_nodes, x[valid])
-                guesses[:, self.driven] = held[valid]
             values[valid] = self._polisher.polish(guesses, nearest_nodes(self.s_nodes, x[valid]))
         return values, valid
 

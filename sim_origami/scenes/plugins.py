@@ -89,9 +89,9 @@ def load_plugins(*, force: bool = False) -> tuple[str, ...]:
     global _loaded
     from . import load_builtins  # at call time: this module is imported by the package's own __init__
 
-    load_builtins()  # before any plugin: a plugin may not replace a built-in scene
     if _loaded and not force:
         return ()
+    load_builtins()  # before any plugin: a plugin may not replace a built-in scene
     _loaded = True
     added: list[str] = []
     for ep in sorted(entry_points(group=GROUP), key=lambda e: e.name):
