@@ -1,4 +1,5 @@
-"""Disjoint sets (union-find) and Kruskal spanning forests: the one implementation every layer uses (no imports)."""
+"""Disjoint sets (union-find), Kruskal spanning forests and a graph's centre: the one implementation every layer
+uses (no imports)."""
 
 from collections import deque
 from collections.abc import Hashable, Iterable, Sequence
@@ -66,3 +67,35 @@ def breadth_first_depths(
                 depth[m] = depth[n] + 1
                 queue.append(m)
     return depth
+
+
+def central_node(nodes: Sequence[Hashable], edges: Sequence[tuple[Hashable, Hashable]], sweeps: int = 16) -> Hashable:
+    """
+    A node of least eccentricity (longest shortest path to any other) in the first node's component: a root for
+    the shallowest breadth-first tree. Lower bounds from breadth-first sweeps: each sweep from an extreme node e
+    bounds every node's eccentricity below by its distance to e; the candidate of least bound is swept, and is
+    the answer when its eccentricity meets its bound (no node can do better), else the node farthest from it is
+    the next extreme. Exact within `sweeps` (a grid takes its corners), else the least eccentric candidate seen.
+    Ties go to the earlier node.
+    """
+    nodes = list(nodes)
+    order = {n: k for k, n in enumerate(nodes)}
+
+    def farthest(depth: dict[Hashable, int]) -> Hashable:
+        return max(depth, key=lambda n: (depth[n], -order[n]))
+
+    bound = breadth_first_depths(nodes, edges, nodes[0])
+    extreme, best, best_ecc = farthest(bound), nodes[0], max(bound.values())
+    bound = dict.fromkeys(bound, 0)
+    for _ in range(sweeps):
+        depth = breadth_first_depths(nodes, edges, extreme)
+        bound = {n: max(b, depth[n]) for n, b in bound.items()}
+        candidate = min(bound, key=lambda n: (bound[n], order[n]))
+        depth = breadth_first_depths(nodes, edges, candidate)
+        eccentricity = max(depth.values())
+        if (eccentricity, order[candidate]) < (best_ecc, order[best]):
+            best, best_ecc = candidate, eccentricity
+        if eccentricity == bound[candidate]:
+            break
+        extreme = farthest(depth)
+    return best

@@ -9,6 +9,7 @@ import pytest
 from fold_fixtures import miura_letters_only, validated, write  # tests/ is on pytest's sys.path
 
 from sim_origami.checks.paths import closure_conditions, compare
+from sim_origami.graph import breadth_first_depths
 from sim_origami.scenes.fold_file import fold_scene
 from sim_origami.simulate import project, projection_conditions
 
@@ -58,22 +59,29 @@ def test_a_thin_panelled_sheet_far_from_the_origin_validates(tmp_path, capsys):
 @pytest.mark.slow
 def test_a_large_near_square_sheet_keeps_mujocos_closures_within_tolerance(tmp_path, capsys):
     """A 12 x 12 letters-only sheet of 79 deg parallelograms (264 creases, solved sparse): MuJoCo's closure gap peaks
-    mid-path, where the sweep is fastest, and grows with the sheet's extent. At the closures' former time constant
-    (2.5 steps) and a plain x2 sweep it was 1.20 of its tolerance, a failed check on a rigid pattern."""
+    mid-path, where the sweep is fastest, and grows with the lever arms of the tree's paths. With the closures' former
+    time constant (2.5 steps) and the tree rooted at the input crease's face (22 faces deep) it was 1.20 of its
+    tolerance at x2, a failed check on a rigid pattern; at 3 steps, rooted at the centre (12 deep): 0.36, measured."""
     doc = miura_letters_only(12, 12, zig=0.2)
     scene = fold_scene(write(tmp_path, "near-square-12", doc))
-    assert scene.fast_timeconst_scale > 1.0 and scene.sweep_time_scale > 2.0  # extent 16.8 edges
+    assert scene.fast_timeconst_scale > 1.0 and max(_depths(scene.mechanism).values()) == 12
     code, report = validated(tmp_path, "near-square-12", doc)
     assert code == 0, capsys.readouterr().out
     gap = next(v for v in report["branches"][0]["verdicts"] if "fast closure residual" in v["name"])
-    assert gap["measured"] < 0.8 * gap["tolerance"]
+    assert gap["measured"] < 0.5 * gap["tolerance"]
+
+
+def _depths(mechanism) -> dict[str, int]:
+    """Each body's depth in the mechanism's spanning tree (edges from its root)."""
+    edges = [(mechanism.joints[e.joint].parent, mechanism.joints[e.joint].child) for e in mechanism.tree]
+    return breadth_first_depths([b.name for b in mechanism.bodies], edges, mechanism.root)
 
 
 @pytest.mark.slow
 def test_a_large_sheet_of_thin_panels_follows_mujocos_motion_to_its_lock(tmp_path, capsys):
     """10 x 10 letters-only sheet of 25:1 panels (180 creases): near the lock the sweep ends at, MuJoCo lagged by what
     its regulariser lets through, 9.4x the angle tolerance at R / 100 (a failed check on a rigid pattern); R / 10^4
-    for large patterns: 0.24x."""
+    for large patterns: 0.24x (0.43x with the tree rooted at the sheet's centre, measured)."""
     code, report = validated(tmp_path, "thin-10", miura_letters_only(10, 10, 1.0, 0.04, 0.02))
     assert code == 0, capsys.readouterr().out
-    assert report["angle_error_max_rad"] < 0.5e-6
+    assert report["angle_error_max_rad"] < 0.6e-6

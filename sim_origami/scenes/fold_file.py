@@ -28,6 +28,7 @@ from .. import fold_mesh
 from ..creases import CreasePattern
 from ..errors import ParameterError
 from ..fold import read_fold
+from ..graph import central_node
 from ..kinematics.numeric_pattern import LOCK_MARGIN, SPARSE_FROM, TARGET_TOL, PatternPath, assignment_signs, lock_flat
 from ..origami import pattern_mechanism
 from ..path import independent_joints
@@ -56,14 +57,16 @@ LARGE_SWEEP_TIME_SCALE = 2.0
 # tolerance; 3.5 and 4 steps trade further the one for the other (docs/fold_files.md).
 LARGE_TIMECONST_SCALE = 1.2
 # ... and sweep slower as the square root of the sheet's flat extent (in units of its longest edge) beyond this: the
-# gap grows in proportion to it (x1.33 from 12 x 12 to 16 x 16, x1.50 from 8 x 8 to 12 x 12) and falls as 1 / T^2.
-# At most 0.043 x the extent of the tolerance was measured at x2, so at most 0.65 of it at any extent (a 20 x 20
-# sheet, extent 27, was 1.03 of it at x2; the 16 x 16 sheet of the speed benchmark, extent 20, sweeps x2.3).
-LARGE_EXTENT = 15.0
+# gap grows in proportion to it and falls as 1 / T^2. With the tree rooted at the pattern's centre (below) at most
+# 0.022 x the extent of the tolerance was measured at x2 (12 x 12 and 16 x 16 sheets at a zigzag of 0.2 edge), so at
+# most 0.65 of it at any extent (a 20 x 20 sheet, extent 27: 0.52 at x2). Rooted at the input crease's face the gaps
+# were twice as large, and this extent 15.
+LARGE_EXTENT = 30.0
 # ... and at R / 10^4, not R / 100: large sheets of thin panels lagged near the lock the sweep ends at by what R lets
 # through (10 x 10 of 25:1 panels: 9.4 x the angle tolerance at R / 100, 0.94 at R / 1000, 0.24 at R / 10^4; 12 x 12
-# of 10:1: 11.5, 1.15, 0.48), while every other large sheet measured kept its error or lowered it (the 16 x 16 of the
-# speed benchmark 8.3e-8 -> 5.5e-8 rad) and its closure gap (docs/fold_files.md).
+# of 10:1: 11.5, 1.15, 0.48; rooted at the centre 0.43 and 0.54 at R / 10^4), while every other large sheet measured
+# kept its error or lowered it (the 16 x 16 of the speed benchmark 8.3e-8 -> 5.5e-8 rad) and its closure gap
+# (docs/fold_files.md).
 LARGE_REGULARIZATION_SCALE = 1e-4
 # Exact frame angles may be this far (rad) from the rigid motion through them: FOLD writers round angles (the
 # same allowance as `numeric_pattern.TARGET_TOL`).
@@ -170,8 +173,13 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     # vertex, as the bird base's diagonal marks) is held flat by the others, and a cut joint cannot be coupled
     flat = tuple(names[c.joint] for c in lock_flat(pattern))
     held = [names[k] for k in pattern.spanning_creases(prefer=flat) if names[k] in flat]
-    mechanism = pattern_mechanism(pattern, root=pattern.crease_faces(pattern.crease(inputs[0]))[0], keep=inputs,
-                                  couplings=tuple((n, n, 0.0) for n in held))  # fmt: skip
+    # A shortest-path tree from the face at the pattern's centre: every closure row's Jacobian runs along its bodies'
+    # paths to the root, so the tree's depth sets MuJoCo's cost and its lever arms the closure gap. On the 16 x 16
+    # Miura sheet (depth 31 from the input crease's face, Kruskal in crease order; 16 from the centre) MuJoCo's run
+    # took 3.85 -> 2.01 s and the gap halved, the angle error the same (docs/performance.md, "FOLD files").
+    edges = [pattern.crease_faces(c) for c in pattern.creases]
+    mechanism = pattern_mechanism(pattern, root=central_node(pattern.face_names, edges), keep=inputs,
+                                  couplings=tuple((n, n, 0.0) for n in held), breadth_first=True)  # fmt: skip
     # frames: the motion they describe, from the first to the last (the trace from flat to the first only finds it)
     if several is not None:
         sweep = (kinematics.frame_distances[0]["input"], kinematics.frame_distances[-1]["input"])
