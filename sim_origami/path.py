@@ -72,6 +72,10 @@ STALL_CONFIRM = 3
 JUMP = 0.2
 # Numerical rank: singular values above this times the largest (at least 1) count (as `LoopSystem.mobility`).
 RANK_RTOL = 1e-6
+# Null-space rows this close (relative) to the largest are a tie in `independent_joints`: the earlier joint is picked,
+# not the one rounding favours (the bird base's mirror creases e10 and e11 swapped with a unit in the last place of
+# the loop residual).
+PIVOT_TIE = 1e-9
 # Sparse (large) systems rank every this many nodes and the last (480 creases: one rank 0.1-1 s, a corrector step
 # a few ms); a mobility change is then placed between two ranked nodes.
 SPARSE_RANK_STRIDE = 10
@@ -428,8 +432,8 @@ def independent_joints(loops: ClosureSystem, q: ArrayLike, k: int | None = None,
                        first: tuple[int, ...] = ()) -> tuple[int, ...]:  # fmt: skip
     """
     Joints that can be driven independently at q: k (default: the mobility) rows of the closure Jacobian's null
-    space picked by pivoted elimination (largest remaining row norm first, `first` before any other), among
-    `among` (bool mask) if given. Returned in the order picked.
+    space picked by pivoted elimination (largest remaining row norm first, ties within PIVOT_TIE to the earlier
+    joint, `first` before any other), among `among` (bool mask) if given. Returned in the order picked.
     """
     J = loops.jacobian(q)
     if J.size:
@@ -444,7 +448,8 @@ def independent_joints(loops: ClosureSystem, q: ArrayLike, k: int | None = None,
     queue = list(first)
     while len(picked) < min(k, null.shape[1]):
         norms = np.where(allowed, np.linalg.norm(basis, axis=1), -1.0)
-        j = queue.pop(0) if queue else int(np.argmax(norms))
+        top = norms.max()
+        j = queue.pop(0) if queue else int(np.flatnonzero(norms >= top - PIVOT_TIE * abs(top))[0])
         if np.linalg.norm(basis[j]) <= 1e-9:
             if queue or j in first:
                 continue

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from sim_origami.cli import main
+from sim_origami.closure import LoopSystem
 from sim_origami.kinematics.numeric_pattern import PatternPath, assignment_signs
 from sim_origami.scenes.fold_file import fold_scene
 from sim_origami.validation import validate
@@ -82,6 +83,23 @@ def test_with_its_marks_flat_the_bird_base_folds_rigidly_with_its_letters_to_a_l
         path = PatternPath(pattern, inputs, target, signs=signs)
         assert path.stops[0].kind == "bound" and np.max(np.abs(path.nodes[-1])) < 0.13  # measured 0.127 at most
         assert names[path.stops[0].joint] in ("e20", "e21")
+
+
+@pytest.mark.slow
+def test_the_bird_bases_inputs_and_motion_do_not_depend_on_rounding(tmp_path, monkeypatch):
+    """Its steadiest creases tie (mirror midline halves e16 and e17, within 2e-15), and so do its next inputs by rank
+    (e10 and e11): picked by rounding, a unit in the last place of the loop residual chose e16, whose straight line in
+    inputs ends at once, and the file's verdict became a 0.11 rad motion (4 of 12 perturbed runs, measured). Ties are
+    now tried in order: every perturbed run drives e17, e10, e25 to the lock."""
+    path = write(tmp_path, bird())
+    exact = LoopSystem.residual
+    for seed in range(4):
+        rng = np.random.default_rng(seed)
+        monkeypatch.setattr(LoopSystem, "residual", lambda self, q, rng=rng: exact(self, q) * (
+            1.0 + np.finfo(float).eps * rng.standard_normal(self.n_residuals)))  # fmt: skip
+        scene = fold_scene(path)
+        assert scene.drives == ("e17", "e10", "e25"), seed
+        assert scene.kinematics.stops[-1].kind == "bound" and scene.kinematics.s_nodes[-1] > 3.6, seed
 
 
 @pytest.mark.slow

@@ -225,9 +225,18 @@ def test_the_steadiest_crease_is_the_one_that_never_slows_down():
     t = np.linspace(0.0, 1.0, 11)[:, None]
     states = np.hstack([np.sin(2.5 * t), 0.8 * t, 2.0 * t, np.full_like(t, np.nan)])  # crease 0 turns near t = 0.63
     usable = np.array([True, True, False, True])  # crease 2 (the fastest) is an F crease
-    assert steadiest(states, usable, default=0) == 1
-    assert steadiest(states[:6], usable, default=0) == 0  # before its turn, crease 0 is the steadier
-    assert steadiest(np.zeros((3, 4)), usable, default=3) == 3  # nothing moves: the default
+    assert steadiest(states, usable, default=0) == (1,)
+    assert steadiest(states[:6], usable, default=0) == (0,)  # before its turn, crease 0 is the steadier
+    assert steadiest(np.zeros((3, 4)), usable, default=3) == (3,)  # nothing moves: the default
+
+
+def test_creases_tied_as_steadiest_are_all_candidates_the_default_first():
+    """Scores within TIE are a set, whatever rounding makes of them: the default leads when it is one of them."""
+    t = np.linspace(0.0, 1.0, 11)[:, None]
+    states = np.hstack([t, t * (1 + 1e-15), 0.5 * t, t])  # creases 0, 1 and 3 tie; 2 scores 0.5
+    usable = np.ones(4, dtype=bool)
+    assert steadiest(states, usable, default=2) == (0, 1, 3)
+    assert steadiest(states, usable, default=3) == (3, 0, 1)
 
 
 def test_f_creases_stay_flat_and_a_vertex_needing_them_stalls():

@@ -41,14 +41,18 @@ SWEEP_FROM = 0.3
 # twist 1.17e-6 / 2.85e-7 / 7.06e-8 rad, Miura sheet 2 x 2 1.04e-6 / 2.62e-7 / 6.63e-8, corrugated unit
 # 1.56e-7 / 3.82e-8 / 9.59e-9; x4 keeps 14x below the 1e-6 rad tolerance (the square-twist scene's own choice).
 SWEEP_TIME_SCALE = 4.0
-# MuJoCo's regulariser R (the preset's) times this for patterns of up to SPARSE_FROM creases (larger ones:
-# LARGE_REGULARIZATION_SCALE). A file's pattern may be ill-conditioned where the registered scenes are not, and what
-# lets MuJoCo's lag through there is R, not the step: a 6 x 6 Miura sheet of 25:1 panels (60 creases, x4) 1.62e-6
-# rad at R, 3.1e-8 at R / 100 (the 16 x 16 sheet's measurements at R / 100: docs/performance.md, "FOLD files").
-REGULARIZATION_SCALE = 0.01
-# Patterns solved sparse (over SPARSE_FROM creases) sweep x2, not x4: at R / 100 (closures at 2.5 steps of time
-# constant) the 16 x 16 sheet's error was 1.2e-7 rad and its closure gap 9.8e-7 m (tolerance 2.7e-6), 4.9e-7 and
-# 3.9e-6 at x1; x8 at R took four times the steps for 4.4e-7.
+# MuJoCo's regulariser R (the preset's) times this. A file's pattern may be ill-conditioned where the registered
+# scenes are not, and what lets MuJoCo's lag through there, near the lock a sweep ends at, is R, not the step: large
+# sheets of thin panels (10 x 10 of 25:1 panels: 9.4 x the angle tolerance at R / 100, 0.94 at R / 1000, 0.24 at
+# R / 10^4; 12 x 12 of 10:1: 11.5, 1.15, 0.48; rooted at the centre 0.43 and 0.54 at R / 10^4), and small ones (6 x
+# 6 of 25:1: 0.94 at R / 100, 0.097 at R / 10^4; 4 x 4 of 25:1 driven by a short crease: 5.2, 0.052), while every
+# other pattern measured kept its error or lowered it (the 16 x 16 of the speed benchmark 8.3e-8 -> 5.5e-8 rad; the
+# rigid gallery of tests/test_fold_gallery.py, the bird base and the small sheets of tests/test_fold_sheets.py the
+# same to 3 digits: their error is the step's) and its closure gap (docs/fold_files.md).
+REGULARIZATION_SCALE = 1e-4
+# Patterns solved sparse (over SPARSE_FROM creases) sweep x2, not x4: at R / 100 (as FOLD patterns then ran; closures
+# at 2.5 steps of time constant) the 16 x 16 sheet's error was 1.2e-7 rad and its closure gap 9.8e-7 m (tolerance
+# 2.7e-6), 4.9e-7 and 3.9e-6 at x1; x8 at R took four times the steps for 4.4e-7.
 LARGE_SWEEP_TIME_SCALE = 2.0
 # Their closures (and drive) run at this times the preset's time constant, 3 steps instead of 2.5. Near-square
 # letters-only Miura sheets failed at 2.5: their closure gap peaks mid-path, where the sweep is fastest, and softer
@@ -62,12 +66,6 @@ LARGE_TIMECONST_SCALE = 1.2
 # most 0.65 of it at any extent (a 20 x 20 sheet, extent 27: 0.52 at x2). Rooted at the input crease's face the gaps
 # were twice as large, and this extent 15.
 LARGE_EXTENT = 30.0
-# ... and at R / 10^4, not R / 100: large sheets of thin panels lagged near the lock the sweep ends at by what R lets
-# through (10 x 10 of 25:1 panels: 9.4 x the angle tolerance at R / 100, 0.94 at R / 1000, 0.24 at R / 10^4; 12 x 12
-# of 10:1: 11.5, 1.15, 0.48; rooted at the centre 0.43 and 0.54 at R / 10^4), while every other large sheet measured
-# kept its error or lowered it (the 16 x 16 of the speed benchmark 8.3e-8 -> 5.5e-8 rad) and its closure gap
-# (docs/fold_files.md).
-LARGE_REGULARIZATION_SCALE = 1e-4
 # Exact frame angles may be this far (rad) from the rigid motion through them: FOLD writers round angles (the
 # same allowance as `numeric_pattern.TARGET_TOL`).
 FRAMES_TOL = TARGET_TOL
@@ -149,21 +147,26 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     inputs = parse_inputs(input_crease, pattern)
     kwargs = {"frames": several, "signs": signs if letters_only else None}
     reference = None if several is not None else target
-    trial = None
     if inputs is None:
-        inputs, trial, allowed = _choose_inputs(pattern, reference, several, signs if letters_only else None)
-    # the input choice's one-input trial trace is this very path when its crease is the one chosen (half the build)
-    kinematics = trial if trial is not None and trial.inputs == inputs else \
-        PatternPath(pattern, inputs, None if several is not None else target, **kwargs)  # fmt: skip
-    if trial is not None and len(kinematics.s_nodes) == 1 < len(trial.s_nodes):
-        # the steadiest crease's own trace from flat stopped at its first step, where the trial's did not (`_trial`)
-        inputs, kinematics = trial.inputs, trial
+        firsts, trial, allowed = _choose_inputs(pattern, reference, several, signs if letters_only else None)
+        stopped = []
+        for k in firsts:  # the steadiest creases in turn, until one's trace leaves flat
+            inputs = _by_rank(trial, allowed, (names[k],))
+            # the input choice's one-input trial trace is this very path when its crease is the one chosen
+            kinematics = trial if trial.inputs == inputs else PatternPath(pattern, inputs, reference, **kwargs)
+            if len(kinematics.s_nodes) > 1:
+                break
+            stopped.append((inputs, kinematics))
+        else:  # none left flat: the trial's own crease when it did (`_trial`), else the steadiest's stop
+            inputs, kinematics = (trial.inputs, trial) if len(trial.s_nodes) > 1 else stopped[0]
+    else:
+        kinematics = PatternPath(pattern, inputs, reference, **kwargs)
     # the inputs were counted on the one-input trial's motion; the motion traced may be more singular (a
     # triangulated grid folded along one line: 37 inputs, the generic count, where that motion has 109 freedoms to
     # first order, so the held inputs leave the rest undetermined and the closed-form check's continuation drifted
     # off, 0.14 rad on a 3 x 3 grid): then as many inputs as it has there, the ones picked first kept
     if input_crease is None and (more := _by_rank(kinematics, allowed, inputs)) != inputs:
-        inputs, kinematics = more, PatternPath(pattern, more, None if several is not None else target, **kwargs)
+        inputs, kinematics = more, PatternPath(pattern, more, reference, **kwargs)
     if frames_tolerance is not None and frames_tolerance < 0:
         raise ParameterError(f"frames tolerance {frames_tolerance:g} rad: it must be >= 0")
     from_coords = getattr(fold, "frames_from_coords", False)
@@ -195,7 +198,7 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
         loop_joints=tuple(names), drive_joint=inputs[0], drive_scale=1.0, path=(float(sweep[0]), float(sweep[1])),
         sweep_time_scale=LARGE_SWEEP_TIME_SCALE * max(1.0, np.sqrt(extent / LARGE_EXTENT)) if large else
         SWEEP_TIME_SCALE, fast_timeconst_scale=LARGE_TIMECONST_SCALE if large else 1.0,
-        fast_regularization_scale=LARGE_REGULARIZATION_SCALE if large else REGULARIZATION_SCALE,
+        fast_regularization_scale=REGULARIZATION_SCALE,
         notes=f"from {Path(path).name} ({source}), lengths in units of its longest edge {size:.6g} m, inputs "
         f"{', '.join(inputs)}; {kinematics.summary()}",
         pattern=pattern, drive_joints=tuple(inputs) if multi else (), drive_path=kinematics.path if multi else None,
@@ -211,14 +214,13 @@ def motion_end(kinematics: PatternPath) -> float:
     return kinematics.target_input if kinematics.target_input is not None else hi if abs(hi) >= abs(lo) else lo
 
 
-def _choose_inputs(pattern: CreasePattern, target, frames, signs) -> tuple[tuple[str, ...], PatternPath, np.ndarray]:
+def _choose_inputs(pattern: CreasePattern, target, frames, signs) -> tuple[tuple[int, ...], PatternPath, np.ndarray]:
     """
-    The steadiest crease of the motion (`steadiest`: over the frames, else over each crease's own sweep along the
-    one-input trace of `_trial`), then, when the pattern has more freedoms along its motion than one (the mobility at
-    the middle of that trace), as many as it has, by rank (`_by_rank`); that trace; and the creases an input may be
-    (not F, with an angle).
+    The steadiest creases of the motion, tied ones in the order to try them (`steadiest`: over the frames, the first
+    of them only, else over each crease's own sweep along the one-input trace of `_trial`); that trace; and the
+    creases an input may be (not F, with an angle). Each first input is joined by as many others as the motion has
+    freedoms (`_by_rank`, in `fold_scene`).
     """
-    names = [c.name for c in pattern.creases]
     # letters only: a U crease has no direction to be driven in (free, as a null angle)
     state = frames[-1] if frames is not None else target if target is not None else np.where(signs != 0, signs, np.nan)
     given = np.all(np.isfinite(frames), axis=0) if frames is not None else np.isfinite(state)
@@ -227,17 +229,18 @@ def _choose_inputs(pattern: CreasePattern, target, frames, signs) -> tuple[tuple
         raise ParameterError("every crease is flat, free (null) or F in the folded state: no crease to drive")
     first = int(np.argmax(np.where(usable, np.abs(np.nan_to_num(state)), -1.0)))
     if frames is not None:
-        first = steadiest(frames, usable, first)
+        first = steadiest(frames, usable, first)[0]
     first, trial = _trial(pattern, first, usable, target, frames, signs)
+    firsts = (first,)
     if frames is None:
         end = motion_end(trial)
         on = (trial.s_nodes * np.sign(end) >= 0) & (np.abs(trial.s_nodes) <= abs(end))
         nodes = trial.nodes[on][np.argsort(np.abs(trial.s_nodes[on]))]  # from flat to the end
         # driven, crease j would sweep from SWEEP_FROM of its end angle to its end angle
         inside = np.abs(nodes) >= SWEEP_FROM * np.abs(nodes[-1]) - MOVING
-        first = steadiest(nodes, usable, first, inside[:-1] & inside[1:])
+        firsts = steadiest(nodes, usable, first, inside[:-1] & inside[1:])[:RETRIES]
     allowed = np.array([c.assignment != "F" for c in pattern.creases]) & given
-    return _by_rank(trial, allowed, (names[first],)), trial, allowed
+    return firsts, trial, allowed
 
 
 def _by_rank(kinematics: PatternPath, allowed: np.ndarray, first: tuple[str, ...]) -> tuple[str, ...]:
@@ -289,23 +292,27 @@ def _line_direction(pattern: CreasePattern, k: int) -> int:
     return round(1000 * float(np.arctan2(d[1], d[0]) % np.pi)) % round(1000 * np.pi)
 
 
-def steadiest(states: np.ndarray, usable: np.ndarray, default: int, swept: np.ndarray | None = None) -> int:
+def steadiest(
+    states: np.ndarray, usable: np.ndarray, default: int, swept: np.ndarray | None = None
+) -> tuple[int, ...]:
     """
-    The usable crease whose rate stays the largest fraction of the fastest crease's along `states` (m, n_creases)
-    (rad, in the motion's order), over the steps `swept` (m - 1, n_creases) marks for each crease (default all);
-    `default` when nothing moves. Driven, it gears every other crease up the least, so MuJoCo's lag behind the
-    drive is amplified the least; a crease near a turning point (rate -> 0) scores 0 (measured scores and lags:
-    docs/fold_motion.md). `default` when its score is within TIE of the best: the creases of a regular sheet tie, and
-    picked by rounding the 16 x 16 Miura sheet's choice left the trial's crease after a change at 1e-16 in the trace,
-    so the motion was traced a second time (0.7 s). Otherwise the best, ties by their rounding (the bird base's mirror
-    creases e17 and e8 score 0.840562105780293 and ...291; driven by e8 with the inputs picked after it, its straight
-    line in inputs ends at once, e24 against its letter).
+    The usable creases whose rate stays the largest fraction of the fastest crease's along `states` (m, n_creases)
+    (rad, in the motion's order), over the steps `swept` (m - 1, n_creases) marks for each crease (default all): the
+    best and every crease within TIE of its score, `default` first when it is one of them, then in crease order;
+    (`default`,) when nothing moves. Driven, the steadiest crease gears every other crease up the least, so MuJoCo's
+    lag behind the drive is amplified the least; a crease near a turning point (rate -> 0) scores 0 (measured scores
+    and lags: docs/fold_motion.md). Ties are a set, not a pick by rounding: the creases of a regular sheet tie (the
+    16 x 16 Miura sheet's trial crease is one of them, so its motion is traced once), and the bird base's mirror
+    midline halves e16 and e17 score 0.840562105780293 within 2e-15, where a change of one unit in the last place of
+    the loop residual picked either; driven by e16 (with the inputs picked after it) its straight line in inputs
+    ends at once, e24 against its letter, so the callers try the tied creases in turn (`fold_scene`).
     """
     steps = np.nan_to_num(np.abs(np.diff(states, axis=0)))  # a free (null) entry has no rate: 0
     fastest = np.max(steps, axis=1, initial=0.0)
     counted = (fastest > MOVING)[:, None] & (np.ones(steps.shape, dtype=bool) if swept is None else swept)
     if not np.any(counted & usable):
-        return default
+        return (default,)
     ratio = np.where(counted, steps / np.where(fastest > MOVING, fastest, 1.0)[:, None], np.inf)
     score = np.where(usable, np.where(np.any(counted, axis=0), np.min(ratio, axis=0), 0.0), -1.0)
-    return default if score[default] >= np.max(score) - TIE else int(np.argmax(score))
+    tied = [int(k) for k in np.flatnonzero(score >= np.max(score) - TIE)]
+    return (default, *(k for k in tied if k != default)) if default in tied else tuple(tied)
