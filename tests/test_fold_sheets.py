@@ -17,6 +17,9 @@ SHEETS = {
     "plain": (3, 4, 1.0, 1.0, 0.3),
     "near-square": (4, 4, 1.0, 1.0, 0.05),  # parallelograms of 87 deg: was exit 1
     "thin-panels": (4, 4, 1.0, 0.04, 0.02),  # 25:1 panels
+    # 50:1: its steadiest creases are the short cross ones; driven by one (e36) it lagged 4.25x the angle tolerance
+    # near its lock at the regulariser / 10^4 (error in proportion to R), 0.042 at R / 10^6
+    "thinner-panels": (4, 4, 1.0, 0.02, 0.01),
 }
 
 
@@ -81,7 +84,8 @@ def _depths(mechanism) -> dict[str, int]:
 def test_a_large_sheet_of_thin_panels_follows_mujocos_motion_to_its_lock(tmp_path, capsys):
     """10 x 10 letters-only sheet of 25:1 panels (180 creases): near the lock the sweep ends at, MuJoCo lagged by what
     its regulariser lets through, 9.4x the angle tolerance at R / 100 (a failed check on a rigid pattern); R / 10^4
-    for large patterns: 0.24x (0.43x with the tree rooted at the sheet's centre, measured)."""
+    for large patterns: 0.24x (0.43x with the tree rooted at the sheet's centre; 0.23x at R / 10^6, as every FOLD
+    pattern now runs; measured)."""
     code, report = validated(tmp_path, "thin-10", miura_letters_only(10, 10, 1.0, 0.04, 0.02))
     assert code == 0, capsys.readouterr().out
-    assert report["angle_error_max_rad"] < 0.6e-6
+    assert report["angle_error_max_rad"] < 0.4e-6
