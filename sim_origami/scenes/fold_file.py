@@ -72,7 +72,8 @@ FRAMES_TOL = TARGET_TOL
 MOVING = 1e-9
 # Steadiness scores (fractions of the fastest crease's rate) this close are a tie (`steadiest`).
 TIE = 1e-9
-# Creases along other directions tried when the first driven crease's trace cannot leave its start (`_trial`).
+# Creases along other directions tried when the first driven crease's trace cannot leave its start (`_trial`), and
+# creases tied as the steadiest tried in turn (`fold_scene`): at most this many.
 RETRIES = 6
 
 
