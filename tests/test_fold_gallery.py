@@ -341,10 +341,12 @@ def test_rigid_gallery_validates_three_ways(tmp_path, name):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", list(NOT_RIGID))
-def test_square_twist_with_flat_foldable_letters_does_not_fold_rigidly(tmp_path, name):
+def test_square_twist_with_flat_foldable_letters_does_not_fold_rigidly(tmp_path, capsys, name):
     """The square twist's flat-foldable assignment has no rigid motion (a known result): the trace stops at its first
-    step, where a square side would fold against its M, and the run fails on the swept range, saying which."""
+    step, where a square side would fold against its M, and the run fails on the swept range, saying which (in
+    report.json and on the terminal)."""
     code, report = validated(tmp_path, name, NOT_RIGID[name][0]())
+    assert "lock at -0.0628319 rad: crease e1 would fold against its M letter" in capsys.readouterr().out
     branch = report["branches"][0]
     assert code == 1 and not report["passed"]
     (stop,) = [e for e in branch["events"] if e["kind"] == "lock"]

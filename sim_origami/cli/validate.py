@@ -186,8 +186,8 @@ def validate_scene(scene, args: argparse.Namespace) -> int:
                 print(f"       {v['detail']}")
         if "reference" in doc:
             print("\n".join(summary_lines(doc["reference"])))
-        for e in doc.get("events", []):  # where a traced reference stopped short of its target, and why
-            if e["kind"] in ("contact", "stall"):
+        for e in doc.get("events", []):  # where a traced reference stopped (short of its target), and why
+            if e["kind"] in ("contact", "stall", "lock"):
                 print(f"  {e['kind']} at {e['input_rad']:.6g} rad: {e['detail']}")
         print(f"outputs in {out}/")
     return 0 if doc["passed"] else 1
