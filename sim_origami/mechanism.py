@@ -166,10 +166,19 @@ class Mechanism:
 
     def joint_index(self, name: str) -> int:
         """Position of joint `name` in `joints`."""
+        try:
+            return self._joint_indices[name]
+        except KeyError:
+            raise ParameterError(f"unknown joint {name!r}; joints are {[j.name for j in self.joints]}") from None
+
+    @cached_property
+    def _joint_indices(self) -> dict[str, int]:
+        """Joint name -> its position (the first, as a linear search would find it): 3362 look-ups of a 480-crease
+        pattern's validation took 0.1 s one by one."""
+        out: dict[str, int] = {}
         for i, j in enumerate(self.joints):
-            if j.name == name:
-                return i
-        raise ParameterError(f"unknown joint {name!r}; joints are {[j.name for j in self.joints]}")
+            out.setdefault(j.name, i)
+        return out
 
     @cached_property
     def tree(self) -> tuple[TreeEdge, ...]:
