@@ -55,10 +55,20 @@ def breadth_first_depths(
     nodes: Iterable[Hashable], edges: Sequence[tuple[Hashable, Hashable]], root: Hashable
 ) -> dict[Hashable, int]:
     """Edge count of the shortest path from `root` to every node it reaches."""
+    return _depths(_neighbours(nodes, edges), root)
+
+
+def _neighbours(nodes: Iterable[Hashable], edges: Sequence[tuple[Hashable, Hashable]]) -> dict[Hashable, list]:
+    """Each node's neighbours, an edge's ends each other's."""
     neighbours: dict[Hashable, list[Hashable]] = {n: [] for n in nodes}
     for a, b in edges:
         neighbours[a].append(b)
         neighbours[b].append(a)
+    return neighbours
+
+
+def _depths(neighbours: dict[Hashable, list], root: Hashable) -> dict[Hashable, int]:
+    """`breadth_first_depths` on a built neighbour map."""
     depth, queue = {root: 0}, deque([root])
     while queue:
         n = queue.popleft()
@@ -80,18 +90,19 @@ def central_node(nodes: Sequence[Hashable], edges: Sequence[tuple[Hashable, Hash
     """
     nodes = list(nodes)
     order = {n: k for k, n in enumerate(nodes)}
+    neighbours = _neighbours(nodes, edges)  # built once for every sweep
 
     def farthest(depth: dict[Hashable, int]) -> Hashable:
         return max(depth, key=lambda n: (depth[n], -order[n]))
 
-    bound = breadth_first_depths(nodes, edges, nodes[0])
+    bound = _depths(neighbours, nodes[0])
     extreme, best, best_ecc = farthest(bound), nodes[0], max(bound.values())
     bound = dict.fromkeys(bound, 0)
     for _ in range(sweeps):
-        depth = breadth_first_depths(nodes, edges, extreme)
+        depth = _depths(neighbours, extreme)
         bound = {n: max(b, depth[n]) for n, b in bound.items()}
         candidate = min(bound, key=lambda n: (bound[n], order[n]))
-        depth = breadth_first_depths(nodes, edges, candidate)
+        depth = _depths(neighbours, candidate)
         eccentricity = max(depth.values())
         if (eccentricity, order[candidate]) < (best_ecc, order[best]):
             best, best_ecc = candidate, eccentricity

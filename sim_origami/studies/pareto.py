@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..checks.paths import compare
-from ..mjcf import ModelOptions, preset_number, template
+from ..mjcf import ModelOptions, preset_number, preset_timestep, template
 from ..scenes.base import Scene, without_implied_closures
 from ..simulate import Bindings, drive_targets, scale_regularization, scene_xml, simulate, start_pose, track
 from ..stabilize import drive_step, preset_mode
@@ -71,7 +71,7 @@ def preset_setting(name: str) -> Setting:
     root = template(f"options/{name}.xml")
     option, closure = root.find("option"), root.find(".//default[@class='closure']/equality")
     tau, solimp = float(closure.get("solref").split()[0]), tuple(float(v) for v in closure.get("solimp").split())
-    return Setting(f"preset {name}", option.get("integrator"), float(option.get("timestep")), tau, solimp,
+    return Setting(f"preset {name}", option.get("integrator"), preset_timestep(name), tau, solimp,
                    regularization=preset_number(name, "regularization_scale"), stabilize=preset_mode(name))  # fmt: skip
 
 
