@@ -15,6 +15,7 @@ import pytest
 from fold_fixtures import validated, write  # tests/ is on pytest's sys.path
 from scipy.optimize import linprog
 
+from sim_origami.cli import main
 from sim_origami.cli import validate as validate_command
 from sim_origami.fold import read_fold
 from sim_origami.kinematics.numeric_pattern import LOCK_MARGIN
@@ -353,6 +354,18 @@ def test_square_twist_with_flat_foldable_letters_does_not_fold_rigidly(tmp_path,
     assert "e1 would fold against its M letter" in stop["detail"] and abs(stop["input_rad"]) < 0.1
     swept = next(v for v in branch["verdicts"] if "swept range" in v["name"])
     assert not swept["passed"]
+
+
+def test_paper_cut_into_separate_pieces_is_refused_before_the_trace(tmp_path, capsys):
+    """A strip of four squares whose middle crease is a cut (C): two pieces, two mechanisms. One line, exit 2, naming
+    the faces cut off (it was 'bodies ['f2', 'f3'] are not connected to root', after the trace)."""
+    doc = _doc([[x, y] for y in (0, 1) for x in range(5)],
+               [[0, 1], [1, 2], [2, 3], [3, 4], [5, 6], [6, 7], [7, 8], [8, 9], [0, 5], [1, 6], [2, 7], [3, 8], [4, 9]],
+               list("BBBBBBBBBVCMB"), creator="hand", edges_foldAngle=[0] * 9 + [60, 0, -60, 0])  # fmt: skip
+    code = main(["validate", "--fold", str(write(tmp_path, "pieces", doc)), "--out", str(tmp_path / "out")])
+    err = capsys.readouterr().err
+    assert code == 2 and len(err.strip().splitlines()) == 1
+    assert "the paper is in separate pieces (no crease joins faces f2, f3 to face f0" in err
 
 
 def holed(deg: float = 90.0) -> dict:

@@ -28,7 +28,7 @@ from .. import fold_mesh
 from ..creases import CreasePattern
 from ..errors import ParameterError
 from ..fold import read_fold
-from ..graph import central_node
+from ..graph import breadth_first_depths, central_node
 from ..kinematics.numeric_pattern import LOCK_MARGIN, SPARSE_FROM, TARGET_TOL, PatternPath, assignment_signs, lock_flat
 from ..origami import pattern_mechanism
 from ..path import independent_joints
@@ -123,6 +123,15 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     names = [c.name for c in pattern.creases]
     if not names:
         raise ParameterError(f"{path}: the pattern has no crease (every edge is a border or a cut): nothing folds")
+    edges = [pattern.crease_faces(c) for c in pattern.creases]
+    reached = breadth_first_depths(pattern.face_names, edges, pattern.face_names[0])
+    if len(reached) < len(pattern.face_names):  # before the trace: one sheet is one mechanism
+        apart = [f for f in pattern.face_names if f not in reached]
+        raise ParameterError(
+            f"{path}: the paper is in separate pieces (no crease joins faces {', '.join(apart[:8])}"
+            f"{' ...' if len(apart) > 8 else ''} to face {pattern.face_names[0]}; cut edges C or borders part them): "
+            "validate each piece as a file of its own"
+        )
     frames = fold.frames if fold.frames is not None and len(fold.frames) else None
     target = frames[-1] if frames is not None else fold.fold_angles
     signs = assignment_signs(pattern)
@@ -180,7 +189,6 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     # paths to the root, so the tree's depth sets MuJoCo's cost and its lever arms the closure gap. On the 16 x 16
     # Miura sheet (depth 31 from the input crease's face, Kruskal in crease order; 16 from the centre) MuJoCo's run
     # took 3.85 -> 2.01 s and the gap halved, the angle error the same (docs/performance.md, "FOLD files").
-    edges = [pattern.crease_faces(c) for c in pattern.creases]
     mechanism = pattern_mechanism(pattern, root=central_node(pattern.face_names, edges), keep=inputs,
                                   couplings=tuple((n, n, 0.0) for n in held), breadth_first=True)  # fmt: skip
     # frames: the motion they describe, from the first to the last (the trace from flat to the first only finds it)
