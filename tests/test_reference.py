@@ -15,9 +15,10 @@ import numpy as np
 import pytest
 
 from sim_origami import scenes
-from sim_origami.checks.reference import compare_reference, half_unit, read_reference
+from sim_origami.checks.reference import compare_reference, read_reference
 from sim_origami.cli import main
 from sim_origami.errors import ParameterError
+from sim_origami.precision import half_unit
 
 HEADER = "theta[deg],phi[deg],psi[deg],rho_c[deg]"
 

@@ -33,6 +33,7 @@ from numpy.typing import NDArray
 from ..errors import ConvergenceError, ParameterError
 from ..geometry import wrap
 from ..kinematics.base import Kinematics
+from ..precision import half_unit
 from ..scenes.base import Scene
 from ..tolerances import TOLERANCES
 from .verdict import Verdict
@@ -87,13 +88,6 @@ class ReferenceCurves:
         return ("half a unit in the last printed digit of each value, plus its slope times half a unit in the "
                 f"input's last printed digit, plus {TOLERANCES.closed_form_rad:g} rad (the numeric solve; "
                 f"{SINGULAR_RAD:g} rad at singular samples)")  # fmt: skip
-
-
-def half_unit(text: str) -> float:
-    """Half a unit in the last printed digit of a number as written ('12.50' -> 0.005, '1.5e-3' -> 5e-5)."""
-    mantissa, _, exponent = text.strip().lower().partition("e")
-    decimals = len(mantissa.partition(".")[2])
-    return 0.5 * 10.0 ** ((int(exponent) if exponent else 0) - decimals)
 
 
 def _unit(source: str, column: str, stated: str | None, units: str | None) -> str:

@@ -18,6 +18,7 @@ from ..kinematics.base import Kinematics
 from ..mechanism import Mechanism
 from ..mjcf import ModelSetup
 from ..path import Polyline
+from ..precision import Adjustment
 
 UNITS = {"deg": np.pi / 180.0, "m": 1.0, "": 1.0}
 # Closed-form poses per branch, evenly across its domain with both ends, at which `without_implied_closures` finds
@@ -145,6 +146,7 @@ class Scene:
     drive_joints, drive_path : several driven joints moved together along `drive_path` (`path.Polyline` in their
       space, its parameter is the input, rad); `drive_joint` is then the first of them and `drive_scale` 1. Empty
       and None for the single drive (`drive_joint` = `drive_scale` * input).
+    adjustments : the values as typed (parameters, a file's numbers) that the nearest exact model moved.
     """
 
     name: str
@@ -184,6 +186,9 @@ class Scene:
     self_contact: bool = False
     drive_joints: tuple[str, ...] = ()
     drive_path: Polyline | None = None
+    # Values as typed that the nearest exact model moved (`precision.nearest_exact`): validation checks that model
+    # and reports each move against the value's precision.
+    adjustments: tuple[Adjustment, ...] = ()
 
     @property
     def drives(self) -> tuple[str, ...]:
