@@ -21,6 +21,8 @@ from numpy.typing import ArrayLike, NDArray
 EXACT_ULPS = 4.0
 # Gauss-Newton steps of the projection; it converges quadratically from within the precision.
 PROJECTION_STEPS = 30
+# Central differences of a condition step each value by this fraction of its size (or precision, if larger).
+DIFFERENCE_STEP = 1e-6
 
 
 def half_unit(text: str) -> float:
@@ -121,9 +123,10 @@ def nearest_exact(
             break
         J = np.zeros((len(r), len(p0)))
         for i in np.flatnonzero(free):
-            h = 1e-6 * max(1.0, abs(z[i]))
+            # The derivative in the value's own unit, then scaled: a precision of a few ulps is no step size.
             step = np.zeros_like(p0)
-            step[i] = h * scale[i]
-            J[:, i] = (np.atleast_1d(condition(p + step)) - np.atleast_1d(condition(p - step))) / (2 * h)
+            step[i] = DIFFERENCE_STEP * max(abs(p[i]), scale[i], np.finfo(float).tiny)
+            J[:, i] = (np.atleast_1d(condition(p + step)) - np.atleast_1d(condition(p - step))) / (2 * step[i])
+        J *= scale
         z = np.linalg.pinv(J) @ (J @ z - r)
     return best

@@ -62,6 +62,8 @@ def as_dict(report: Report) -> dict:
         "sim_origami": __version__,
         "scene": scene.name,
         "params": scene.params,
+        # values as typed that the nearest exact model moved, each against its precision (in the unit it was given)
+        "adjustments": [a.as_dict() for a in scene.adjustments],
         "preset": report.preset,
         # "none" for plain MuJoCo; "position" when the preset projects qpos onto the closures after each step
         "stabilize": preset_mode(report.preset),

@@ -80,6 +80,20 @@ def page(doc: dict, out: Path) -> str:
         for b in doc["branches"]
     )
     params = "".join(f"<tr><td>{_e(k)}</td><td class=num>{_num(v)}</td></tr>" for k, v in doc["params"].items())
+    adjusted = "".join(
+        f"<tr><td>{_e(a['name'])}</td><td class=num>{_num(a['given'])}</td><td class=num>{_num(a['value'])}</td>"
+        f"<td class=num>{_num(a['moved'])}</td><td class=num>{_num(a['precision'])}</td>"
+        f"<td class=num>{_num(a['ratio'])}</td><td>{_e(a['unit'])}</td></tr>"
+        for a in doc.get("adjustments", [])
+    )
+    if adjusted:
+        adjusted = (
+            "<h2>Adjusted to the nearest exact model</h2>\n<p>The values as given meet an exact condition only "
+            "within their precision (half a unit in the last digit given); the model validated is the nearest one "
+            "that meets it exactly.</p>\n<table id=\"adjustments\"><tr><th>value</th><th>given</th>"
+            "<th>validated</th><th>moved</th><th>precision</th><th>moved / precision</th><th>unit</th></tr>"
+            f"{adjusted}</table>"
+        )
     figures = []
     curves = _data_uri(out / "curves.png", "image/png")
     if curves:
@@ -111,6 +125,7 @@ def page(doc: dict, out: Path) -> str:
 </table>
 <h2>Parameters (radians, metres)</h2>
 <table>{params or "<tr><td>none</td></tr>"}</table>
+{adjusted}
 {chr(10).join(figures)}
 <h2>Files</h2>
 <p>{" &middot; ".join(downloads)}</p>

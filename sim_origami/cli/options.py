@@ -7,6 +7,7 @@ import numpy as np
 
 from ..conventions import deg_to_rad
 from ..errors import ParameterError
+from ..precision import Typed
 
 
 def add_params(parser: argparse.ArgumentParser) -> None:
@@ -32,7 +33,10 @@ def parse_number(text: str, what: str) -> float:
 
 
 def parse_params(items: list[str]) -> dict[str, float]:
-    """['alpha1=60', ...] -> {'alpha1': 60.0}; ParameterError on a malformed item, a non-number or a repeated name."""
+    """
+    ['alpha1=60', ...] -> {'alpha1': 60.0}, each a `precision.Typed` carrying half a unit in its last printed digit;
+    ParameterError on a malformed item, a non-number or a repeated name.
+    """
     out = {}
     for item in items:
         name, sep, value = item.partition("=")
@@ -41,7 +45,8 @@ def parse_params(items: list[str]) -> dict[str, float]:
             raise ParameterError(f"parameter {item!r} is not NAME=VALUE")
         if name in out:
             raise ParameterError(f"parameter {name} is given twice; give each -p NAME once")
-        out[name] = parse_number(value, name)
+        parse_number(value, name)
+        out[name] = Typed(value.strip())
     return out
 
 

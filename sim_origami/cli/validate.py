@@ -179,6 +179,8 @@ def validate_scene(scene, args: argparse.Namespace) -> int:
         print(json.dumps(doc, indent=2, default=plain))
     else:
         print("\n".join([HEADER, summary_line(doc)]))
+        for a in scene.adjustments:  # the model validated is the nearest exact one to the values as typed
+            print(f"  adjusted {a.text()}")
         for v in doc["verdicts"] + [v for b in doc["branches"] for v in b["verdicts"]]:
             mark = "ok  " if v["passed"] else "FAIL"
             print(f"  {mark} {v['name']}: {number(v['measured'], '.3g')} (tolerance {v['tolerance']:g})")

@@ -13,12 +13,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..creases import CreasePattern
-from ..errors import ParameterError
+from ..errors import AssemblyError, ParameterError
 from ..kinematics.base import Kinematics
 from ..mechanism import Mechanism
 from ..mjcf import ModelSetup
 from ..path import Polyline
-from ..precision import Adjustment
+from ..precision import Adjustment, Typed, exact_precision, nearest_exact
 
 UNITS = {"deg": np.pi / 180.0, "m": 1.0, "": 1.0}
 # Closed-form poses per branch, evenly across its domain with both ends, at which `without_implied_closures` finds
@@ -299,19 +299,44 @@ def without_implied_closures(scene: Scene) -> Scene:
 
 
 @dataclass(frozen=True)
+class Condition:
+    """
+    An exact condition on a scene's parameters, such as the Bennett condition.
+
+    `residual(values)` takes the API values by name and is zero where the condition holds, scaled by the model's
+    size so that it is dimensionless; the scene's values are projected onto it (`SceneType.build`) once it exceeds
+    EXACT_RESIDUAL. `text` states it in the user's words.
+    """
+
+    text: str
+    residual: Callable[[dict[str, float]], float]
+
+
+# A dimensionless condition residual below this is rounding: 64 units in the last place of a unit-sized value.
+EXACT_RESIDUAL = 64 * np.finfo(float).eps
+
+
+@dataclass(frozen=True)
 class SceneType:
-    """A registered scene: its parameters and a builder taking API values by name."""
+    """A registered scene: its parameters, a builder taking API values by name and its exact condition, if any."""
 
     name: str
     summary: str
     params: tuple[Param, ...]
     build_fn: Callable[..., Scene] = field(repr=False)
+    condition: Condition | None = None
 
-    def build(self, **values: float) -> Scene:
+    def build(self, precision: dict[str, float] | None = None, **values: float) -> Scene:
         """
         Build with API values (radians, metres). Every value is checked first (`Param.check`, then the scene's
         lengths against LENGTH_RATIO_MAX); unknown names, non-numbers, non-finite or out-of-range values raise
         ParameterError naming the parameter and the rule.
+
+        Where the scene has an exact `condition`, the values are held to `precision` (API units by name; a value not
+        named, and every value without `precision`, is exact to EXACT_ULPS units in its last place; defaults and whole
+        numbers of integer parameters are held): the nearest values that meet the condition are built, and
+        `Scene.adjustments` lists every value that moved. A condition that no values within their precision meet
+        raises AssemblyError naming the distance.
         """
         known = {p.name: p for p in self.params}
         for key in values:
@@ -344,7 +369,43 @@ class SceneType:
                     f"{large} = {lengths[large]:g} m is more than {LENGTH_RATIO_MAX:g} times {small} = "
                     f"{lengths[small]:g} m; a scene's lengths must lie within a factor {LENGTH_RATIO_MAX:g}"
                 )
-        return self._build(tuple(sorted(full.items())))
+        if self.condition is None:
+            return self._build(tuple(sorted(full.items())))
+        return self._build_exact(full, {name: value for name, value in (precision or {}).items() if name in values})
+
+    def _build_exact(self, full: dict[str, float], precision: dict[str, float]) -> Scene:
+        """Build at the values nearest `full` that meet the condition (module docstring of `precision`)."""
+        known = {p.name: p for p in self.params}
+        names = list(full)
+        given = np.array([full[n] for n in names])
+        typed = {n for n in names if n in precision}
+        held = np.array([known[n].integer or known[n].replaces != () for n in names])
+        scale = np.array([precision[n] if n in typed else float(exact_precision(full[n])) for n in names])
+        scale[held] = 0.0
+
+        def residual(p: NDArray[np.float64]) -> NDArray[np.float64]:
+            return np.array([self.condition.residual(dict(zip(names, p, strict=True)))])
+
+        if abs(residual(given)[0]) <= EXACT_RESIDUAL:
+            return self._build(tuple(sorted(full.items())))
+        nearest = nearest_exact(residual, given, scale, EXACT_RESIDUAL)
+        # Values given exact move by a few units in their last place at most: rounding, not an adjustment.
+        moved = [
+            Adjustment(n, known[n].to_user(g), known[n].to_user(v), known[n].to_user(s), known[n].unit)
+            for n, g, v, s in zip(names, given, nearest.values, scale, strict=True)
+            if (n in typed and v != g) or abs(v - g) > s
+        ]
+        if nearest.residual > EXACT_RESIDUAL or nearest.ratio > 1.0:
+            worst = max(moved, key=lambda a: a.ratio, default=None)
+            where = f"; the nearest values that meet it move {worst.text()}" if worst is not None else ""
+            raise AssemblyError(
+                f"{self.name}: {self.condition.text} is not met within the precision the values were given with"
+                f"{where}: give values that meet it, or more of their digits"
+            )
+        for adjustment in moved:
+            known[adjustment.name].check(known[adjustment.name].to_api(adjustment.value))
+        scene = self._build(tuple(sorted(zip(names, nearest.values, strict=True))))
+        return replace(scene, adjustments=tuple(moved))
 
     @functools.lru_cache(maxsize=64)  # noqa: B019  (scenes are immutable; the registry lives as long as the process)
     def _build(self, values: tuple[tuple[str, float], ...]) -> Scene:
@@ -352,8 +413,12 @@ class SceneType:
         return self.build_fn(**dict(values))
 
     def build_from_user(self, values: dict[str, float]) -> Scene:
-        """Build from command-line values (degrees, metres); checked as `build` checks them."""
+        """
+        Build from command-line values (degrees, metres); checked as `build` checks them. A `precision.Typed` value
+        carries the precision it was printed with, which an exact condition is held to.
+        """
         known = {p.name: p for p in self.params}
+        precision = {k: known[k].to_api(v.precision) for k, v in values.items() if isinstance(v, Typed) and k in known}
         api = {}
         for key, value in values.items():
             if key not in known:
@@ -362,7 +427,7 @@ class SceneType:
                 )
             number = isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
             api[key] = known[key].to_api(value) if number else value  # `build` names what is not a number
-        return self.build(**api)
+        return self.build(precision=precision, **api)
 
 
 REGISTRY: dict[str, SceneType] = {}
@@ -377,11 +442,11 @@ def choice(name: str, value: float, options: tuple[str, ...]) -> str:
     return options[int(value) - 1]
 
 
-def register(name: str, summary: str, params: tuple[Param, ...]):
-    """Decorator: add a scene builder to the registry under `name`."""
+def register(name: str, summary: str, params: tuple[Param, ...], condition: Condition | None = None):
+    """Decorator: add a scene builder to the registry under `name`, with its parameters' exact condition if any."""
 
     def wrap(fn: Callable[..., Scene]) -> Callable[..., Scene]:
-        REGISTRY[name] = SceneType(name, summary, params, fn)
+        REGISTRY[name] = SceneType(name, summary, params, fn, condition)
         return fn
 
     return wrap

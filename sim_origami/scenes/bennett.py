@@ -4,7 +4,7 @@ import numpy as np
 
 from ..kinematics.bennett import Bennett
 from ..linkage import dh_mechanism
-from .base import SECTOR, Param, Scene, register
+from .base import SECTOR, Condition, Param, Scene, register
 
 PARAMS = (
     Param("a", "m", 1.0, "link length a12 = a34"),
@@ -16,7 +16,15 @@ PARAMS = (
 )
 
 
-@register("bennett", "Bennett 4R linkage (Yang 2017), input theta1, joints theta1..theta4", PARAMS)
+# a sin(beta) = b sin(alpha) (Yang 2017, eqn 1-17), over the loop's size: the values as typed are moved onto it
+# within their precision.
+CONDITION = Condition(
+    "the Bennett condition sin(alpha)/a = sin(beta)/b",
+    lambda v: (v["a"] * np.sin(v["beta"]) - v["b"] * np.sin(v["alpha"])) / (v["a"] + v["b"]),
+)
+
+
+@register("bennett", "Bennett 4R linkage (Yang 2017), input theta1, joints theta1..theta4", PARAMS, CONDITION)
 def build(a: float, alpha: float, b: float, beta: float) -> Scene:
     kinematics = Bennett(a, alpha, b, beta)
     return Scene(
