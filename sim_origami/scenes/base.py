@@ -18,7 +18,7 @@ from ..kinematics.base import Kinematics
 from ..mechanism import Mechanism
 from ..mjcf import ModelSetup
 from ..path import Polyline
-from ..precision import Adjustment, Typed, exact_precision, nearest_exact
+from ..precision import Adjustment, Typed, nearest_exact
 
 UNITS = {"deg": np.pi / 180.0, "m": 1.0, "": 1.0}
 # Closed-form poses per branch, evenly across its domain with both ends, at which `without_implied_closures` finds
@@ -332,11 +332,10 @@ class SceneType:
         lengths against LENGTH_RATIO_MAX); unknown names, non-numbers, non-finite or out-of-range values raise
         ParameterError naming the parameter and the rule.
 
-        Where the scene has an exact `condition`, the values are held to `precision` (API units by name; a value not
-        named, and every value without `precision`, is exact to EXACT_ULPS units in its last place; defaults and whole
-        numbers of integer parameters are held): the nearest values that meet the condition are built, and
-        `Scene.adjustments` lists every value that moved. A condition that no values within their precision meet
-        raises AssemblyError naming the distance.
+        Where the scene has an exact `condition` and values are given with a `precision` (API units by name, as
+        typed: `build_from_user`), the nearest values that meet the condition are built, moving only those values
+        (not defaults, integers or presets), and `Scene.adjustments` lists every value that moved. A condition that no
+        values within their precision meet raises AssemblyError naming the distance.
         """
         known = {p.name: p for p in self.params}
         for key in values:
@@ -374,26 +373,23 @@ class SceneType:
         return self._build_exact(full, {name: value for name, value in (precision or {}).items() if name in values})
 
     def _build_exact(self, full: dict[str, float], precision: dict[str, float]) -> Scene:
-        """Build at the values nearest `full` that meet the condition (module docstring of `precision`)."""
+        """Build at the values nearest `full` that meet the condition, moving only the values given with a
+        precision (module docstring of `precision`); without one, as given (the kinematics refuse what they must)."""
         known = {p.name: p for p in self.params}
         names = list(full)
         given = np.array([full[n] for n in names])
-        typed = {n for n in names if n in precision}
-        held = np.array([known[n].integer or known[n].replaces != () for n in names])
-        scale = np.array([precision[n] if n in typed else float(exact_precision(full[n])) for n in names])
-        scale[held] = 0.0
+        scale = np.array([0.0 if known[n].integer or known[n].replaces else precision.get(n, 0.0) for n in names])
 
         def residual(p: NDArray[np.float64]) -> NDArray[np.float64]:
             return np.array([self.condition.residual(dict(zip(names, p, strict=True)))])
 
-        if abs(residual(given)[0]) <= EXACT_RESIDUAL:
+        if not scale.any() or abs(residual(given)[0]) <= EXACT_RESIDUAL:
             return self._build(tuple(sorted(full.items())))
         nearest = nearest_exact(residual, given, scale, EXACT_RESIDUAL)
-        # Values given exact move by a few units in their last place at most: rounding, not an adjustment.
         moved = [
             Adjustment(n, known[n].to_user(g), known[n].to_user(v), known[n].to_user(s), known[n].unit)
             for n, g, v, s in zip(names, given, nearest.values, scale, strict=True)
-            if (n in typed and v != g) or abs(v - g) > s
+            if v != g
         ]
         if nearest.residual > EXACT_RESIDUAL or nearest.ratio > 1.0:
             worst = max(moved, key=lambda a: a.ratio, default=None)

@@ -13,8 +13,9 @@ own A<row + r0>_0_2 (Feng, Ma and Chen 2020, Fig 16 paths I, III; `WaterbombTwis
 twist senses only.
 """
 
+from ..kinematics.waterbomb_tube import beta_max_residual
 from ..kinematics.waterbomb_twist import WaterbombTwist
-from .base import ACUTE, Param, Scene, register
+from .base import ACUTE, Condition, Param, Scene, register
 from .waterbomb_tube import TUBE_ROWS, TUBE_UNITS, check_size, tube_mechanism
 
 PARAMS = (
@@ -50,9 +51,17 @@ SWEEP_TIME_SCALE = 8.0
 FAST_STEP_SCALE = 1.25
 
 
+# A row other than the middle one twists only at beta = beta_max (eqn 40): beta as typed (e.g. 42.01 for
+# 42.0105238) is moved onto it within its precision.
+CONDITION = Condition(
+    "beta = beta_max(alpha, n) (Feng, Ma and Chen 2020, eqn 40), which a row other than 0 needs to twist",
+    lambda v: float(beta_max_residual(v["alpha"], v["beta"], int(v["n"]))) if v["row"] else 0.0,
+)
+
+
 @register("waterbomb-twist", "generalized waterbomb tube, n units x m rows (m odd), twist of the fully folded middle "
           "row (any row at beta_max, Fig 16) under the twist's symmetry (Feng, Ma and Chen 2020, §3; Feng 2018, "
-          "§6.4), input rho of the twisting row's upper-right diagonal", PARAMS)  # fmt: skip
+          "§6.4), input rho of the twisting row's upper-right diagonal", PARAMS, CONDITION)  # fmt: skip
 def build(n: float, m: float, alpha: float, beta: float, a: float, row: float) -> Scene:
     check_size(n, m)
     kinematics = WaterbombTwist(n, m, alpha, beta, a, row)

@@ -1,0 +1,7 @@
+"""`python -m sim_origami`: the sim-origami command."""
+
+import sys
+
+from .cli import main
+
+sys.exit(main())
