@@ -78,9 +78,15 @@ from .creases import Crease, CreasePattern
 from .errors import ParameterError
 from .files import write_text
 from .fold_mesh import Face, key, reverse
+from .precision import EXACT_ULPS, Adjustment, Typed
 
 FILE_SPEC = 1.2
 HEIGHT_KEY = "edges_sim_origami:hingeHeight"
+# The precision (frame_unit) of a frame's vertices_coords, as the user states it; otherwise read from the numbers' text.
+PRECISION_KEY = "frame_sim_origami:precision"
+# A folded form's nearest rigid state reports this many of its coordinates' moves (the largest against their
+# precision) as adjustments; the verdict counts them all.
+ADJUSTMENTS_SHOWN = 4
 # Metres per FOLD frame_unit; "unit" (no physical meaning) is read as metres.
 UNITS = {
     "unit": 1.0, "km": 1e3, "m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "nm": 1e-9, "in": 0.0254, "pt": 0.0254 / 72,
@@ -117,6 +123,43 @@ class FoldPattern:
     frames_from_coords: bool = False
     notes: tuple[str, ...] = ()
     unit_scale: float = 1.0
+    fit: "FormFit | None" = None
+
+
+@dataclass(frozen=True)
+class FormFit:
+    """
+    A folded form in the file against the nearest rigid one, which is what is read (its unfolding, its dihedral
+    angles): lengths in the file's `unit`. `distance` the largest vertex move, at file vertex `vertex` (on creases
+    `creases`), `size` the form's bounding-box diagonal, `ratio` the largest coordinate move over that coordinate's
+    precision (<= 1: within what its printing allows), `precision` the precision of the coordinate moved the most
+    against it; `compared` says what was compared with what. `adjustments`: the coordinates moved the most.
+    """
+
+    field: str
+    unit: str
+    distance: float
+    size: float
+    ratio: float
+    precision: float
+    vertex: int
+    creases: tuple[str, ...]
+    compared: str
+    adjustments: tuple[Adjustment, ...]
+
+    @property
+    def within(self) -> bool:
+        """The file's form is rigid within its precision."""
+        return self.ratio <= 1.0
+
+    def text(self) -> str:
+        """The distance in words: absolute, against the size and the precision, and where it is largest."""
+        unit = f" {self.unit}" if self.unit else ""
+        at = f" (creases {', '.join(self.creases[:6])})" if self.creases else ""
+        return (f"{self.field} are {self.distance:.3g}{unit} ({self.distance / self.size:.3g} of the form's size "
+                f"{self.size:.4g}{unit}) from the nearest rigid folded state, {self.ratio:.3g} x the precision "
+                f"{self.precision:.3g}{unit} of the coordinate moved most, largest at vertex {self.vertex}{at}; "
+                f"{self.compared}")  # fmt: skip
 
 
 @dataclass
@@ -132,8 +175,9 @@ class _Sheet:
     n_file_vertices: int
     edges_vertices: Any
     unit_scale: float
-    folded_xyz: NDArray[np.float64] | None  # the frame's own 3-D coordinates when it was a folded form
+    folded_xyz: NDArray[np.float64] | None  # a folded form's nearest rigid state, per pattern vertex (file units)
     notes: list[str] = field(default_factory=list)
+    fit: FormFit | None = None
     measured: list[NDArray[np.float64]] = field(default_factory=list)  # fold angles measured from coordinates
 
 
@@ -193,9 +237,8 @@ def read_fold(source: str | os.PathLike | Mapping[str, Any]) -> FoldPattern:
                            f"{agree + disagree} creases: the file's faces run for the other side of the paper, "
                            "so M and V are read swapped")  # fmt: skip
         fold_angles, rows, from_coords = _angles(key, geometry, raw, frames, sheet)
-    return FoldPattern(
-        sheet.pattern, fold_angles, sheet.edge_of_crease, rows, from_coords, tuple(sheet.notes), sheet.unit_scale
-    )
+    return FoldPattern(sheet.pattern, fold_angles, sheet.edge_of_crease, rows, from_coords, tuple(sheet.notes),
+                       sheet.unit_scale, sheet.fit)  # fmt: skip
 
 
 def fold_dict(
@@ -317,8 +360,8 @@ def _load(source: str | os.PathLike | Mapping[str, Any]) -> Mapping[str, Any]:
     """The FOLD JSON object of a path or an already parsed mapping."""
     if isinstance(source, Mapping):
         return source
-    try:
-        doc = json.loads(Path(source).read_text())
+    try:  # each float keeps the precision of its text (`precision.Typed`)
+        doc = json.loads(Path(source).read_text(), parse_float=Typed)
     except json.JSONDecodeError as err:
         raise ParameterError(f"{source} is not JSON ({err}); a FOLD file is a JSON object") from err
     except OSError as err:
@@ -659,10 +702,12 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
     if cuts:
         faces, source, new_of = fold_mesh.split_cuts(n, faces, cuts)
         notes.append(f"{len(cuts)} cut edge(s) split the paper: {len(source) - n} vertices doubled along them")
+    fit = folded = None
     if flat:
         xy = xy[source]
     else:
-        xy, more = fold_mesh.unfold(xyz[source], faces)
+        folded, fit = _nearest_rigid(frame, label, xyz, faces, source, notes)
+        xy, more = fold_mesh.unfold(folded, faces)
         notes.extend(more)
     xy = xy * scale
 
@@ -709,17 +754,87 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
     border = tuple((*new_edges[j], float(heights[fold_index[j]])) for j, letter in enumerate(new_letters)
                    if letter == "B" and np.isfinite(heights[fold_index[j]]) and key(*new_edges[j]) in kept)  # fmt: skip
     pattern = CreasePattern(xy, tuple(faces), creases, tuple(f"f{k}" for k in range(len(faces))), border)
-    tol = DEVELOPABLE_TOL
-    if not flat:  # an unfolded form closes round its vertices only as well as its coordinates allow
-        tol = max(tol, fold_mesh.develop_tolerance(xyz) / float(np.min(lengths)))
-    _check_developable(pattern, tol)
+    _check_developable(pattern)
     left = {side: f for f, face in enumerate(faces) for side in _sides(face)}
     hinges = [(c.start, c.end, left[c.start, c.end], left[c.end, c.start]) for c in creases]
     signs = np.array([{"V": 1.0, "M": -1.0}.get(c.assignment, 0.0) for c in creases])
+    if fit is not None:
+        fit = _form_fit(fit, pattern, source, label, frame.get("frame_unit", "unit"))
     return _Sheet(
         pattern, tuple(fold_index[j] for j in crease_edges), source, hinges, signs, sign, n,
-        frame["edges_vertices"], scale, None if flat else xyz, notes,
+        frame["edges_vertices"], scale, folded, notes, fit,
     )  # fmt: skip
+
+
+def _nearest_rigid(
+    frame: Mapping[str, Any], label: str, xyz: NDArray[np.float64], faces: list[Face], source: NDArray[np.int_],
+    notes: list[str],
+) -> tuple[NDArray[np.float64], fold_mesh.Fit]:  # fmt: skip
+    """
+    A folded form's nearest developable state (`fold_mesh.nearest_developable`) in units of its coordinates'
+    precision (`_coords_precision`), per pattern vertex (file units), with the fit. ParameterError when none is
+    found near it (the projection leaves a residual: the faces cannot be made to fit one flat sheet).
+    """
+    precision = _coords_precision(frame, xyz)[source]
+    fit = fold_mesh.nearest_developable(xyz[source], faces, precision)
+    extent = fold_mesh.size(xyz)
+    if not fit.residual <= fold_mesh.DEVELOP_RTOL * extent:
+        raise ParameterError(
+            f"folded form not developable: {label} has no developable folded state near it (the nearest found still "
+            f"misses its {fit.conditions} by {fit.residual:.3g}, {fit.residual / extent:.3g} of its size): the faces "
+            "do not fit one flat sheet"
+        )  # fmt: skip
+    if fit.distance > 0:
+        notes.append(f"{label}: the nearest developable folded state (planar faces, 360 deg round every interior "
+                     f"vertex) is {fit.distance:.3g} file units away, {fit.ratio:.3g} x the coordinates' precision; "
+                     "it is what is read")  # fmt: skip
+    return fit.xyz, fit
+
+
+def _form_fit(fit: fold_mesh.Fit, pattern: CreasePattern, source: NDArray[np.int_], label: str, unit: str) -> FormFit:
+    """The fit in the file's terms: file vertices, crease names, the coordinates moved the most as adjustments."""
+    v = fit.vertex
+    creases = tuple(c.name for c in pattern.creases if v in (c.start, c.end))
+    against = np.abs(fit.moved) / fit.precision
+    order = np.argsort(against, axis=None)[::-1][:ADJUSTMENTS_SHOWN]
+    shown = [np.unravel_index(k, against.shape) for k in order if against.flat[k] > 0]
+    adjustments = tuple(
+        Adjustment(f"{label}[{source[i]}][{j}]", float(fit.given[i, j]), float(fit.xyz[i, j]),
+                   float(fit.precision[i, j]), "" if unit == "unit" else unit)
+        for i, j in shown
+    )  # fmt: skip
+    worst = np.unravel_index(int(np.argmax(against)), against.shape)
+    moved = int(np.count_nonzero(fit.moved))
+    compared = (f"{fit.given.size} coordinates of {len(fit.given)} vertices held to {fit.conditions}; {moved} moved, "
+                f"rms {np.sqrt(np.mean(fit.moved**2)):.3g}")  # fmt: skip
+    return FormFit(label, "" if unit == "unit" else unit, fit.distance, fold_mesh.size(fit.given), fit.ratio,
+                   float(fit.precision[worst]), int(source[v]), creases, compared, adjustments)  # fmt: skip
+
+
+def _coords_precision(frame: Mapping[str, Any], xyz: NDArray[np.float64]) -> NDArray[np.float64]:
+    """
+    The precision (n, 3) of each coordinate, in file units: the frame's PRECISION_KEY when it states one; else half a
+    unit in the last digit printed. Writers drop trailing zeros ('0.25' or '1' for 0.250000 or 1.000000), so an
+    integer, or a number printed with fewer significant digits than the field's longest, is taken to the field's
+    finest printed digit. A field without decimals (integers typed by hand), or given as floats (a parsed mapping, not
+    text), is exact: EXACT_ULPS units in the last place of the size.
+    """
+    floor = EXACT_ULPS * np.spacing(fold_mesh.size(xyz))
+    if PRECISION_KEY in frame:
+        stated = frame[PRECISION_KEY]
+        if isinstance(stated, bool) or not isinstance(stated, (int, float)) or not 0 < stated < np.inf:
+            raise ParameterError(f"{PRECISION_KEY} = {stated!r}; it must be a positive number (frame_unit)")
+        return np.full(xyz.shape, max(float(stated), floor))
+    rows = [[*c, 0][:3] for c in frame["vertices_coords"]]
+    half = np.array([[x.precision if isinstance(x, Typed) else 0.0 for x in row] for row in rows], dtype=float)
+    printed = half > 0
+    if not np.any(printed):
+        return np.full(xyz.shape, floor)
+    with np.errstate(divide="ignore"):
+        digits = np.floor(np.log10(np.abs(xyz))) - np.log10(2 * np.where(printed, half, 1.0))
+    short = ~printed | ~(digits >= np.max(digits[printed]))
+    half = np.where(short, np.min(half[printed]), half)
+    return np.maximum(half, floor)
 
 
 def _drop_loose(faces: list[Face], notes: list[str]) -> list[Face]:
@@ -743,11 +858,12 @@ def _measured(sheet: _Sheet, value: Any, field: str) -> NDArray[np.float64]:
     xyz, _ = _coords(value, field)
     if len(xyz) != sheet.n_file_vertices:
         raise ParameterError(f"{field} has {len(xyz)} vertices; the crease pattern has {sheet.n_file_vertices}")
-    return _dihedral(sheet, xyz, field)
+    return _dihedral(sheet, xyz[sheet.source], field)
 
 
 def _dihedral(sheet: _Sheet, xyz: NDArray[np.float64], field: str) -> NDArray[np.float64]:
-    rho = fold_mesh.dihedral_angles(xyz[sheet.source], list(sheet.pattern.faces), sheet.hinges, sheet.signs, field)
+    """Fold angles (n_creases,) rad of 3-D coordinates (one row per pattern vertex)."""
+    rho = fold_mesh.dihedral_angles(xyz, list(sheet.pattern.faces), sheet.hinges, sheet.signs, field)
     sheet.measured.append(rho)
     return rho
 

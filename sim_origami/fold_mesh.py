@@ -1,5 +1,6 @@
-"""Mesh steps behind the FOLD reader (`sim_origami.fold`), numpy only: the sheet's plane, faces from a planar
-edge graph, consistent face orientation, cuts and joins, unfolding a folded form, and dihedral fold angles.
+"""Mesh steps behind the FOLD reader (`sim_origami.fold`): the sheet's plane, faces from a planar edge graph,
+consistent face orientation, cuts and joins, the nearest rigid folded form (scipy's sparse least squares), unfolding
+a folded form, and dihedral fold angles.
 
 Every tolerance is relative to the sheet's size (the diagonal of its bounding box), so a 1 mm sheet and a
 1000-unit sheet are read alike. Faces are vertex loops; a face's normal follows its loop counter-clockwise
@@ -9,23 +10,26 @@ Every tolerance is relative to the sheet's size (the diagonal of its bounding bo
 
 from collections import deque
 from collections.abc import Iterator
-from itertools import chain
+from dataclasses import dataclass
+from itertools import chain, combinations
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy import sparse as sp
+from scipy.sparse.linalg import lsqr
 
 from .errors import ParameterError
 from .geometry import minimal_rotation
 
 # A sheet is flat when no vertex is further than this from its fitted plane, relative to its size.
 PLANE_RTOL = 1e-6
-# Unfolding: a vertex placed by two faces may differ by this, relative to the sheet's size.
+# Unfolding: a vertex placed by two faces may differ by this, relative to the sheet's size. A folded form is first
+# projected onto the nearest developable one (`nearest_developable`), whose placements agree to rounding.
 DEVELOP_RTOL = 1e-9
-# Coordinates printed to a decimal step q <= QUANTUM_RTOL of the size (e.g. 6 decimals) widen the unfolding
-# tolerance to QUANTUM_FACTOR * q: rounding each coordinate by q / 2 moves a vertex placed through a chain of faces
-# by about q (measured: 1.6 q on a square twist printed to 6 decimals).
-QUANTUM_RTOL = 1e-5
-QUANTUM_FACTOR = 10.0
+# The projection: at most this many Gauss-Newton steps; a form whose conditions hold to RIGID_RTOL of its size is
+# exact (to rounding) and kept as it is, and the projection stops there.
+RIGID_STEPS = 30
+RIGID_RTOL = 1e-13
 # A measured fold angle this close to +-pi takes its sign from the crease's M/V letter (rad).
 FLAT_FOLD_TOL = 1e-6
 
@@ -45,27 +49,6 @@ def key(a: int, b: int) -> tuple[int, int]:
 def size(xyz: NDArray[np.float64]) -> float:
     """The diagonal of the bounding box of points (n, d)."""
     return float(np.linalg.norm(np.ptp(xyz, axis=0))) if len(xyz) else 0.0
-
-
-def quantum(xyz: NDArray[np.float64]) -> float:
-    """
-    The coarsest decimal step 10^-d (d <= 12) that every coordinate is a multiple of, when it is at most
-    QUANTUM_RTOL of the size (rounding); else 0 (full precision, or exact hand-typed numbers such as 0.25).
-    """
-    scale = size(xyz)
-    if scale == 0.0:
-        return 0.0
-    for d in range(int(np.floor(-np.log10(scale))), 13):
-        scaled = xyz * 10.0**d
-        if np.all(np.abs(scaled - np.round(scaled)) <= 1e-3):
-            return 10.0**-d if 10.0**-d <= QUANTUM_RTOL * scale else 0.0
-    return 0.0
-
-
-def develop_tolerance(xyz: NDArray[np.float64]) -> float:
-    """How far apart (file units) two placements of a vertex may land when unfolding `xyz`."""
-    scale, q = size(xyz), quantum(xyz)
-    return max(DEVELOP_RTOL * scale, QUANTUM_FACTOR * q)
 
 
 def corners(faces: list[Face]) -> tuple[NDArray[np.int_], NDArray[np.int_], NDArray[np.int_], NDArray[np.int_]]:
@@ -343,9 +326,11 @@ def unfold(xyz: NDArray[np.float64], faces: list[Face]) -> tuple[NDArray[np.floa
     """
     The flat sheet (n, 2) of a folded form: faces (oriented) placed breadth-first across shared sides, each by its
     own edge lengths and angles, counter-clockwise; separate pieces are laid side by side. ParameterError when a
-    vertex placed by two faces lands at two points more than DEVELOP_RTOL of the size apart (not developable).
+    vertex placed by two faces lands at two points more than DEVELOP_RTOL of the size apart (not developable: project
+    the form with `nearest_developable` first).
     """
-    scale, tol = size(xyz), develop_tolerance(xyz)
+    scale = size(xyz)
+    tol = DEVELOP_RTOL * scale
     xy = np.full((len(xyz), 2), np.nan)
     by_side = {side: f for f, face in enumerate(faces) for side in sides(face)}
     normals = face_normals(xyz, faces)
@@ -392,7 +377,196 @@ def unfold(xyz: NDArray[np.float64], faces: list[Face]) -> tuple[NDArray[np.floa
                     queue.append((g, (d, c, xy[d].copy(), xy[c].copy())))
     notes.append(
         f"unfolded the 3-D folded form into the plane across {len(faces)} faces ({pieces} piece(s)); vertices "
-        f"placed twice agree to {worst / scale:.2g} of the sheet's size (allowed {tol / scale:.2g}"
-        + (f", coordinates printed to steps of {quantum(xyz):g})" if tol > DEVELOP_RTOL * scale else ")")
+        f"placed twice agree to {worst / scale:.2g} of the sheet's size (allowed {DEVELOP_RTOL:.2g})"
     )
     return xy, notes
+
+
+# -- the nearest rigid folded form -------------------------------------------------------------------------------
+
+# Projections with at most this many coordinates solve each Gauss-Newton step densely (least norm by SVD); larger
+# ones by LSQR on the sparse Jacobian, which converges to the least-norm step from zero.
+DENSE_COORDS = 3000
+
+
+@dataclass(frozen=True)
+class Fit:
+    """
+    A folded form (`given`, (n, 3) file units) and the nearest rigid one (`xyz`): planar faces, and sector angles
+    closing to 2 pi round every interior vertex, or faces congruent to a crease pattern's (`RigidConditions`).
+    `precision` (n, 3) is each coordinate's, the projection's unit; `residual` the conditions' largest residual left
+    (file units); `conditions` says what was imposed, in words.
+    """
+
+    given: NDArray[np.float64]
+    xyz: NDArray[np.float64]
+    precision: NDArray[np.float64]
+    residual: float
+    conditions: str
+
+    @property
+    def moved(self) -> NDArray[np.float64]:
+        """Each coordinate's move (n, 3), file units."""
+        return self.xyz - self.given
+
+    @property
+    def ratio(self) -> float:
+        """The largest move of a coordinate over its precision (<= 1: the form is rigid within its printing)."""
+        return float(np.max(np.abs(self.moved) / self.precision, initial=0.0))
+
+    @property
+    def distance(self) -> float:
+        """The largest distance (file units) a vertex moved."""
+        return float(np.max(np.linalg.norm(self.moved, axis=1), initial=0.0))
+
+    @property
+    def vertex(self) -> int:
+        """The vertex (row of `given`) that moved the most."""
+        return int(np.argmax(np.linalg.norm(self.moved, axis=1)))
+
+
+class RigidConditions:
+    """
+    Conditions (in file units) on a folded form's coordinates (n, 3) that hold exactly when it is a rigid folded
+    state: each face planar (the distance of its vertices from the plane of its widest corner triangle), and either
+    the sector angles round each interior vertex summing to 2 pi (developable; the defect times the vertex's mean
+    edge length) or, given `bars` with their `rest` lengths, those lengths kept (faces congruent to a crease
+    pattern's). `residual` and the sparse `jacobian` (m, 3n).
+    """
+
+    def __init__(
+        self,
+        xyz: NDArray[np.float64],
+        faces: list[Face],
+        bars: NDArray[np.int_] | None = None,
+        rest: NDArray[np.float64] | None = None,
+    ):
+        self.n = len(xyz)
+        count: dict[tuple[int, int], int] = {}
+        for face in faces:
+            for a, b in sides(face):
+                count[key(a, b)] = count.get(key(a, b), 0) + 1
+        border = {v for (a, b), k in count.items() if k == 1 for v in (a, b)}
+        _, v, nxt, prv = corners(faces)
+        self.interior = np.array(sorted(set(v.tolist()) - border), dtype=int) if bars is None else np.zeros(0, int)
+        at = np.full(self.n, -1)
+        at[self.interior] = np.arange(len(self.interior))
+        keep = at[v] >= 0
+        self.corner_row, self.corner = at[v[keep]], (v[keep], nxt[keep], prv[keep])
+        lengths = np.linalg.norm(xyz[nxt[keep]] - xyz[v[keep]], axis=1)
+        self.edge = np.bincount(self.corner_row, weights=lengths, minlength=len(self.interior)).astype(float)
+        self.edge /= np.maximum(np.bincount(self.corner_row, minlength=len(self.interior)), 1)
+        planes = []
+        for face in faces:
+            if len(face) < 4:
+                continue
+            p = xyz[list(face)]
+            triples = list(combinations(range(len(face)), 3))
+            areas = [np.linalg.norm(np.cross(p[j] - p[i], p[k] - p[i])) for i, j, k in triples]
+            i, j, k = triples[int(np.argmax(areas))]
+            planes += [(face[i], face[j], face[k], face[d], max(areas)) for d in range(len(face)) if d not in (i, j, k)]
+        self.planes = np.array([p[:4] for p in planes], dtype=int).reshape(-1, 4)
+        self.plane_area = np.array([p[4] for p in planes])
+        self.bars = np.zeros((0, 2), dtype=int) if bars is None else np.asarray(bars, dtype=int)
+        self.rest = np.zeros(0) if rest is None else np.asarray(rest, dtype=float)
+
+    @property
+    def size(self) -> int:
+        """How many conditions."""
+        return len(self.interior) + len(self.planes) + len(self.bars)
+
+    def describe(self) -> str:
+        """What is imposed, counted."""
+        parts = [f"{len(self.interior)} vertex angle sums"] if len(self.interior) else []
+        parts += [f"{len(self.planes)} face planarities"] if len(self.planes) else []
+        parts += [f"{len(self.bars)} face lengths"] if len(self.bars) else []
+        return ", ".join(parts) or "none"
+
+    def _corner_angles(self, x: NDArray[np.float64]) -> tuple[NDArray, ...]:
+        v, nxt, prv = self.corner
+        u, w = x[nxt] - x[v], x[prv] - x[v]
+        lu, lw = np.linalg.norm(u, axis=1), np.linalg.norm(w, axis=1)
+        uh, wh = u / lu[:, None], w / lw[:, None]
+        c, s = np.einsum("ij,ij->i", uh, wh), np.linalg.norm(np.cross(uh, wh), axis=1)
+        return np.arctan2(s, c), uh, wh, lu, lw, c, s
+
+    def _plane(self, x: NDArray[np.float64]) -> tuple[NDArray, ...]:
+        a, b, c, d = self.planes.T
+        e1, e2, e3 = x[b] - x[a], x[c] - x[a], x[d] - x[a]
+        return e1, e2, e3
+
+    def residual(self, x: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The conditions' residuals (m,) at coordinates x (n, 3), file units."""
+        theta = self._corner_angles(x)[0]
+        defect = 2 * np.pi - np.bincount(self.corner_row, weights=theta, minlength=len(self.interior))
+        e1, e2, e3 = self._plane(x)
+        planar = np.einsum("ij,ij->i", np.cross(e1, e2), e3) / self.plane_area
+        stretch = np.linalg.norm(x[self.bars[:, 0]] - x[self.bars[:, 1]], axis=1) - self.rest
+        return np.concatenate([defect * self.edge, planar, stretch])
+
+    def jacobian(self, x: NDArray[np.float64]) -> sp.csr_matrix:
+        """The residuals' derivatives (m, 3n) with respect to the coordinates, flattened vertex by vertex."""
+        rows, cols, vals = [], [], []
+
+        def add(row: NDArray, vertex: NDArray, grad: NDArray) -> None:
+            rows.append(np.repeat(row, 3))
+            cols.append((3 * vertex[:, None] + np.arange(3)).ravel())
+            vals.append(grad.ravel())
+
+        _, uh, wh, lu, lw, c, s = self._corner_angles(x)
+        v, nxt, prv = self.corner
+        scale = self.edge[self.corner_row][:, None] / s[:, None]
+        d_u = (c[:, None] * uh - wh) / lu[:, None] * scale  # d theta / d u times the row's scale
+        d_w = (c[:, None] * wh - uh) / lw[:, None] * scale
+        add(self.corner_row, nxt, -d_u)
+        add(self.corner_row, prv, -d_w)
+        add(self.corner_row, v, d_u + d_w)
+        e1, e2, e3 = self._plane(x)
+        row = len(self.interior) + np.arange(len(self.planes))
+        a, b, cc, d = self.planes.T
+        g1, g2, g3 = (np.cross(e2, e3), np.cross(e3, e1), np.cross(e1, e2))
+        area = self.plane_area[:, None]
+        for vertex, grad in ((b, g1), (cc, g2), (d, g3), (a, -(g1 + g2 + g3))):
+            add(row, vertex, grad / area)
+        row = len(self.interior) + len(self.planes) + np.arange(len(self.bars))
+        along = x[self.bars[:, 0]] - x[self.bars[:, 1]]
+        along /= np.linalg.norm(along, axis=1)[:, None]
+        add(row, self.bars[:, 0], along)
+        add(row, self.bars[:, 1], -along)
+        shape = (self.size, 3 * self.n)
+        if not rows:
+            return sp.csr_matrix(shape)
+        return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=shape)
+
+
+def nearest_rigid(xyz: NDArray[np.float64], precision: NDArray[np.float64], conditions: RigidConditions) -> Fit:
+    """
+    The rigid folded form nearest `xyz` (n, 3) in units of each coordinate's `precision` (n, 3), the same unit:
+    least-norm Gauss-Newton in z = (x - xyz) / precision (`precision.nearest_exact`, with the conditions' analytic
+    sparse Jacobian), from the form as given. A form that already meets its conditions to RIGID_RTOL of its size is
+    kept. The best iterate (smallest residual) is returned; the caller judges a residual left.
+    """
+    scale = size(xyz)
+    x0, w = xyz.ravel(), precision.ravel()
+    z = np.zeros_like(x0)
+    best_x, best_r = xyz, np.inf
+    for _ in range(RIGID_STEPS):
+        x = (x0 + z * w).reshape(-1, 3)
+        r = conditions.residual(x)
+        worst = float(np.max(np.abs(r), initial=0.0))
+        if worst < best_r:
+            best_x, best_r = x, worst
+        if worst <= RIGID_RTOL * scale:
+            break
+        J = conditions.jacobian(x) @ sp.diags(w)
+        rhs = J @ z - r
+        if J.shape[1] <= DENSE_COORDS:
+            z = np.linalg.lstsq(J.toarray(), rhs, rcond=None)[0]
+        else:
+            z = lsqr(J, rhs, atol=1e-15, btol=1e-15, iter_lim=20 * J.shape[1])[0]
+    return Fit(xyz, best_x, precision, best_r, conditions.describe())
+
+
+def nearest_developable(xyz: NDArray[np.float64], faces: list[Face], precision: NDArray[np.float64]) -> Fit:
+    """The developable folded form nearest `xyz` (planar faces, 2 pi round every interior vertex): `nearest_rigid`."""
+    return nearest_rigid(xyz, precision, RigidConditions(xyz, faces))

@@ -316,17 +316,34 @@ def hull_square_twist() -> dict:
     }
 
 
-def test_rigidly_folded_square_twist_printed_to_six_decimals():
-    got = read_fold(hull_square_twist())
+def test_rigidly_folded_square_twist_printed_to_six_decimals(tmp_path):
+    # read as text, each coordinate carries its printed precision (5e-7): the nearest developable state is read
+    path = tmp_path / "squaretwist.fold"
+    path.write_text(json.dumps(hull_square_twist()))
+    got = read_fold(path)
     rho = got.fold_angles
-    # every measured angle has its crease's M/V sign, and the twist closes round its four vertices
+    # every measured angle has its crease's M/V sign, and the twist closes round its four vertices exactly
     assert all((r > 0) == (c.assignment == "V") for r, c in zip(rho, got.pattern.creases, strict=True))
     np.testing.assert_allclose(np.sort(np.abs(np.rad2deg(rho))), [29.788] * 6 + [65.408] * 6, atol=1e-3)
-    assert got.pattern.loop_system().residual_norm(rho[None]).max() <= 1e-5
-    assert "coordinates printed to steps of 1e-06" in got.notes[0]
+    assert got.pattern.loop_system().residual_norm(rho[None]).max() <= 1e-14
+    # measured: 2.35e-7 from the file's coordinates at most, 0.41 of the precision 5e-7 (an integer 0 among
+    # six-decimal numbers is 0.000000)
+    fit = got.fit
+    assert fit.within and 0.2 < fit.ratio < 0.6 and fit.precision == pytest.approx(5e-7)
+    assert 1e-7 < fit.distance < 3e-7 and "4 vertex angle sums, 9 face planarities" in fit.compared
+    assert fit.adjustments[0].ratio == pytest.approx(fit.ratio) and len(fit.adjustments) == 4
+    # the same numbers given as floats (a parsed mapping) are exact, so the same moves are far beyond them
+    assert read_fold(hull_square_twist()).fit.ratio > 1e6
 
 
-def test_folded_pyramid_is_not_developable():
+def test_a_stated_precision_replaces_the_printed_one(tmp_path):
+    doc = hull_square_twist() | {"frame_sim_origami:precision": 1e-7}
+    assert read_fold(doc).fit.ratio == pytest.approx(2.04, abs=0.01)  # the same moves as at 5e-7 (0.408 of it)
+    with pytest.raises(ParameterError, match="frame_sim_origami:precision = -1; it must be a positive number"):
+        read_fold(doc | {"frame_sim_origami:precision": -1})
+
+
+def test_folded_pyramid_is_far_from_any_developable_state():
     apex = [0.0, 0.0, 1.0]
     base = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]]
     doc = {
@@ -335,8 +352,9 @@ def test_folded_pyramid_is_not_developable():
         "edges_assignment": ["M"] * 4 + ["B"] * 4,
         "faces_vertices": [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 1]],
     }
-    with pytest.raises(ParameterError, match="folded form not developable: unfolding places vertex"):
-        read_fold(doc)
+    # a cone of 240 deg is read as its nearest developable state, nearly flat: 0.8 away, 0.27 of its size
+    fit = read_fold(doc).fit
+    assert not fit.within and fit.vertex == 0 and fit.distance / fit.size == pytest.approx(0.267, abs=1e-3)
 
 
 def diagonal_folded() -> dict:
@@ -431,7 +449,8 @@ def test_sizes_and_units_read_alike(unit, factor):
     doc["frame_unit"] = unit
     got = read_fold(doc)
     assert got.unit_scale == (1.0 if unit == "unit" else factor)
-    np.testing.assert_allclose(got.pattern.vertices, base.pattern.vertices * factor, rtol=1e-12, atol=0)
+    # to 1e-12 of the size: the nearest developable state's coordinates near 0 differ by its rounding (3e-13)
+    np.testing.assert_allclose(got.pattern.vertices, base.pattern.vertices * factor, rtol=1e-12, atol=1e-12 * factor)
     np.testing.assert_allclose(got.fold_angles, base.fold_angles, atol=1e-12)
 
 
