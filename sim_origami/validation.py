@@ -333,6 +333,9 @@ def _input_count_verdict(scene: Scene, branch: str, mobility: dict) -> tuple[Ver
         worst = float("inf") if any(d is None for d in far) else max(far)
         frames = (Verdict(f"{branch}: frames' distance from the rigid motion (rad)", worst, tolerance,
                           f"{len(far)} frames; beyond the traced motion counts as infinite"),)  # fmt: skip
+    state = kin.state_check() if hasattr(kin, "state_check") else None  # a FOLD file's folded form (fold.FormFit)
+    if state is not None:
+        frames += (Verdict(f"{branch}: file state's distance from the nearest rigid state (/ its precision)", *state),)
     unfolded = kin.unfolded_letters() if hasattr(kin, "unfolded_letters") else None
     if unfolded is not None:
         frames += (Verdict(f"{branch}: M/V creases the motion leaves flat", float(len(unfolded)), 0.0,
@@ -449,7 +452,7 @@ def validate(
     checked = None
     if reference is not None:
         t2 = time.thread_time()
-        checked = compare_reference(reference, scene, runs)
+        checked = compare_reference(reference, scene, runs, tuple(names))
         verdicts += checked.verdicts
         timings["reference_cpu_s"] = time.thread_time() - t2
     timings["total_cpu_s"] = time.thread_time() - t0

@@ -269,3 +269,47 @@ def test_a_curve_starting_at_the_bifurcation_is_one_stretch_on_its_branch(tmp_pa
     result = compare_reference(read_reference(write_csv(tmp_path / "a.csv", rows, header), miura.kinematics), miura)
     assert all(v.passed for v in result.verdicts)
     assert [(s["branch"], s["samples"]) for s in result.doc["branches"]] == [(branch, 5)]
+
+
+# --- a comparison that covers nothing cannot pass (issue: vacuous passes) ---------------------------------------
+
+
+def _by_name(result, text: str):
+    (verdict,) = [v for v in result.verdicts if v.name.startswith(text)]
+    return verdict
+
+
+def test_a_branch_restriction_restricts_the_reference(tmp_path, miura):
+    """Curves of the miura branch checked on the straight branch alone (validate --branch straight) fail: they are
+    compared with that branch, not quietly with the one they fit."""
+    ref = read_reference(write_csv(tmp_path / "r.csv", kamrava(np.arange(10.0, 40.1, 5.0))), miura.kinematics)
+    assert all(v.passed for v in compare_reference(ref, miura).verdicts)
+    result = compare_reference(ref, miura, branches=("straight",))
+    assert {s["branch"] for s in result.doc["branches"]} == {"straight"}
+    assert not result.verdicts[0].passed and result.doc["over_tolerance"]["samples"] == 7
+
+
+def test_a_curve_jumping_between_branches_that_do_not_meet_fails(tmp_path, miura):
+    """First the miura branch, then the straight one, at inputs where the two are apart (they meet only at flat):
+    each stretch matches its own branch, but no motion jumps between them."""
+    x = np.array([10.0, 15.0, 20.0, 25.0, 30.0, 35.0])
+    straight = miura.kinematics.joint_angles("straight", np.deg2rad(x[3:]))
+    names = list(miura.kinematics.joint_names)
+    rows = kamrava(x)
+    rows[3:, 1:] = np.rad2deg(straight[:, [names.index(j) for j in ("phi", "psi", "rho_c")]])
+    result = check(tmp_path, miura, rows)
+    assert [s["branch"] for s in result.doc["branches"]] == ["miura", "straight"]
+    assert result.verdicts[0].passed  # each sample is on a branch ...
+    jump = _by_name(result, "reference switches of branch")
+    assert not jump.passed and "miura -> straight between lines 5 and 6" in jump.detail  # ... but not one motion
+
+
+def test_a_value_printed_as_an_overflowing_exponent_is_not_its_own_tolerance(tmp_path, miura):
+    """'1e+308' once gave its value a tolerance of half a unit in its exponent's digit (5e307 rad): it passed."""
+    path = tmp_path / "huge.csv"
+    rows = kamrava(np.arange(10.0, 40.1, 5.0))
+    body = [",".join(f"{v:.10f}" for v in row) for row in rows]
+    body[3] = body[3].rsplit(",", 1)[0] + ",1e+308"
+    path.write_text(HEADER + "\n" + "\n".join(body) + "\n")
+    result = compare_reference(read_reference(str(path), miura.kinematics), miura)
+    assert not result.verdicts[0].passed and result.doc["worst"]["tolerance_rad"] <= 0.1 + 1e-9

@@ -52,6 +52,10 @@ SLOPE_STEP = 1e-6
 # with joints off by about sqrt(residual). Measured 4.5e-7 rad at the Miura vertex's flat bifurcation (30/60 deg;
 # 1e-13 residual), against 1e-14 on either side of it.
 SINGULAR_RAD = 2e-6
+# Largest tolerance a value's printing gives it (rad): one decimal in radians (0.05) or whole degrees (0.0087) are
+# honoured, while '1e+308' would hold its value to 5e307 rad and pass whatever it is compared with. A value printed
+# coarser than this is held to it.
+PRINTED_MAX_RAD = 0.1
 COLUMN = re.compile(r"^\s*([^\[\]]*?)\s*(?:\[\s*([^\[\]]*?)\s*\])?\s*$")
 
 
@@ -200,7 +204,7 @@ def read_reference(
                 raise ParameterError(f"reference {source}: line {line}, column {names[c]}: {cell.strip()} is not a "
                                      "finite number")  # fmt: skip
             numbers[r, c] = value * UNITS[unit_of[names[c]]]
-            printed[r, c] = half_unit(cell) * UNITS[unit_of[names[c]]]
+            printed[r, c] = min(half_unit(cell) * UNITS[unit_of[names[c]]], PRINTED_MAX_RAD)
     lines = np.array([line for line, _ in data])
     k = names.index(kinematics.input_name)
     x = numbers[:, k]
@@ -224,12 +228,14 @@ class _Branches:
     inputs: dict[str, NDArray[np.float64]] = field(default_factory=dict)  # (n,) inputs held inside the domain
 
 
-def _assign(kin: Kinematics, ref: ReferenceCurves, cols: list[int], row_tol: NDArray[np.float64]) -> _Branches:
-    """Nearest branch per sample, kept on the previous one while that is as near within the sample's tolerance.
-    An input within its printing's half unit of a domain end is taken at that end."""
+def _assign(
+    kin: Kinematics, ref: ReferenceCurves, cols: list[int], row_tol: NDArray[np.float64], names: tuple[str, ...]
+) -> _Branches:
+    """Nearest of the branches `names` per sample, kept on the previous one while that is as near within the sample's
+    tolerance. An input within its printing's half unit of a domain end is taken at that end."""
     out = _Branches([])
     dist = {}
-    for b in kin.branches():
+    for b in (kin.branch(name) for name in names):
         lo, hi = b.domain
         xb = np.where((ref.x < lo) & (ref.x >= lo - ref.x_printed), lo, ref.x)
         xb = np.where((xb > hi) & (xb <= hi + ref.x_printed), hi, xb)
@@ -351,19 +357,26 @@ def _max(a: NDArray[np.float64]) -> float | None:
     return float(np.max(a)) if a.size else None
 
 
-def compare_reference(ref: ReferenceCurves, scene: Scene, runs=()) -> ReferenceCheck:
+def compare_reference(
+    ref: ReferenceCurves, scene: Scene, runs=(), branches: tuple[str, ...] | None = None
+) -> ReferenceCheck:
     """
     The user's curves against the numeric loop solve (the verdict), the scene's kinematics and MuJoCo's runs
-    (`validation.BranchRun`s; numbers only), sample by sample on the branch each falls on.
+    (`validation.BranchRun`s), sample by sample on the branch each falls on: one of `branches` (default every
+    branch), so that a run restricted to a branch checks the curves on that branch alone. A curve passes only if
+    every sample on a branch was compared with the numeric solve, each stretch on a branch was compared with MuJoCo
+    where it ran, and it changes branch only where the two branches meet.
     """
     kin = scene.kinematics
+    names = tuple(b.name for b in kin.branches()) if branches is None else tuple(branches)
     if ref.input_name != kin.input_name or any(j not in kin.joint_names for j in ref.joints):
         raise ParameterError(f"reference {ref.source} was read for another scene (input {ref.input_name})")
     cols = [kin.joint_names.index(j) for j in ref.joints]
     n, m = ref.values.shape
     slope_tol = np.zeros((n, m))
-    branches = _assign(kin, ref, cols, np.max(ref.printed, axis=1) if ref.tol is None else np.full(n, ref.tol))
-    labels = np.array(branches.labels)
+    row_tol = np.max(ref.printed, axis=1) if ref.tol is None else np.full(n, ref.tol)
+    assigned = _assign(kin, ref, cols, row_tol, names)
+    labels = np.array(assigned.labels)
     numeric = np.full((n, m), np.nan)
     kinematic = np.full((n, m), np.nan)
     mujoco = np.full((n, m), np.nan)
@@ -374,10 +387,10 @@ def compare_reference(ref: ReferenceCurves, scene: Scene, runs=()) -> ReferenceC
         idx = np.array(list(group))
         if not name:
             continue
-        xb = branches.inputs[name][idx]
+        xb = assigned.inputs[name][idx]
         segments.append({"branch": str(name), "samples": len(idx), "lines": [int(ref.lines[idx[0]]),
                          int(ref.lines[idx[-1]])], "input_range_rad": [float(xb[0]), float(xb[-1])]})  # fmt: skip
-        kinematic[idx] = branches.values[name][idx][:, cols]
+        kinematic[idx] = assigned.values[name][idx][:, cols]
         try:
             values, singular[idx] = _numeric(kin, name, xb)
             numeric[idx] = values[:, cols]
@@ -390,6 +403,7 @@ def compare_reference(ref: ReferenceCurves, scene: Scene, runs=()) -> ReferenceC
         if sim is not None:
             mujoco[idx] = sim[:, cols]
             simulated[idx] = np.all(np.isfinite(sim[:, cols]), axis=1)
+            segments[-1]["mujoco_samples"] = int(np.sum(simulated[idx]))
     if ref.tol is not None:
         tol = np.full((n, m), ref.tol)
     else:
@@ -427,9 +441,31 @@ def compare_reference(ref: ReferenceCurves, scene: Scene, runs=()) -> ReferenceC
         "numeric_vs_mujoco_max_rad": _max(np.abs(wrap(numeric - mujoco))),
         "worst": worst,
         "disagreeing": disagree,
+        "branch_switches": _switches(kin, ref, labels, assigned, cols, row_tol),
     }
     return ReferenceCheck(doc, _verdicts(doc, n), _table(ref, labels, numeric, mujoco, error, tol), ref.joints, ref.x,
                           tuple(str(lab) for lab in labels), ref.values, error)  # fmt: skip
+
+
+def _switches(kin: Kinematics, ref: ReferenceCurves, labels, assigned: _Branches, cols: list[int], row_tol) -> list:
+    """
+    Where the curve passes from one branch to another between consecutive samples, and whether the two branches
+    meet there: a bifurcation of both between the samples, or the branches within the samples' tolerance of each
+    other at either sample. A curve that jumps between branches that do not meet follows no motion of the mechanism.
+    """
+    out = []
+    for i in np.flatnonzero((labels[:-1] != labels[1:]) & (labels[:-1] != "") & (labels[1:] != "")):
+        a, b = str(labels[i]), str(labels[i + 1])
+        lo, hi = sorted((ref.x[i], ref.x[i + 1]))
+        bifurcation = any(e.kind == "bifurcation" and {a, b} <= set(e.branches) and lo - ref.x_printed[i] <= e.input
+                          <= hi + ref.x_printed[i + 1] for e in kin.events())  # fmt: skip
+        gaps = [float(np.max(np.abs(wrap(assigned.values[a][k, cols] - assigned.values[b][k, cols]))))
+                for k in (i, i + 1)]  # fmt: skip
+        meet = bifurcation or any(g <= row_tol[k] for g, k in zip(gaps, (i, i + 1), strict=True))
+        out.append({"from": a, "to": b, "lines": [int(ref.lines[i]), int(ref.lines[i + 1])],
+                    "input_rad": [float(ref.x[i]), float(ref.x[i + 1])], "branch_gap_rad": min(gaps),
+                    "branches_meet": bool(meet)})  # fmt: skip
+    return out
 
 
 def _table(ref: ReferenceCurves, labels, numeric, mujoco, error, tol) -> str:
@@ -470,11 +506,21 @@ def _verdicts(doc: dict, n: int) -> tuple[Verdict, ...]:
     over = doc["over_tolerance"]["samples"] if doc["compared_samples"] else n
     outside = doc["outside_every_branch"]
     where = ", ".join(f"line {s['line']}" for s in outside[:5]) + (" ..." if len(outside) > 5 else "")
+    jumps = [s for s in doc["branch_switches"] if not s["branches_meet"]]
+    jumped = "; ".join(f"{s['from']} -> {s['to']} between lines {s['lines'][0]} and {s['lines'][1]} (the branches "
+                       f"{s['branch_gap_rad']:.3g} rad apart)" for s in jumps)  # fmt: skip
+    unsimulated = [s for s in doc["branches"] if s.get("mujoco_samples") == 0]
     return (
         Verdict("reference curves vs numeric loop closure: samples over tolerance", float(over), 0.0, detail),
         Verdict("reference samples outside every branch's domain", float(len(outside)), 0.0, where or "none"),
         Verdict("reference: numeric loop solve stalled (stretches)", float(len(doc["numeric_stalls"])), 0.0,
                 "; ".join(s["error"] for s in doc["numeric_stalls"]) or "none"),
+        Verdict("reference switches of branch where the two branches do not meet", float(len(jumps)), 0.0,
+                jumped or "none"),
+        Verdict("reference stretches on a simulated branch with no sample in MuJoCo's swept range",
+                float(len(unsimulated)), 0.0,
+                "; ".join(f"{s['branch']}, lines {s['lines'][0]}-{s['lines'][1]}" for s in unsimulated)
+                or f"{doc['mujoco_samples']} of {doc['compared_samples']} compared samples compared with MuJoCo"),
     )
 
 
