@@ -158,6 +158,8 @@ class PatternPath(JointSpaceKinematics):
         self.frames_tolerance: float | None = None
         # the input (rad) of a target that lies on the rigid motion (the trace is anchored there), else None
         self.target_input: float | None = None
+        # the file's folded form against its nearest rigid state, whose angles are the target (`fold.FormFit`), if any
+        self.state_fit = None
         anchor = self._anchor()
         if anchor is not None:
             self._trace_anchored(anchor)
@@ -341,6 +343,32 @@ class PatternPath(JointSpaceKinematics):
             if e.kind in ("stall", "lock", "contact", "branch-point", "off-target"):
                 parts.append(f"{e.kind} at {e.input:.6g} rad: {e.detail}")
         return "; ".join(parts)
+
+    def state_check(self) -> tuple[float, float, str] | None:
+        """
+        The file's folded state against the nearest rigid state read in its place (`state_fit`): (its largest
+        coordinate move over that coordinate's precision, 1, where it is largest and whether the rigid motion reaches
+        the state); None without a folded form. Beyond 1 the file's state is not a rigid one within its precision.
+        """
+        fit = self.state_fit
+        if fit is None:
+            return None
+        if self.target_input is not None and len(self.s_nodes) > 1:
+            reach = f"the rigid motion passes through it (traced from it, input {self.target_input:.6g} rad)"
+        elif self.target_input is not None:
+            reach = "it closes, but no rigid motion leaves it (the trace stalls there both ways)"
+        elif self.frame_distances:
+            far = [d["distance_rad"] for d in self.frame_distances]
+            reach = "the rigid motion ends before the last frame" if any(d is None for d in far) else \
+                f"the rigid motion through the frames' inputs passes {max(far):.3g} rad from them at most"  # fmt: skip
+        elif np.isfinite(self.target_gap):
+            verb = "reaches" if self.target_gap <= TARGET_TOL else "ends"
+            reach = f"the rigid motion {verb} {self.target_gap:.3g} rad from it at the inputs' end"
+        else:
+            stop = next((p for p in self.stops if p.kind != "end"), None)
+            reach = "the rigid motion does not reach it" + (f": it stops at {stop.s:.6g} rad ({stop.kind})" if stop
+                                                            else "")  # fmt: skip
+        return fit.ratio, 1.0, f"{fit.text()}; {reach}"
 
     def unfolded_letters(self) -> tuple[str, ...] | None:
         """

@@ -178,6 +178,7 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
         inputs, kinematics = more, PatternPath(pattern, more, reference, **kwargs)
     if frames_tolerance is not None and frames_tolerance < 0:
         raise ParameterError(f"frames tolerance {frames_tolerance:g} rad: it must be >= 0")
+    kinematics.state_fit = fold.fit
     from_coords = getattr(fold, "frames_from_coords", False)
     kinematics.frames_tolerance = frames_tolerance if frames_tolerance is not None else None if from_coords \
         else FRAMES_TOL  # fmt: skip
@@ -210,6 +211,7 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
         notes=f"from {Path(path).name} ({source}), lengths in units of its longest edge {size:.6g} m, inputs "
         f"{', '.join(inputs)}; {kinematics.summary()}",
         pattern=pattern, drive_joints=tuple(inputs) if multi else (), drive_path=kinematics.path if multi else None,
+        adjustments=fold.fit.adjustments if fold.fit is not None else (),
     )  # fmt: skip
 
 

@@ -1,0 +1,85 @@
+"""Folded forms as other tools write them (issue 26): coordinates printed to a few decimals are read as the nearest
+rigid state within their precision and validated, with what moved reported; a state strained beyond its precision,
+as a compliant simulator writes one, is a failing verdict with its distance, never a refusal.
+
+Fixtures are generated: a degree-4 vertex folded rigidly (the numeric trace of its letters, placed by MuJoCo's
+mechanism poses), then rounded or strained, and written as text so that each number carries its printed digits.
+"""
+
+import json
+
+import numpy as np
+import pytest
+from fold_fixtures import degree4_letters, folded_form, folded_xyz, validated, write
+
+from sim_origami.fold import read_fold
+from sim_origami.scenes.fold_file import fold_scene
+
+NAME = "through-target: file state's distance from the nearest rigid state (/ its precision)"
+
+
+def state_verdict(report: dict) -> dict:
+    """The folded state's verdict, found by name."""
+    return next(v for b in report["branches"] for v in b["verdicts"] if v["name"] == NAME)
+
+
+def strained(xyz: np.ndarray, strain: float) -> np.ndarray:
+    """`xyz` (n, 3) under a smooth strain field of about `strain` (a fraction) over a unit size, as a compliant
+    simulation leaves its panels."""
+    x, y, z = xyz.T
+    return xyz + strain * np.column_stack([x * y, y * z, -x * z])
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("decimals", [4, 6])
+def test_rounded_folded_form_reads_as_its_nearest_developable_state(tmp_path, decimals):
+    exact = folded_xyz(degree4_letters(), "e1", 0.5)
+    path = write(tmp_path, f"vertex {decimals}", folded_form(degree4_letters(), exact, decimals))
+    fit = read_fold(path).fit
+    # measured: 0.148 (4 decimals) and 0.109 (6 decimals) of the precision 5e-5 / 5e-7 at most
+    assert fit.within and 0.05 < fit.ratio < 0.5 and fit.precision == pytest.approx(0.5 * 10.0**-decimals)
+    assert fit.distance < 10.0**-decimals and "15 coordinates of 5 vertices held to 1 vertex angle sums" in fit.compared
+    # read as exact floats, the same rounded numbers are far from a developable state: the precision is what allows them
+    doc = json.loads(path.read_text())
+    assert read_fold(doc).fit.ratio > 1e6
+
+
+@pytest.mark.slow
+def test_rounded_folded_form_validates_with_its_adjustments(tmp_path):
+    doc = folded_form(degree4_letters(), folded_xyz(degree4_letters(), "e1", 0.5), 4)
+    code, report = validated(tmp_path, "vertex 4 decimals", doc)
+    assert code == 0 and report["passed"]
+    verdict = state_verdict(report)
+    assert verdict["passed"] and 0.05 < verdict["measured"] < 0.5
+    assert "the rigid motion passes through it" in verdict["detail"]
+    scene = fold_scene(write(tmp_path, "again", doc))
+    assert len(scene.adjustments) == 4 and all(a.ratio <= 1 for a in scene.adjustments)
+    assert scene.adjustments[0].ratio == pytest.approx(verdict["measured"])
+    assert scene.adjustments[0].name.startswith("vertices_coords[") and scene.adjustments[0].precision == 5e-5
+
+
+def origami_simulator_strained(fractions: list[float], strain: float) -> dict:
+    """As Origami Simulator's series export writes a compliant simulation: no top-level coordinates, frames of y-up
+    3-D coordinates only (none flat), each strained by `strain`."""
+    doc = degree4_letters()
+    frames = [{"frame_classes": ["foldedForm"], "frame_attributes": ["3D"], "frame_inherit": True,
+               "vertices_coords": strained(folded_xyz(doc, "e1", f), strain)[:, [0, 2, 1]].tolist()}
+              for f in fractions]  # fmt: skip
+    return {"file_spec": 1.1, "file_creator": "Origami Simulator", "file_frames": frames,
+            "edges_vertices": doc["edges_vertices"], "edges_assignment": doc["edges_assignment"],
+            "faces_vertices": doc["faces_vertices"]}  # fmt: skip
+
+
+@pytest.mark.slow
+def test_strained_series_is_a_failing_verdict_with_its_distance(tmp_path):
+    code, report = validated(tmp_path, "strained", origami_simulator_strained([0.3, 0.6, 0.9], 0.005))
+    assert code == 1 and not report["passed"]
+    verdict = state_verdict(report)
+    assert not verdict["passed"] and verdict["measured"] > 1e6
+    detail = verdict["detail"]
+    # measured: 1.84e-4 from the nearest developable state, 6.76e-5 of the size 2.72, largest at the vertex itself
+    assert "frame 1 vertices_coords are 0.000184 (6.76e-05 of the form's size 2.722)" in detail
+    assert "largest at vertex 0 (creases e0, e1, e2, e3)" in detail
+    assert "the rigid motion through the frames' inputs passes" in detail
+    # the rest of the validation ran on that nearest state: MuJoCo follows its rigid motion
+    assert all(v["passed"] for b in report["branches"] for v in b["verdicts"] if v["name"] != NAME)
