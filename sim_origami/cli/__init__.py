@@ -2,7 +2,8 @@
 
 Exit status: 0 when every check passes, 1 when one fails, 2 on bad input (one line on stderr
 naming the value and the rule; a traceback only with --debug), 130 / 143 when interrupted by SIGINT / SIGTERM
-(temporary files removed, one line on stderr), 3 on an internal error (a bug: one line; --debug shows it).
+(this run's files removed, the output folder as before; one line on stderr), 3 on an internal error (a bug: one
+line; --debug shows it).
 """
 
 import argparse
@@ -131,8 +132,8 @@ def main(argv: list[str] | None = None) -> int:
         except (Interrupted, KeyboardInterrupt) as exc:
             signum = exc.signum if isinstance(exc, Interrupted) else signal.SIGINT
             name = signal.Signals(signum).name
-            return _refuse(f"interrupted by {name}; temporary files removed, finished files listed in the "
-                           "output folder's manifest", 128 + signum)  # fmt: skip
+            return _refuse(f"interrupted by {name}; this run's files removed, the output folder's previous "
+                           "results left as they were", 128 + signum)  # fmt: skip
         except Exception as exc:
             if args.debug:
                 raise

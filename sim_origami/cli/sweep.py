@@ -6,14 +6,17 @@ error over the first axis, or a map over the first two); exit 0 when every point
 """
 
 import argparse
+import importlib.util
 import sys
 from pathlib import Path
 
 from tqdm import tqdm
 
-from ..files import claimed_folder
+from ..errors import ParameterError
+from ..files import check_folder, claimed_folder
 from ..mjcf import PRESETS
-from ..sweep import check_grid, check_workers, parse_axis, sweep, write_tables
+from ..sweep import check_grid, check_scheduler, check_workers, parse_axis, sweep, write_tables
+from .validate import out_folder
 
 NAME = "sweep"
 HELP = "cross-check a scene over a parameter grid in parallel (local processes or a Dask cluster)"
@@ -26,7 +29,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--preset", choices=PRESETS, help="default: the scene's own")
     parser.add_argument("--workers", type=int, help="local processes (default: every core)")
     parser.add_argument("--scheduler", help="Dask distributed scheduler address, e.g. tcp://10.0.0.5:8786")
-    parser.add_argument("--out", type=Path, help="output folder (default runs/sweep-<scene>)")
+    parser.add_argument("--out", type=out_folder, help="output folder (default runs/sweep-<scene>)")
     parser.add_argument("--force", action="store_true", help="write into a folder holding files this tool did not")
 
 
@@ -41,11 +44,16 @@ def run(args: argparse.Namespace) -> int:
     check_grid(args.scene, axes)
     check_workers(args.workers)
     out = args.out or Path("runs") / f"sweep-{args.scene}"
-    with claimed_folder(out, force=args.force):
+    check_folder(out, make=False)
+    if args.scheduler:  # as `sweep` checks it, but before the output folder is claimed
+        if importlib.util.find_spec("distributed") is None:
+            raise ParameterError(f"--scheduler {args.scheduler} needs Dask distributed: pip install -e '.[cluster]'")
+        check_scheduler(args.scheduler)
+    with claimed_folder(out, force=args.force) as stage:  # the previous sweep's files stay until this one finishes
         rows = sweep(args.scene, axes, preset=args.preset, workers=args.workers, scheduler=args.scheduler,
                      progress=_bar)  # fmt: skip
-        paths = write_tables(rows, out)
-        plot_sweep(rows, [a.name for a in axes], out / "sweep.png")
+        paths = {kind: out / path.name for kind, path in write_tables(rows, stage).items()}
+        plot_sweep(rows, [a.name for a in axes], stage / "sweep.png")
     failed = [r for r in rows if not r["passed"]]
     parquet = paths.get("parquet", "no sweep.parquet (pip install -e '.[cluster]' for pyarrow)")
     print(f"{len(rows)} points, {len(rows) - len(failed)} passed, {len(failed)} failed; "

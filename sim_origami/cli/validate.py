@@ -1,6 +1,7 @@
 """`sim-origami validate`: the three-way cross-check with report, plots and (optionally) frames."""
 
 import argparse
+import contextlib
 import json
 import sys
 from pathlib import Path
@@ -11,13 +12,14 @@ from tqdm import tqdm
 from .. import scenes
 from ..checks.reference import read_reference, summary_lines
 from ..conventions import deg_to_rad
-from ..errors import ParameterError, SimulationError
+from ..errors import DomainError, ParameterError, SimulationError
 from ..files import check_folder, claimed_folder, write_text
 from ..mjcf import PRESETS
 from ..report import as_dict, plain, write
 from ..report_page import write_index, write_page
 from ..scenes.fold_file import fold_scene
 from ..scenes.linkage_file import linkage_scene
+from ..simulate import start_input
 from ..validation import validate
 from .options import add_params, parse_params
 
@@ -53,7 +55,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--reference-units", choices=("deg", "rad"), help="units of reference columns stating none")
     parser.add_argument("--reference-tol", type=float, metavar="DEG",
                         help="one tolerance (deg) for every reference value (default: its printed precision)")
-    parser.add_argument("--out", type=Path, help="output folder (default runs/<scene>)")
+    parser.add_argument("--out", type=out_folder, help="output folder (default runs/<scene>)")
     parser.add_argument("--force", action="store_true", help="write into a folder holding files this tool did not")
     parser.add_argument("--render", action="store_true", help="also write frames/, fold.gif and fold.mp4")
     parser.add_argument("--size", type=frame_size, default=(640, 480), metavar="WxH",
@@ -70,6 +72,25 @@ def frame_size(text: str) -> tuple[int, int]:
     if not (16 <= width <= 4096 and 16 <= height <= 4096):
         raise argparse.ArgumentTypeError(f"--size {text!r}: width and height must be 16 .. 4096 pixels")
     return width, height
+
+
+def out_folder(text: str) -> Path:
+    """An --out value; an empty one is refused (it would name the current folder, which the run would claim)."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError(f"{text!r} names no folder (an empty name would be the current folder)")
+    return Path(text)
+
+
+def check_run(scene, args: argparse.Namespace) -> None:
+    """
+    Refuse, before the output folder is claimed, what `validate` would refuse only once running: an unknown
+    --branch, or a --seed start outside a branch's domain (`--seed flat` on a FOLD pattern traced from 0.024 rad).
+    """
+    for name in [args.branch] if args.branch else [b.name for b in scene.kinematics.branches()]:
+        try:
+            scene.pose(name, start_input(scene, name, args.seed))
+        except DomainError as exc:
+            raise DomainError(f"--seed {args.seed}: {exc}") from None
 
 
 def run_one(scene, args, out: Path, reference=None) -> dict:
@@ -135,14 +156,17 @@ def run(args: argparse.Namespace) -> int:
             raise ParameterError("--all runs every scene with its defaults; -p and --branch need a SCENE")
         out = args.out or Path("runs")
         docs = []
-        with claimed_folder(out, force=args.force):
-            for name in tqdm(scenes.names(), desc="validate", unit="scene", file=sys.stderr):
-                with claimed_folder(out / name, force=args.force):
-                    docs.append(run_one(scenes.get(name).build(), args, out / name))
+        # Every scene's folder is claimed before the first scene runs, and all of them are swapped in at the end.
+        with contextlib.ExitStack() as claims:
+            stage = claims.enter_context(claimed_folder(out, force=args.force))
+            stages = {name: claims.enter_context(claimed_folder(out / name, force=args.force))
+                      for name in scenes.names()}  # fmt: skip
+            for name in tqdm(stages, desc="validate", unit="scene", file=sys.stderr):
+                docs.append(run_one(scenes.get(name).build(), args, stages[name]))
             table = "\n".join([HEADER, *map(summary_line, docs)])
-            write_text(out / "summary.md", f"# sim_origami validation\n\n{table}\n")
-            write_text(out / "summary.json", json.dumps(docs, indent=2, default=plain) + "\n")
-            write_index(docs, out)
+            write_text(stage / "summary.md", f"# sim_origami validation\n\n{table}\n")
+            write_text(stage / "summary.json", json.dumps(docs, indent=2, default=plain) + "\n")
+            write_index(docs, stage)
         print(table)
         return 0 if all(d["passed"] for d in docs) else 1
     if args.out is not None:  # before the scene is built (a large pattern's trace takes seconds); made when claimed
@@ -158,6 +182,7 @@ def run(args: argparse.Namespace) -> int:
         scene = linkage_scene(args.linkage)
     else:
         scene = scenes.get(args.scene).build_from_user(parse_params(args.param))
+    check_run(scene, args)
     return validate_scene(scene, args)
 
 
@@ -168,11 +193,11 @@ def validate_scene(scene, args: argparse.Namespace) -> int:
         tol = None if args.reference_tol is None else float(deg_to_rad(args.reference_tol))
         reference = read_reference(args.reference, scene.kinematics, units=args.reference_units, tol=tol)
     out = args.out or Path("runs") / scene.name
-    with claimed_folder(out, force=args.force):
+    with claimed_folder(out, force=args.force) as stage:  # the previous run's files stay until this one finishes
         try:
-            doc = run_one(scene, args, out, reference)
+            doc = run_one(scene, args, stage, reference)
         except SimulationError as err:  # MuJoCo diverged: a failed check on this pattern, not bad input
-            failed_run(scene, args, out, err)
+            failed_run(scene, args, stage, err)
             print(f"FAIL {scene.name}: {err}\noutputs in {out}/")
             return 1
     if args.json:
