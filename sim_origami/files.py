@@ -188,9 +188,7 @@ def _open(path: Path, force: bool, option: str) -> _Claim:
     """The claim on `path` (its LOCK held): previous manifest read, folder checked, empty staging folder made."""
     _remove_staging(path / STAGING)  # left by a run that was killed: the lock says none is running
     previous = _read_manifest(path, option)
-    tops = {PurePosixPath(name).parts[0] for name in previous}
-    foreign = sorted(p.name for p in path.iterdir()
-                     if p.name not in (LOCK, MANIFEST, STAGING) and p.name not in tops and not _is_run(p))  # fmt: skip
+    foreign = _foreign(path, previous)
     changed = sorted(name for name, sha in previous.items() if _exists(path / name) and not _ours(path, name, sha))
     if (foreign or changed) and not force:
         names = foreign + [f"{name} (changed since this tool wrote it)" for name in changed]
@@ -201,6 +199,24 @@ def _open(path: Path, force: bool, option: str) -> _Claim:
     staging = path / STAGING
     staging.mkdir()
     return _Claim(path, staging, previous, option)
+
+
+def _foreign(folder: Path, previous: dict[str, str], sub: str = "") -> list[str]:
+    """
+    The files and folders under `folder`/`sub` that the previous run did not write (its manifest, lock and staging
+    folder, and run folders of their own, are the tool's): a folder the manifest lists files in is looked into.
+    """
+    listed = {parent.as_posix() for name in previous for parent in PurePosixPath(name).parents}
+    names = []
+    for entry in sorted((folder / sub).iterdir()):
+        name = f"{sub}{entry.name}"
+        if (not sub and entry.name in (LOCK, MANIFEST, STAGING)) or name in previous or _is_run(entry):
+            continue
+        if name in listed and entry.is_dir() and not entry.is_symlink():
+            names += _foreign(folder, previous, f"{name}/")
+        else:
+            names.append(name)
+    return names
 
 
 def _exists(path: Path) -> bool:

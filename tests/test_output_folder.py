@@ -129,6 +129,19 @@ def test_a_changed_file_is_never_removed(tmp_path):
     assert not (out / "frames").exists()  # the unchanged frame was the earlier run's
 
 
+def test_a_file_of_the_user_s_in_a_run_s_folder_is_named_and_kept(tmp_path):
+    out = tmp_path / "run"
+    before = earlier_run(out)
+    (out / "frames" / "mine.png").write_text("my annotated frame")
+    with pytest.raises(ParameterError, match=r"frames/mine\.png"):
+        with claimed_folder(out):
+            pass
+    assert contents(out) == before | {"frames/mine.png": hashlib.sha256(b"my annotated frame").hexdigest()}
+    with claimed_folder(out, force=True):
+        pass
+    assert sorted(contents(out)) == [MANIFEST, "frames/mine.png"]
+
+
 def test_a_listed_link_is_not_followed(tmp_path):
     """A listed name that is now a link, even to a file with the listed content, is not the tool's file."""
     out = tmp_path / "run"
