@@ -19,7 +19,9 @@ Every refusal is one ParameterError naming the field by its path, e.g. `joints[3
 
 import json
 import math
+import re
 import sys
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -36,6 +38,7 @@ from .linkage import bar
 from .linkage_forms import reduced_form
 from .mechanism import Body, Joint, Mechanism, ball_joint
 from .origami import PALETTE
+from .precision import Typed
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -62,10 +65,24 @@ LENGTH_LIMIT = 1e9
 RANGE_LIMIT = 2 * math.pi
 SWEEP_SCALE_LIMIT = 100.0
 
-TOP_FIELDS = {VERSION_KEY, "form", "name", "units", "joints", "bodies", "ground", "input", "shapes", "contact",
-              "anchor", "sweep_time_scale", "notes"}  # fmt: skip
+TOP_FIELDS = {VERSION_KEY, "form", "name", "units", "precision", "joints", "bodies", "ground", "input", "shapes",
+              "contact", "anchor", "sweep_time_scale", "notes"}  # fmt: skip
 DH_FIELDS = {"name", "type", "a", "alpha", "offset", "theta0"}
 AXIS_FIELDS = {"name", "type", "bodies", "point", "direction", "theta0"}
+# The fields that fix a linkage's geometry, whose values the nearest exact linkage may move (docs/linkage_files.md).
+GEOMETRY = re.compile(r"joints\[\d+\]\.(a|alpha|offset|point\[\d\]|direction\[\d\])")
+# An integer in a file (TOML gives no hook for its text) stands for +-0.5 of its unit, as printed.
+INTEGER_PRECISION = 0.5
+
+
+@dataclass(frozen=True)
+class Value:
+    """One geometry number of a file: its field path, the value as typed and its precision (file units: `unit`)."""
+
+    field: str
+    given: float
+    precision: float
+    unit: str
 
 
 @dataclass(frozen=True)
@@ -80,6 +97,7 @@ class LinkageSpec:
     input_range : (lo, hi) of its angle (rad).
     start : every joint's start angle (rad), or None to assemble at `start_input` (rad, None: the range's middle).
     length_m : metres per length unit of the file.
+    values : the geometry numbers as typed, with their precision (`Value`, file units).
     """
 
     name: str
@@ -94,12 +112,19 @@ class LinkageSpec:
     sweep_time_scale: float
     length_m: float
     notes: str
+    values: tuple[Value, ...] = ()
 
 
-def read_linkage(source: str | Path) -> LinkageSpec:
-    """Read a linkage file (`.json` or `.toml`); the module docstring and docs/linkage_files.md give the rules."""
+def read_linkage(source: str | Path, values: Mapping[str, float] | None = None) -> LinkageSpec:
+    """
+    Read a linkage file (`.json` or `.toml`); the module docstring and docs/linkage_files.md give the rules.
+
+    `values` replaces geometry numbers by field path (`Value.field`, file units): the nearest exact linkage.
+    """
     path = Path(source)
     doc = _load(path)
+    if values:
+        doc = _replaced(doc, values)
     _known(doc, TOP_FIELDS, "")
     version = doc.get(VERSION_KEY)
     if version is None:
@@ -118,7 +143,11 @@ def read_linkage(source: str | Path) -> LinkageSpec:
         raise ParameterError(f"units.length = {length_unit!r}: it must be one of {', '.join(LENGTH_UNITS)}")
     if not isinstance(angle_unit, str) or angle_unit not in ANGLE_UNITS:
         raise ParameterError(f"units.angle = {angle_unit!r}: it must be one of {', '.join(ANGLE_UNITS)}")
+    stated = _table(doc.get("precision", {}), "precision")
+    _known(stated, {"length", "angle"}, "precision")
     read = _Reader(LENGTH_UNITS[length_unit], ANGLE_UNITS[angle_unit], path.parent)
+    read.stated = {kind: read.positive(v, f"precision.{kind}", length=False) for kind, v in stated.items()}
+    read.units = {"length": length_unit, "angle": angle_unit, "": ""}
     joints = doc.get("joints")
     if not isinstance(joints, list) or not joints:
         raise ParameterError("joints: missing or empty; give a list of joints (a table each)")
@@ -160,31 +189,61 @@ def read_linkage(source: str | Path) -> LinkageSpec:
     name = doc.get("name", path.stem)
     if not isinstance(name, str) or not name.strip() or any(c.isspace() or c in "/\\" for c in name):
         raise ParameterError(f"name = {name!r}: it must be a non-empty word (no spaces or slashes)")
+    geometry = tuple(v for v in read.seen.values() if GEOMETRY.fullmatch(v.field))
     return LinkageSpec(name, form, mechanism, names, mech_input, (span[0], span[1]), start, start_input, contact,
-                       scale, read.length_m, notes)  # fmt: skip
+                       scale, read.length_m, notes, geometry)  # fmt: skip
+
+
+def _replaced(doc: dict, values: Mapping[str, float]) -> dict:
+    """The document with geometry numbers replaced by field path ('joints[1].alpha', 'joints[0].point[2]')."""
+    joints = doc.get("joints")
+    # the joints copied a level deep (their vectors too), the file's own values left as read
+    doc = {**doc, "joints": [{k: list(v) if isinstance(v, list) else v for k, v in j.items()}
+                             if isinstance(j, dict) else j for j in joints] if isinstance(joints, list) else joints}
+    for field, value in values.items():
+        match = re.fullmatch(r"joints\[(\d+)\]\.(\w+)(?:\[(\d)\])?", field)
+        if match is None or not GEOMETRY.fullmatch(field):
+            raise ParameterError(f"{field}: not a geometry field of a linkage file")
+        k, key, i = int(match[1]), match[2], match[3]
+        if i is None:
+            doc["joints"][k][key] = value
+        else:
+            doc["joints"][k][key][int(i)] = value
+    return doc
 
 
 class _Reader:
-    """Numbers of the file in its units, checked, as radians and metres."""
+    """Numbers of the file in its units, checked, as radians and metres; each one read is kept in `seen` with its
+    precision (the `precision` table's for its kind, else half a unit in its last printed digit)."""
 
     def __init__(self, length_m: float, rad: float, folder: Path):
         self.length_m, self.rad, self.folder = length_m, rad, folder
+        self.stated: dict[str, float] = {}
+        self.units = {"length": "m", "angle": "deg", "": ""}
+        self.seen: dict[str, Value] = {}
 
-    def number(self, value: Any, field: str) -> float:
+    def number(self, value: Any, field: str, kind: str = "") -> float:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise ParameterError(f"{field} = {value!r}: it must be a number")
         if not math.isfinite(value):
             raise ParameterError(f"{field} = {value!r}: it must be a finite number")
+        if kind in self.stated:
+            precision = self.stated[kind]
+        elif isinstance(value, Typed):
+            precision = value.precision
+        else:  # an integer as printed, or a float given in the API (exact: held)
+            precision = INTEGER_PRECISION if isinstance(value, int) else 0.0
+        self.seen[field] = Value(field, float(value), precision, self.units[kind])
         return float(value)
 
     def length(self, value: Any, field: str) -> float:
-        out = self.number(value, field) * self.length_m
+        out = self.number(value, field, "length") * self.length_m
         if abs(out) > LENGTH_LIMIT:
             raise ParameterError(f"{field} = {value!r}: lengths beyond {LENGTH_LIMIT:g} m are not simulated")
         return out
 
     def angle(self, value: Any, field: str) -> float:
-        return self.number(value, field) * self.rad
+        return self.number(value, field, "angle") * self.rad
 
     def positive(self, value: Any, field: str, length: bool = True) -> float:
         out = self.length(value, field) if length else self.number(value, field)
@@ -192,10 +251,12 @@ class _Reader:
             raise ParameterError(f"{field} = {value!r}: it must be > 0")
         return out
 
-    def vector(self, value: Any, field: str) -> NDArray[np.float64]:
+    def vector(self, value: Any, field: str, length: bool = False) -> NDArray[np.float64]:
+        """Three numbers: lengths (in metres) or unitless (a direction)."""
         if not isinstance(value, list) or len(value) != 3:
             raise ParameterError(f"{field} = {value!r}: give three numbers [x, y, z]")
-        return np.array([self.number(v, f"{field}[{k}]") for k, v in enumerate(value)])
+        read = self.length if length else self.number
+        return np.array([read(v, f"{field}[{k}]") for k, v in enumerate(value)])
 
     def angles(self, value: Any, field: str, n: int) -> list[float]:
         if not isinstance(value, list) or len(value) != n:
@@ -212,7 +273,9 @@ def _load(path: Path) -> dict:
     except UnicodeDecodeError as err:
         raise ParameterError(f"{path} is not UTF-8 text ({err.reason}); a linkage file is JSON or TOML") from err
     try:
-        doc = tomllib.loads(text) if path.suffix.lower() == ".toml" else json.loads(text)
+        # each float keeps the precision it was printed with (`precision.Typed`)
+        doc = (tomllib.loads(text, parse_float=Typed) if path.suffix.lower() == ".toml"
+               else json.loads(text, parse_float=Typed))  # fmt: skip
     except tomllib.TOMLDecodeError as err:
         raise ParameterError(f"{path} is not TOML ({err})") from err
     except json.JSONDecodeError as err:
@@ -333,7 +396,12 @@ def _dh(doc: dict, joints: list[dict], read: _Reader):
     names = _names(joints, "theta{}")
     size = max(max(abs(r.a), abs(r.R)) for r in rows)
     if size == 0:
-        raise ParameterError("joints: every a and offset is 0; the loop has no size")
+        # a spherical linkage (an origami vertex): every axis through one point, so no length to scale by. The
+        # anchor, when stated, is its size (the connects sit there), else one length unit of the file
+        if all(min(abs(math.sin(r.alpha)), abs(math.cos(r.alpha) - 1)) < 1e-12 for r in rows):
+            raise ParameterError("joints: every a and offset is 0 and every alpha 0 or 180 deg; the axes are one "
+                                 "line, which is no linkage")
+        size = read.positive(doc["anchor"], "anchor") / ANCHOR_SHARE if "anchor" in doc else read.length_m
     anchor = read.positive(doc["anchor"], "anchor") if "anchor" in doc else ANCHOR_SHARE * size
     width, meshes = _shapes(doc, read, size, {f"link_{k + 1}" for k in range(n)})
     hinges = [k + 1 for k in range(n) if k + 1 not in spherical]
@@ -389,8 +457,7 @@ def _axes(doc: dict, joints: list[dict], read: _Reader):
         if "point" not in j:
             raise ParameterError(f"{field}.point: missing; a joint is a line through a point (its centre for a "
                                  "spherical joint)")
-        p = np.array([read.length(v, f"{field}.point[{i}]") for i, v in enumerate(read.vector(j["point"],
-                                                                                        f"{field}.point"))])
+        p = read.vector(j["point"], f"{field}.point", length=True)
         if kind == "revolute" and "direction" not in j:
             raise ParameterError(f"{field}.direction: missing; a revolute joint turns about a direction")
         d = read.vector(j.get("direction", [0.0, 0.0, 1.0]), f"{field}.direction")

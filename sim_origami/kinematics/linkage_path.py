@@ -70,6 +70,11 @@ SINGULAR_ZONE = 1e-5
 SINGULAR_STEP = 1e-3
 
 
+class AssemblyError(ParameterError):
+    """The loops do not close at the start input (or at the given start configuration): a linkage file's numbers may
+    then lie within their precision of a mobile linkage (`scenes.linkage_file.nearest_mobile`)."""
+
+
 class LinkagePath(Kinematics):
     """
     Every branch through the start input of a linkage, traced numerically over the input range.
@@ -96,8 +101,8 @@ class LinkagePath(Kinematics):
     Raises
     ------
     ParameterError
-      A start that does not close (with its residual), no assembly at the start input (with the smallest residual
-      found), or a start outside the range.
+      A start outside the range; `AssemblyError` for a start that does not close (with its residual) or no assembly at
+      the start input (with the smallest residual found).
     """
 
     def __init__(
@@ -140,7 +145,8 @@ class LinkagePath(Kinematics):
             # an idle spin's angles may move to its pinned value: the start is judged by the outputs
             gap = float(np.max(np.abs(q - given)[self.observed], initial=0.0))
             if residual > 100 * CLOSE_TOL or gap > START_TOL:
-                raise ParameterError(
+                # loops that close, far from the start, are no rounding of a mobile linkage's numbers
+                raise (AssemblyError if residual > 100 * CLOSE_TOL else ParameterError)(
                     f"joints[].theta0: the loops cannot be closed at the start configuration: closure residual "
                     f"{residual:.3g} with the input held, nearest closed pose {gap:.3g} rad away (allowed "
                     f"{START_TOL:g})")
@@ -150,7 +156,7 @@ class LinkagePath(Kinematics):
             x0 = self.lo + START_SHARE * (self.hi - self.lo) if start_input is None else float(start_input)
             starts = self._assemble(x0)
             if not starts:
-                raise ParameterError(
+                raise AssemblyError(
                     f"joints: the loops cannot be assembled at {self.input_name} = {np.rad2deg(x0):.6g} deg: no "
                     f"closed pose from {ASSEMBLY_STARTS} random starts, the smallest closure residual reached is "
                     f"{self._best_miss(x0):.3g} (rad, length units)")
