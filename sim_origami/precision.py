@@ -26,10 +26,14 @@ DIFFERENCE_STEP = 1e-6
 
 
 def half_unit(text: str) -> float:
-    """Half a unit in the last printed digit of a number as written ('12.50' -> 0.005, '1.5e-3' -> 5e-5)."""
+    """Half a unit in the last printed digit of a number as written ('12.50' -> 0.005, '1.5e-3' -> 5e-5); inf or 0
+    where that is beyond a float ('0e400', an exponent of thousands of digits)."""
     mantissa, _, exponent = text.strip().lower().partition("e")
     decimals = len(mantissa.partition(".")[2])
-    return 0.5 * 10.0 ** ((int(exponent) if exponent else 0) - decimals)
+    if len(exponent.lstrip("+-").lstrip("0")) > 5:  # beyond every float, and int() refuses over 4,300 digits
+        return 0.0 if exponent.startswith("-") else np.inf
+    power = (int(exponent) if exponent else 0) - decimals
+    return 0.5 * 10.0**power if power <= 308 else np.inf  # 10.0 ** 309 raises OverflowError
 
 
 def exact_precision(value: ArrayLike) -> NDArray[np.float64]:

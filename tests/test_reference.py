@@ -313,3 +313,42 @@ def test_a_value_printed_as_an_overflowing_exponent_is_not_its_own_tolerance(tmp
     path.write_text(HEADER + "\n" + "\n".join(body) + "\n")
     result = compare_reference(read_reference(str(path), miura.kinematics), miura)
     assert not result.verdicts[0].passed and result.doc["worst"]["tolerance_rad"] <= 0.1 + 1e-9
+
+
+@pytest.mark.parametrize(
+    ("cell", "match"),
+    [
+        ("1" * 140_000, r"line 2 is not a CSV row \(field larger than field limit"),
+        ("1" * 5_000, r"line 2, column phi: 1{20}\.\.\.\(5000 characters\) is not a finite number"),
+        ("3e" + "9" * 5_000, r"line 2, column phi: 3e9{18}\.\.\.\(5002 characters\) is not a finite number"),
+    ],
+)
+def test_huge_cells_are_refused_in_one_line(tmp_path, miura, cell, match):
+    """Cells that raised internal errors (the CSV module's field limit, a 5,000-digit exponent) or echoed thousands
+    of digits back."""
+    path = tmp_path / "huge.csv"
+    path.write_text(f"{HEADER}\n10,{cell},1,20\n20,1,1,40\n")
+    with pytest.raises(ParameterError, match=match) as err:
+        read_reference(str(path), miura.kinematics)
+    assert len(str(err.value)) < 200
+
+
+def test_a_zero_with_an_overflowing_exponent_is_compared(tmp_path, miura):
+    """'0e400' is 0; its printing's half unit (0.5e400) overflowed a float and raised OverflowError."""
+    path = tmp_path / "zero.csv"
+    rows = kamrava(np.array([10.0, 20.0, 30.0]))
+    body = [",".join(f"{v:.10f}" for v in row) for row in rows]
+    body[1] = body[1].split(",", 1)[0] + ",0e400," + body[1].split(",", 2)[2]
+    path.write_text(HEADER + "\n" + "\n".join(body) + "\n")
+    result = compare_reference(read_reference(str(path), miura.kinematics), miura)
+    assert not result.verdicts[0].passed and result.doc["worst"]["line"] == 3
+
+
+def test_more_samples_than_the_limit_are_refused_before_any_solve(tmp_path, miura):
+    from sim_origami.checks.reference import MAX_SAMPLES
+
+    path = tmp_path / "long.csv"
+    x = np.linspace(1.0, 50.0, MAX_SAMPLES + 1)
+    path.write_text(HEADER + "\n" + "\n".join(f"{v:.6f},0,0,{2 * v:.6f}" for v in x) + "\n")
+    with pytest.raises(ParameterError, match=rf"more than {MAX_SAMPLES} samples \(line {MAX_SAMPLES + 2}\)"):
+        read_reference(str(path), miura.kinematics)

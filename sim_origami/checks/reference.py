@@ -52,6 +52,10 @@ SLOPE_STEP = 1e-6
 # with joints off by about sqrt(residual). Measured 4.5e-7 rad at the Miura vertex's flat bifurcation (30/60 deg;
 # 1e-13 residual), against 1e-14 on either side of it.
 SINGULAR_RAD = 2e-6
+# Most samples a reference may have: each costs the numeric loop solve about SAMPLE_CPU_MS of CPU (the Goldberg 5R
+# example at 2,000 samples: 6.8 s), so 10,000 take about half a minute.
+MAX_SAMPLES = 10_000
+SAMPLE_CPU_MS = 3.4
 # Largest tolerance a value's printing gives it (rad): one decimal in radians (0.05) or whole degrees (0.0087) are
 # honoured, while '1e+308' would hold its value to 5e307 rad and pass whatever it is compared with. A value printed
 # coarser than this is held to it.
@@ -94,6 +98,12 @@ class ReferenceCurves:
                 f"{SINGULAR_RAD:g} rad at singular samples)")  # fmt: skip
 
 
+def _shown(cell: str) -> str:
+    """A cell as a message quotes it: its first 20 characters and its length when over 40."""
+    cell = cell.strip()
+    return cell if len(cell) <= 40 else f"{cell[:20]}...({len(cell)} characters)"
+
+
 def _unit(source: str, column: str, stated: str | None, units: str | None) -> str:
     """The column's unit: the header's, or `units`; one given, known, and never contradicted."""
     if units is not None and units not in UNITS:
@@ -114,11 +124,18 @@ def _unit(source: str, column: str, stated: str | None, units: str | None) -> st
 
 
 def _rows(source: str, text: str) -> list[tuple[int, list[str]]]:
-    """(line number, fields) of every line that is neither blank nor a '#' comment."""
+    """(line number, fields) of every line that is neither blank nor a '#' comment; at most MAX_SAMPLES samples."""
     out = []
     for number, line in enumerate(text.splitlines(), start=1):
         if line.strip() and not line.lstrip().startswith("#"):
-            out.append((number, next(csv.reader([line]))))
+            if len(out) > MAX_SAMPLES:
+                raise ParameterError(f"reference {source}: more than {MAX_SAMPLES} samples (line {number}); the "
+                                     f"numeric solve costs about {SAMPLE_CPU_MS:g} ms of CPU a sample: thin the "
+                                     "curve")  # fmt: skip
+            try:
+                out.append((number, next(csv.reader([line]))))
+            except csv.Error as exc:
+                raise ParameterError(f"reference {source}: line {number} is not a CSV row ({exc})") from None
     if not out:
         raise ParameterError(f"reference {source}: no header and no samples (only comments or blank lines)")
     return out
@@ -198,10 +215,10 @@ def read_reference(
             try:
                 value = float(cell)
             except ValueError:
-                raise ParameterError(f"reference {source}: line {line}, column {names[c]}: {cell.strip()!r} is not a "
-                                     "number") from None  # fmt: skip
+                raise ParameterError(f"reference {source}: line {line}, column {names[c]}: '{_shown(cell)}' is not "
+                                     "a number") from None  # fmt: skip
             if not math.isfinite(value):
-                raise ParameterError(f"reference {source}: line {line}, column {names[c]}: {cell.strip()} is not a "
+                raise ParameterError(f"reference {source}: line {line}, column {names[c]}: {_shown(cell)} is not a "
                                      "finite number")  # fmt: skip
             numbers[r, c] = value * UNITS[unit_of[names[c]]]
             printed[r, c] = min(half_unit(cell) * UNITS[unit_of[names[c]]], PRINTED_MAX_RAD)
