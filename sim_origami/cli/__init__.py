@@ -64,8 +64,9 @@ def _signals_unwind():
             signal.signal(s, handler)
 
 
-# Values that start with '-' and a digit or a point (e.g. --input -30,10) are values, not options.
-_NEGATIVE = re.compile(r"-[\d.]")
+# Values that start with '-' and a digit or a point (e.g. --input -30,10), or '-inf' and '-nan', are values, not
+# options: so they reach the option's own check, which names them.
+_NEGATIVE = re.compile(r"-([\d.]|inf|nan)", re.IGNORECASE)
 
 
 def _join_negative_values(parser: argparse.ArgumentParser, argv: list[str]) -> list[str]:

@@ -24,7 +24,7 @@ from ..files import claimed_folder, write_text
 from ..plots import plot_pareto
 from ..simulate import project, simulate
 from ..studies import pareto
-from .options import add_params, parse_params
+from .options import add_params, parse_params, whole_number_at_least
 
 NAME = "bench"
 HELP = "benchmark run time against error (fast, accurate, projection) and analytic throughput"
@@ -42,7 +42,8 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--quick", action="store_true", help="RK4 and Euler at 1.25, 2.5, 5 ms only")
     parser.add_argument("--out", help="output folder for pareto.csv / pareto.png (default runs/bench-<scene>)")
     parser.add_argument("--force", action="store_true", help="write into a folder holding files this tool did not")
-    parser.add_argument("--repeats", type=int, default=3, help="best of this many runs per timing")
+    parser.add_argument("--repeats", type=whole_number_at_least("--repeats", 1), default=3,
+                        help="best of this many runs per timing")
     parser.add_argument("--json", action="store_true")
 
 

@@ -50,6 +50,34 @@ def parse_params(items: list[str]) -> dict[str, float]:
     return out
 
 
+def number_at_least(option: str, low: float, *, open_low: bool = False):
+    """An argparse type: a plain finite decimal number >= `low` (> `low` where `open_low`), refused at parse time
+    in one line naming the option, the value and the rule."""
+
+    def parse(text: str) -> float:
+        try:
+            value = parse_number(text, option)
+        except ParameterError as err:
+            raise argparse.ArgumentTypeError(str(err)) from None
+        if value < low or (open_low and value == low):
+            raise argparse.ArgumentTypeError(f"{option} = {text.strip()}; it must be {'>' if open_low else '>='} "
+                                             f"{low:g}")  # fmt: skip
+        return value
+
+    return parse
+
+
+def whole_number_at_least(option: str, low: int):
+    """An argparse type: a whole number >= `low`, refused at parse time in one line."""
+
+    def parse(text: str) -> int:
+        if not re.fullmatch(r"[+-]?\d{1,9}", text.strip()) or int(text) < low:
+            raise argparse.ArgumentTypeError(f"{option} = {text.strip()!r}; it must be a whole number >= {low}")
+        return int(text)
+
+    return parse
+
+
 def parse_degrees(text: str) -> np.ndarray:
     """'10,20,30' (degrees) -> radians; ParameterError on anything that is not a finite number."""
     parts = [v for v in text.split(",") if v.strip()]

@@ -21,12 +21,13 @@ from ..scenes.fold_file import fold_scene
 from ..scenes.linkage_file import linkage_scene
 from ..simulate import start_input
 from ..validation import validate
-from .options import add_params, parse_params
+from .options import add_params, number_at_least, parse_params
 
 NAME = "validate"
 HELP = "cross-check closed form, numeric closure and MuJoCo; write report.json, curves.csv/png, frames"
-# Frames rendered per run with --render.
+# Frames rendered per run with --render, and their size (pixels) unless --size says.
 FRAMES = 60
+DEFAULT_SIZE = (640, 480)
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
@@ -35,7 +36,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--fold", type=Path, help="a FOLD 1.2 file with a folded state: numeric reference")
     parser.add_argument("--input", help="with --fold: the driven crease(s), e<edge index>[,e<edge index>...] "
                         "(default: as many as the pattern has freedoms, picked by rank, the steadiest first)")
-    parser.add_argument("--frames-tolerance", type=float, metavar="DEG",
+    parser.add_argument("--frames-tolerance", type=number_at_least("--frames-tolerance", 0.0), metavar="DEG",
                         help="with --fold: fail frames farther than this from the rigid motion (default 0.573 deg "
                         "for exact angles; frames measured from 3-D coordinates are reported only)")
     parser.add_argument("--linkage", type=Path, metavar="FILE",
@@ -53,12 +54,12 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("--reference", type=Path, metavar="CSV", help="your own curves (input and joint columns)")
     parser.add_argument("--reference-units", choices=("deg", "rad"), help="units of reference columns stating none")
-    parser.add_argument("--reference-tol", type=float, metavar="DEG",
+    parser.add_argument("--reference-tol", type=number_at_least("--reference-tol", 0.0, open_low=True), metavar="DEG",
                         help="one tolerance (deg) for every reference value (default: its printed precision)")
     parser.add_argument("--out", type=out_folder, help="output folder (default runs/<scene>)")
     parser.add_argument("--force", action="store_true", help="write into a folder holding files this tool did not")
     parser.add_argument("--render", action="store_true", help="also write frames/, fold.gif and fold.mp4")
-    parser.add_argument("--size", type=frame_size, default=(640, 480), metavar="WxH",
+    parser.add_argument("--size", type=frame_size, metavar="WxH",
                         help="frame size in pixels with --render (default 640x480)")  # fmt: skip
     parser.add_argument("--json", action="store_true", help="print report.json to stdout")
 
@@ -105,7 +106,7 @@ def run_one(scene, args, out: Path, reference=None) -> dict:
         from ..render import render_frames
 
         q = report.runs[0].dynamic.q
-        width, height = args.size
+        width, height = args.size or DEFAULT_SIZE
         frames = render_frames(scene, q[np.linspace(0, len(q) - 1, FRAMES).astype(int)], out, width=width,
                                height=height)  # fmt: skip
         doc["render"] = {"gl_renderer": frames.gl_renderer, "seconds_per_frame": frames.seconds_per_frame,
@@ -146,6 +147,10 @@ def run(args: argparse.Namespace) -> int:
         raise ParameterError("give one of a SCENE, --all, --fold FILE or --linkage FILE")
     if args.input and args.fold is None:
         raise ParameterError("--input names the driven crease of a --fold pattern")
+    if args.frames_tolerance is not None and args.fold is None:
+        raise ParameterError("--frames-tolerance holds a --fold file's frames; give it with --fold FILE")
+    if args.size is not None and not args.render:
+        raise ParameterError("--size sets the frames' size; give it with --render")
     if args.reference is None and (args.reference_units or args.reference_tol is not None):
         raise ParameterError("--reference-units and --reference-tol qualify a --reference FILE")
     if args.all and args.reference is not None:
