@@ -94,7 +94,7 @@ class Kinematics(ABC):
     def loop_inputs(self, x: ArrayLike) -> tuple[tuple[int, ...], NDArray[np.float64]]:
         """(loop joints, their values (n, k)) that inputs x (n,) hold: `loop_input`'s one joint by default."""
         joint, scale = self.loop_input()
-        return (joint,), scale * np.atleast_1d(np.asarray(x, dtype=float))[:, None]
+        return (joint,), scale * as_inputs(x)[:, None]
 
     def evaluate_held(
         self, branch: str, x: ArrayLike, held: ArrayLike
@@ -128,7 +128,7 @@ class Kinematics(ABC):
     def in_domain(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
         """Inputs x as a 1-D float array (rad) and whether each lies in the branch's closed domain."""
         lo, hi = self.branch(branch).domain
-        x = np.atleast_1d(np.asarray(x, dtype=float))
+        x = as_inputs(x)
         return x, (x >= lo) & (x <= hi)
 
     def within_domain(
@@ -162,7 +162,7 @@ class Kinematics(ABC):
         DomainError
           When any input lies outside the branch's domain; names the first such value.
         """
-        x = np.atleast_1d(np.asarray(x, dtype=float))
+        x = as_inputs(x)
         values, valid = self.evaluate(branch, x)
         if not np.all(valid):
             bad = float(x[~valid][0])
@@ -174,7 +174,9 @@ class Kinematics(ABC):
         return values
 
     def at(self, branch: str, x: float) -> dict[str, float]:
-        """Output joints at one input value, by name."""
+        """Output joints at one input value, by name; DomainError unless x is one number."""
+        if as_inputs(x).size != 1:
+            raise DomainError(f"at takes one input; {np.size(x)} given (joint_angles takes several)")
         return dict(zip(self.joint_names, self.joint_angles(branch, x)[0].tolist(), strict=True))
 
 
@@ -238,12 +240,24 @@ def input_blocks(n: int, size: int = BLOCK) -> Iterator[slice]:
         yield slice(start, min(start + size, n))
 
 
+def as_inputs(x: ArrayLike) -> NDArray[np.float64]:
+    """Inputs (rad) as a 1-D float array: one number or a 1-D sequence of them; DomainError naming what was given
+    otherwise (a 2-D array, a string)."""
+    try:
+        x = np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise DomainError(f"inputs {str(x)[:40]!r} are not numbers (rad)") from None
+    if x.ndim > 1:
+        raise DomainError(f"inputs of shape {x.shape}: give one input or a 1-D array of them (rad)")
+    return np.atleast_1d(x)
+
+
 def transformation_inputs(x: ArrayLike, domain: tuple[float, float], name: str, what: str) -> NDArray[np.float64]:
     """
     Inputs `name` (rad) of a transformation `what` as a 1-D array; DomainError naming the first one not finite or
     outside `domain` (1e-12 rad slack).
     """
-    x = np.atleast_1d(np.asarray(x, dtype=float))
+    x = as_inputs(x)
     lo, hi = domain
     bad = x[~((x >= lo - 1e-12) & (x <= hi + 1e-12))]
     if bad.size:

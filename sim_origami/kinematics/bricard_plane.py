@@ -60,7 +60,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..closure import LoopSystem
 from ..errors import ParameterError
 from ..geometry import rot_x, rot_z, wrap
-from .base import Branch, Event, domain_of
+from .base import Branch, Event, as_inputs, domain_of
 from .dh import DHKinematics, DHRow, dh_loop
 
 # Samples of the theta2 circle used to find features (zeros, arcs, singular points).
@@ -824,7 +824,7 @@ class PlaneSymmetricBricard(DHKinematics):
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
         k = self._index(branch)
         lo, hi = self._candidates[k].domain
-        x = np.atleast_1d(np.asarray(x, dtype=float))
+        x = as_inputs(x)
         # Valid exactly on the domain `describe` prints: a full-turn branch is not continued periodically beyond it
         # (at |x| = 1e10 the wrapped input had lost every digit: loop residual 3.0).
         valid = (x >= lo) & (x <= hi)

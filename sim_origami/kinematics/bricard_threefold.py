@@ -37,7 +37,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ParameterError
-from .base import Branch, Event, domain_of
+from .base import Branch, Event, as_inputs, domain_of
 from .dh import DHKinematics, DHRow
 
 ALONG = "even-axes-along"
@@ -142,7 +142,7 @@ class BricardThreefold(DHKinematics):
 
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
         index = (ALONG, AGAINST).index(self.branch(branch).name)
-        t = np.atleast_1d(np.asarray(x, dtype=float))
+        t = as_inputs(x)
         phi, valid = self.roots(t)
         p = phi[index]
         values = np.stack([t, p, t, p, t, p], -1)

@@ -63,7 +63,7 @@ from ..closure import LoopSystem
 from ..creases import Crease, CreasePattern
 from ..errors import AssemblyError, ParameterError
 from ..geometry import wrap
-from .base import Branch, Event, JointSpaceKinematics, domain_of, input_blocks
+from .base import Branch, Event, JointSpaceKinematics, as_inputs, domain_of, input_blocks
 from .vertex4 import ANGLE_TOL, Vertex4
 
 CORNERS = ("A", "B", "C", "D")
@@ -318,7 +318,7 @@ def loop_mismatch(vertices: tuple[MeshVertex, ...], branches: tuple[str, ...], x
     `branches` and x = rho_AB (n,); NaN where a vertex leaves its branch's domain. Zero on a mesh motion.
     """
     check_vertices(vertices)
-    x = np.atleast_1d(np.asarray(x, dtype=float))
+    x = as_inputs(x)
     return _mismatch(*_chain(_solvers(vertices), vertices, tuple(branches), x), vertices)
 
 
@@ -400,7 +400,7 @@ class Kokotsakis(JointSpaceKinematics):
         """`_chain` on blocks of `base.BLOCK` inputs, each vertex on its own root only (`Vertex4.branch_folds`)."""
         if branch not in self._combinations:
             self.branch(branch)  # raises with the list of names
-        x = np.atleast_1d(np.asarray(x, dtype=float))
+        x = as_inputs(x)
         return self.within_domain(branch, x, *self._evaluate_all(branch, x))
 
     def _evaluate_all(self, branch: str, x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
@@ -433,7 +433,7 @@ class Kokotsakis(JointSpaceKinematics):
         DomainError
           When any input lies outside the branch's domain.
         """
-        x = np.atleast_1d(np.asarray(x, dtype=float))
+        x = as_inputs(x)
         self.joint_angles(branch, x)
         rho, _ = _chain(self._solvers, self.vertices, self._combinations[branch], x)
         return np.swapaxes(rho, 0, 1)

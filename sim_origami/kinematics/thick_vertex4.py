@@ -24,7 +24,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..closure import Loop, LoopSystem
 from ..errors import ParameterError
 from ..geometry import frame_along, invert
-from .base import Branch, Event, JointSpaceKinematics
+from .base import Branch, Event, JointSpaceKinematics, as_inputs
 from .vertex4 import ANGLE_TOL, Vertex4, flat_foldable_fold_angles
 
 LAYOUTS = {"staircase": "S", "zigzag": "C"}
@@ -112,7 +112,7 @@ class ThickVertex4(JointSpaceKinematics):
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
         """Hinge angles (n, 4) (rad) on the layout's mode from the tan-half relation, valid on its domain."""
         self.branch(branch)
-        x = np.atleast_1d(np.asarray(x, dtype=float))
+        x = as_inputs(x)
         valid = np.abs(x) <= np.pi  # an input fold angle lives in [-pi, pi]; NaN is invalid
         # The other mode's multipliers divide by zero where that mode is degenerate (alpha1 = alpha2 for S); only
         # this mode's, finite and nonzero once coaxial hinges are refused, are used.

@@ -31,7 +31,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..closure import Loop, LoopSystem
 from ..errors import ParameterError
 from ..geometry import rot_x, transform
-from .base import Branch, Event, JointSpaceKinematics, domain_of
+from .base import Branch, Event, JointSpaceKinematics, as_inputs, domain_of
 
 # Sum of sector angles and supplementary pairs are compared at this absolute tolerance (rad).
 ANGLE_TOL = 1e-9
@@ -293,7 +293,7 @@ class Vertex4(JointSpaceKinematics):
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
         if branch not in self._branch_names:
             self.branch(branch)  # raises with the list of names
-        x = np.atleast_1d(np.asarray(x, dtype=float))
+        x = as_inputs(x)
         return self.within_domain(branch, x, *self._evaluate_all(branch, x))
 
     def _evaluate_all(self, branch: str, x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
@@ -372,7 +372,7 @@ class Vertex4(JointSpaceKinematics):
         that root is off the branch, or below TINY_INPUT, are handed to `_evaluate_all`. The same numbers
         (bit for bit on the vertices of the tests), 4x faster.
         """
-        x = np.atleast_1d(np.asarray(x, dtype=float))
+        x = as_inputs(x)
         k = self._branch_roots.get(branch)
         if k is None:
             values, valid = self._evaluate_all(branch, x)
@@ -389,7 +389,7 @@ class Vertex4(JointSpaceKinematics):
         return rho, valid
 
     def _valid(self, branch: str):
-        return lambda x: self._evaluate_all(branch, np.atleast_1d(np.asarray(x, dtype=float)))[1]
+        return lambda x: self._evaluate_all(branch, as_inputs(x))[1]
 
     @cached_property
     def _branches(self) -> tuple[Branch, ...]:

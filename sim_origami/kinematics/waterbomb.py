@@ -64,7 +64,7 @@ from ..closure import Coupling, LoopSystem
 from ..creases import Crease, CreasePattern
 from ..errors import ParameterError
 from ..geometry import wrap
-from .base import Branch, Event, JointSpaceKinematics
+from .base import Branch, Event, JointSpaceKinematics, as_inputs
 
 LINE = "line-symmetric"
 PLANE = "plane-symmetric"
@@ -139,7 +139,7 @@ def a_fold(alpha: float, x: NDArray) -> NDArray:
 
 def path_folds(alpha: float, beta: float, branch: str, x: ArrayLike) -> NDArray[np.float64]:
     """Fold angles (n, 11) in CREASES order on a branch at inputs x (n,), wrapped to (-pi, pi]."""
-    x = np.atleast_1d(np.asarray(x, dtype=float))
+    x = as_inputs(x)
     r3 = a_fold(alpha, x)
     s, c = np.sin(r3 / 2), np.cos(r3 / 2)  # u = s / c
     sab, sba = np.sin(alpha + beta), np.sin(beta - alpha)

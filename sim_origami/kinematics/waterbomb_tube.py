@@ -73,7 +73,7 @@ from ..creases import Crease, CreasePattern
 from ..errors import AssemblyError, ParameterError
 from ..geometry import frame_along, invert, transform, wrap
 from ..graph import spanning_edges
-from .base import Branch, Event, JointSpaceKinematics, domain_of, input_blocks
+from .base import Branch, Event, JointSpaceKinematics, as_inputs, domain_of, input_blocks
 
 BRANCH = "radial-contraction"
 # A fold angle this far (rad) on the wrong side of flat counts as reversed.
@@ -758,11 +758,11 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
     def vertices(self, x: ArrayLike) -> NDArray[np.float64]:
         """3-D vertices (N, len(layout.keys), 3) in m at inputs x (N,) (`vertices`)."""
         with np.errstate(invalid="ignore", divide="ignore"):
-            return vertices(self.layout, np.pi + np.atleast_1d(np.asarray(x, dtype=float)))
+            return vertices(self.layout, np.pi + as_inputs(x))
 
     def folds(self, x: ArrayLike) -> NDArray[np.float64]:
         """Fold angles (N, n_creases) at inputs x (N,), NaN where the tube does not assemble."""
-        return folds_at(self.layout, np.pi + np.atleast_1d(np.asarray(x, dtype=float)))
+        return folds_at(self.layout, np.pi + as_inputs(x))
 
     def _domain(self) -> tuple[float, float]:
         theta = motion_range(self.layout)
@@ -808,7 +808,7 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
         """Fold angles of every crease: the `plan`'s representatives, measured as `folds` does, copied to the rest."""
         lo, hi = self.branch(branch).domain
-        x = np.atleast_1d(np.asarray(x, dtype=float))
+        x = as_inputs(x)
         valid = (x >= lo) & (x <= hi)
 
         def distinct(block: NDArray) -> list[NDArray]:

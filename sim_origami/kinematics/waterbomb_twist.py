@@ -80,7 +80,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import AssemblyError, ParameterError
 from ..geometry import wrap
-from .base import Branch, Event, JointSpaceKinematics, domain_of
+from .base import Branch, Event, JointSpaceKinematics, as_inputs, domain_of
 from .waterbomb_tube import BRANCH as CONTRACTION
 from .waterbomb_tube import (
     GRID,
@@ -451,7 +451,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         interpolated, one Newton step with the table's slope and one secant step on `expanded_middle_input`, which
         leave it within 5.5e-8, 7.7e-12 and 2.1e-15 rad of the root (measured on the twists of the tests); NaN at NaN.
         """
-        x = np.atleast_1d(np.asarray(x, dtype=float))
+        x = as_inputs(x)
         x0, h, table, steps = self._tilt_table
         u = np.clip((x - x0) / h, 0.0, GRID - 1)
         k = np.where(u < GRID - 1, u, GRID - 2).astype(np.intp)  # NaN to GRID - 2, then NaN through u - k
@@ -478,14 +478,14 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
 
     def vertices(self, branch: str, x: ArrayLike) -> NDArray[np.float64]:
         """3-D vertices (N, len(layout.keys), 3) in m at inputs x (N,) on `branch` (no domain check)."""
-        x = np.atleast_1d(np.asarray(x, dtype=float))
+        x = as_inputs(x)
         if not self._twist(branch):
             return self.tube.vertices(self.contraction_theta(x) - np.pi)
         return twist_vertices(self.layout, self.tilt(x), self.row)
 
     def folds(self, branch: str, x: ArrayLike) -> NDArray[np.float64]:
         """Fold angles (N, n_creases) (rad, `unwrapped`) at inputs x (N,) on `branch` (no domain check)."""
-        x = np.atleast_1d(np.asarray(x, dtype=float))
+        x = as_inputs(x)
         if not self._twist(branch):
             return unwrapped(self.layout, self.tube.folds(self.contraction_theta(x) - np.pi))
         return twist_folds(self.layout, self.tilt(x), row=self.row)
@@ -493,12 +493,12 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
     def end_twist(self, branch: str, x: ArrayLike) -> NDArray[np.float64]:
         """Relative end-ring twist (N,) (rad, counter-clockwise about +z positive) at inputs x (N,); 0 on the
         contraction."""
-        x = np.atleast_1d(np.asarray(x, dtype=float))
+        x = as_inputs(x)
         return ring_twist(self.alpha, self.tilt(x)) if self._twist(branch) else np.zeros_like(x)
 
     def radii(self, branch: str, x: ArrayLike) -> NDArray[np.float64]:
         """Signed radius r_A (N, m) in m of each row's A vertices, rows bottom to top, at inputs x (N,)."""
-        x = np.atleast_1d(np.asarray(x, dtype=float))
+        x = as_inputs(x)
         if not self._twist(branch):
             return self.tube.radii(self.contraction_theta(x) - np.pi)
         return self._tilt_radii(self.tilt(x))
