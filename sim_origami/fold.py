@@ -74,10 +74,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import fold_mesh
+from .closure import Coupling
 from .creases import Crease, CreasePattern
 from .errors import ParameterError
 from .files import write_text
 from .fold_mesh import Face, key, reverse
+from .path import correct
 from .precision import EXACT_ULPS, Adjustment, Typed
 
 FILE_SPEC = 1.2
@@ -87,6 +89,16 @@ PRECISION_KEY = "frame_sim_origami:precision"
 # A folded form's nearest rigid state reports this many of its coordinates' moves (the largest against their
 # precision) as adjustments; the verdict counts them all.
 ADJUSTMENTS_SHOWN = 4
+# A folded form whose pattern has no freedom without special geometry is fitted with this many further states on its
+# rigid motion (`_on_a_motion`): a 3 x 3 Miura sheet printed to 4 decimals then folds to its lock, as does Hull's
+# square twist (6 decimals) through its state; up to this many vertices (the fit's least-squares steps are dense).
+MOTION_STATES = 4
+MOTION_VERTICES = 200
+# Their guesses close the loops as far as the rounded pattern lets them (a least-squares minimum, 3e-9 to 2e-8 on the
+# 4-decimal Miura sheet): the fit closes them.
+GUESS_TOL = 1e-14
+# Crease angles (rad) within this of flat or of +-pi do not mark a state along a motion.
+FOLDED = 1e-3
 # Metres per FOLD frame_unit; "unit" (no physical meaning) is read as metres.
 UNITS = {
     "unit": 1.0, "km": 1e3, "m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "nm": 1e-9, "in": 0.0254, "pt": 0.0254 / 72,
@@ -758,6 +770,11 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
     left = {side: f for f, face in enumerate(faces) for side in _sides(face)}
     hinges = [(c.start, c.end, left[c.start, c.end], left[c.end, c.start]) for c in creases]
     signs = np.array([{"V": 1.0, "M": -1.0}.get(c.assignment, 0.0) for c in creases])
+    if fit is not None and (moving := _on_a_motion(fit, pattern, scale, hinges, signs, label, notes)) is not None:
+        fit, folded = moving, moving.xyz
+        xy, _ = fold_mesh.unfold(folded, faces)
+        pattern = replace(pattern, vertices=xy * scale)
+        _check_developable(pattern)
     if fit is not None:
         fit = _form_fit(fit, pattern, source, label, frame.get("frame_unit", "unit"))
     return _Sheet(
@@ -786,9 +803,64 @@ def _nearest_rigid(
         )  # fmt: skip
     if fit.distance > 0:
         notes.append(f"{label}: the nearest developable folded state (planar faces, 360 deg round every interior "
-                     f"vertex) is {fit.distance:.3g} file units away, {fit.ratio:.3g} x the coordinates' precision; "
-                     "it is what is read")  # fmt: skip
+                     f"vertex) is {fit.distance:.3g} file units away, {fit.ratio:.3g} x the coordinates' "
+                     "precision")  # fmt: skip
     return fit.xyz, fit
+
+
+def _on_a_motion(
+    fit: fold_mesh.Fit, pattern: CreasePattern, scale: float, hinges: list[tuple[int, int, int, int]],
+    signs: NDArray[np.float64], label: str, notes: list[str],
+) -> fold_mesh.Fit | None:  # fmt: skip
+    """
+    For a folded form whose pattern has no freedom unless its geometry is special (creases <= 3 x interior vertices +
+    F creases: a Miura or square-twist sheet, which rounding makes rigid), the nearest form that lies on a rigid
+    motion of its own pattern (`fold_mesh.MotionConditions`: MOTION_STATES more states of the same faces, guessed by
+    closing the loops at fractions of the most folded crease's angle). Used when it is found, and within the
+    coordinates' precision or the developable state (`fit`) is not; None otherwise (a note says why).
+    """
+    n_f = sum(c.assignment == "F" for c in pattern.creases)
+    if len(pattern.creases) > 3 * len(pattern.interior_vertices()) + n_f or len(fit.xyz) > MOTION_VERTICES:
+        return None
+    rho = fold_mesh.dihedral_angles(fit.xyz, list(pattern.faces), hinges, signs, label)
+    k = int(np.argmax(np.where([c.assignment != "F" for c in pattern.creases], np.abs(rho), -1.0)))
+    if not FOLDED < abs(rho[k]) < np.pi - FOLDED:
+        return None
+    locks = tuple(Coupling(j, j, 0.0) for j, c in enumerate(pattern.creases) if c.assignment == "F")
+    loops = pattern.loop_system(locks)
+    fixed = np.zeros(len(rho), dtype=bool)
+    fixed[k] = True
+    faces = list(pattern.faces)
+    flat = pattern.vertices / scale  # file units, as fit.xyz
+    root = hinges[k][3]
+    states = []
+    for t in np.linspace(0.0, 1.0, MOTION_STATES + 2)[1:-1]:
+        q = correct(loops, t * rho, fixed, GUESS_TOL, max_iter=100)[0]
+        xyz = fold_mesh.place(flat, faces, hinges, q, root)
+        rotation, shift = fold_mesh.superpose(xyz[list(faces[root])], fit.xyz[list(faces[root])])
+        states.append(np.where(np.isnan(xyz), fit.xyz, xyz @ rotation.T + shift))
+    a, b, left, right = hinges[k]
+    marker = tuple(max((v for v in faces[f] if v not in (a, b)),
+                       key=lambda v: np.linalg.norm(np.cross(fit.xyz[b] - fit.xyz[a], fit.xyz[v] - fit.xyz[a])))
+                   for f in (left, right))  # fmt: skip
+    conditions = fold_mesh.MotionConditions(fit.xyz, faces, states, root, marker)
+    cheap = np.full(fit.given.shape, fold_mesh.size(fit.given))  # the further states are free to move
+    found = fold_mesh.nearest_rigid(np.vstack([fit.given, *states]), np.vstack([fit.precision, *[cheap] * len(states)]),
+                                    conditions)  # fmt: skip
+    n = len(fit.given)
+    moving = fold_mesh.Fit(fit.given, found.xyz[:n], fit.precision, found.residual, conditions.describe())
+    if not found.residual <= fold_mesh.DEVELOP_RTOL * fold_mesh.size(fit.given):
+        notes.append(f"{label}: no state on a rigid motion of its pattern found near it (its conditions missed by "
+                     f"{found.residual:.3g}); its nearest developable state is read")  # fmt: skip
+        return None
+    if moving.ratio > 1.0 >= fit.ratio:
+        notes.append(f"{label}: the nearest state on a rigid motion of its pattern is {moving.ratio:.3g} x the "
+                     "coordinates' precision away; its nearest developable state, within it, is read")  # fmt: skip
+        return None
+    notes.append(f"{label}: its pattern moves only with special geometry (as many closure conditions as creases), so "
+                 f"the nearest state on a rigid motion of it is read: {moving.distance:.3g} file units away, "
+                 f"{moving.ratio:.3g} x the coordinates' precision")  # fmt: skip
+    return moving
 
 
 def _form_fit(fit: fold_mesh.Fit, pattern: CreasePattern, source: NDArray[np.int_], label: str, unit: str) -> FormFit:

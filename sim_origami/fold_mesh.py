@@ -19,7 +19,7 @@ from scipy import sparse as sp
 from scipy.sparse.linalg import lsqr
 
 from .errors import ParameterError
-from .geometry import minimal_rotation
+from .geometry import minimal_rotation, rotation
 
 # A sheet is flat when no vertex is further than this from its fitted plane, relative to its size.
 PLANE_RTOL = 1e-6
@@ -570,3 +570,128 @@ def nearest_rigid(xyz: NDArray[np.float64], precision: NDArray[np.float64], cond
 def nearest_developable(xyz: NDArray[np.float64], faces: list[Face], precision: NDArray[np.float64]) -> Fit:
     """The developable folded form nearest `xyz` (planar faces, 2 pi round every interior vertex): `nearest_rigid`."""
     return nearest_rigid(xyz, precision, RigidConditions(xyz, faces))
+
+
+class MotionConditions:
+    """
+    The conditions for a folded form X0 (n, 3) to lie on a rigid motion of its own crease pattern, for patterns
+    whose loops leave them no freedom unless their geometry is special (a Miura or square-twist sheet: as many
+    closure conditions as creases). X0 developable (`RigidConditions`), and K more folded states X1..XK of the same
+    faces: each face congruent to X0's (its sides and fan diagonals as long, and planar), the root face's vertices
+    where X0's are (the rigid placement fixed) and the distance between two vertices across a crease held (where the
+    state lies along the motion). Coordinates stacked ((K + 1) n, 3); `residual`, `jacobian` as `RigidConditions`.
+    """
+
+    def __init__(
+        self,
+        xyz: NDArray[np.float64],
+        faces: list[Face],
+        states: list[NDArray[np.float64]],
+        root: int,
+        marker: tuple[int, int],
+    ):
+        self.n, self.k = len(xyz), len(states)
+        self.base = RigidConditions(xyz, faces)
+        self.shape = RigidConditions(xyz, faces, np.zeros((0, 2), dtype=int), np.zeros(0))  # planarity only
+        pairs = {key(a, b) for face in faces for a, b in sides(face)}
+        pairs |= {key(face[0], face[j]) for face in faces for j in range(2, len(face) - 1)}
+        self.bars = np.array(sorted(pairs), dtype=int).reshape(-1, 2)
+        self.gauge = np.array(faces[root], dtype=int)
+        self.marker = np.array(marker, dtype=int)
+        self.reach = np.array([np.linalg.norm(x[marker[0]] - x[marker[1]]) for x in states])
+
+    @property
+    def per_state(self) -> int:
+        """Conditions on each further state."""
+        return self.shape.size + len(self.bars) + 3 * len(self.gauge) + 1
+
+    @property
+    def size(self) -> int:
+        """How many conditions."""
+        return self.base.size + self.k * self.per_state
+
+    def describe(self) -> str:
+        """What is imposed, counted."""
+        return (f"{self.base.describe()}, and {self.k} further states of the same faces along one rigid motion "
+                f"({len(self.bars)} face lengths and {self.shape.size} face planarities each)")  # fmt: skip
+
+    def residual(self, x: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The residuals (m,) at stacked coordinates x ((K + 1) n, 3), file units."""
+        x0, out = x[: self.n], [self.base.residual(x[: self.n])]
+        length0 = np.linalg.norm(x0[self.bars[:, 0]] - x0[self.bars[:, 1]], axis=1)
+        for k in range(self.k):
+            xk = x[(k + 1) * self.n : (k + 2) * self.n]
+            lengths = np.linalg.norm(xk[self.bars[:, 0]] - xk[self.bars[:, 1]], axis=1)
+            out += [self.shape.residual(xk), lengths - length0, (xk[self.gauge] - x0[self.gauge]).ravel(),
+                    [np.linalg.norm(xk[self.marker[0]] - xk[self.marker[1]]) - self.reach[k]]]  # fmt: skip
+        return np.concatenate(out)
+
+    def jacobian(self, x: NDArray[np.float64]) -> sp.csr_matrix:
+        """The residuals' derivatives (m, 3 (K + 1) n), coordinates flattened vertex by vertex, state by state."""
+        n3, x0 = 3 * self.n, x[: self.n]
+        m = 3 * len(self.gauge)
+        pick = sp.csr_matrix((np.ones(m), (np.arange(m), (3 * self.gauge[:, None] + np.arange(3)).ravel())),
+                             shape=(m, n3))  # fmt: skip
+        blocks = [[self.base.jacobian(x0)] + [None] * self.k]
+        for k in range(self.k):
+            xk = x[(k + 1) * self.n : (k + 2) * self.n]
+            row: list = [None] * (self.k + 1)
+            bars_k, bars_0 = _bar_jacobian(xk, self.bars, self.n), _bar_jacobian(x0, self.bars, self.n)
+            mark = _bar_jacobian(xk, self.marker[None], self.n)
+            row[0] = sp.vstack([sp.csr_matrix((self.shape.size, n3)), -bars_0, -pick, sp.csr_matrix((1, n3))])
+            row[k + 1] = sp.vstack([self.shape.jacobian(xk), bars_k, pick, mark])
+            blocks.append(row)
+        return sp.bmat(blocks, format="csr")
+
+
+def _bar_jacobian(x: NDArray[np.float64], bars: NDArray[np.int_], n: int) -> sp.csr_matrix:
+    """Derivatives (b, 3n) of the bars' lengths |x_a - x_b| with respect to the coordinates x (n, 3)."""
+    along = x[bars[:, 0]] - x[bars[:, 1]]
+    along /= np.linalg.norm(along, axis=1)[:, None]
+    rows = np.repeat(np.arange(len(bars)), 6)
+    cols = np.concatenate([3 * bars[:, :1] + np.arange(3), 3 * bars[:, 1:] + np.arange(3)], axis=1).ravel()
+    return sp.csr_matrix((np.concatenate([along, -along], axis=1).ravel(), (rows, cols)), shape=(len(bars), 3 * n))
+
+
+def place(
+    xy: NDArray[np.float64], faces: list[Face], hinges: list[tuple[int, int, int, int]], rho: NDArray[np.float64],
+    root: int,
+) -> NDArray[np.float64]:  # fmt: skip
+    """
+    The sheet `xy` (n, 2) folded by fold angles `rho` (per hinge (start, end, left face, right face), rad, as
+    `dihedral_angles` measures them), its faces placed breadth-first from `root` (left in the plane): (n, 3), each
+    vertex where the first face placed puts it (where the angles do not close the loops, other faces disagree).
+    """
+    pose = {root: (np.eye(3), np.zeros(3))}
+    flat = np.column_stack([xy, np.zeros(len(xy))])
+    by_face: dict[int, list[tuple[int, int, float]]] = {}
+    for (a, b, left, right), angle in zip(hinges, rho, strict=True):
+        by_face.setdefault(right, []).append((left, a, b, angle))
+        by_face.setdefault(left, []).append((right, b, a, angle))
+    queue = deque([root])
+    while queue:
+        f = queue.popleft()
+        R, t = pose[f]
+        for g, a, b, angle in by_face.get(f, []):
+            if g in pose:
+                continue
+            turn = rotation((flat[b] - flat[a]) / np.linalg.norm(flat[b] - flat[a]), angle)
+            R_g = R @ turn
+            pose[g] = (R_g, R @ flat[a] + t - R_g @ flat[a])
+            queue.append(g)
+    out = np.full((len(xy), 3), np.nan)
+    for f in pose:
+        R, t = pose[f]
+        for v in faces[f]:
+            if np.isnan(out[v, 0]):
+                out[v] = R @ flat[v] + t
+    return out
+
+
+def superpose(a: NDArray[np.float64], b: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The proper rotation R (3, 3) and shift t (3,) that carry points a (k, 3) nearest b (k, 3): R a + t (Kabsch)."""
+    ca, cb = a.mean(axis=0), b.mean(axis=0)
+    u, _, vt = np.linalg.svd((a - ca).T @ (b - cb))
+    d = np.sign(np.linalg.det(vt.T @ u.T))
+    rotation = vt.T @ np.diag([1.0, 1.0, d]) @ u.T
+    return rotation, cb - rotation @ ca

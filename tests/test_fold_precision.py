@@ -10,7 +10,7 @@ import json
 
 import numpy as np
 import pytest
-from fold_fixtures import degree4_letters, folded_form, folded_xyz, validated, write
+from fold_fixtures import degree4_letters, folded_form, folded_xyz, miura_letters_only, validated, write
 
 from sim_origami.fold import read_fold
 from sim_origami.scenes.fold_file import fold_scene
@@ -56,6 +56,30 @@ def test_rounded_folded_form_validates_with_its_adjustments(tmp_path):
     assert len(scene.adjustments) == 4 and all(a.ratio <= 1 for a in scene.adjustments)
     assert scene.adjustments[0].ratio == pytest.approx(verdict["measured"])
     assert scene.adjustments[0].name.startswith("vertices_coords[") and scene.adjustments[0].precision == 5e-5
+
+
+def rounded_miura() -> dict:
+    """A 3 x 3 Miura sheet folded halfway to its lock by its first crease, printed to 4 decimals."""
+    doc = miura_letters_only(3, 3)
+    return folded_form(doc, folded_xyz(doc, read_fold(doc).pattern.creases[0].name, 0.5), 4)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("which", ["Miura 3 x 3, 4 decimals", "Hull's square twist, 6 decimals"])
+def test_rounded_forms_of_patterns_rigid_only_by_their_geometry_fold(tmp_path, which):
+    # 12 creases, 4 vertices: rounded, the pattern of the nearest developable state is rigid (its trace stalled where
+    # it started, exit 1); the state read is the nearest on a rigid motion of its own pattern, within the precision
+    from test_fold_read import hull_square_twist
+
+    doc = rounded_miura() if which.startswith("Miura") else hull_square_twist()
+    code, report = validated(tmp_path, which, doc)
+    assert code == 0 and report["passed"]
+    verdict = state_verdict(report)
+    # measured: 0.239 of 5e-5 (Miura), 0.405 of 5e-7 (square twist)
+    assert 0.1 < verdict["measured"] < 0.5 and "4 further states of the same faces along one rigid motion" in \
+        verdict["detail"] and "the rigid motion passes through it" in verdict["detail"]  # fmt: skip
+    swept = next(v for b in report["branches"] for v in b["verdicts"] if "swept range" in v["name"])
+    assert swept["measured"] < 0.01  # the motion sweeps over 0.1 rad
 
 
 def origami_simulator_strained(fractions: list[float], strain: float) -> dict:
