@@ -29,12 +29,13 @@ LAYERS = (
      ("mechanism", "origami", "linkage", "linkage_forms", "linkage_file", "solids")),
     ("mjcf", "MJCF text from a mechanism and options", ("mjcf", "mjcf_tidy")),
     ("scenes", "a kinematics model wired to a mechanism and a drive; the registry", ("scenes",)),
-    ("simulation", "MuJoCo runs and their stabilised steps; the truss method", ("stabilize", "simulate", "truss")),
+    ("simulation", "MuJoCo runs, their stabilised steps and sweep times; the truss method",
+     ("stabilize", "sweep_rate", "simulate", "truss")),
     ("checks", "path errors, branch classification, blockage verdicts", ("checks",)),
     ("validation", "the three-way cross-check; sweeps", ("validation", "sweep")),
     ("outputs", "reports, plots, frames; studies built on the harness",
      ("report", "report_page", "plots", "render", "render_paper", "studies")),
-    ("cli", "the sim-origami commands", ("cli",)),
+    ("cli", "the sim-origami commands", ("cli", "__main__")),
 )  # fmt: skip
 
 

@@ -18,9 +18,9 @@ import mujoco
 import numpy as np
 
 from sim_origami import scenes
-from sim_origami.mjcf import ModelOptions
+from sim_origami.mjcf import ModelOptions, preset_duration
 from sim_origami.scenes.base import without_implied_closures
-from sim_origami.simulate import Bindings, preset_duration, ramp, scene_xml, start_pose
+from sim_origami.simulate import Bindings, ramp, scene_xml, start_pose
 
 REPEATS = 3
 

@@ -51,6 +51,7 @@ def as_dict(report: Report) -> dict:
                 "closure_residual_max_m": _num(np.max(run.dynamic.closure_residual)),
                 "projection_angle_error_max_rad": _num(proj.max_error()),
                 "projection_closure_residual_max_m": _num(run.projection_residual_m),
+                "sweep_time_s": run.dynamic.sweep_time_s,  # from the path's joint rates (`sweep_rate`)
                 "steps": run.dynamic.steps,
                 "step_cpu_time_s": run.dynamic.cpu_time_s,
                 "events": run.events,

@@ -27,10 +27,11 @@ import scipy.linalg
 from numpy.typing import NDArray
 
 from .errors import DomainError, ParameterError, SimulationError
-from .mjcf import ModelOptions, build_xml, closures, mujoco_joints, preset_duration, with_keyframes
+from .mjcf import ModelOptions, build_xml, closures, mujoco_joints, with_keyframes
 from .path import rank, rank_of
 from .scenes.base import Scene
 from .stabilize import StepFunction, make_constraint, run_step
+from .sweep_rate import ramp, sweep_duration
 
 # Closure residual is measured on at most this many samples of a run (after mj_kinematics each).
 RESIDUAL_SAMPLES = 400
@@ -81,6 +82,8 @@ class Trajectory:
     steps: int
     contacts: NDArray[np.int64] = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
     drive_force: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    # The input's sweep time (s), hold excluded: `sweep_rate.sweep_duration` unless the caller chose it; 0 without one.
+    sweep_time_s: float = 0.0
 
 
 def warn_in_python(message: str) -> None:
@@ -239,18 +242,6 @@ def start_input(
     return start
 
 
-def ramp(phase: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """
-    Minimum-jerk ramp s(p) = 10 p^3 - 15 p^4 + 6 p^5 and ds/dp, for phase p in [0, 1].
-
-    Velocity and acceleration vanish at both ends, so a run starts and ends without a transient.
-    Measured against a cosine ramp (fast preset, same duration): 7.0e-9 vs 7.4e-9 rad on the
-    general vertex, 6.5e-7 vs 8.3e-7 rad on the Miura vertex swept from 0.1 theta_limit.
-    """
-    p = np.asarray(phase, dtype=float)
-    return p**3 * (10 - 15 * p + 6 * p**2), 30 * p**2 * (1 - p) ** 2
-
-
 def _residuals(scene, model, data, binds, qpos_log):
     """Closure-site gaps (m) at up to RESIDUAL_SAMPLES recorded samples, after mj_kinematics each."""
     index = np.unique(np.linspace(0, len(qpos_log) - 1, min(RESIDUAL_SAMPLES, len(qpos_log))).astype(int))
@@ -362,7 +353,8 @@ def simulate(
     contact : bool
       Enable the scene's contact pairs (thick panels).
     duration, hold : float
-      Sweep time (default: the preset's) and extra time holding the final target.
+      Sweep time (default: `sweep_rate.sweep_duration`, from the path's joint rates) and extra time holding the
+      final target.
     initial : (n_joints,) float, optional
       Mechanism angles to start from instead of the closed form's pose on `branch` at `start` (e.g. a
       pose of another model, to see which branch this mechanism takes from it); the drive starts at
@@ -381,7 +373,7 @@ def simulate(
     binds.set_pose(data, start_pose(scene, branch, start) if initial is None else np.asarray(initial, dtype=float))
     mujoco.mj_forward(model, data)
 
-    T = duration or preset_duration(preset) * scene.sweep_time_scale
+    T = duration or sweep_duration(scene, branch, preset, start, stop)
     h = model.opt.timestep
     n = round((T + hold) / h)
     if n < 2:
@@ -416,7 +408,7 @@ def simulate(
     return Trajectory(
         scene=scene.name, branch=branch, mode=f"dynamic/{drive}", preset=preset, time=t, target=x,
         q=binds.angles(scene, qpos_log), residual_index=index, closure_residual=residual,
-        cpu_time_s=cpu, steps=n, contacts=contacts, drive_force=force,
+        cpu_time_s=cpu, steps=n, contacts=contacts, drive_force=force, sweep_time_s=T,
     )  # fmt: skip
 
 

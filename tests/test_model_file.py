@@ -24,15 +24,15 @@ def bennett_run(tmp_path_factory):
     return scene, report, out / "model.xml"
 
 
-def replay(scene, path, branch: str, scaled: bool = True) -> np.ndarray:
-    """Plain MuJoCo: load model.xml, apply its regulariser scale, start at the keyframe, drive the run's ramp."""
+def replay(scene, path, branch: str, duration: float, scaled: bool = True) -> np.ndarray:
+    """Plain MuJoCo: load model.xml, apply its regulariser scale, start at the keyframe, drive the run's ramp over
+    `duration` s (the sweep time report.json states)."""
     model = mujoco.MjModel.from_xml_path(str(path))
     if scaled:
         scale_regularization(model, float(model.numeric("regularization_scale").data[0]))
     data = mujoco.MjData(model)
     mujoco.mj_resetDataKeyframe(model, data, model.key(f"start_{branch}").id)
     mujoco.mj_forward(model, data)
-    duration = float(model.numeric("sweep_duration").data[0]) * scene.sweep_time_scale
     n = round(duration / model.opt.timestep)
     start, stop = start_input(scene, branch), scene.branch_path(branch)[1]
     _, setpoints = drive_targets(scene, model, "equality", start, stop, duration, n)
@@ -44,12 +44,12 @@ def replay(scene, path, branch: str, scaled: bool = True) -> np.ndarray:
 def test_model_xml_loaded_in_plain_mujoco_repeats_the_run_bitwise(bennett_run):
     scene, report, path = bennett_run
     run = report.runs[0]
-    q = replay(scene, path, run.requested)
+    q = replay(scene, path, run.requested, run.dynamic.sweep_time_s)
     assert np.array_equal(q, run.dynamic.q)
     assert compare(scene, run.requested, q).max_error() == run.dynamic_path.max_error()
     # the scale matters: without it the same file gives another run (the regulariser is 100x larger)
-    unscaled = compare(scene, run.requested, replay(scene, path, run.requested, scaled=False)).max_error()
-    assert unscaled != run.dynamic_path.max_error()
+    unscaled = replay(scene, path, run.requested, run.dynamic.sweep_time_s, scaled=False)
+    assert compare(scene, run.requested, unscaled).max_error() != run.dynamic_path.max_error()
 
 
 def test_model_xml_reads_as_a_model_file(bennett_run):

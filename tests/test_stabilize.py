@@ -26,10 +26,10 @@ def scene_of(name: str):
 
 
 def test_fast_projected_closes_the_bennett_sweep():
-    """Measured 2.2e-15 rad and 2.4e-15 m over the 6 s sweep (fast: 6.7e-8 rad, 1.0e-7 m)."""
+    """Measured 2.2e-15 rad and 2.4e-15 m over a 6 s sweep (fast: 6.7e-8 rad, 1.0e-7 m)."""
     scene = scene_of("bennett")
     run = simulate(scene, "bennett", preset="fast-projected")
-    assert run.steps == 750  # the fast preset's samples: 8 ms over 2 s x sweep_time_scale 3
+    assert run.steps == round(run.sweep_time_s / 0.008)  # the fast preset's 8 ms steps over the path's sweep time
     assert compare(scene, "bennett", run.q).max_error() < TOLERANCES.angle("fast-projected")
     assert np.max(run.closure_residual) < TOLERANCES.residual("fast-projected")
     # the drive is left to its equality: the input sweeps the whole path (measured 7.0e-6 rad past its end)

@@ -36,7 +36,5 @@ def build(a: float, alpha: float, b: float, beta: float) -> Scene:
         drive_joint="joint_1",
         drive_scale=1.0,
         path=(0.6, 2.4),
-        # fast (RK4 8 ms) measured 6.1e-7 rad at the preset's 2 s sweep; 3x slower brings it below 1e-7
-        sweep_time_scale=3.0,
         notes="hinge qpos = D-H joint angle theta; T = Rz(theta) Tz(R) Tx(a) Rx(alpha)",
     )

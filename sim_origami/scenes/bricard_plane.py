@@ -128,9 +128,5 @@ def build(
         drive_joint="joint_2",
         drive_scale=1.0,
         path=default_path(kinematics),
-        # Case 10's joint lines are nearly dependent along its whole motion (rank-4 at its bifurcations,
-        # close to it in between): fast measured 9.4e-7 rad on path II at the preset's 2 s sweep; 4x slower
-        # brings it below 1e-7.
-        sweep_time_scale=4.0,
         notes="hinge qpos = D-H angle theta; T = Rz(theta) Tz(R) Tx(a) Rx(alpha); theta5 = theta3, theta6 = theta2",
     )

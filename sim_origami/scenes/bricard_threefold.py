@@ -34,8 +34,6 @@ def build(a: float, alpha: float) -> Scene:
         # singular value falls to 0; it stays >= 0.87 here on both branches for the default alpha).
         # A wider sweep is as valid but faster in phi: (-2, 2) measured a fast closure gap of
         # 5.8e-7 m, against 1.4e-7 m here (TOLERANCES.fast_residual_m = 1e-6).
-        # fast (RK4 8 ms) measured 2.6e-7 rad at 1.5x the preset's 2 s sweep; 3x brings it below 1e-7.
-        sweep_time_scale=3.0,
         path=(-1.0, 1.0),
         notes="hinge qpos = D-H joint angle theta; T = Rz(theta) Tz(R) Tx(a) Rx(alpha); "
         "theta1 = theta3 = theta5, theta2 = theta4 = theta6 on the motion",

@@ -27,11 +27,6 @@ PARAMS = (
 # from 0 at flat) to 2.0, short of the fully folded lock at pi where the largest gains (9.9 on Q's SSCC)
 # drive some creases towards pi fast.
 PATH = (0.3, 2.0)
-# The error comes from the start of the sweep (ill-conditioned near flat) and falls as the square of the
-# sweep time: fast, worst branch (P CSCS, Q SCSC: the branches with the smallest gains, 0.18 and 0.16)
-# measured 1.1e-5 rad at 1x, 7.1e-7 at 4x, 1.8e-7 at 8x, 4.6e-8 at 16x (others <= 8.8e-9 at 16x);
-# 0.18 s of CPU per run.
-SWEEP_TIME_SCALE = 16.0
 
 
 def unit_name(unit: float) -> str:
@@ -56,6 +51,5 @@ def build(unit: float, alpha: float, beta: float, gamma: float, delta: float, L1
         drive=drive,
         path=PATH,
         root=name,
-        sweep_time_scale=SWEEP_TIME_SCALE,
         notes=f"unit {name}; hinge qpos = fold angle rho (> 0 valley from +z); no M/V joint limits",
     )

@@ -24,11 +24,6 @@ PARAMS = (
     Param("cols", "", 2, "units along u (the AD direction), >= 1", **SIZE),
     *UNIT_PARAMS[1:],  # the unit's design angles and lengths, as scene `corrugated-unit`
 )
-# Fast preset: the error comes from the start of the sweep and falls about as the square of the sweep time. Worst
-# branch of the default 2 x 2 P sheet (CSCS, the smallest gains) measured 2.6e-6 rad at 4x, 1.8e-7 at 16x and
-# 5.4e-8 at 32x (others <= 3.3e-8); Q sheet worst SCSC 1.2e-7 at 16x, 3.5e-8 at 32x. About 1.0 s of CPU per
-# branch at 32x; with self-contact on, 1.3 s and the same path (no panels touch before 2 rad).
-SWEEP_TIME_SCALE = 32.0
 # fast at 1.25x its step and closure time constant (Scene.fast_step_scale: 10 ms, solref 25 ms). At 8 ms
 # RK4's four force evaluations a step cost what Euler's one per 2 ms does: the sheet measured 0.94-0.96x the
 # CPU of MuJoCo's defaults on their 2 s sweep (96146x more accurate); at 1.25x, 62392x at 0.77x
@@ -65,7 +60,6 @@ def build(
         drive=INPUT,
         path=UNIT_PATH,
         root=ROOT,
-        sweep_time_scale=SWEEP_TIME_SCALE,
         collision_inset=INSET * min(L1, L2, L3),
         fast_step_scale=FAST_STEP_SCALE,
         self_contact=True,

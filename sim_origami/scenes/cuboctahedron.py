@@ -123,8 +123,6 @@ def build() -> Scene:
         drive_joint=INPUT_JOINT,
         drive_scale=1.0,
         path=(0.0, lo),
-        # fast measured 2.1e-6 rad (vertices 6.9e-6) at the preset's 2 s sweep, 1.3e-7 (4.1e-7) 4x slower
-        sweep_time_scale=8.0,
         contact_pairs=CONTACT_PAIRS,
         notes="input A = theta_A - theta_d (rad, falls to the octahedron); S joints as MuJoCo ball joints",
     )

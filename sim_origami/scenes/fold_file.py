@@ -36,11 +36,6 @@ from .base import Scene
 
 # The default sweep runs from this fraction of the motion's end to the end.
 SWEEP_FROM = 0.3
-# The sweep lasts this many times the preset's duration. MuJoCo's lag behind the driven path falls as 1/T^2
-# (x4.0-4.1 per doubling), measured on the tool's own motion.fold files read back (fast, x1 / x2 / x4): square
-# twist 1.17e-6 / 2.85e-7 / 7.06e-8 rad, Miura sheet 2 x 2 1.04e-6 / 2.62e-7 / 6.63e-8, corrugated unit
-# 1.56e-7 / 3.82e-8 / 9.59e-9; x4 keeps 14x below the 1e-6 rad tolerance (the square-twist scene's own choice).
-SWEEP_TIME_SCALE = 4.0
 # MuJoCo's regulariser R (the preset's) times this. A file's pattern may be ill-conditioned where the registered
 # scenes are not, and what lets MuJoCo's lag through there, near the lock a sweep ends at, is R, not the step: thin
 # panels lag in proportion to R (a 4 x 4 sheet of 50:1 panels driven by a short crease: 4.25 x the angle tolerance at
@@ -49,19 +44,15 @@ SWEEP_TIME_SCALE = 4.0
 # 16 x 16 sheet of the speed benchmark, near-square large sheets, the rigid gallery of tests/test_fold_gallery.py,
 # the bird base: their error is the step's; docs/fold_files.md).
 REGULARIZATION_SCALE = 1e-6
-# Patterns solved sparse (over SPARSE_FROM creases) sweep x2, not x4: at R / 100 (as FOLD patterns then ran; closures
-# at 2.5 steps of time constant) the 16 x 16 sheet's error was 1.2e-7 rad and its closure gap 9.8e-7 m (tolerance
-# 2.7e-6), 4.9e-7 and 3.9e-6 at x1; x8 at R took four times the steps for 4.4e-7.
-LARGE_SWEEP_TIME_SCALE = 2.0
 # Their closures (and drive) run at this times the preset's time constant, 3 steps instead of 2.5. Near-square
 # letters-only Miura sheets failed at 2.5: their closure gap peaks mid-path, where the sweep is fastest, and softer
 # closures lower it (12 x 12 at a zigzag of 0.2 / 0.1 edge, 16 x 16 at 0.2: 1.20 / 1.11 / 1.60 of its tolerance ->
 # 0.73 / 0.68 / 0.97), while a sheet of 5:1 panels, whose error is lag near its lock, rises 0.60 -> 0.69 of the angle
 # tolerance; 3.5 and 4 steps trade further the one for the other (docs/fold_files.md).
 LARGE_TIMECONST_SCALE = 1.2
-# ... and sweep slower as the square root of the sheet's flat extent (in units of its longest edge) beyond this: the
-# gap grows in proportion to it and falls as 1 / T^2. With the tree rooted at the pattern's centre (below) at most
-# 0.022 x the extent of the tolerance was measured at x2 (12 x 12 and 16 x 16 sheets at a zigzag of 0.2 edge), so at
+# ... and sweep slower than the path's rates ask (`sweep_rate`) as the square root of the sheet's flat extent (in units
+# of its longest edge) beyond this: the gap grows in proportion to it and falls as 1 / T^2. With the tree rooted at
+# the pattern's centre (below) at most 0.022 x the extent of the tolerance was measured at x2 (12 x 12 and 16 x 16 sheets at a zigzag of 0.2 edge), so at
 # most 0.65 of it at any extent (a 20 x 20 sheet, extent 27: 0.52 at x2). Rooted at the input crease's face the gaps
 # were twice as large, and this extent 15.
 LARGE_EXTENT = 30.0
@@ -205,8 +196,8 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     return Scene(
         name=f"fold-{Path(path).stem}", params={"size_m": size}, kinematics=kinematics, mechanism=mechanism,
         loop_joints=tuple(names), drive_joint=inputs[0], drive_scale=1.0, path=(float(sweep[0]), float(sweep[1])),
-        sweep_time_scale=LARGE_SWEEP_TIME_SCALE * max(1.0, np.sqrt(extent / LARGE_EXTENT)) if large else
-        SWEEP_TIME_SCALE, fast_timeconst_scale=LARGE_TIMECONST_SCALE if large else 1.0,
+        sweep_time_scale=max(1.0, np.sqrt(extent / LARGE_EXTENT)) if large else 1.0,
+        fast_timeconst_scale=LARGE_TIMECONST_SCALE if large else 1.0,
         fast_regularization_scale=REGULARIZATION_SCALE,
         notes=f"from {Path(path).name} ({source}), lengths in units of its longest edge {size:.6g} m, inputs "
         f"{', '.join(inputs)}; {kinematics.summary()}",

@@ -43,8 +43,6 @@ def build() -> Scene:
         drive_joint="joint_1",
         drive_scale=1.0,
         path=(START, START + 1.0),
-        # driven sweep: fast (RK4 8 ms) measured 2.2e-7 rad at the preset's 2 s; 2x slower brings it below 1e-7
-        sweep_time_scale=2.0,
         gravity=tuple(-9.81 * up),
         free_start=START,
         free_branch=branch,

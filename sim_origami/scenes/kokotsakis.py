@@ -33,12 +33,6 @@ PARAMS = (
 # smallest nonzero singular value is 0.021 at x = 0.3 (0.036 at 0.5) and the numeric solve, stopped at a 1e-14
 # residual, was off by 7.4e-13 rad there (5.5e-14 from 0.5).
 PATHS = {1: (0.3, 1.1), 2: (0.5, 1.5), 3: (0.3, 1.1), 4: (0.3, 1.1)}
-# The fast preset's error peaks just after the sweep starts (where the closure is thinnest and the minimum-jerk
-# ramp accelerates hardest) and falls as the square of the sweep time. Measured at the 2 s sweep: case 1 odd2
-# 4.3e-7, odd3 1.1e-6 (4x: 2.8e-8, 7.3e-8); case 2 from 0.5 C 2.2e-7, S 1.1e-5 (4x: 6.7e-7; 16x: C 9.0e-10,
-# S 4.3e-8); case 3 up to 8.7e-7 (odd3; 4x: 5.6e-8); case 4 1.7e-8 (4x: 1.1e-9). Each run costs 0.01 s of CPU
-# per 1x.
-SWEEP_TIME_SCALE = {1: 4.0, 2: 16.0, 3: 4.0, 4: 1.0}
 
 
 def _case(value: float) -> int:
@@ -55,7 +49,7 @@ def build(case: float, outer: float) -> Scene:
     kinematics = Kokotsakis(example(number), outer=outer)
     return pattern_scene(
         "kokotsakis", {"case": float(number), "outer": outer}, kinematics, kinematics.pattern, drive=INPUT,
-        path=PATHS[number], root="central", sweep_time_scale=SWEEP_TIME_SCALE[number],
+        path=PATHS[number], root="central",
         notes="hinge qpos = fold angle rho (> 0 valley seen from +z); central panel fixed; one connect pair per "
               "vertex loop on a cut outer crease",
     )  # fmt: skip

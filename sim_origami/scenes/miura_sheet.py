@@ -25,9 +25,7 @@ PARAMS = (
 PATH = (0.05 * np.pi, 0.9 * np.pi)
 # The spanning tree is breadth-first from the drive's panel, which sits mid-sheet (`MiuraSheet`): on 16 x 16 its
 # depth is 16 instead of Kruskal's 27-31, which took the fast error (2 s sweep) from 1.2e-5 to 2.0e-6 rad and the
-# CPU from 1.7 to 0.9 s. Fast, 2 s sweep: 1.7e-6 rad on 4 x 4, 8 x 8 and 3.0e-6 on 16 x 16; the error falls as the
-# square of the sweep time (16 x 16: 7.3e-7 at 4 s, `scripts/miura_sheet_bench.py`; 4 x 4: 2.5e-8 at 16 s).
-SWEEP_TIME_SCALE = 8.0
+# CPU from 1.7 to 0.9 s.
 # Collision solids are inset from every panel edge by this fraction of the shorter side: panels sharing a
 # vertex are excluded anyway, the inset keeps the others from touching through the nominal plate thickness.
 INSET = 0.05
@@ -45,7 +43,6 @@ def build(rows: float, cols: float, a: float, b: float, gamma: float) -> Scene:
         kinematics.pattern,
         drive=kinematics.input_crease,
         path=PATH,
-        sweep_time_scale=SWEEP_TIME_SCALE,
         collision_inset=INSET * min(a, b),
         self_contact=True,
         breadth_first=True,

@@ -33,9 +33,6 @@ def build(a23: float, alpha12: float) -> Scene:
         loop_joints=("joint_1", "joint_2", "joint_3", "joint_4", "joint_5"),
         drive_joint="joint_3",
         drive_scale=1.0,
-        # theta1 moves twice as fast as the input: fast (RK4 8 ms) measured 1.6e-7 rad at 2.5x the preset's
-        # 2 s sweep; 4x brings it below 1e-7.
-        sweep_time_scale=4.0,
         path=PATH,
         notes="hinge qpos = D-H joint angle theta; T = Rz(theta) Tz(R) Tx(a) Rx(alpha); "
         "closed form theta4 = theta3 + pi, theta1 = pi - 2 theta3, theta5 = -theta2",

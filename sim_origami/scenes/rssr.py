@@ -36,8 +36,6 @@ def build(a1: float, a2: float, alpha: float) -> Scene:
     return Scene(
         name="rssr", params={"a1": a1, "a2": a2, "alpha": alpha}, kinematics=kinematics, mechanism=mechanism,
         loop_joints=tuple(j.name for j in mechanism.joints), drive_joint="joint_1", drive_scale=1.0,
-        # theta2 turns fast near theta1 = pi: fast measured 3.0e-6 rad at 1x, 7.4e-7 at 2x, 3.3e-7 at 3x
-        # (a1 = 1.015, a2 = 0.6922); 6x brings it below 1e-7
-        path=(0.5, 2.9), sweep_time_scale=6.0,
+        path=(0.5, 2.9),
         notes="hinge qpos = D-H joint angle; balls at C (in the tree) and D (one connect); idle spin of CD",
     )  # fmt: skip

@@ -28,9 +28,8 @@ PARAMS = (
 )
 # Default sweep of x = rho_AB (rad). Near flat the closure Jacobian has a singular value ~ x, so the soft
 # closures' angle error peaks at the start of a sweep: fast preset, 2 s sweep, worst branch (SCSC) measured
-# 1.8e-6 rad from x = 0.3 and 4.8e-7 from 0.5; at 4x the sweep time 3.1e-8 (0.046 s CPU per branch).
+# 1.8e-6 rad from x = 0.3 and 4.8e-7 from 0.5.
 PATH = (0.5, 2.4)
-SWEEP_TIME_SCALE = 4.0
 ROOT = "square"
 
 
@@ -43,7 +42,7 @@ def _scene(
 ) -> Scene:
     params = {"alpha": kinematics.alpha, "side": kinematics.side, "pleat": kinematics.pleat}
     return pattern_scene(name, params, kinematics, pattern, drive=INPUT, path=PATH, root=ROOT, couplings=couplings,
-                         sweep_time_scale=SWEEP_TIME_SCALE, notes=notes)  # fmt: skip
+                         notes=notes)  # fmt: skip
 
 
 @register("square-twist", "square twist, zero thickness: four flat-foldable vertices round a square "

@@ -63,11 +63,6 @@ def build(alpha: float, p: float, q: float, r: float, length: float) -> Scene:
         drive_scale=1.0,
         path=PATH,
         contact_pairs=tuple(itertools.combinations([f"panel_{i}" for i in range(1, 7)], 2)),
-        # The thin six-bar loop keeps a smallest closure singular value of about b/length = 0.03 over the
-        # whole motion (not only near flat), which amplifies the soft closures' error: fast measured 1.7e-6
-        # rad (branch diamond) at the preset's 2 s sweep and 5x slower 6.8e-8; accurate measured 1.2e-10 at
-        # 5x its 8 s sweep, falling as 1/time, so 7x: below 1e-7 (fast) and 1e-10 (accurate).
-        sweep_time_scale=7.0,
         notes="hinge k on the line through (0, 0, h_k) along d_k, h = (0, p, p - q, p - q - r, p - q, p), r = p + q; "
         "qpos = fold angle of the zero-thickness vertex",
     )

@@ -36,11 +36,8 @@ PARAMS = (
     Param("pleat", "m", 1.0, "length of every pleat crease"),
 )
 # Default sweep of x = rho_AB (rad), as the zero-thickness scene's (the thick sheet has no flat bifurcation, but
-# its closure's smallest kept singular value at flat is only 2e-2, ~ b/2). Fast preset, 2 s sweep: 6.3e-7 rad
-# (CSCS), 1.1e-6 (CSSC); at 4x <= 6.4e-8 over the six strings (CSCS 3.8e-8, 0.03 s CPU); -2.4..2.4 through flat
-# at 4x: 3.0e-7.
+# its closure's smallest kept singular value at flat is only 2e-2, ~ b/2).
 PATH = (0.5, 2.4)
-SWEEP_TIME_SCALE = 4.0
 ROOT = "square"
 
 
@@ -52,7 +49,7 @@ def build(alpha: float, b: float, modes: float, side: float, pleat: float) -> Sc
     touching = set(pattern.touching_faces())
     return pattern_scene(
         "thick-square-twist", {"alpha": alpha, "b": b, "modes": modes, "side": side, "pleat": pleat}, kinematics,
-        pattern, drive=INPUT, path=PATH, root=ROOT, sweep_time_scale=SWEEP_TIME_SCALE,
+        pattern, drive=INPUT, path=PATH, root=ROOT,
         notes=f"mode string {kinematics.modes}, no couplings; qpos = fold angle of the zero-thickness twist; panels "
         "are hinge hulls, faces sharing no vertex collide",
         collision_inset=RELIEF * b,

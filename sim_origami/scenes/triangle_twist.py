@@ -34,15 +34,14 @@ PARAMS = (
 )
 # Default sweep of x = rho_AB (rad). Near flat the closure Jacobian has singular values ~ x (flat mobility 3), so
 # the soft closures' angle error peaks at the start of a sweep: fast preset, 2 s sweep, measured 1.2e-7 (PQQ) to
-# 1.7e-6 (QSR) rad, always near x = 0.55; at 8x the sweep time <= 2.7e-8 (QSR), 0.07 to 0.12 s CPU per run.
+# 1.7e-6 (QSR) rad, always near x = 0.55.
 PATH = (0.5, 2.4)
-SWEEP_TIME_SCALE = 8.0
 ROOT = "T"
 
 
 def _scene(name: str, kinematics: TriangleTwist, params: dict, couplings: tuple, notes: str) -> Scene:
     return pattern_scene(name, params, kinematics, kinematics.pattern, drive=INPUT, path=PATH, root=ROOT,
-                         couplings=couplings, sweep_time_scale=SWEEP_TIME_SCALE, notes=notes)  # fmt: skip
+                         couplings=couplings, notes=notes)  # fmt: skip
 
 
 @register("triangle-twist", "generalised triangle twist, zero thickness: three flat-foldable vertices round a "

@@ -153,9 +153,9 @@ def interference_scene(zeta: float, model: TruncatedOctahedronCube | None = None
         # slow to settle (it bounces off the contact and creeps back): held 1 s, fast stopped 1.3e-2 rad short,
         # so the scene ran stiff; held 3 s (validation.BLOCKAGE_HOLD) fast 16x stops 9.6e-10 (zeta = 0) and 5.5e-6
         # rad (15 deg) from the contact in 5.1-5.7 s of CPU, stiff 16x 2.0e-11 and 2.4e-5 in 8.5 s; fast 8x 3.5e-4
-        # and 1.1e-2 (too short at 15 deg).
+        # and 1.1e-2 (too short at 15 deg). The path's rates ask for 3.4-3.6x (`sweep_rate`); the blockage, 16x.
         preset="fast",
-        sweep_time_scale=16.0,
+        sweep_time_scale=4.5,
         # Squares share no joint: every pair may collide (faces passing through each other, Yang 2017's
         # "interference"); the collision plates touch 9.8 mrad of A1 before the cube, where the servo stops
         # (blockage study).

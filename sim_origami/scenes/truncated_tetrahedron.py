@@ -157,13 +157,9 @@ def _scene(scheme: str, delta: float) -> Scene:
         drive_scale=1.0,
         path=(0.0, far - closed_form.reference),
         # measured at the preset's 2 s sweep: stiff 1.2e-5 rad (I) and 1.1e-5 (II); fast 9.1e-5 and 3.6e-5 with
-        # MuJoCo's regulariser, 2.0e-6 and 1.2e-6 with the presets' (scaled 0.01); the error falls as the square of
-        # the sweep time: fast 8x 2.9e-8 and 1.8e-8 rad in 0.05 s of CPU (stiff 16x: 4.6e-8 and 4.3e-8 in 0.23 s);
-        # the blockage runs stop 5e-7 and 3.9e-6 rad from the kinematic contact. At FAST_STEP_SCALE (10 ms): fast
-        # 8x 4.6e-8 and 2.8e-8 rad, blockage 7.2e-7 and 6.0e-6
+        # MuJoCo's regulariser, 2.0e-6 and 1.2e-6 with the presets' (scaled 0.01)
         preset="fast",
         fast_step_scale=FAST_STEP_SCALE,
-        sweep_time_scale=8.0,
         contact_pairs=TRIANGLE_PAIRS,
         notes=f"input {INPUT_JOINT[scheme]} = {closed_form.input_name} - its deployed value (rad); "
         "S joints as MuJoCo ball joints",

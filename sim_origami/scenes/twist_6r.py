@@ -18,11 +18,8 @@ PARAMS = (
     Param("delta", "deg", 45.0, "pleat angle at B", **SECTOR),
     Param("d", "m", 1.0, "triangle side AB"),
 )
-# Sweep of psi1 = theta1 - theta1(flat) (rad), clear of the singular flat state. Fast preset, 2 s sweep: error
-# 1.4e-6 rad (gamma != delta) and 9.9e-7 (gamma = delta), largest near psi1 = 0.53; at 8x 2.2e-8 and 1.6e-8
-# (0.05 s CPU per run).
+# Sweep of psi1 = theta1 - theta1(flat) (rad), clear of the singular flat state.
 PATH = (0.5, 2.4)
-SWEEP_TIME_SCALE = 8.0
 
 
 @register("triangle-twist-6r", "6R linkage of the triangle-twist kirigami (Feng 2018, §3.4): octahedral Bricard "
@@ -39,6 +36,5 @@ def build(alpha: float, beta: float, gamma: float, delta: float, d: float) -> Sc
         drive_joint="joint_1",
         drive_scale=1.0,
         path=(float(start), float(stop)),
-        sweep_time_scale=SWEEP_TIME_SCALE,
         notes=f"epsilon = {np.rad2deg(kinematics.angles.epsilon):.6g} deg (eqn 3-12); hinge qpos = D-H theta",
     )

@@ -30,9 +30,5 @@ def build(alpha1: float, alpha2: float, alpha3: float, alpha4: float, length: fl
         drive_joint="crease_1",
         drive_scale=1.0,
         path=(0.4, 1.6),
-        # Branch odd1 of the default vertex ends near its lock (crease 2 flat at rho1 = 1.122), where
-        # output rates grow: fast (RK4 8 ms) measured 2.0e-7 rad at 1.25x the preset's 2 s sweep; 2.5x
-        # brings it below 1e-7.
-        sweep_time_scale=2.5,
         notes="hinge qpos = fold angle rho, rho > 0 a valley seen from +z",
     )

@@ -40,11 +40,9 @@ THICK = (
 # and the folded end (smallest closure singular value 0.09 -> 0.007 at -2.6) their violation is amplified: with
 # MuJoCo's own regulariser, fast at 2 s measured 2.0e-2 rad over -0.4..-2.6 and 1.2e-4 over -0.5..-1.8, and stiff
 # (Euler 1.25 ms) beat it (2.4e-8 at 16x). With the presets' regulariser scaled by 0.01 fast measured 1.2e-6 (cell)
-# and 6.2e-7 (thick cell) at 2 s; at 8x the cell's four branches 6.1e-10 .. 1.7e-8 rad in 0.08 s of CPU each and
-# the thick cell 9.6e-9 in 0.05 s (stiff at 16x: 2.4e-8 in 0.34 s and 0.20 s).
+# and 6.2e-7 (thick cell) at 2 s, against stiff's 2.4e-8 at 16x.
 PATH = (-0.5, -1.8)
 PRESET = "fast"
-SWEEP_TIME_SCALE = 8.0
 # The thick cell's closure is thin in the direction of its hinge offsets: with a = 0.02 m the projection's
 # angle error was 1.9e-13 rad (0.05 m: 2.8e-14) and the fast path error 5.6e-7 (0.05 m: 1.1e-7).
 ROOT, DRIVE = "A12", "A4"
@@ -67,7 +65,6 @@ def _scene(name: str, kinematics: Waterbomb, params: dict[str, float], notes: st
         path=PATH,
         root=ROOT,
         couplings=couplings,
-        sweep_time_scale=SWEEP_TIME_SCALE,
         preset=PRESET,
         notes=notes,
         **contact,
@@ -98,10 +95,9 @@ def build_thick(alpha: float, beta: float, t: float, mu: float, a: float) -> Sce
     )  # fmt: skip
 
 
-# The 2 x 2 sheet carries 18 couplings. With MuJoCo's own regulariser fast at 32x measured 1.4e-7 .. 6.7e-7 rad
-# over the four branches (A-straight-B-degree4 worst), stiff 1.8e-7 at 8x; with the presets' (scaled 0.01) fast at
-# 16x 1.0e-8 on path I in 0.34 s of CPU (stiff 2.4e-8 in 0.84 s).
-SHEET_SWEEP_TIME_SCALE = 16.0
+# The 2 x 2 sheet's 18 couplings (soft joint equalities) lag up to 5.3x more than `sweep_rate.LAG_S2` allows for its
+# path's joint rates: it sweeps 3x the rule's time (docs/performance.md, "The sweep's duration").
+SHEET_SWEEP_TIME_SCALE = 3.0
 # The sheet's panels carry collision solids inset by SHEET_INSET x t from every edge, and every pair of panels that
 # shares no vertex may collide (Scene.self_contact, as the Miura and corrugated sheets).
 SHEET_INSET = 0.05

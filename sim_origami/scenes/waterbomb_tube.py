@@ -51,7 +51,6 @@ PATH_SHARE = 0.7
 # contact on costs 35-45 %. With only the loops the couplings do not imply (`without_implied_closures`: 6 of 131
 # on 10 x 5) 4054, 2510 and 1793 steps/s at the same error; the scene imposes every loop, which `fast` needs.
 PRESET = "fast"
-SWEEP_TIME_SCALE = 8.0
 # fast at 1.25x its step and closure time constant (Scene.fast_step_scale: 10 ms, solref 25 ms). At 8 ms
 # RK4's four force evaluations a step cost what Euler's one per 2 ms does: the 6 x 5 tube measured 0.97-1.00x the
 # CPU of MuJoCo's defaults on their 2 s sweep (34318x more accurate); at 1.25x, 21651x at 0.75-0.87x
@@ -144,7 +143,7 @@ def build(n: float, m: float, alpha: float, beta: float, a: float) -> Scene:
         name="waterbomb-tube", params={"n": n, "m": m, "alpha": alpha, "beta": beta, "a": a},
         kinematics=kinematics, mechanism=tube_mechanism(kinematics, INSET * a), loop_joints=kinematics.crease_names,
         drive_joint=kinematics.input_crease, drive_scale=1.0, path=default_path(kinematics),
-        sweep_time_scale=SWEEP_TIME_SCALE, preset=PRESET, fast_step_scale=FAST_STEP_SCALE,
+        preset=PRESET, fast_step_scale=FAST_STEP_SCALE,
         pattern=tube_pattern(kinematics), self_contact=True,
         notes=f"{int(n)} x {int(m)} tube; {len(kinematics.couplings)} symmetry couplings; "
         f"{len(kinematics.layout.seam)} seam creases closed by connects",

@@ -43,7 +43,6 @@ PARAMS = (
 # regulariser; with the presets' (scaled 0.01) fast 8x on 6 x 3 measured 4.9e-9 rad (ccw) in 3.8 s of CPU against
 # stiff's 2.6e-8 in 7.1 s, so the scene runs fast.
 PRESET = "fast"
-SWEEP_TIME_SCALE = 8.0
 # fast at 1.25x its step and closure time constant (Scene.fast_step_scale: 10 ms, solref 25 ms). At 8 ms
 # RK4's four force evaluations a step cost what Euler's one per 2 ms does: the 6 x 3 twist measured 1.01-1.02x the
 # CPU of MuJoCo's defaults on their 2 s sweep (68190x more accurate); at 1.25x, 43014x at 0.79-0.85x
@@ -70,7 +69,7 @@ def build(n: float, m: float, alpha: float, beta: float, a: float, row: float) -
         name="waterbomb-twist", params={"n": n, "m": m, "alpha": alpha, "beta": beta, "a": a, "row": row},
         kinematics=kinematics, mechanism=tube_mechanism(kinematics), loop_joints=kinematics.crease_names,
         drive_joint=kinematics.input_crease, drive_scale=1.0, path=(lo, hi),
-        sweep_time_scale=SWEEP_TIME_SCALE, preset=PRESET, fast_step_scale=FAST_STEP_SCALE, pattern=kinematics.pattern,
+        preset=PRESET, fast_step_scale=FAST_STEP_SCALE, pattern=kinematics.pattern,
         notes=f"{int(n)} x {int(m)} tube, row {kinematics.row} twisting; {len(kinematics.couplings)} "
         "twist-symmetry couplings; "
         f"{len(kinematics.layout.seam)} seam creases closed by connects",
