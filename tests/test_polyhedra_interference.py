@@ -54,10 +54,16 @@ def test_zeta_40_turns_back_early():
     assert abs(o.rho1_min / DEG - 86.4) < 0.05  # first trace: rho1 min 86.4 (measured 86.406)
 
 
+def test_a_design_outside_the_feasible_range_is_refused_before_its_trace():
+    with pytest.raises(ParameterError, match=r"zeta = 30 deg; it must be a number in \[-61, 19\.5\] deg \(designs"):
+        scenes.get("truncated-octahedron").build(zeta=30 * DEG)
+
+
 @pytest.mark.slow
 def test_build_refuses_a_design_the_closed_form_cannot_follow():
-    with pytest.raises(ParameterError, match=r"zeta = 30 deg: .*Bricard 1 folds .*-60.9 <= zeta <= 19.5"):
-        scenes.get("truncated-octahedron").build(zeta=30 * DEG)
+    """19.2 deg reaches the cube, but not with A1 rising: refused after its trace."""
+    with pytest.raises(ParameterError, match=r"zeta = 19.2 deg: the path reaches the cube.*-60.9 <= zeta <= 19.5"):
+        scenes.get("truncated-octahedron").build(zeta=19.2 * DEG)
 
 
 # --- collision plates ------------------------------------------------------------------------------------------------
