@@ -7,6 +7,7 @@ import math
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import NDArray
 
 from . import __version__
 from .files import write_text
@@ -19,6 +20,9 @@ from .validation import Report
 
 # Frames of the simulated motion written to motion.fold (evenly spaced over the first run).
 FOLD_FRAMES = 60
+# Samples of each run that curves.csv keeps (plus each joint's worst): every MuJoCo step of every joint made the main
+# job's curves 197 MB (81 MB for corrugated-sheet alone); `validate --full-curves` writes them all.
+CURVE_ROWS = 400
 
 
 def _num(value: float) -> float | None:
@@ -97,8 +101,23 @@ def as_dict(report: Report) -> dict:
     return out
 
 
-def curves_csv(report: Report) -> str:
-    """One row per sample: branch, mode, input and each joint simulated/analytic/error (rad)."""
+def curve_rows(n: int, error: NDArray[np.float64], rows: int | None) -> NDArray[np.intp]:
+    """
+    Which of n samples curves.csv keeps: all where `rows` is None; else about `rows` evenly spaced, both ends, and
+    the sample of each joint's largest error (`error` (n, k)), so the file still holds every maximum the report
+    states.
+    """
+    if rows is None or n <= rows:
+        return np.arange(n)
+    worst = np.argmax(np.where(np.isfinite(error), error, -np.inf), axis=0) if error.size else np.zeros(0, int)
+    return np.unique(np.concatenate([np.linspace(0, n - 1, rows).round().astype(np.intp), worst]))
+
+
+def curves_csv(report: Report, rows: int | None = CURVE_ROWS) -> str:
+    """
+    One row per sample: branch, mode, input and each joint simulated/analytic/error (rad); at most about `rows`
+    samples of each run (`curve_rows`), every one where `rows` is None.
+    """
     names = report.scene.kinematics.joint_names
     buf = io.StringIO()
     writer = csv.writer(buf)
@@ -108,10 +127,11 @@ def curves_csv(report: Report) -> str:
     writer.writerow(header)
     for run in report.runs:
         for mode, path in (("dynamic", run.dynamic_path), ("projection", run.projection_path)):
-            values = np.stack([path.simulated, path.analytic, path.error], -1).reshape(len(path.input), -1)
+            keep = curve_rows(len(path.input), path.error, rows)
+            values = np.stack([path.simulated, path.analytic, path.error], -1)[keep].reshape(len(keep), -1)
             # one format for the whole row: the branch and mode lead every line (names carry no '%')
             fmt = ",".join([run.requested, mode, "%.17g"] + ["%.17g,%.17g,%.3e"] * len(names))
-            np.savetxt(buf, np.column_stack([path.input, values]), fmt=fmt)
+            np.savetxt(buf, np.column_stack([path.input[keep], values]), fmt=fmt)
     return buf.getvalue()
 
 
@@ -161,13 +181,13 @@ def model_xml(report: Report) -> str:
     return scene_xml(scene, ModelOptions(preset=report.preset), keyframes=starts) + "\n"
 
 
-def write(report: Report, out: str | Path) -> dict[str, Path]:
-    """Write report.json, curves.csv, model.xml and, for crease-pattern scenes, motion.fold, with reference curves
-    reference.csv, into `out` (atomically)."""
+def write(report: Report, out: str | Path, *, full_curves: bool = False) -> dict[str, Path]:
+    """Write report.json, curves.csv (every sample with `full_curves`, else CURVE_ROWS of each run), model.xml and,
+    for crease-pattern scenes, motion.fold, with reference curves reference.csv, into `out` (atomically)."""
     out = Path(out)
     paths = {
         "report": write_text(out / "report.json", json.dumps(as_dict(report), indent=2, default=plain) + "\n"),
-        "curves": write_text(out / "curves.csv", curves_csv(report)),
+        "curves": write_text(out / "curves.csv", curves_csv(report, None if full_curves else CURVE_ROWS)),
         "model": write_text(out / "model.xml", model_xml(report)),
     }
     if report.scene.pattern is not None:

@@ -62,6 +62,8 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--size", type=frame_size, metavar="WxH",
                         help="frame size in pixels with --render (default 640x480)")  # fmt: skip
     parser.add_argument("--json", action="store_true", help="print report.json to stdout")
+    parser.add_argument("--full-curves", action="store_true",
+                        help="curves.csv with every MuJoCo step (default: 400 samples a run and each joint's worst)")
 
 
 def frame_size(text: str) -> tuple[int, int]:
@@ -99,7 +101,7 @@ def run_one(scene, args, out: Path, reference=None) -> dict:
     from ..plots import plot_report
 
     report = validate(scene, preset=args.preset, branch=args.branch, seed=args.seed, reference=reference)
-    write(report, out)
+    write(report, out, full_curves=args.full_curves)
     plot_report(report, out / "curves.png")
     doc = as_dict(report)
     if args.render:
