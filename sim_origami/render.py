@@ -6,6 +6,7 @@ pass from recorded joint angles, with a model that alone carries lights and the 
 with shadows and multisampling off (measured here: 5-20x faster on llvmpipe).
 """
 
+import os
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -17,6 +18,7 @@ import numpy as np
 
 from .errors import RenderError
 from .files import atomic_path
+from .gl import GL_PACKAGES, rendering_disabled
 from .mjcf import ModelOptions
 from .render_paper import add_crease_lines, crease_lines, fit_camera
 from .scenes.base import Scene
@@ -46,6 +48,13 @@ def framing(scene: Scene, q: np.ndarray) -> tuple[np.ndarray, float]:
     return (lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2)
 
 
+def require_rendering() -> None:
+    """RenderError naming the packages to install when no GL library loaded (`gl.choose_backend`)."""
+    if rendering_disabled():
+        raise RenderError(f"rendering needs an OpenGL library and none loads (MUJOCO_GL={os.environ['MUJOCO_GL']}); "
+                          f"install {GL_PACKAGES}")  # fmt: skip
+
+
 def render_frames(
     scene: Scene,
     q: np.ndarray,
@@ -72,10 +81,11 @@ def render_frames(
     lines = crease_lines(scene, 0.006 * radius)
     poses = scene.mechanism.body_poses(q) if len(lines.joints) else None
     images = []
+    require_rendering()
     try:
         renderer = mujoco.Renderer(model, height=height, width=width, max_geom=model.ngeom + len(lines.joints) + 100)
     except Exception as exc:  # the GL stack reports many exception types
-        raise RenderError(f"no headless OpenGL context ({exc}); install libegl1 or libosmesa6") from exc
+        raise RenderError(f"no headless OpenGL context ({exc}); install {GL_PACKAGES}") from exc
     with renderer:
         from OpenGL import GL
 

@@ -153,6 +153,10 @@ def run(args: argparse.Namespace) -> int:
         raise ParameterError("--frames-tolerance holds a --fold file's frames; give it with --fold FILE")
     if args.size is not None and not args.render:
         raise ParameterError("--size sets the frames' size; give it with --render")
+    if args.render:
+        from ..render import require_rendering
+
+        require_rendering()  # before any work: a machine without a GL library is told what to install
     if args.reference is None and (args.reference_units or args.reference_tol is not None):
         raise ParameterError("--reference-units and --reference-tol qualify a --reference FILE")
     if args.all and args.reference is not None:
