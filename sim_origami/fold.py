@@ -72,9 +72,10 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from scipy import sparse as sp
 
 from . import fold_mesh
-from .closure import Coupling
+from .closure import Coupling, LoopSystem
 from .creases import Crease, CreasePattern
 from .errors import ParameterError
 from .files import write_text
@@ -97,6 +98,9 @@ MOTION_VERTICES = 200
 # Their guesses close the loops as far as the rounded pattern lets them (a least-squares minimum, 3e-9 to 2e-8 on the
 # 4-decimal Miura sheet): the fit closes them.
 GUESS_TOL = 1e-14
+# Fold angles printed to every digit are held to this (rad): exact states (closed forms, the numeric closure, the
+# motions this tool writes) close to it (tolerances.closed_form_rad), not to their last printed digit.
+EXACT_ANGLE = 1e-12
 # Crease angles (rad) within this of flat or of +-pi do not mark a state along a motion.
 FOLDED = 1e-3
 # Metres per FOLD frame_unit; "unit" (no physical meaning) is read as metres.
@@ -135,7 +139,7 @@ class FoldPattern:
     frames_from_coords: bool = False
     notes: tuple[str, ...] = ()
     unit_scale: float = 1.0
-    fit: "FormFit | None" = None
+    fit: "FormFit | AngleFit | None" = None
 
 
 @dataclass(frozen=True)
@@ -187,10 +191,13 @@ class _Sheet:
     n_file_vertices: int
     edges_vertices: Any
     unit_scale: float
+    unit: str  # the frame_unit its lengths were given in
     folded_xyz: NDArray[np.float64] | None  # a folded form's nearest rigid state, per pattern vertex (file units)
     notes: list[str] = field(default_factory=list)
     fit: FormFit | None = None
     measured: list[NDArray[np.float64]] = field(default_factory=list)  # fold angles measured from coordinates
+    # other frames' coordinates against their nearest rigid states of this pattern: (field, unit, fit)
+    frame_fits: list[tuple[str, str, fold_mesh.Fit]] = field(default_factory=list)
 
 
 class _FoldedFormError(ParameterError):
@@ -249,8 +256,12 @@ def read_fold(source: str | os.PathLike | Mapping[str, Any]) -> FoldPattern:
                            f"{agree + disagree} creases: the file's faces run for the other side of the paper, "
                            "so M and V are read swapped")  # fmt: skip
         fold_angles, rows, from_coords = _angles(key, geometry, raw, frames, sheet)
+    fit: FormFit | AngleFit | None = _worst(sheet)
+    complete = fold_angles is not None and bool(np.all(np.abs(fold_angles) < np.pi - FOLDED))  # NaN: free
+    if fit is None and "edges_foldAngle" in key and complete and np.any(fold_angles != 0):
+        fold_angles, fit = _nearest_closed(key, sheet, fold_angles, sheet.notes)
     return FoldPattern(sheet.pattern, fold_angles, sheet.edge_of_crease, rows, from_coords, tuple(sheet.notes),
-                       sheet.unit_scale, sheet.fit)  # fmt: skip
+                       sheet.unit_scale, fit)  # fmt: skip
 
 
 def fold_dict(
@@ -779,7 +790,7 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
         fit = _form_fit(fit, pattern, source, label, frame.get("frame_unit", "unit"))
     return _Sheet(
         pattern, tuple(fold_index[j] for j in crease_edges), source, hinges, signs, sign, n,
-        frame["edges_vertices"], scale, folded, notes, fit,
+        frame["edges_vertices"], scale, frame.get("frame_unit", "unit"), folded, notes, fit,
     )  # fmt: skip
 
 
@@ -806,6 +817,17 @@ def _nearest_rigid(
                      f"vertex) is {fit.distance:.3g} file units away, {fit.ratio:.3g} x the coordinates' "
                      "precision")  # fmt: skip
     return fit.xyz, fit
+
+
+def _worst(sheet: _Sheet) -> FormFit | None:
+    """The folded forms read (the crease pattern's frame unfolded, other frames' coordinates) farthest from their
+    nearest rigid states against their precision, and how many were compared; None without any."""
+    fits = [sheet.fit] if sheet.fit is not None else []
+    fits += [_form_fit(fit, sheet.pattern, sheet.source, label, unit) for label, unit, fit in sheet.frame_fits]
+    if len(fits) < 2:
+        return fits[0] if fits else None
+    worst = max(fits, key=lambda f: f.ratio)
+    return replace(worst, compared=f"{worst.compared}; the farthest of {len(fits)} folded states read")
 
 
 def _on_a_motion(
@@ -845,9 +867,9 @@ def _on_a_motion(
                    for f in (left, right))  # fmt: skip
     conditions = fold_mesh.MotionConditions(fit.xyz, faces, states, root, marker)
     cheap = np.full(fit.given.shape, fold_mesh.size(fit.given))  # the further states are free to move
-    found = fold_mesh.nearest_rigid(np.vstack([fit.given, *states]), np.vstack([fit.precision, *[cheap] * len(states)]),
-                                    conditions)  # fmt: skip
     n = len(fit.given)
+    found = fold_mesh.nearest_rigid(np.vstack([fit.given, *states]), np.vstack([fit.precision, *[cheap] * len(states)]),
+                                    conditions, bounded=n)  # fmt: skip
     moving = fold_mesh.Fit(fit.given, found.xyz[:n], fit.precision, found.residual, conditions.describe())
     if not found.residual <= fold_mesh.DEVELOP_RTOL * fold_mesh.size(fit.given):
         notes.append(f"{label}: no state on a rigid motion of its pattern found near it (its conditions missed by "
@@ -898,15 +920,105 @@ def _coords_precision(frame: Mapping[str, Any], xyz: NDArray[np.float64]) -> NDA
             raise ParameterError(f"{PRECISION_KEY} = {stated!r}; it must be a positive number (frame_unit)")
         return np.full(xyz.shape, max(float(stated), floor))
     rows = [[*c, 0][:3] for c in frame["vertices_coords"]]
-    half = np.array([[x.precision if isinstance(x, Typed) else 0.0 for x in row] for row in rows], dtype=float)
+    return _printed_precision([x for row in rows for x in row], xyz.ravel(), floor).reshape(xyz.shape)
+
+
+def _printed_precision(numbers: list[Any], values: NDArray[np.float64], floor: float) -> NDArray[np.float64]:
+    """
+    Half a unit in the last printed digit of each of a field's `numbers` (as read: `Typed` from text), the field's
+    finest for integers and numbers printed with fewer significant digits than its longest, at least `floor`; all
+    `floor` when none was printed with decimals. `values` (same length) are the numbers as floats.
+    """
+    half = np.array([x.precision if isinstance(x, Typed) else 0.0 for x in numbers], dtype=float)
     printed = half > 0
     if not np.any(printed):
-        return np.full(xyz.shape, floor)
+        return np.full(len(values), floor)
     with np.errstate(divide="ignore"):
-        digits = np.floor(np.log10(np.abs(xyz))) - np.log10(2 * np.where(printed, half, 1.0))
+        digits = np.floor(np.log10(np.abs(values))) - np.log10(2 * np.where(printed, half, 1.0))
     short = ~printed | ~(digits >= np.max(digits[printed]))
-    half = np.where(short, np.min(half[printed]), half)
-    return np.maximum(half, floor)
+    return np.maximum(np.where(short, np.min(half[printed]), half), floor)
+
+
+def _nearest_closed(
+    key: Mapping[str, Any], sheet: _Sheet, rho: NDArray[np.float64], notes: list[str]
+) -> tuple[NDArray[np.float64], "AngleFit | None"]:
+    """
+    The key frame's edges_foldAngle `rho` (rad, the pattern's signs) against the nearest state closing every loop
+    (F creases flat): least-norm Gauss-Newton in units of each angle's printed precision (`_printed_precision`).
+    Within the precision, that state replaces `rho`, with the fit; beyond it `rho` is kept, a direction to trace
+    towards as FOLD writers use a target (every crease at 90 deg), without a fit (a note gives the distance, the
+    off-target event the trace's).
+    """
+    numbers = [key["edges_foldAngle"][e] for e in sheet.edge_of_crease]
+    precision = np.deg2rad(_printed_precision(numbers, np.rad2deg(sheet.sign * rho), np.rad2deg(EXACT_ANGLE)))
+    locks = tuple(Coupling(j, j, 0.0) for j, c in enumerate(sheet.pattern.creases) if c.assignment == "F")
+    loops = sheet.pattern.loop_system(locks)
+    closed = fold_mesh.nearest_rigid(rho, precision, _Closing(loops), tol=fold_mesh.RIGID_RTOL).xyz
+    moved = np.abs(closed - rho) / precision
+    names = [c.name for c in sheet.pattern.creases]
+    shown = [k for k in np.argsort(moved)[::-1][:ADJUSTMENTS_SHOWN] if moved[k] > 0]
+    adjustments = tuple(
+        Adjustment(f"edges_foldAngle[{sheet.edge_of_crease[k]}]", float(numbers[k]),
+                   float(numbers[k]) + float(np.rad2deg(sheet.sign * (closed[k] - rho[k]))),
+                   float(np.rad2deg(precision[k])), "deg")
+        for k in shown
+    )  # fmt: skip
+    worst = int(np.argmax(moved))
+    compared = f"{len(rho)} fold angles held to {loops.n_residuals} closure conditions; {np.count_nonzero(moved)} moved"
+    fit = AngleFit(float(np.max(moved, initial=0.0)), float(np.rad2deg(np.max(np.abs(closed - rho), initial=0.0))),
+                   float(np.rad2deg(precision[worst])), names[worst], compared, adjustments)  # fmt: skip
+    if not fit.within:
+        notes.append(f"edges_foldAngle: {fit.distance:.3g} deg from the nearest state closing every loop, "
+                     f"{fit.ratio:.3g} x the angles' precision: a direction to trace towards")  # fmt: skip
+        return rho, None
+    if fit.distance > 0:
+        notes.append(f"edges_foldAngle: the nearest state closing every loop is {fit.distance:.3g} deg away, "
+                     f"{fit.ratio:.3g} x the angles' precision; it is what is read")  # fmt: skip
+    return closed, fit
+
+
+class _Closing:
+    """The loops' closure as `fold_mesh.Conditions` on fold angles (rad; residuals in rad and lengths)."""
+
+    def __init__(self, loops: LoopSystem):
+        self.loops = loops
+
+    def residual(self, q: NDArray[np.float64]) -> NDArray[np.float64]:
+        return self.loops.residual(q)
+
+    def jacobian(self, q: NDArray[np.float64]) -> sp.csr_matrix:
+        return sp.csr_matrix(self.loops.jacobian(q))
+
+    def describe(self) -> str:
+        return f"{self.loops.n_residuals} closure conditions"
+
+
+@dataclass(frozen=True)
+class AngleFit:
+    """
+    A folded state given as fold angles against the nearest one closing every loop: `ratio` the largest move over its
+    angle's precision, `distance` the largest move (deg) at crease `crease`, `precision` (deg) that angle's;
+    `compared` says what was compared. `adjustments`: the angles moved the most (none beyond the precision: the
+    file's angles are then traced towards as they are).
+    """
+
+    ratio: float
+    distance: float
+    precision: float
+    crease: str
+    compared: str
+    adjustments: tuple[Adjustment, ...]
+
+    @property
+    def within(self) -> bool:
+        """The file's angles close the loops within their precision."""
+        return self.ratio <= 1.0
+
+    def text(self) -> str:
+        """The distance in words."""
+        return (f"edges_foldAngle are {self.distance:.3g} deg from the nearest state closing every loop, "
+                f"{self.ratio:.3g} x the precision {self.precision:.3g} deg of the angle moved most, largest at crease "
+                f"{self.crease}; {self.compared}")  # fmt: skip
 
 
 def _drop_loose(faces: list[Face], notes: list[str]) -> list[Face]:
@@ -925,12 +1037,34 @@ def _drop_loose(faces: list[Face], notes: list[str]) -> list[Face]:
     return [face for f, face in enumerate(faces) if f not in dropped]
 
 
-def _measured(sheet: _Sheet, value: Any, field: str) -> NDArray[np.float64]:
-    """Fold angles (n_creases,) rad: the dihedral angles of a frame's vertices_coords."""
-    xyz, _ = _coords(value, field)
+def _measured(sheet: _Sheet, frame: Mapping[str, Any], field: str) -> NDArray[np.float64]:
+    """
+    Fold angles (n_creases,) rad of a frame's vertices_coords: the dihedral angles of its nearest rigid state, each
+    face congruent to the crease pattern's (its sides and fan diagonals as long, and planar), in units of the
+    coordinates' precision (`fold_mesh.nearest_rigid`); the fit is kept (`_Sheet.frame_fits`). Where none is found
+    (a frame far from any), of the coordinates as given.
+    """
+    xyz, _ = _coords(frame["vertices_coords"], field)
     if len(xyz) != sheet.n_file_vertices:
         raise ParameterError(f"{field} has {len(xyz)} vertices; the crease pattern has {sheet.n_file_vertices}")
-    return _dihedral(sheet, xyz[sheet.source], field)
+    given = xyz[sheet.source]
+    fold_mesh.dihedral_angles(given, list(sheet.pattern.faces), sheet.hinges, sheet.signs, field)  # faces with area
+    faces = list(sheet.pattern.faces)
+    pairs = {key(a, b) for face in faces for a, b in _sides(face)}
+    pairs |= {key(face[0], face[j]) for face in faces for j in range(2, len(face) - 1)}
+    bars = np.array(sorted(pairs), dtype=int).reshape(-1, 2)
+    unit = frame.get("frame_unit", "unit")
+    rest = np.linalg.norm(sheet.pattern.vertices[bars[:, 0]] - sheet.pattern.vertices[bars[:, 1]], axis=1)
+    # in the frame's unit; "unit" (no physical meaning) in either frame compares the numbers as they are
+    rest /= sheet.unit_scale if "unit" in (unit, sheet.unit) else _unit_scale(unit)
+    conditions = fold_mesh.RigidConditions(given, faces, bars, rest)
+    fit = fold_mesh.nearest_rigid(given, _coords_precision(frame, xyz)[sheet.source], conditions)
+    if not fit.residual <= fold_mesh.DEVELOP_RTOL * fold_mesh.size(given):
+        sheet.notes.append(f"{field}: no rigid state of the crease pattern found near it (its faces' lengths missed by "
+                           f"{fit.residual:.3g}); its fold angles are measured as given")  # fmt: skip
+        return _dihedral(sheet, given, field)
+    sheet.frame_fits.append((field, unit, fit))
+    return _dihedral(sheet, fit.xyz, field)
 
 
 def _dihedral(sheet: _Sheet, xyz: NDArray[np.float64], field: str) -> NDArray[np.float64]:
@@ -945,7 +1079,8 @@ def _angles(
 ) -> tuple[NDArray[np.float64] | None, NDArray[np.float64] | None, bool]:
     """The key frame's fold angles, the frames' and whether some were measured from coordinates."""
     sheet.measured.clear()
-    return (_key_angles(key, geometry, sheet), *_frame_angles(raw, frames, sheet))
+    sheet.frame_fits.clear()
+    return (_key_angles(key, geometry, sheet), *_frame_angles(raw, frames, sheet, geometry))
 
 
 def _letter_agreement(sheet: _Sheet) -> tuple[int, int]:
@@ -980,15 +1115,15 @@ def _key_angles(key: Mapping[str, Any], geometry: Mapping[str, Any], sheet: _She
         return _dihedral(sheet, sheet.folded_xyz, "vertices_coords")
     if key is not geometry and "vertices_coords" in key:
         sheet.notes.append("fold angles measured as the dihedral angles of the key frame's vertices_coords")
-        return _measured(sheet, key["vertices_coords"], "vertices_coords")
+        return _measured(sheet, key, "vertices_coords")
     return None
 
 
 def _frame_angles(
-    raw: list[dict], frames: list[Mapping[str, Any]], sheet: _Sheet
+    raw: list[dict], frames: list[Mapping[str, Any]], sheet: _Sheet, geometry: Mapping[str, Any]
 ) -> tuple[NDArray[np.float64] | None, bool]:
     """Fold angles (n_frames, n_creases) rad of the file_frames entries (None without any), and whether some
-    were measured from vertices_coords."""
+    were measured from vertices_coords (the crease pattern's own frame, when a folded form, from the state read)."""
     if not frames:
         return None, False
     rows, measured = [], 0
@@ -1001,8 +1136,11 @@ def _frame_angles(
             field = f"frame {k} edges_foldAngle"
             n_edges = len(sheet.edges_vertices)
             rows.append(sheet.sign * _degrees(frame["edges_foldAngle"], sheet.edge_of_crease, n_edges, field))
+        elif frame is geometry and sheet.folded_xyz is not None:
+            rows.append(_dihedral(sheet, sheet.folded_xyz, f"frame {k} vertices_coords"))
+            measured += 1
         elif "vertices_coords" in frame:
-            rows.append(_measured(sheet, frame["vertices_coords"], f"frame {k} vertices_coords"))
+            rows.append(_measured(sheet, frame, f"frame {k} vertices_coords"))
             measured += 1
         else:
             raise ParameterError(f"frame {k} has no edges_foldAngle or vertices_coords (own or inherited); "

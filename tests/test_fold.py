@@ -211,13 +211,17 @@ def assigned(edge: int, letter: str) -> dict:
     return edited(edges_assignment=letters)
 
 
+def test_a_folded_form_off_any_developable_state_is_read_with_its_distance():
+    # one vertex lifted by 0.25 out of the flat sheet (exact numbers): refused 'not developable' before; now read as
+    # its nearest developable state, 0.0122 away (0.0043 of the size) and far beyond the numbers' precision
+    doc = edited(vertices_coords=[[0, 0, 0], [1, 0, 0], [0.2, 1, 0], [-1, -0.1, 0.25], [0.1, -1, 0]])
+    fit = read_fold(doc).fit
+    assert not fit.within and fit.distance / fit.size == pytest.approx(0.0043, abs=1e-4)
+
+
 @pytest.mark.parametrize(
     ("doc", "message"),
     [
-        (
-            edited(vertices_coords=[[0, 0, 0], [1, 0, 0], [0.2, 1, 0], [-1, -0.1, 0.25], [0.1, -1, 0]]),
-            "folded form not developable: unfolding places vertex 3 twice",
-        ),
         (edited(edges_vertices=None), "FOLD field 'edges_vertices' is missing"),
         (six_fold_fan(), "interior vertex 0: sector angles sum to 720 deg"),
         (assigned(4, "M"), r"edge 4 \(1-2, 'M'\) borders 1 face\(s\); a crease joins two faces"),
@@ -236,7 +240,6 @@ def assigned(edge: int, letter: str) -> dict:
         (edited(edges_foldAngle=[0.0] * 7), r"edges_foldAngle has shape \(7,\); it needs one number per edge \(8\)"),
     ],
     ids=[
-        "non-planar",
         "missing-edges",
         "non-developable",
         "crease-one-face",

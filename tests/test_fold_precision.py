@@ -7,12 +7,14 @@ mechanism poses), then rounded or strained, and written as text so that each num
 """
 
 import json
+import re
 
 import numpy as np
 import pytest
 from fold_fixtures import degree4_letters, folded_form, folded_xyz, miura_letters_only, validated, write
 
 from sim_origami.fold import read_fold
+from sim_origami.kinematics.numeric_pattern import BRANCH, PatternPath, assignment_signs
 from sim_origami.scenes.fold_file import fold_scene
 
 NAME = "through-target: file state's distance from the nearest rigid state (/ its precision)"
@@ -84,10 +86,11 @@ def test_rounded_forms_of_patterns_rigid_only_by_their_geometry_fold(tmp_path, w
 
 def origami_simulator_strained(fractions: list[float], strain: float) -> dict:
     """As Origami Simulator's series export writes a compliant simulation: no top-level coordinates, frames of y-up
-    3-D coordinates only (none flat), each strained by `strain`."""
+    3-D coordinates only, each folded one strained by `strain` (a fraction 0 is the flat sheet, exact)."""
     doc = degree4_letters()
     frames = [{"frame_classes": ["foldedForm"], "frame_attributes": ["3D"], "frame_inherit": True,
-               "vertices_coords": strained(folded_xyz(doc, "e1", f), strain)[:, [0, 2, 1]].tolist()}
+               "vertices_coords": (strained(folded_xyz(doc, "e1", f), strain) if f else np.column_stack(
+                   [doc["vertices_coords"], np.zeros(5)]))[:, [0, 2, 1]].tolist()}
               for f in fractions]  # fmt: skip
     return {"file_spec": 1.1, "file_creator": "Origami Simulator", "file_frames": frames,
             "edges_vertices": doc["edges_vertices"], "edges_assignment": doc["edges_assignment"],
@@ -95,17 +98,26 @@ def origami_simulator_strained(fractions: list[float], strain: float) -> dict:
 
 
 @pytest.mark.slow
-def test_strained_series_is_a_failing_verdict_with_its_distance(tmp_path):
-    code, report = validated(tmp_path, "strained", origami_simulator_strained([0.3, 0.6, 0.9], 0.005))
+@pytest.mark.parametrize("fractions", [[0.0, 0.3, 0.6, 0.9], [0.3, 0.6, 0.9]], ids=["from-flat", "folded-only"])
+def test_strained_series_is_a_failing_verdict_with_its_distance(tmp_path, fractions):
+    code, report = validated(tmp_path, "strained", origami_simulator_strained(fractions, 0.005))
     assert code == 1 and not report["passed"]
     verdict = state_verdict(report)
     assert not verdict["passed"] and verdict["measured"] > 1e6
     detail = verdict["detail"]
-    # measured: 1.84e-4 from the nearest developable state, 6.76e-5 of the size 2.72, largest at the vertex itself
-    assert "frame 1 vertices_coords are 0.000184 (6.76e-05 of the form's size 2.722)" in detail
-    assert "largest at vertex 0 (creases e0, e1, e2, e3)" in detail
-    assert "the rigid motion through the frames' inputs passes" in detail
-    # the rest of the validation ran on that nearest state: MuJoCo follows its rigid motion
+    # measured: each frame against the nearest state with the crease pattern's faces (from the flat frame, exact), or,
+    # folded only, frame 1 against its nearest developable state (its unfolding is the crease pattern) and the others
+    # against that pattern's faces; the frame 0.9 of the way is the farthest: 1.4e-3 (6.4e-4 of the size) from flat,
+    # 2.3e-3 (1.1e-3) folded only, largest at vertex 3 both
+    assert f"the farthest of {len(fractions)} folded states read" in detail
+    assert re.search(r"frame \d vertices_coords are [0-9.e-]+ \([0-9.e-]+ of the form's size", detail)
+    assert "largest at vertex 3 (creases e2)" in detail and "; the rigid motion " in detail
+    if fractions[0] == 0.0:
+        assert "frame 4 vertices_coords are 0.00138 (0.000643 of the form's size 2.15)" in detail
+        assert "15 coordinates of 5 vertices held to 8 face lengths" in detail
+    else:
+        assert "frame 3 vertices_coords are 0.00233 (0.00108 of the form's size 2.15)" in detail
+    # the rest of the validation ran on those nearest states: MuJoCo follows their rigid motion
     assert all(v["passed"] for b in report["branches"] for v in b["verdicts"] if v["name"] != NAME)
 
 
@@ -121,3 +133,25 @@ def test_a_direction_whose_start_does_not_close_is_a_verdict_not_a_refusal(tmp_p
     assert "the start does not close (residual 1.35e-05)" in stall["detail"]
     verdict = state_verdict(report)  # its coordinates (15 digits) are a developable state: nothing moved
     assert verdict["passed"] and verdict["measured"] == 0 and "the rigid motion does not reach it" in verdict["detail"]
+
+
+def test_fold_angles_printed_to_two_decimals_read_as_the_state_they_round(tmp_path):
+    doc = degree4_letters()
+    pattern = read_fold(doc).pattern
+    path = PatternPath(pattern, "e1", signs=assignment_signs(pattern))
+    exact = np.rad2deg(path.evaluate(BRANCH, [1.2])[0][0])
+    typed = doc | {"edges_foldAngle": [*np.round(exact, 2).tolist(), 0, 0, 0, 0]}
+    got = read_fold(write(tmp_path, "angles", typed))
+    # measured: 0.0048 deg at most, 0.966 of the precision 0.005 deg (the least-norm state moved e3 by 1.03 of it:
+    # the state of least largest move is taken); the state read closes to rounding
+    assert got.fit.within and got.fit.precision == pytest.approx(0.005) and 0.9 < got.fit.ratio <= 1.0
+    assert got.pattern.loop_system().residual_norm(got.fold_angles[None]).max() <= 1e-14
+    moved = got.fit.adjustments
+    assert {a.name for a in moved} == {f"edges_foldAngle[{k}]" for k in range(4)} and moved[0].unit == "deg"
+    assert moved[0].given == 66.48 and moved[0].ratio == pytest.approx(got.fit.ratio)
+    assert np.max(np.abs(np.rad2deg(got.fold_angles) - exact)) < 0.005
+    # every crease at 90 deg is no state of this vertex (9.9 deg from the nearest): a direction, kept as given
+    square = doc | {"edges_foldAngle": [-90.0, 90.0, 90.0, 90.0, 0, 0, 0, 0]}
+    direction = read_fold(write(tmp_path, "direction", square))
+    assert direction.fit is None and "a direction to trace towards" in direction.notes[-1]
+    np.testing.assert_array_equal(np.rad2deg(direction.fold_angles), [-90.0, 90.0, 90.0, 90.0])
