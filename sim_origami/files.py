@@ -263,7 +263,8 @@ def _read_manifest(path: Path, option: str) -> dict[str, str]:
 
 
 def _relative_name(name: str) -> bool:
-    """A file name as the manifest writes it: relative, '/'-separated, no '..' or '.' parts, no NUL, not ours."""
+    """A file name as the manifest writes it: relative, '/'-separated, no '..' or '.' part, no NUL, not the lock,
+    manifest or staging folder."""
     if not name or "\x00" in name:
         return False
     parts = PurePosixPath(name).parts
