@@ -7,6 +7,7 @@ with the branch it followed. Thick scenes add a blockage run. The result is a `R
 """
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -392,10 +393,12 @@ def validate(
     branch: str | None = None,
     seed: str = "closed",
     reference: ReferenceCurves | None = None,
+    progress: Callable[[str, int, int], None] | None = None,
 ) -> Report:
     """
     Cross-check a scene on one branch (or all of them); with `reference` (`checks.reference.read_reference`) also
-    the user's own curves against the numeric loop solve, the scene's kinematics and MuJoCo's runs.
+    the user's own curves against the numeric loop solve, the scene's kinematics and MuJoCo's runs. `progress`
+    (phase, done, total) is called as each phase starts.
 
     Raises
     ------
@@ -410,18 +413,29 @@ def validate(
         scene.kinematics.branch(name)
     timings: dict[str, float] = {}
     verdicts: list[Verdict] = []
+    phases = 2 * len(names) + bool(scene.contact_pairs) + (scene.gravity is not None) + (branch is None) + (
+        reference is not None)
+    done = iter(range(phases))
+
+    def phase(text: str) -> None:
+        if progress is not None:
+            progress(text, next(done), phases)
+
     t0 = time.thread_time()
     for name in names:
+        phase(f"closed form vs numeric loop closure, {name}")
         start, stop = scene.branch_path(name)
         verdicts += closed_form_verdicts(scene, name, np.linspace(start, stop, ANALYTIC_SAMPLES))
     timings["closed_form_and_numeric_cpu_s"] = time.thread_time() - t0
     runs = []
     for name in names:
+        phase(f"MuJoCo {preset} and its projection, {name}")
         runs.append(run_branch(scene, name, preset, seed))
     timings["mujoco_step_cpu_s"] = sum(r.dynamic.cpu_time_s for r in runs)
     timings["mujoco_steps"] = float(sum(r.dynamic.steps for r in runs))
     blockage = None
     if scene.contact_pairs:
+        phase("blockage: a force-limited drive against contact")
         blockage, timings["blockage_cpu_s"] = run_blockage(scene, names[0])
         verdicts.append(
             Verdict(
@@ -434,9 +448,12 @@ def validate(
         )
     free = None
     if scene.gravity is not None:
+        phase("free run under gravity")
         free, free_verdicts = run_free(scene, preset)
         verdicts += free_verdicts
     t1 = time.thread_time()
+    if branch is None:
+        phase("bifurcation study")
     study = tuple(bifurcation_study(scene, preset)) if branch is None else ()
     for point in study:
         never = [b for b, d in point["seed_offset_followed_rad"].items() if d is None]
@@ -451,6 +468,7 @@ def validate(
     timings["bifurcation_study_cpu_s"] = time.thread_time() - t1
     checked = None
     if reference is not None:
+        phase("your reference curves")
         t2 = time.thread_time()
         checked = compare_reference(reference, scene, runs, tuple(names))
         verdicts += checked.verdicts

@@ -100,7 +100,16 @@ def run_one(scene, args, out: Path, reference=None) -> dict:
     """Validate, write every output file into `out`, return the report as a dict."""
     from ..plots import plot_report
 
-    report = validate(scene, preset=args.preset, branch=args.branch, seed=args.seed, reference=reference)
+    # At a terminal a bar names each phase (a scene takes up to minutes); piped or logged output stays clean.
+    with tqdm(desc=scene.name, unit="phase", file=sys.stderr, disable=None, leave=False) as bar:
+
+        def progress(phase: str, done: int, total: int) -> None:
+            bar.total = total
+            bar.n = done
+            bar.set_postfix_str(phase)
+
+        report = validate(scene, preset=args.preset, branch=args.branch, seed=args.seed, reference=reference,
+                          progress=progress)  # fmt: skip
     write(report, out, full_curves=args.full_curves)
     plot_report(report, out / "curves.png")
     doc = as_dict(report)
@@ -172,13 +181,16 @@ def run(args: argparse.Namespace) -> int:
             stage = claims.enter_context(claimed_folder(out, force=args.force))
             stages = {name: claims.enter_context(claimed_folder(out / name, force=args.force))
                       for name in scenes.names()}  # fmt: skip
-            for name in tqdm(stages, desc="validate", unit="scene", file=sys.stderr):
+            scenes_bar = tqdm(stages, desc="validate --all", unit="scene", file=sys.stderr)
+            for name in scenes_bar:
+                scenes_bar.set_postfix_str(name)
                 docs.append(run_one(scenes.get(name).build(), args, stages[name]))
             table = "\n".join([HEADER, *map(summary_line, docs)])
             write_text(stage / "summary.md", f"# sim_origami validation\n\n{table}\n")
             write_text(stage / "summary.json", json.dumps(docs, indent=2, default=plain) + "\n")
             write_index(docs, stage)
         print(table)
+        print(f"index: {out / 'index.html'}")
         return 0 if all(d["passed"] for d in docs) else 1
     if args.out is not None:  # before the scene is built (a large pattern's trace takes seconds); made when claimed
         check_folder(args.out, make=False)
