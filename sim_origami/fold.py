@@ -40,10 +40,15 @@ Creases are named e<FOLD edge index>.
 Fold angles. `edges_foldAngle` (deg, in [-180, 180]; null on a crease = unknown, NaN; entries on B edges are not
 read). A folded form (3-D vertices_coords) gives the dihedral angles between its faces' normals; within
 `fold_mesh.FLAT_FOLD_TOL` of +-180 deg the M/V letter gives the sign. Folded forms are unfolded breadth-first over
-the faces by their own edge lengths and angles (`fold_mesh.unfold`), and refused when the faces do not fit one
-flat sheet: a vertex placed twice lands more than `fold_mesh.DEVELOP_RTOL` of the size apart, or 10 print steps
-for coordinates rounded to at most 1e-5 of the size (`fold_mesh.develop_tolerance`). Flat-folded forms (faces
-overlapping in one plane) need a crease-pattern frame.
+the faces by their own edge lengths and angles (`fold_mesh.unfold`). Flat-folded forms (faces overlapping in one
+plane) need a crease-pattern frame.
+
+Precision (docs/fold_files.md, "Precision"). Numbers keep the digits they were printed with (`precision.Typed`): a
+folded form is read as its nearest rigid state in units of its coordinates' precision (developable, and on a rigid
+motion of its own pattern where that needs special geometry), a frame of coordinates as its nearest state with the
+crease pattern's faces, and a complete edges_foldAngle state as its nearest state closing every loop when within its
+precision. `FoldPattern.fit` says how far the file's numbers were from it and which moved the most; a form beyond its
+precision is read all the same (its check fails), and only one with no such state near it is refused.
 
 Frames. Each entry of `file_frames` gives one row of fold angles: its own edges_foldAngle, else the dihedral angles
 of its own vertices_coords (Origami Simulator's exports), else what it inherits (`frame_inherit`; without
