@@ -469,8 +469,16 @@ def _axes(doc: dict, joints: list[dict], read: _Reader):
         points.append(p)
         frames.append(_frame(p, d))
         kinds.append(kind)
+    # The mechanism is built about the first joint's point: its loops hold differences of the file's coordinates, not
+    # products of far-off frames. A spherical 4R of size 1.4 drawn 70 units from the origin, rotated: polished poses
+    # closed to 4.2e-15 (median) built about the origin, 7.6e-16 about its first point (1.4 units off: 2.1e-16)
+    centre = points[0].copy()
+    points = [p - centre for p in points]
+    frames = [transform(F[:3, :3], F[:3, 3] - centre) for F in frames]
     size = _size(points, pairs)
     width, meshes = _shapes(doc, read, size, set(bodies))
+    for mesh in meshes.values():
+        mesh.apply_translation(-centre)
     anchor = read.positive(doc["anchor"], "anchor") if "anchor" in doc else ANCHOR_SHARE * size
     theta0 = _starts(joints, read, required=True)
     body_list = []

@@ -14,9 +14,12 @@ A link between two spherical joints spins freely about the line through their ce
 system holds one hinge per spin at 0 (`gauge`), so it has the mechanism's true mobility, and the outputs leave out
 the angles the spin moves (`observed`; `loop_angles` fills them back in by closing the loops).
 
-`evaluate` closes interpolated poses by chord steps (all inputs at once, `path.ChordPolish`) and the full solve where
-those do not close, so values close the loops to 1e-15 where the path is regular; within SINGULAR_ZONE of a meeting it
-extrapolates from regular poses either side. Angles in radians; translations in the loops' length unit.
+`evaluate` closes interpolated poses by chord steps (all inputs at once, `path.ChordPolish`) to 1e-15, or to the
+rounding floor of the placed model where that lies higher (twice the nodes' median residual: a linkage drawn rotated
+and offset closes its loops only to a few 1e-15), and the full solve where those do not close; within SINGULAR_ZONE
+of a meeting it extrapolates from regular poses either side. Held to 1e-15 regardless, a spherical 4R drawn 70 units
+from the origin sent nearly every pose to the full solve (its validation 116 s of CPU, 1.7 s at the origin;
+scripts/placement_bench.py, docs/performance.md). Angles in radians; translations in the loops' length unit.
 """
 
 from collections.abc import Sequence
@@ -355,7 +358,7 @@ class LinkagePath(Kinematics):
             fixed = np.zeros(self._loops.n_joints, dtype=bool)
             fixed[self.input_index] = True
             self._polishers[branch] = ChordPolish(self._loops, self.nodes[branch][1], fixed, tol=POLISH_TOL,
-                                                  close_tol=CLOSE_TOL)  # fmt: skip
+                                                  close_tol=CLOSE_TOL, floor=True)  # fmt: skip
         guess = self._interp(branch, x[valid])
         guess[:, self.input_index] = x[valid]
         values[valid] = self._polishers[branch].polish(guess, nearest_nodes(self.nodes[branch][0], x[valid]))
