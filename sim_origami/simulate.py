@@ -595,7 +595,8 @@ def closure_model(scene: Scene, options: ModelOptions) -> tuple[mujoco.MjModel, 
 
 @dataclass(frozen=True)
 class FreeRun:
-    """Free motion under gravity: joint angles, total energy (J) and CPU time (s) of the stepping."""
+    """Free motion under gravity: joint angles, total energy (J) at each logged state and CPU time (s) of the
+    stepping. `q` and `energy[1:]` are the states after each step, `energy[0]` the release."""
 
     time: NDArray[np.float64]
     q: NDArray[np.float64]
@@ -605,28 +606,51 @@ class FreeRun:
     steps: int
 
 
+def state_energy(model: mujoco.MjModel, qpos: NDArray[np.float64], qvel: NDArray[np.float64]) -> NDArray[np.float64]:
+    """
+    Total (potential + kinetic) energy (J) at each state (qpos (n, nq), qvel (n, nv)), on a data of its own.
+
+    Not `data.energy` after `mj_step`: MuJoCo fills it inside the step's forward pass, and RK4's last forward pass
+    is an internal stage of the step (its fourth evaluation), not the state the step ends at; read there, A04's
+    drift under fast was 3.7x, under fast-projected 8x, under accurate 4.4x what its states hold (docs/performance.md).
+    """
+    data = mujoco.MjData(model)
+    out = np.empty(len(qpos))
+    for k, (p, v) in enumerate(zip(qpos, qvel, strict=True)):
+        data.qpos[:], data.qvel[:] = p, v
+        mujoco.mj_kinematics(model, data)  # the bodies' centres of mass: gravity's potential
+        mujoco.mj_comPos(model, data)
+        mujoco.mj_makeM(model, data)  # the mass matrix at this state: kinetic energy 1/2 qvel' M qvel
+        mujoco.mj_energyPos(model, data)
+        mujoco.mj_energyVel(model, data)
+        out[k] = data.energy[0] + data.energy[1]
+    return out
+
+
 def simulate_free(scene: Scene, branch: str, start: float, duration: float, *, preset: str = "accurate") -> FreeRun:
     """
     Release the scene at rest from the closed pose on `branch` at input `start`, under its gravity,
-    with no drive, and record joint angles and total (kinetic + potential) energy.
+    with no drive, and record joint angles and total (kinetic + potential) energy at the trajectory's states
+    (`state_energy`, after the stepping: its CPU is not the run's).
     """
     model, data = compile_model(scene, ModelOptions(preset=preset, drive="none", gravity=True))
     binds = Bindings(scene, model)
     binds.set_pose(data, start_pose(scene, branch, start))
     mujoco.mj_forward(model, data)
     n = round(duration / model.opt.timestep)
-    qpos_log, energy = np.empty((n, model.nq)), np.empty(n + 1)
-    energy[0] = data.energy.sum()
+    qpos_log, qvel_log = np.empty((n + 1, model.nq)), np.empty((n + 1, model.nv))
+    qpos_log[0], qvel_log[0] = data.qpos, data.qvel
     step = run_step(model, data, preset)
     with captured_warnings() as messages:
-        qpos = data.qpos
+        qpos, qvel = data.qpos, data.qvel
         cpu = time.thread_time()
-        for k in range(n):
+        for k in range(1, n + 1):
             step(model, data)
             qpos_log[k] = qpos
-            energy[k + 1] = data.energy[0] + data.energy[1]
+            qvel_log[k] = qvel
         cpu = time.thread_time() - cpu
         _check(data, messages, _context(scene, branch, preset, f"free run of {duration:g} s from {start:.6g} rad"))
-    _, residual = _residuals(scene, model, data, binds, qpos_log)
+    energy = state_energy(model, qpos_log, qvel_log)
+    _, residual = _residuals(scene, model, data, binds, qpos_log[1:])
     t = model.opt.timestep * np.arange(1, n + 1)
-    return FreeRun(t, binds.angles(scene, qpos_log), energy, residual, cpu, n)
+    return FreeRun(t, binds.angles(scene, qpos_log[1:]), energy, residual, cpu, n)
