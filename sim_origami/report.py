@@ -1,9 +1,14 @@
 """Report -> report.json, curves.csv (radians; field names carry their units) and model.xml."""
 
 import csv
+import functools
 import io
 import json
 import math
+import os
+import platform
+import subprocess
+from datetime import datetime, timezone
 from pathlib import Path
 
 import numpy as np
@@ -36,8 +41,48 @@ def _verdict(v) -> dict:
             "detail": v.detail}  # fmt: skip
 
 
-def as_dict(report: Report) -> dict:
-    """The report as JSON-ready data; angles in radians, lengths in metres, times in seconds."""
+@functools.cache
+def git_commit() -> str | None:
+    """
+    The short commit of the checkout the package runs from, "+dirty" when tracked files are modified; None when
+    it is not run from a git checkout (an installed wheel) or git is missing or slow (a venv inside a checkout
+    would otherwise report the enclosing repository, hence the .git beside the package).
+    """
+    root = Path(__file__).resolve().parent.parent
+    if not (root / ".git").exists():
+        return None
+    try:
+        head = subprocess.run(["git", "-C", str(root), "rev-parse", "--short", "HEAD"], capture_output=True,
+                              text=True, timeout=5, check=True).stdout.strip()  # fmt: skip
+        dirty = subprocess.run(["git", "-C", str(root), "status", "--porcelain", "--untracked-files=no"],
+                               capture_output=True, text=True, timeout=5, check=True).stdout.strip()  # fmt: skip
+    except (OSError, subprocess.SubprocessError):
+        return None
+    return f"{head}+dirty" if dirty else head or None
+
+
+def provenance(preset: str, command: str | None = None) -> dict:
+    """What made this run: versions, commit, the command as typed (None from the API), UTC date and the machine."""
+    import mujoco
+
+    return {
+        "sim_origami": __version__,
+        "git_commit": git_commit(),
+        "mujoco": mujoco.__version__,
+        "python": platform.python_version(),
+        "numpy": np.__version__,
+        "command": command,
+        "date_utc": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        "preset": preset,
+        "machine": {"os": platform.platform(), "arch": platform.machine(), "cores": os.cpu_count()},
+    }
+
+
+def as_dict(report: Report, command: str | None = None) -> dict:
+    """
+    The report as JSON-ready data; angles in radians, lengths in metres, times in seconds. `command` is the
+    command line that ran it, for `provenance`.
+    """
     scene = report.scene
     branches = []
     for run in report.runs:
@@ -84,6 +129,7 @@ def as_dict(report: Report) -> dict:
         "verdicts": [_verdict(v) for v in report.verdicts],
         "timings_s": report.timings,
         "passed": report.passed,
+        "provenance": provenance(report.preset, command),
     }
     if report.reference is not None:
         out["reference"] = report.reference.doc
@@ -181,12 +227,16 @@ def model_xml(report: Report) -> str:
     return scene_xml(scene, ModelOptions(preset=report.preset), keyframes=starts) + "\n"
 
 
-def write(report: Report, out: str | Path, *, full_curves: bool = False) -> dict[str, Path]:
-    """Write report.json, curves.csv (every sample with `full_curves`, else CURVE_ROWS of each run), model.xml and,
-    for crease-pattern scenes, motion.fold, with reference curves reference.csv, into `out` (atomically)."""
+def write(report: Report, out: str | Path, *, full_curves: bool = False, doc: dict | None = None) -> dict[str, Path]:
+    """
+    Write report.json (`doc`, default `as_dict(report)`), curves.csv (every sample with `full_curves`, else
+    CURVE_ROWS of each run), model.xml and, for crease-pattern scenes, motion.fold, with reference curves
+    reference.csv, into `out` (atomically).
+    """
     out = Path(out)
+    doc = as_dict(report) if doc is None else doc
     paths = {
-        "report": write_text(out / "report.json", json.dumps(as_dict(report), indent=2, default=plain) + "\n"),
+        "report": write_text(out / "report.json", json.dumps(doc, indent=2, default=plain) + "\n"),
         "curves": write_text(out / "curves.csv", curves_csv(report, None if full_curves else CURVE_ROWS)),
         "model": write_text(out / "model.xml", model_xml(report)),
     }

@@ -57,6 +57,23 @@ def _verdict_rows(verdicts: list[dict]) -> str:
     return "\n".join(rows)
 
 
+def _provenance(doc: dict) -> str:
+    """What made the run (report.json's `provenance`): versions, commit, command, date, machine."""
+    p = doc.get("provenance")
+    if p is None:  # a report.json written before provenance was recorded
+        return f'<p id="provenance">sim_origami {_e(doc.get("sim_origami", "?"))}</p>'
+    machine = p["machine"]
+    rows = [
+        ("command", f"<code>{_e(p['command'])}</code>" if p["command"] else "the Python API"),
+        ("date (UTC)", _e(p["date_utc"])),
+        ("sim_origami", _e(p["sim_origami"]) + (f" (commit {_e(p['git_commit'])})" if p["git_commit"] else "")),
+        ("MuJoCo, Python, numpy", f"{_e(p['mujoco'])}, {_e(p['python'])}, {_e(p['numpy'])}"),
+        ("preset", _e(p["preset"])),
+        ("machine", f"{_e(machine['os'])}, {_e(machine['arch'])}, {_e(machine['cores'])} cores"),
+    ]
+    return '<table id="provenance">' + "".join(f"<tr><th>{k}</th><td>{v}</td></tr>" for k, v in rows) + "</table>"
+
+
 def page(doc: dict, out: Path) -> str:
     """The HTML of one run's report (`doc` as in report.json), embedding out/curves.png and out/fold.gif if present."""
     scene, passed = doc["scene"], doc["passed"]
@@ -129,7 +146,8 @@ def page(doc: dict, out: Path) -> str:
 {chr(10).join(figures)}
 <h2>Files</h2>
 <p>{" &middot; ".join(downloads)}</p>
-<p><small>sim_origami {_e(doc["sim_origami"])}</small></p>
+<h2>Provenance</h2>
+{_provenance(doc)}
 </body></html>
 """
 

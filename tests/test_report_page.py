@@ -1,16 +1,24 @@
 """report.html and index.html in a real browser: headless Chromium opens them from disk (no network)."""
 
 import json
+import os
+import platform
+import re
+import shlex
+from datetime import datetime, timedelta, timezone
 
 import imageio.v3 as iio
+import mujoco
 import numpy as np
 import pytest
 from chromium import INSTALL, Chromium, executable  # tests/chromium.py (pytest puts tests/ on sys.path)
 
 from sim_origami.cli import main
+from sim_origami.report import provenance
 from sim_origami.report_page import write_index
 
-pytestmark = pytest.mark.skipif(executable() is None, reason=INSTALL)
+# every test here starts a browser, most after a MuJoCo run: all slow
+pytestmark = [pytest.mark.skipif(executable() is None, reason=INSTALL), pytest.mark.slow]
 
 # Evaluated in the page: the verdict text, the images and whether each decoded, and every resource reference.
 PROBE = """({
@@ -31,10 +39,13 @@ def browser():
     chromium.close()
 
 
+COMMAND = ["validate", "bennett", "--render", "--size", "320x240", "-p", "alpha=30", "--out"]
+
+
 @pytest.fixture(scope="module")
 def run(tmp_path_factory):
     out = tmp_path_factory.mktemp("runs")
-    status = main(["validate", "bennett", "--render", "--size", "320x240", "--out", str(out / "bennett")])
+    status = main([*COMMAND, str(out / "bennett")])
     return status, out
 
 
@@ -82,3 +93,23 @@ def test_the_browser_check_sees_errors_and_blank_pages(tmp_path, browser):
     blank = tmp_path / "blank.html"
     blank.write_text("<!DOCTYPE html><title>blank</title>")
     assert not_blank(browser.load(blank, "1").screenshot) == 0.0
+
+
+def test_report_says_what_made_the_run(run, browser):
+    _, out = run
+    doc = json.loads((out / "bennett" / "report.json").read_text())
+    made = doc["provenance"]
+    assert made["command"] == shlex.join(["sim-origami", *COMMAND, str(out / "bennett")])
+    assert (made["mujoco"], made["numpy"], made["python"]) == (mujoco.__version__, np.__version__,
+                                                               platform.python_version())  # fmt: skip
+    assert made["sim_origami"] == doc["sim_origami"] and made["preset"] == doc["preset"]
+    assert re.fullmatch(r"[0-9a-f]{4,40}(\+dirty)?", made["git_commit"])  # the tests run from the checkout
+    assert timedelta(0) <= datetime.now(timezone.utc) - datetime.fromisoformat(made["date_utc"]) < timedelta(hours=1)
+    assert made["machine"]["cores"] == os.cpu_count() and made["machine"]["arch"] == platform.machine()
+    assert provenance("fast")["command"] is None  # the Python API passes none
+    # the parameters as typed: degrees and metres, beside the radians
+    assert doc["params_user"]["alpha"] == {"value": 30.0, "unit": "deg"}
+    assert doc["params_user"]["a"] == {"value": 1.0, "unit": "m"} and doc["params"]["alpha"] == pytest.approx(np.pi / 6)
+    assert doc["summary"].startswith("Bennett")
+    shown = browser.load(out / "bennett" / "report.html", "document.getElementById('provenance').innerText").value
+    assert made["command"] in shown and f"MuJoCo, Python, numpy\t{mujoco.__version__}" in shown

@@ -10,6 +10,7 @@ import argparse
 import contextlib
 import os
 import re
+import shlex
 import signal
 import sys
 import warnings
@@ -106,11 +107,12 @@ def main(argv: list[str] | None = None) -> int:
         p = sub.add_parser(module.NAME, help=module.HELP, description=module.HELP)
         module.add_args(p)
         p.set_defaults(func=module.run)
-    argv = _join_negative_values(parser, list(sys.argv[1:] if argv is None else argv))
+    typed = list(sys.argv[1:] if argv is None else argv)
     try:
-        args = parser.parse_args(argv)
+        args = parser.parse_args(_join_negative_values(parser, typed))
     except SystemExit as exc:  # --help (0) or a usage error (2), already printed
         return int(exc.code or 0)
+    args.command_line = shlex.join(["sim-origami", *typed])  # as typed, for the report's provenance
     if args.version:
         print(_version())
         return 0

@@ -21,7 +21,7 @@ from ..scenes.fold_file import fold_scene
 from ..scenes.linkage_file import linkage_scene
 from ..simulate import start_input
 from ..validation import validate
-from .options import add_params, number_at_least, parse_params
+from .options import add_params, number_at_least, out_folder, parse_params
 
 NAME = "validate"
 HELP = "cross-check closed form, numeric closure and MuJoCo; write report.json, curves.csv/png, frames"
@@ -77,13 +77,6 @@ def frame_size(text: str) -> tuple[int, int]:
     return width, height
 
 
-def out_folder(text: str) -> Path:
-    """An --out value; an empty one is refused (it would name the current folder, which the run would claim)."""
-    if not text.strip():
-        raise argparse.ArgumentTypeError(f"{text!r} names no folder (an empty name would be the current folder)")
-    return Path(text)
-
-
 def check_run(scene, args: argparse.Namespace) -> None:
     """
     Refuse, before the output folder is claimed, what `validate` would refuse only once running: an unknown
@@ -94,6 +87,22 @@ def check_run(scene, args: argparse.Namespace) -> None:
             scene.pose(name, start_input(scene, name, args.seed))
         except DomainError as exc:
             raise DomainError(f"--seed {args.seed}: {exc}") from None
+
+
+def registered(scene, args: argparse.Namespace) -> dict:
+    """
+    For a registered scene (not a --fold or --linkage file's): its one-line summary and its parameters in the units
+    people type (`params_user`: name -> value and unit, `Param.to_user`).
+    """
+    if args.fold is not None or args.linkage is not None or scene.name not in scenes.names():
+        return {}
+    kind = scenes.get(scene.name)
+    declared = {p.name: p for p in kind.params}
+    return {"summary": kind.summary,
+            # 12 digits: 30 deg comes back from radians as 29.999999999999996
+            "params_user": {name: ({"value": float(f"{declared[name].to_user(v):.12g}"), "unit": declared[name].unit}
+                                   if name in declared else {"value": v, "unit": ""})
+                            for name, v in scene.params.items()}}  # fmt: skip
 
 
 def run_one(scene, args, out: Path, reference=None) -> dict:
@@ -110,9 +119,9 @@ def run_one(scene, args, out: Path, reference=None) -> dict:
 
         report = validate(scene, preset=args.preset, branch=args.branch, seed=args.seed, reference=reference,
                           progress=progress)  # fmt: skip
-    write(report, out, full_curves=args.full_curves)
+    doc = as_dict(report, command=getattr(args, "command_line", None)) | registered(scene, args)
+    write(report, out, full_curves=args.full_curves, doc=doc)
     plot_report(report, out / "curves.png")
-    doc = as_dict(report)
     if args.render:
         from ..render import render_frames
 
