@@ -24,7 +24,7 @@ from ..files import claimed_folder, write_text
 from ..plots import plot_pareto
 from ..simulate import project, simulate
 from ..studies import pareto
-from .options import add_params, parse_params, whole_number_at_least
+from .options import add_params, out_folder, parse_params, whole_number_at_least
 
 NAME = "bench"
 HELP = "benchmark run time against error (fast, accurate, projection) and analytic throughput"
@@ -40,7 +40,8 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("scene", nargs="?", help="a scene: its Pareto sweep (default: the issue-2 cases)")
     add_params(parser)
     parser.add_argument("--quick", action="store_true", help="RK4 and Euler at 1.25, 2.5, 5 ms only")
-    parser.add_argument("--out", help="output folder for pareto.csv / pareto.png (default runs/bench-<scene>)")
+    parser.add_argument("--out", type=out_folder,
+                        help="output folder for pareto.csv / pareto.png (default runs/bench-<scene>)")
     parser.add_argument("--force", action="store_true", help="write into a folder holding files this tool did not")
     parser.add_argument("--repeats", type=whole_number_at_least("--repeats", 1), default=3,
                         help="best of this many runs per timing")
@@ -107,16 +108,16 @@ def run_scene(args: argparse.Namespace) -> int:
     """The Pareto sweep of one scene: table on stdout, pareto.csv and pareto.png in --out."""
     scene = scenes.get(args.scene).build_from_user(parse_params(args.param))
     out = Path(args.out or f"runs/bench-{scene.name}")
-    with claimed_folder(out, force=args.force):  # checked and owned before the sweep, as validate's
+    with claimed_folder(out, force=args.force) as stage:  # written beside the last results, swapped in at the end
         branch, points, harness = pareto.sweep(scene, quick=args.quick, repeats=args.repeats)
         rows = [
             f"{scene.name},{p.setting.label},{p.setting.integrator},{p.setting.h:g},{p.setting.tau:g},"
             f"{p.setting.solimp[0]:g},{p.setting.closure},{p.setting.drive},{p.error:.6g},{p.cpu:.6g}"
             for p in points
         ]
-        write_text(out / "pareto.csv", "scene,setting,integrator,h_s,tau_s,solimp,closure,drive,error_rad,cpu_s\n"
+        write_text(stage / "pareto.csv", "scene,setting,integrator,h_s,tau_s,solimp,closure,drive,error_rad,cpu_s\n"
                    + "\n".join(rows) + "\n")  # fmt: skip
-        plot_pareto({scene.name: points}, out / "pareto.png")
+        plot_pareto({scene.name: points}, stage / "pareto.png")
     if args.json:
         print(json.dumps([{"setting": p.setting.label, "error_rad": p.error, "cpu_s": p.cpu} for p in points]))
     else:

@@ -2,6 +2,7 @@
 
 import argparse
 import re
+from pathlib import Path
 
 import numpy as np
 
@@ -48,6 +49,13 @@ def parse_params(items: list[str]) -> dict[str, float]:
         parse_number(value, name)
         out[name] = Typed(value.strip())
     return out
+
+
+def out_folder(text: str) -> Path:
+    """An --out value; an empty one is refused (it would name the current folder, which the run would claim)."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError(f"{text!r} names no folder (an empty name would be the current folder)")
+    return Path(text)
 
 
 def number_at_least(option: str, low: float, *, open_low: bool = False):

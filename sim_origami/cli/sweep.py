@@ -16,7 +16,7 @@ from ..errors import ParameterError
 from ..files import check_folder, claimed_folder
 from ..mjcf import PRESETS
 from ..sweep import check_grid, check_scheduler, check_workers, parse_axis, sweep, write_tables
-from .validate import out_folder
+from .options import out_folder
 
 NAME = "sweep"
 HELP = "cross-check a scene over a parameter grid in parallel (local processes or a Dask cluster)"

@@ -15,7 +15,7 @@ from ..conventions import deg_to_rad
 from ..errors import DomainError, ParameterError, SimulationError
 from ..files import check_folder, claimed_folder, write_text
 from ..mjcf import PRESETS
-from ..report import as_dict, plain, write
+from ..report import as_dict, motion_view, plain, write
 from ..report_page import write_index, write_page
 from ..scenes.fold_file import fold_scene
 from ..scenes.linkage_file import linkage_scene
@@ -132,7 +132,7 @@ def run_one(scene, args, out: Path, reference=None) -> dict:
         doc["render"] = {"gl_renderer": frames.gl_renderer, "seconds_per_frame": frames.seconds_per_frame,
                          "frames": len(frames.pngs)}  # fmt: skip
         write_text(out / "report.json", json.dumps(doc, indent=2, default=plain) + "\n")
-    write_page(doc, out)
+    write_page(doc, out, motion_view(report))
     return doc
 
 
