@@ -12,7 +12,8 @@ from datetime import datetime, timezone
 from pathlib import Path
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
+from scipy.spatial.transform import Rotation
 
 from . import __version__
 from .files import write_text
@@ -23,6 +24,14 @@ from .stabilize import preset_mode
 from .tolerances import TOLERANCES
 from .validation import Report
 
+# Frames of each branch's motion in report.html's 3-D view, and the significant digits they keep: the biggest scene
+# (waterbomb-tube, 180 panels) stays near 1 MB of page.
+VIEW_FRAMES = 100
+VIEW_DIGITS = 5
+# The view's paper: front (+z of the flat sheet) and back colours; crease lines mountain red, valley blue (the
+# colours of Origami Simulator and most crease-pattern drawings).
+PAPER_FRONT = (0.96, 0.86, 0.64)
+PAPER_BACK = (0.62, 0.74, 0.88)
 # Frames of the simulated motion written to motion.fold (evenly spaced over the first run).
 FOLD_FRAMES = 60
 # Samples of each run that curves.csv keeps (plus each joint's worst): every MuJoCo step of every joint made the main
@@ -213,6 +222,86 @@ def motion_fold(report: Report, out: Path) -> Path:
     title = f"{scene.name}: MuJoCo {report.preset}, branch {run.requested}"
     rho = np.clip(rho, -np.pi, np.pi)
     return write_fold(out, scene.pattern, rho, fold_angles=rho[-1], title=title, flat_tol=tol, notes=notes)
+
+
+def _rounded(values: ArrayLike, digits: int = VIEW_DIGITS) -> list[float]:
+    """Flat list of values kept to `digits` significant digits (the view's JSON, compact)."""
+    return [float(f"{v:.{digits}g}") for v in np.ravel(values)]
+
+
+def _quaternions(R: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Unit quaternions (..., 4) as x, y, z, w of rotation matrices (..., 3, 3)."""
+    return Rotation.from_matrix(R.reshape(-1, 3, 3)).as_quat().reshape(*R.shape[:-2], 4)
+
+
+def _crease_segment(mech, joint) -> tuple[str, NDArray[np.float64]] | None:
+    """
+    A crease as a line in its parent panel's frame, (body, (2k, 3) ends): the stretch of the hinge axis along the
+    panel's edge, on both faces of a thin panel (the line would be hidden inside it); None without such an edge.
+    """
+    solid = next(b.solid for b in mech.bodies if b.name == joint.parent)
+    v = np.asarray(solid.vertices)
+    origin, axis = joint.frame_parent[:3, 3], joint.frame_parent[:3, 2]
+    along = (v - origin) @ axis
+    off = np.linalg.norm(v - origin - np.outer(along, axis), axis=1)
+    # the edge's corners lie on the axis, or half a thin panel's thickness off it (2 % of the panel's size)
+    near = off < 0.02 * np.ptp(v, axis=0).max()
+    if near.sum() < 2:
+        return None
+    ends = origin + np.outer([along[near].min(), along[near].max()], axis)
+    z = v[:, 2]
+    if z.min() < ends[:, 2].min() and ends[:, 2].max() < z.max():
+        up = np.array([0.0, 0.0, 1.0])
+        ends = np.vstack([ends + (z.max() - ends[:, 2:]) * up, ends + (z.min() - ends[:, 2:]) * up])
+    return joint.parent, ends
+
+
+def motion_view(report: Report) -> dict:
+    """
+    The data of report.html's 3-D view: each body's solid (vertices and triangles in its frame, front and back
+    colours), the creases as lines in a panel's frame (on both faces of a thin panel), and per branch about
+    VIEW_FRAMES frames of every body's pose (position, quaternion x y z w) from the MuJoCo run's joint angles,
+    with the input (rad) and each crease's side (M, V or F by the sign of its last angle). Numbers keep
+    VIEW_DIGITS significant digits.
+    """
+    scene = report.scene
+    mech = scene.mechanism
+    bodies = [b for b in mech.bodies if not b.spacer]
+    paper = {name for j in mech.joints if j.name in scene.crease_hinges for name in (j.parent, j.child)}
+    solids = [
+        {"name": b.name, "v": _rounded(b.solid.vertices), "f": np.ravel(b.solid.faces).astype(int).tolist(),
+         "front": list(PAPER_FRONT if b.name in paper else b.rgba[:3]),
+         "back": list(PAPER_BACK if b.name in paper else b.rgba[:3])}
+        for b in bodies
+    ]  # fmt: skip
+    creases, crease_joints = [], []
+    if scene.pattern is not None:
+        for c in scene.pattern.creases:
+            segment = _crease_segment(mech, mech.joints[mech.joint_index(c.name)])
+            if segment is not None:
+                creases.append({"name": c.name, "body": [b.name for b in bodies].index(segment[0]),
+                                "p": _rounded(segment[1])})  # fmt: skip
+                crease_joints.append(mech.joint_index(c.name))
+    branches, corners = [], []
+    for run in report.runs:
+        q = run.dynamic.q
+        rows = np.unique(np.linspace(0, len(q) - 1, min(VIEW_FRAMES, len(q))).round().astype(int))
+        poses = mech.body_poses(q[rows])
+        T = np.stack([poses[b.name] for b in bodies], 1)  # (frames, bodies, 4, 4)
+        pose = np.concatenate([T[..., :3, 3], _quaternions(T[..., :3, :3])], -1)
+        for k, b in enumerate(bodies):  # every body's extent over the motion
+            world = T[:, k, :3, :3] @ np.asarray(b.solid.vertices).T + T[:, k, :3, 3, None]  # (frames, 3, n)
+            corners += [world.min(axis=(0, 2)), world.max(axis=(0, 2))]
+        last = q[-1, crease_joints] if crease_joints else np.zeros(0)
+        tol = TOLERANCES.angle(report.preset)
+        branches.append({"name": run.requested, "followed": run.followed,
+                         "input": _rounded(run.dynamic.target[rows]), "poses": [_rounded(f) for f in pose],
+                         "sides": "".join("V" if r > tol else "M" if r < -tol else "F" for r in last)})  # fmt: skip
+    corners = np.array(corners)
+    lo, hi = corners.min(0), corners.max(0)
+    return {"scene": scene.name, "input": scene.kinematics.input_name, "bodies": solids, "creases": creases,
+            "branches": branches, "centre": _rounded((lo + hi) / 2),
+            "radius": _rounded(np.linalg.norm(hi - lo) / 2)[0]}  # fmt: skip
 
 
 def model_xml(report: Report) -> str:

@@ -1,11 +1,12 @@
 """report.html per run and index.html for `validate --all`: self-contained pages that open from disk.
 
-Everything a page shows is inside it (the curves plot and the animation as base64 data URIs, styles inline): no
-network resource, no script. The model download links to `model.xml` beside the page.
+Everything a page shows is inside it (the plots and the animation as base64 data URIs, styles, the 3-D view's
+script and data inline): no network resource. The model download links to `model.xml` beside the page.
 """
 
 import base64
 import html
+import json
 import math
 from pathlib import Path
 
@@ -21,7 +22,12 @@ th { background: #f2f2f2; } td.num { text-align: right; font-variant-numeric: ta
 .verdict { font-size: 1.3em; padding: 0.3em 0.8em; border-radius: 4px; display: inline-block; }
 .verdict.pass { background: #e3f4e8; } .verdict.fail { background: #fbe4e5; }
 img { max-width: 100%; border: 1px solid #ddd; }
+#view { width: 100%; max-width: 800px; aspect-ratio: 8 / 5; border: 1px solid #ddd; touch-action: none; cursor: grab; }
+.controls { display: flex; gap: 0.8em; align-items: center; flex-wrap: wrap; max-width: 800px; }
+.controls input[type=range] { flex: 1; min-width: 12em; }
 """
+# The 3-D view's renderer (package data), inlined into each page.
+VIEWER = Path(__file__).with_name("assets") / "viewer.js"
 
 
 def _e(value) -> str:
@@ -74,8 +80,28 @@ def _provenance(doc: dict) -> str:
     return '<table id="provenance">' + "".join(f"<tr><th>{k}</th><td>{v}</td></tr>" for k, v in rows) + "</table>"
 
 
-def page(doc: dict, out: Path) -> str:
-    """The HTML of one run's report (`doc` as in report.json), embedding out/curves.png and out/fold.gif if present."""
+def _view(view: dict | None) -> str:
+    """The interactive 3-D view of the motion (`report.motion_view`'s data, inline), or nothing without data."""
+    if not view or not view["branches"]:
+        return ""
+    data = json.dumps(view, separators=(",", ":")).replace("</", "<\\/")  # no '</script>' inside the data
+    return f"""<h2>Motion in 3-D</h2>
+<p id="view-note"><small>MuJoCo's run, every body as simulated: drag to turn, wheel to zoom; paper front
+<span style="background:#f5dba3">&nbsp;&nbsp;</span> and back <span style="background:#9ebde0">&nbsp;&nbsp;</span>,
+creases mountain <span style="color:#d91a1a">red</span>, valley <span style="color:#1a4de6">blue</span>.</small></p>
+<canvas id="view" width="800" height="500"></canvas>
+<div class="controls"><button id="view-play" type="button">play</button>
+<input id="view-frame" type="range" min="0" max="0" value="0" aria-label="frame">
+<select id="view-branch" aria-label="branch"></select> <span id="view-input"></span></div>
+<script type="application/json" id="motion-data">{data}</script>
+<script>{VIEWER.read_text()}</script>"""
+
+
+def page(doc: dict, out: Path, view: dict | None = None) -> str:
+    """
+    The HTML of one run's report (`doc` as in report.json), embedding out/curves.png and out/fold.gif if present
+    and the 3-D view of `view` (`report.motion_view`).
+    """
     scene, passed = doc["scene"], doc["passed"]
     verdicts = doc["verdicts"] + [v for b in doc["branches"] for v in b["verdicts"]]
     key = [
@@ -143,6 +169,7 @@ def page(doc: dict, out: Path) -> str:
 <h2>Parameters (radians, metres)</h2>
 <table>{params or "<tr><td>none</td></tr>"}</table>
 {adjusted}
+{_view(view)}
 {chr(10).join(figures)}
 <h2>Files</h2>
 <p>{" &middot; ".join(downloads)}</p>
@@ -152,10 +179,10 @@ def page(doc: dict, out: Path) -> str:
 """
 
 
-def write_page(doc: dict, out: str | Path) -> Path:
-    """Write out/report.html (atomically)."""
+def write_page(doc: dict, out: str | Path, view: dict | None = None) -> Path:
+    """Write out/report.html (atomically), with the 3-D view of `view` (`report.motion_view`) if given."""
     out = Path(out)
-    return write_text(out / "report.html", page(doc, out))
+    return write_text(out / "report.html", page(doc, out, view))
 
 
 def index(docs: list[dict]) -> str:

@@ -31,6 +31,27 @@ PROBE = """({
   links: Array.from(document.querySelectorAll('#scenes a')).map(a => a.getAttribute('href')),
 })"""
 
+# Evaluated in a report: the 3-D canvas's pixels, then again after the slider moves to the last frame.
+VIEW = """(() => {
+  const canvas = document.getElementById('view');
+  const pixels = () => { const copy = document.createElement('canvas'); copy.width = canvas.width;
+    copy.height = canvas.height; const g = copy.getContext('2d'); g.drawImage(canvas, 0, 0);
+    return g.getImageData(0, 0, canvas.width, canvas.height).data; };
+  const before = pixels();
+  const slider = document.getElementById('view-frame');
+  slider.value = slider.max;
+  slider.dispatchEvent(new Event('input'));
+  const after = pixels();
+  let drawn = 0, changed = 0;
+  for (let i = 0; i < before.length; i += 4) {
+    if (before[i] < 250 || before[i + 1] < 250 || before[i + 2] < 250) drawn++;  // not the white background
+    if (before[i] !== after[i] || before[i + 1] !== after[i + 1] || before[i + 2] !== after[i + 2]) changed++;
+  }
+  return {drawn: drawn / (before.length / 4), changed: changed / (before.length / 4), frames: +slider.max + 1,
+          branches: Array.from(document.getElementById('view-branch').options).map(o => o.textContent),
+          label: document.getElementById('view-input').textContent};
+})()"""
+
 
 @pytest.fixture(scope="module")
 def browser():
@@ -113,3 +134,15 @@ def test_report_says_what_made_the_run(run, browser):
     assert doc["summary"].startswith("Bennett")
     shown = browser.load(out / "bennett" / "report.html", "document.getElementById('provenance').innerText").value
     assert made["command"] in shown and f"MuJoCo, Python, numpy\t{mujoco.__version__}" in shown
+
+
+def test_the_3d_view_draws_the_motion_and_follows_the_slider(run, browser):
+    _, out = run
+    doc = json.loads((out / "bennett" / "report.json").read_text())
+    page = browser.load(out / "bennett" / "report.html", VIEW)
+    assert page.errors == []
+    seen = page.value
+    # measured: the four links cover 2-3 % of the canvas and the last frame moves about as many pixels
+    assert seen["drawn"] > 0.005 and seen["changed"] > 0.005
+    assert seen["frames"] == 100 and seen["branches"] == [b["branch_requested"] for b in doc["branches"]]
+    assert seen["label"].startswith("theta1 = ") and seen["label"].endswith("(frame 100 of 100)")
