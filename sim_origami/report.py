@@ -299,9 +299,35 @@ def motion_view(report: Report) -> dict:
                          "sides": "".join("V" if r > tol else "M" if r < -tol else "F" for r in last)})  # fmt: skip
     corners = np.array(corners)
     lo, hi = corners.min(0), corners.max(0)
-    return {"scene": scene.name, "input": scene.kinematics.input_name, "bodies": solids, "creases": creases,
+    view = {"scene": scene.name, "input": scene.kinematics.input_name, "bodies": solids, "creases": creases,
             "branches": branches, "centre": _rounded((lo + hi) / 2),
             "radius": _rounded(np.linalg.norm(hi - lo) / 2)[0]}  # fmt: skip
+    if scene.pattern is not None:
+        view["pattern"] = pattern_drawing(report)
+    return view
+
+
+def pattern_drawing(report: Report) -> dict:
+    """
+    A crease pattern as drawn on report.html: flat vertices (m), the border (face edges that are no crease),
+    each crease's ends, assignment letter and side in the first run (M, V or F by the sign of its last simulated
+    angle), and the driven creases.
+    """
+    scene, run = report.scene, report.runs[0]
+    pattern = scene.pattern
+    crease_edges = {frozenset((c.start, c.end)) for c in pattern.creases}
+    border = sorted({tuple(sorted((a, b))) for face in pattern.faces for a, b in zip(face, face[1:] + face[:1],
+                     strict=True) if frozenset((a, b)) not in crease_edges})  # fmt: skip
+    tol = TOLERANCES.angle(report.preset)
+    last = run.dynamic.q[-1]
+    return {
+        "vertices": _rounded(pattern.vertices),
+        "border": [list(e) for e in border],
+        "creases": [{"name": c.name, "ends": [c.start, c.end], "assignment": c.assignment,
+                     "side": "V" if r > tol else "M" if r < -tol else "F"}
+                    for c in pattern.creases for r in [last[scene.mechanism.joint_index(c.name)]]],
+        "driven": list(scene.drives),
+    }  # fmt: skip
 
 
 def model_xml(report: Report) -> str:

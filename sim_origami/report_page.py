@@ -8,6 +8,7 @@ import base64
 import html
 import json
 import math
+import re
 from pathlib import Path
 
 from .files import write_text
@@ -78,6 +79,76 @@ def _provenance(doc: dict) -> str:
         ("machine", f"{_e(machine['os'])}, {_e(machine['arch'])}, {_e(machine['cores'])} cores"),
     ]
     return '<table id="provenance">' + "".join(f"<tr><th>{k}</th><td>{v}</td></tr>" for k, v in rows) + "</table>"
+
+
+# Crease colours on the pattern drawing, as in the 3-D view: mountain red, valley blue, flat grey.
+SIDE_COLOURS = {"M": "#d91a1a", "V": "#1a4de6", "F": "#888888"}
+PATTERN_PX = 520  # the drawing's larger side
+
+
+def _pattern_svg(pattern: dict, events: list[dict]) -> str:
+    """
+    The crease pattern as inline SVG: border black, creases by the side they folded to in the first run (dashed
+    where that is against their letter), driven creases thick, creases an event names ringed.
+    """
+    xy = [(pattern["vertices"][2 * i], pattern["vertices"][2 * i + 1]) for i in range(len(pattern["vertices"]) // 2)]
+    xs, ys = [p[0] for p in xy], [p[1] for p in xy]
+    span = max(max(xs) - min(xs), max(ys) - min(ys)) or 1.0
+    pad, scale = 14, (PATTERN_PX - 28) / span
+    width, height = (max(xs) - min(xs)) * scale + 2 * pad, (max(ys) - min(ys)) * scale + 2 * pad
+
+    def at(i: int) -> tuple[float, float]:  # y up on paper, down in SVG
+        return (xy[i][0] - min(xs)) * scale + pad, (max(ys) - xy[i][1]) * scale + pad
+
+    def line(a: int, b: int, attrs: str) -> str:
+        (x1, y1), (x2, y2) = at(a), at(b)
+        return f'<line x1="{x1:.1f}" y1="{y1:.1f}" x2="{x2:.1f}" y2="{y2:.1f}" {attrs}/>'
+
+    parts = [line(a, b, 'stroke="#222" stroke-width="1.5"') for a, b in pattern["border"]]
+    named = {}
+    for e in events:
+        for c in pattern["creases"]:
+            if re.search(rf"\b{re.escape(c['name'])}\b", e.get("detail", "")):
+                named.setdefault(c["name"], []).append(e)
+    for c in pattern["creases"]:
+        a, b = c["ends"]
+        against = c["assignment"] in "MV" and c["side"] in "MV" and c["assignment"] != c["side"]
+        driven = c["name"] in pattern["driven"]
+        title = f"{c['name']}: assigned {c['assignment']}, folded {c['side']}" + (" (driven)" if driven else "")
+        attrs = (f'stroke="{SIDE_COLOURS[c["side"]]}" stroke-width="{4 if driven else 1.6}"'
+                 + (' stroke-dasharray="6 4"' if against else "") + f' class="crease {c["side"]}"')  # fmt: skip
+        parts.append(f"<g><title>{_e(title)}</title>{line(a, b, attrs)}</g>")
+        (x1, y1), (x2, y2) = at(a), at(b)
+        if driven:
+            parts.append(f'<text x="{(x1 + x2) / 2 + 4:.1f}" y="{(y1 + y2) / 2 - 4:.1f}" font-size="11">'
+                         f"{_e(c['name'])} (driven)</text>")  # fmt: skip
+        for e in named.get(c["name"], []):
+            parts.append(f'<circle class="event" cx="{(x1 + x2) / 2:.1f}" cy="{(y1 + y2) / 2:.1f}" r="7" '
+                         f'fill="none" stroke="#e08000" stroke-width="2.5"><title>{_e(e["kind"])}: '
+                         f"{_e(e['detail'])}</title></circle>")  # fmt: skip
+    svg = (f'<svg id="crease-pattern" xmlns="http://www.w3.org/2000/svg" width="{width:.0f}" '
+           f'height="{height:.0f}" viewBox="0 0 {width:.1f} {height:.1f}" role="img" aria-label="crease pattern">'
+           f'{"".join(parts)}</svg>')  # fmt: skip
+    return f"""<h2>Crease pattern</h2>
+<p><small>As cut, flat; each crease coloured by the side it folded to in MuJoCo's run of the first branch:
+mountain <span style="color:{SIDE_COLOURS["M"]}">red</span>, valley <span style="color:{SIDE_COLOURS["V"]}">blue</span>,
+flat grey; dashed against its letter; the driven crease thick; a ring marks a crease an event names (hover for
+details).</small></p>
+{svg}"""
+
+
+def _events(events: list[dict]) -> str:
+    """The events on the path (bifurcation, lock, blockage, contact...) with their inputs, as a table."""
+    rows = "".join(
+        f"<tr><td>{_e(e['kind'])}</td><td class=num>{_num(math.degrees(e['input_rad']))}</td>"
+        f"<td>{_e(', '.join(e.get('branches', [])))}</td><td>{_e(e.get('detail', ''))}</td></tr>"
+        for e in events
+        if e.get("input_rad") is not None
+    )
+    if not rows:
+        return "<h2>Events on the path</h2>\n<p>None.</p>"
+    return ("<h2>Events on the path</h2>\n<table id=\"events\"><tr><th>event</th><th>input (deg)</th>"
+            f"<th>branches</th><th>what</th></tr>{rows}</table>")  # fmt: skip
 
 
 def _view(view: dict | None) -> str:
@@ -170,6 +241,8 @@ def page(doc: dict, out: Path, view: dict | None = None) -> str:
 <table>{params or "<tr><td>none</td></tr>"}</table>
 {adjusted}
 {_view(view)}
+{_pattern_svg(view["pattern"], doc.get("events", [])) if view and "pattern" in view else ""}
+{_events(doc.get("events", []))}
 {chr(10).join(figures)}
 <h2>Files</h2>
 <p>{" &middot; ".join(downloads)}</p>

@@ -6,6 +6,7 @@ import platform
 import re
 import shlex
 from datetime import datetime, timedelta, timezone
+from pathlib import Path
 
 import imageio.v3 as iio
 import mujoco
@@ -68,6 +69,29 @@ def run(tmp_path_factory):
     out = tmp_path_factory.mktemp("runs")
     status = main([*COMMAND, str(out / "bennett")])
     return status, out
+
+
+@pytest.fixture(scope="module")
+def fold_run(tmp_path_factory):
+    """A FOLD file's degree-4 vertex: a crease pattern, driven at e0, locking where e0 folds flat."""
+    out = tmp_path_factory.mktemp("fold") / "vertex4"
+    main(["validate", "--fold", str(Path(__file__).parents[1] / "docs/examples/reference/vertex4.fold"), "--out",
+          str(out)])  # fmt: skip
+    return out
+
+
+# Evaluated in an origami report: the crease pattern's lines and marks, and the events table.
+PATTERN = """(() => {
+  const svg = document.getElementById('crease-pattern');
+  return {
+    creases: Array.from(svg.querySelectorAll('line.crease')).map(l => [l.parentNode.textContent.split(':')[0],
+      l.classList[1], l.getAttribute('stroke'), +l.getAttribute('stroke-width')]),
+    border: svg.querySelectorAll('line:not(.crease)').length,
+    rings: Array.from(svg.querySelectorAll('circle.event')).map(c => c.textContent),
+    events: Array.from(document.querySelectorAll('#events tr')).slice(1).map(r => r.cells[0].textContent),
+    size: [svg.getBoundingClientRect().width, svg.getBoundingClientRect().height],
+  };
+})()"""
 
 
 def not_blank(png: bytes) -> float:
@@ -146,3 +170,23 @@ def test_the_3d_view_draws_the_motion_and_follows_the_slider(run, browser):
     assert seen["drawn"] > 0.005 and seen["changed"] > 0.005
     assert seen["frames"] == 100 and seen["branches"] == [b["branch_requested"] for b in doc["branches"]]
     assert seen["label"].startswith("theta1 = ") and seen["label"].endswith("(frame 100 of 100)")
+
+
+def test_an_origami_page_draws_its_crease_pattern_and_folds_it_in_3d(fold_run, browser):
+    doc = json.loads((fold_run / "report.json").read_text())
+    page = browser.load(fold_run / "report.html", PATTERN)
+    assert page.errors == []
+    seen = page.value
+    # four creases by the side MuJoCo folded them to, the driven one thick; the border's four edges
+    assert sorted(c[0] for c in seen["creases"]) == ["e0", "e1", "e2", "e3"] and seen["border"] == 4
+    colours = {"M": "#d91a1a", "V": "#1a4de6"}
+    assert all(colours[side] == stroke for _, side, stroke, _ in seen["creases"])
+    assert sorted(side for _, side, _, _ in seen["creases"]) == ["M", "V", "V", "V"]  # degree 4: one against three
+    assert {name: width for name, _, _, width in seen["creases"]}["e0"] == 4  # the driven crease (--input default)
+    assert doc["input"]["drive_joint"] == "e0"
+    # the lock where e0 folds flat: ringed on e0 and listed
+    assert len(seen["rings"]) == 1 and seen["rings"][0].startswith("lock: crease e0 folds flat")
+    assert seen["events"] == [e["kind"] for e in doc["events"]] == ["lock"]
+    assert 300 < max(seen["size"]) < 600
+    view = browser.load(fold_run / "report.html", VIEW)
+    assert view.errors == [] and view.value["drawn"] > 0.02 and view.value["changed"] > 0.005
