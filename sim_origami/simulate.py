@@ -373,8 +373,9 @@ def simulate(
     binds.set_pose(data, start_pose(scene, branch, start) if initial is None else np.asarray(initial, dtype=float))
     mujoco.mj_forward(model, data)
 
-    T = duration or sweep_duration(scene, branch, preset, start, stop)
     h = model.opt.timestep
+    # The path's sweep time, rounded up to whole steps so that the ramp's last sample is its end
+    T = duration or h * np.ceil(sweep_duration(scene, branch, preset, start, stop) / h - 1e-9)
     n = round((T + hold) / h)
     if n < 2:
         raise DomainError(f"a sweep of {T + hold:g} s is shorter than two time steps of {h:g} s")

@@ -22,16 +22,17 @@ class Tolerances:
     # Closure residual of a closed form (product of joint transforms): worst 7.3e-16 (origami),
     # 5.3e-15 (Myard with a23 = 10 m).
     closed_form_residual: float = 1e-12
-    # MuJoCo path error, preset fast (RK4 8 ms; 2 s sweeps, slower where a scene's sweep_time_scale
-    # says so), default sweeps of every scene with its own preset (fast or stiff, held to the same tolerance):
-    # worst 1.4e-7 rad (waterbomb-tube, stiff, 164 joint couplings), <= 7.7e-8 on every other scene
-    # (kokotsakis, rssr; run `validate --all`).
+    # MuJoCo path error, preset fast (RK4 8 ms), default sweeps of every scene, each sweep as long as its path's joint
+    # rates ask (`sweep_rate`: timed for a lag of 0.2 x this tolerance): worst 2.2e-7 rad (waterbomb-tube), 2.0e-7
+    # (waterbomb-twist), 1.9e-7 (waterbomb-vertex), <= 1.5e-7 on every other scene (run `validate --all`); Bennett
+    # linkages turning their output 9-87x as fast as their input 1.4e-7 .. 3.3e-7.
     # Non-default geometries measured with RK4 5 ms: flat-foldable vertex branch S 2.1e-7, Myard alpha12 = 70 deg
     # 1.6e-7 (8 ms costs up to 3x on fast-turning linkages at equal sweep time).
     fast_rad: float = 1e-6
-    # Preset accurate (RK4 0.1 ms, closures 4 h, regulariser x 0.01, 8 s sweep x sweep_time_scale): default
-    # sweeps <= 1.7e-12 rad (waterbomb-vertex; truncated polyhedra 1.1e-12, most scenes 1e-14 .. 2e-13); the
-    # A04 free run 2.3e-11 (10 s under gravity). Before the regulariser scale: 8.4e-11 (thick diamond).
+    # Preset accurate (RK4 0.1 ms, closures 4 h, regulariser x 0.01, 8 s sweep x the path's `sweep_rate` scale): with
+    # the scenes' former hand-set slow-downs (2-32x) default sweeps <= 1.7e-12 rad (waterbomb-vertex; truncated
+    # polyhedra 1.1e-12, most scenes 1e-14 .. 2e-13); with the rule's (1.5-5x) waterbomb-vertex 4.8e-12, thick diamond
+    # 3.9e-13. The A04 free run 2.3e-11 (10 s under gravity). Before the regulariser scale: 8.4e-11 (thick diamond).
     accurate_rad: float = 2e-10
     # Kinematic projection (Gauss-Newton chord steps on MuJoCo's efc_pos to the rounding floor): worst 7.4e-14 rad over
     # every scene's branches (waterbomb-twist twist-cw) with the factorisation kept across inputs; before, 4.3e-14

@@ -9,7 +9,7 @@ from sim_origami import scenes
 from sim_origami.checks.paths import compare
 from sim_origami.kinematics.base import Branch
 from sim_origami.kinematics.bennett import Bennett
-from sim_origami.mjcf import preset_duration
+from sim_origami.mjcf import preset_duration, preset_timestep
 from sim_origami.simulate import simulate
 from sim_origami.sweep_rate import MAX_SCALE, path_acceleration, sweep_duration, sweep_scale
 from sim_origami.tolerances import TOLERANCES
@@ -61,7 +61,8 @@ def test_a_bennett_turning_its_output_18_times_as_fast_as_its_input_passes_the_d
     scene = bennett_across_pi(1.1)
     assert peak_rate(scene) >= 10
     run = simulate(scene, "bennett")
-    assert run.sweep_time_s == pytest.approx(sweep_duration(scene, "bennett", scene.preset, *ACROSS_PI))
+    rule = sweep_duration(scene, "bennett", scene.preset, *ACROSS_PI)
+    assert rule <= run.sweep_time_s < rule + preset_timestep(scene.preset)  # whole steps
     assert run.sweep_time_s > 10 * preset_duration("fast")
     assert compare(scene, "bennett", run.q).max_error() < 0.5 * TOLERANCES.fast_rad
     assert np.max(run.closure_residual) < TOLERANCES.residual("fast", scene.length_scale)

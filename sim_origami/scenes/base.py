@@ -163,9 +163,9 @@ class Scene:
     free_branch: str = ""  # branch of that start pose
     # Another tool's published CPU time (s) for the same free run, shown beside ours: (tool, seconds)
     free_run_peer: tuple[str, float] | None = None
-    # Quasi-static sweeps of loops that are ill-conditioned along their whole motion run this many times
-    # slower than the preset's; the soft closures' angle error falls as the square of the sweep time
-    # (measured 4.0x per doubling on every scene). Each scene that sets it states its measured error.
+    # A sweep lasts the time its path's joint rates ask for (`sweep_rate.sweep_duration`) times this: the soft
+    # closures' angle error falls as the square of the sweep time (3.8-4.3x per doubling on every scene), and a scene
+    # whose closures lag more than the rule allows for says why it sets this.
     sweep_time_scale: float = 1.0
     # The preset runs use unless told otherwise, chosen per scene from `scripts/preset_compare.py` (with the
     # presets' scaled regulariser 'fast' beats 'stiff' on every scene, and every registered scene runs it).
