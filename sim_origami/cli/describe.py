@@ -53,7 +53,8 @@ def run(args: argparse.Namespace) -> int:
     scaled = f"; fast at {scene.fast_step_scale:g}x its step and time constant" if scene.fast_step_scale != 1 else ""
     if scene.fast_timeconst_scale != 1:
         scaled += f"; fast's time constant {scene.fast_timeconst_scale:g}x its own"
-    print(f"preset: {scene.preset}, sweep {scene.sweep_time_scale:g}x the preset's duration{scaled}")
+    slower = f" x {scene.sweep_time_scale:g}" if scene.sweep_time_scale != 1 else ""
+    print(f"preset: {scene.preset}, sweep as long as its path's joint rates ask{slower}{scaled}")
     print("branches:")
     for b in kin.branches():
         lo, hi = b.domain
