@@ -1,4 +1,4 @@
-"""Curves: closed-form lines, simulated markers and an error panel per branch (PNG, degrees)."""
+"""Curves: reference lines, simulated markers and an error panel per branch (PNG and SVG, degrees)."""
 
 from pathlib import Path
 
@@ -14,78 +14,152 @@ from .files import atomic_path
 from .studies.pareto import Point, front
 from .validation import Report
 
-# Simulated markers drawn per branch (the CSV keeps every sample); joints named in a legend at most.
+# Simulated markers drawn per branch (the CSV keeps every sample); joints named in a legend at most, and drawn as
+# one error line each (more are drawn as their envelope: 250 lines were unreadable).
 MARKERS = 40
 LEGEND_MAX = 16
 # Reference samples per line where a legend names the joints. More joints are drawn from the closed form the
 # projection was compared with (200 inputs over the sweep, already evaluated: each is a closed pose, and on the
 # 16 x 16 Miura FOLD sheet's 480 creases 100 fresh samples took 0.26 s of CPU).
 DENSE = 400
+# Kinematics whose reference is a numeric trace, not a closed form (a FOLD file's pattern, a linkage file), by
+# module name: plots need not import them.
+NUMERIC_TRACES = ("numeric_pattern", "linkage_path")
+# Event marks on both panels: colour and line style by kind (others grey).
+EVENT_STYLE = {"bifurcation": ("#7b2cbf", "--"), "lock": ("#b3131b", "-."), "blockage": ("#e08000", ":"),
+               "contact": ("#e08000", ":"), "stall": ("#555555", ":")}  # fmt: skip
+# Errors are drawn on a log axis; an exact zero sits at this floor.
+FLOOR = 1e-17
+
+
+def joint_colors(k: int) -> list:
+    """k colours, distinct up to 20 (tab10, then tab20), beyond that spread evenly over a perceptual map."""
+    if k <= 10:
+        return list(plt.get_cmap("tab10").colors[:k])
+    if k <= 20:
+        return list(plt.get_cmap("tab20").colors[:k])
+    return list(plt.get_cmap("turbo")(np.linspace(0.05, 0.95, k)))
+
+
+def _tolerance(report: Report, run) -> float | None:
+    """The path-error tolerance the run's verdict used (its 'MuJoCo <preset> path error (rad)' check)."""
+    name = f"MuJoCo {report.preset} path error (rad)"
+    return next((v.tolerance for v in run.verdicts if v.name.endswith(name)), None)
+
+
+def _events(report: Report, run) -> list[dict]:
+    """Events on this run's branch (bifurcation, lock, contact, stall...), and the blockage stop on the first."""
+    out = [e for e in run.events if run.requested in e.get("branches", [run.requested]) and e.get("input_rad")
+           is not None]  # fmt: skip
+    if report.blockage is not None and run is report.runs[0]:
+        out.append({"kind": "blockage", "input_rad": report.blockage.stop_input})
+    return out
 
 
 def plot_report(report: Report, path: str | Path) -> Path:
-    """One column per branch: joint angles (deg) against the input (deg), then |error| (rad, log)."""
+    """
+    One column per branch: joint angles (deg) against the input (deg), then |error| (rad, log) with the check's
+    tolerance and the events in the sweep marked. Written as PNG at `path` and as SVG beside it.
+    """
     kin = report.scene.kinematics
     runs = report.runs
-    fig, axes = plt.subplots(2, len(runs), figsize=(5.5 * len(runs), 7), squeeze=False,
+    reference = "numeric trace" if type(kin).__module__.rsplit(".", 1)[-1] in NUMERIC_TRACES else "closed form"
+    fig, axes = plt.subplots(2, len(runs), figsize=(5.5 * len(runs), 7.5), squeeze=False,
                              gridspec_kw={"height_ratios": [3, 2]}, constrained_layout=True)  # fmt: skip
-    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    colors = joint_colors(len(kin.joint_names))
     for col, run in enumerate(runs):
         top, bottom = axes[0, col], axes[1, col]
         sim = run.dynamic_path
         pick = np.linspace(0, len(sim.input) - 1, MARKERS).astype(int)
+        # a driven joint follows its input exactly (error 0): a flat line at the floor says nothing
+        driven = [k for k in range(len(kin.joint_names)) if np.all(sim.error[:, k] == 0)]
         if len(kin.joint_names) > LEGEND_MAX:
             ref = run.projection_path
             on = np.all(np.isfinite(ref.analytic), axis=1)
-            _many_joints(top, bottom, np.rad2deg(ref.input[on]), ref.analytic[on], sim, pick, colors)
+            _many_joints(top, np.rad2deg(ref.input[on]), ref.analytic[on], sim, pick, colors)
+            kept = [k for k in range(len(kin.joint_names)) if k not in driven]
+            _envelope(bottom, np.rad2deg(sim.input), sim.error[:, kept], [kin.joint_names[k] for k in kept])
         else:
             dense = np.linspace(*kin.branch(run.requested).domain, DENSE)
             values, valid = kin.evaluate(run.requested, dense)
             for k, name in enumerate(kin.joint_names):
-                c = colors[k % len(colors)]
+                c = colors[k]
                 top.plot(np.rad2deg(dense[valid]), np.rad2deg(values[valid, k]), color=c, lw=1.2, label=name)
                 top.plot(np.rad2deg(sim.input[pick]), np.rad2deg(sim.simulated[pick, k]), "o", ms=3.5,
                          mfc="none", color=c)  # fmt: skip
-                bottom.semilogy(np.rad2deg(sim.input), np.maximum(sim.error[:, k], 1e-17), color=c, lw=1)
+                if k not in driven:
+                    bottom.semilogy(np.rad2deg(sim.input), np.maximum(sim.error[:, k], FLOOR), color=c, lw=1,
+                                    label=name)  # fmt: skip
             top.legend(fontsize=8, ncol=2)
         if report.reference is not None:  # the user's curves: crosses on the curves, their error to the numeric solve
             ref = report.reference
             on = ref.on(run.requested)
             for m, name in enumerate(ref.joints):
-                c = colors[kin.joint_names.index(name) % len(colors)]
+                c = colors[kin.joint_names.index(name)]
                 top.plot(np.rad2deg(ref.x[on]), np.rad2deg(ref.values[on, m]), "x", ms=5, color=c)
-                bottom.semilogy(np.rad2deg(ref.x[on]), np.maximum(ref.error[on, m], 1e-17), "x", ms=4, color=c)
+                bottom.semilogy(np.rad2deg(ref.x[on]), np.maximum(ref.error[on, m], FLOOR), "x", ms=4, color=c)
+        tol = _tolerance(report, run)
+        if tol is not None and tol > 0:
+            bottom.axhline(tol, color="k", ls="--", lw=1.2, label=f"tolerance {tol:.2g} rad", gid=f"tolerance-{col}")
+        # both panels over the reference's span (the branch's domain, where its ends lock): the sweep in context
+        lo, hi = top.get_xlim()
+        bottom.set_xlim(lo, hi)
+        for e in _events(report, run):
+            x = np.rad2deg(e["input_rad"])
+            if lo <= x <= hi:  # events farther off are listed on the page, not drawn
+                color, style = EVENT_STYLE.get(e["kind"], ("#777777", ":"))
+                top.axvline(x, color=color, ls=style, lw=1.2)
+                bottom.axvline(x, color=color, ls=style, lw=1.2, label=f"{e['kind']} at {x:.4g} deg")
         top.set_title(f"{report.scene.name}: branch {run.requested}\n(followed {run.followed or '-'})", fontsize=10)
         top.set_xlabel(f"{kin.input_name} (deg)")
         top.set_ylabel("joint angle (deg)")
         top.grid(alpha=0.3)
         bottom.set_xlabel(f"{kin.input_name} (deg)")
-        bottom.set_ylabel(f"|MuJoCo {report.preset} - closed form| (rad)")
+        bottom.set_ylabel(f"|MuJoCo {report.preset} - {reference}| (rad)")
         bottom.grid(alpha=0.3, which="both")
+        if driven:
+            names = ", ".join(kin.joint_names[k] for k in driven[:3]) + (", ..." if len(driven) > 3 else "")
+            bottom.set_title(f"driven, not drawn (error 0): {names}", fontsize=8)
+        if bottom.get_legend_handles_labels()[0]:
+            bottom.legend(fontsize=7, ncol=2 if len(kin.joint_names) <= LEGEND_MAX else 1)
     crosses = "; crosses: reference curves (error: to the numeric solve)" if report.reference is not None else ""
-    fig.suptitle(f"lines: closed form; markers: MuJoCo{crosses}", fontsize=9)
+    fig.suptitle(f"lines: {reference}; markers: MuJoCo{crosses}", fontsize=9)
+    path = Path(path)
     with atomic_path(path) as tmp:
         fig.savefig(tmp, dpi=110, format="png")
+    # text kept as text in the SVG: searchable and selectable
+    with atomic_path(path.with_suffix(".svg")) as tmp, plt.rc_context({"svg.fonttype": "none"}):
+        fig.savefig(tmp, format="svg")
     plt.close(fig)
-    return Path(path)
+    return path
 
 
-def _many_joints(top, bottom, x_deg, values, sim, pick, colors) -> None:
-    """The same curves, markers and error lines for more joints than a legend names, one artist per kind: drawn as
-    1440 separate lines the 16 x 16 Miura FOLD sheet's 480 creases took 1.5 s of CPU."""
+def _many_joints(top, x_deg, values, sim, pick, colors) -> None:
+    """
+    The same curves and markers for more joints than a legend names, one artist per kind: drawn as 1440 separate
+    lines the 16 x 16 Miura FOLD sheet's 480 creases took 1.5 s of CPU. Both are pixels in the SVG (waterbomb-tube's
+    250 joints: 1.8 MB and 3.5 s of vectors).
+    """
     k = values.shape[1]
-    c = [colors[j % len(colors)] for j in range(k)]
-    top.add_collection(LineCollection([np.c_[x_deg, np.rad2deg(values[:, j])] for j in range(k)], colors=c,
-                                      linewidths=1.2))  # fmt: skip
-    edges = np.repeat(to_rgba_array(c), len(pick), axis=0)  # joint by joint, as the values below
+    top.add_collection(LineCollection([np.c_[x_deg, np.rad2deg(values[:, j])] for j in range(k)], colors=colors,
+                                      linewidths=1.2, rasterized=True))  # fmt: skip
+    edges = np.repeat(to_rgba_array(colors), len(pick), axis=0)  # joint by joint, as the values below
     top.scatter(np.tile(np.rad2deg(sim.input[pick]), k), np.rad2deg(sim.simulated[pick].T).ravel(), s=12,
-                facecolors="none", edgecolors=edges, linewidths=1.0)  # fmt: skip
+                facecolors="none", edgecolors=edges, linewidths=1.0, rasterized=True)  # fmt: skip
     top.autoscale_view()
+
+
+def _envelope(bottom, x_deg, error, names: list[str]) -> None:
+    """Many joints' errors (named `names`) as their spread: the min-max band, the median and the worst joint."""
+    error = np.maximum(np.where(np.isfinite(error), error, np.nan), FLOOR)
     bottom.set_yscale("log")
-    error = np.maximum(sim.error, 1e-17)
-    bottom.add_collection(LineCollection([np.c_[np.rad2deg(sim.input), error[:, j]] for j in range(k)], colors=c,
-                                         linewidths=1.0))  # fmt: skip
-    bottom.autoscale_view()
+    if error.shape[1] == 0:
+        return
+    bottom.fill_between(x_deg, np.nanmin(error, axis=1), np.nanmax(error, axis=1), color="#4c72b0", alpha=0.25,
+                        lw=0, label=f"min-max over {error.shape[1]} joints")  # fmt: skip
+    bottom.plot(x_deg, np.nanmedian(error, axis=1), color="#4c72b0", lw=1, label="median")
+    worst = int(np.nanargmax(np.nanmax(error, axis=0)))
+    bottom.plot(x_deg, error[:, worst], color="#c44e52", lw=1, label=f"worst: {names[worst]}")
 
 
 def plot_sweep(rows: list[dict], names: list[str], path: str | Path) -> Path:

@@ -211,12 +211,20 @@ def page(doc: dict, out: Path, view: dict | None = None) -> str:
     figures = []
     curves = _data_uri(out / "curves.png", "image/png")
     if curves:
-        figures.append(f'<h2>Closed form against MuJoCo</h2>\n<img alt="curves of {_e(scene)}" src="{curves}">')
+        vector = ""
+        if (out / "curves.svg").is_file():
+            vector = ' (<a href="curves.svg">curves.svg</a>: the same as a vector drawing)'
+        figures.append(f'<h2>Curves: the reference against MuJoCo</h2>\n<p><small>Joint angles, then each joint\'s '
+                       "error with the check's tolerance (dashed) and the events on the branch marked"
+                       f"{vector}.</small></p>\n"
+                       f'<img alt="curves of {_e(scene)}" src="{curves}">')  # fmt: skip
     gif = _data_uri(out / "fold.gif", "image/gif")
     if gif:
         figures.append(f'<h2>Motion</h2>\n<img alt="{_e(scene)} folding" src="{gif}">')
     downloads = ['<a href="model.xml" download>model.xml</a> (the MJCF that was stepped)',
                  '<a href="report.json">report.json</a>', '<a href="curves.csv">curves.csv</a>']  # fmt: skip
+    if (out / "curves.svg").is_file():
+        downloads.append('<a href="curves.svg">curves.svg</a>')
     if (out / "motion.fold").is_file():
         downloads.append('<a href="motion.fold" download>motion.fold</a>')
     return f"""<!DOCTYPE html>

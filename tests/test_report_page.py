@@ -188,5 +188,9 @@ def test_an_origami_page_draws_its_crease_pattern_and_folds_it_in_3d(fold_run, b
     assert len(seen["rings"]) == 1 and seen["rings"][0].startswith("lock: crease e0 folds flat")
     assert seen["events"] == [e["kind"] for e in doc["events"]] == ["lock"]
     assert 300 < max(seen["size"]) < 600
+    # the lines are the numeric trace of the file's pattern, and the error is to it: no closed form here
+    curves = (fold_run / "curves.svg").read_text()
+    assert "lines: numeric trace; markers: MuJoCo" in curves and "closed form" not in curves
+    assert 'href="curves.svg"' in (fold_run / "report.html").read_text()
     view = browser.load(fold_run / "report.html", VIEW)
     assert view.errors == [] and view.value["drawn"] > 0.02 and view.value["changed"] > 0.005

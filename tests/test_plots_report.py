@@ -1,0 +1,56 @@
+"""curves.png / curves.svg: the error panel's tolerance line, event marks, the driven input left out, many joints."""
+
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+from matplotlib.colors import to_rgb
+
+from sim_origami import scenes
+from sim_origami.plots import LEGEND_MAX, joint_colors, plot_report
+from sim_origami.validation import validate
+
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+def svg_text(path) -> list[str]:
+    """Every text of an SVG written with its fonts as text."""
+    return ["".join(t.itertext()).strip() for t in ET.parse(path).getroot().iter(f"{SVG}text")]
+
+
+@pytest.mark.parametrize("k", [1, 4, 10, 11, 20, 21, 120])
+def test_joint_colours_stay_distinct_for_many_joints(k):
+    colours = {tuple(np.round(to_rgb(c), 3)) for c in joint_colors(k)}
+    assert len(colours) == k
+
+
+@pytest.mark.slow
+def test_error_panel_marks_tolerance_events_and_leaves_out_the_driven_input(tmp_path):
+    # thick-vertex4: four joints, rho1 driven; its slabs block the fold (a blockage event), its branch locks at
+    # +-180 deg (the domain's ends, drawn at the edges of both panels)
+    report = validate(scenes.get("thick-vertex4").build())
+    plot_report(report, tmp_path / "curves.png")
+    assert (tmp_path / "curves.png").stat().st_size > 10_000
+    texts = svg_text(tmp_path / "curves.svg")
+    tol = next(v.tolerance for v in report.runs[0].verdicts if v.name.endswith("fast path error (rad)"))
+    assert f"tolerance {tol:.2g} rad" in texts
+    root = ET.parse(tmp_path / "curves.svg").getroot()
+    assert any(g.get("id") == "tolerance-0" for g in root.iter(f"{SVG}g"))
+    stop = np.rad2deg(report.blockage.stop_input)
+    assert f"blockage at {stop:.4g} deg" in texts and "lock at 180 deg" in texts and "lock at -180 deg" in texts
+    assert "driven, not drawn (error 0): rho1" in texts
+    assert "lines: closed form; markers: MuJoCo" in texts
+    # the error legend names the three joints that move freely, not the driven one
+    assert {"rho2", "rho3", "rho4"} <= set(texts) and texts.count("rho1") == 1  # rho1: the top legend only
+
+
+@pytest.mark.slow
+def test_many_joints_error_is_an_envelope(tmp_path):
+    scene = scenes.get("miura-sheet").build()
+    assert len(scene.kinematics.joint_names) > LEGEND_MAX
+    plot_report(validate(scene), tmp_path / "curves.png")
+    texts = svg_text(tmp_path / "curves.svg")
+    band = [t for t in texts if t.startswith("min-max over ")]
+    assert len(band) == 1 and int(band[0].split()[2]) <= len(scene.kinematics.joint_names)
+    assert "median" in texts and any(t.startswith("worst: ") for t in texts)
+    assert (tmp_path / "curves.svg").stat().st_size < 400_000  # the many curves are pixels inside the SVG
