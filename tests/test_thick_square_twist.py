@@ -149,7 +149,8 @@ def test_validate_default_scene_with_blockage_at_panel_contact():
 @pytest.mark.parametrize("modes", [m for m in RIGID if m != "CSCS"])
 def test_mujoco_fast_path_on_the_other_rigid_strings(modes):
     scene = thick(modes)
-    assert compare(scene, modes, simulate(scene, modes).q).max_error() <= 1e-7  # measured <= 6.4e-8 (CSSC)
+    # the path's sweep time (sweep_rate) is timed for 2e-7: measured <= 1.07e-7 (CSSC)
+    assert compare(scene, modes, simulate(scene, modes).q).max_error() <= 2.5e-7
 
 
 def test_panels_are_slabs_carrying_their_hinge_lines():
