@@ -46,8 +46,9 @@ def _num(value: float) -> float | None:
 
 
 def _verdict(v) -> dict:
+    """A check as JSON; `compared`: how many values it compared (null where it counts no samples)."""
     return {"name": v.name, "measured": _num(v.measured), "tolerance": v.tolerance, "passed": v.passed,
-            "detail": v.detail}  # fmt: skip
+            "detail": v.detail, "compared": v.compared}  # fmt: skip
 
 
 @functools.cache

@@ -102,6 +102,7 @@ def closed_form_verdicts(scene: Scene, branch: str, x: np.ndarray) -> tuple[Verd
         float(np.max(loops.residual_norm(q))),
         TOLERANCES.loop_residual(scene.length_scale),
         "max |rotation vector, translation| of the loop product",
+        compared=len(q),
     )
     name = f"{branch}: closed form vs numeric closure (rad)"
     try:
@@ -111,12 +112,13 @@ def closed_form_verdicts(scene: Scene, branch: str, x: np.ndarray) -> tuple[Verd
         # the input is not bad (a triangulated grid folded along one line and driven by fewer inputs than its
         # motion's freedoms, as --input may ask: 10 x 10, 37 of 109, 2.7e-12 where 1e-12 is asked)
         return residual, Verdict(name, float("inf"), TOLERANCES.closed_form_rad, f"damped-Newton continuation over "
-                                 f"the same inputs did not reach the reference's states: {err}")  # fmt: skip
+                                 f"the same inputs did not reach the reference's states: {err}", len(x))  # fmt: skip
     error, tol, where = floor_verdict_values(scene, PathComparison(x, kin.observe(numeric), values),
                                              TOLERANCES.closed_form_rad, TOLERANCES.closed_form_cond_factor)
     return (
         residual,
-        Verdict(name, error, tol, f"damped-Newton continuation over the same inputs, no closed form used; {where}"),
+        Verdict(name, error, tol, f"damped-Newton continuation over the same inputs, no closed form used; {where}",
+                len(x)),
     )
 
 
@@ -227,7 +229,7 @@ def _point_verdicts(scene: Scene, branch: str, preset: str, q: np.ndarray, x: np
         return ()
     error = float(np.max(np.linalg.norm(kin.observe_points(scene.mechanism_to_loop(q)) - analytic, axis=-1)))
     return (Verdict(f"{branch}: MuJoCo {preset} vertex position error (edge lengths)", error,
-                    TOLERANCES.angle(preset), "max over samples and vertices, unit edges"),)  # fmt: skip
+                    TOLERANCES.angle(preset), "max over samples and vertices, unit edges", len(x)),)  # fmt: skip
 
 
 def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
@@ -256,18 +258,19 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
                 TOLERANCES.angle(preset),
                 "max over samples and joints of |sim - closed form at the simulated input|"
                 + _singular_crossings(scene, branch, dyn.input, dyn.error, mobility)
-                + _conditioning(scene, dyn, TOLERANCES.angle(preset))),
+                + _conditioning(scene, dyn, TOLERANCES.angle(preset)), len(dyn.input)),
         Verdict(f"{branch}: MuJoCo {preset} closure residual (m)", float(np.max(dynamic.closure_residual)),
-                TOLERANCES.residual(preset, scene.length_scale), "largest gap between paired closure sites"),
+                TOLERANCES.residual(preset, scene.length_scale), "largest gap between paired closure sites",
+                len(dynamic.closure_residual)),
         Verdict(f"{branch}: MuJoCo projection path error (rad)", proj_error, proj_tol,
                 f"Gauss-Newton on MuJoCo's equality residuals at each input, to the rounding floor; {proj_where}"
-                + _singular_crossings(scene, branch, proj.input, proj.error, mobility)),
+                + _singular_crossings(scene, branch, proj.input, proj.error, mobility), len(proj.input)),
         Verdict(f"{branch}: branch followed", float(labels.followed != branch or labels.flips > 0), 0.0,
-                f"followed {labels.followed or 'none'}, {labels.flips} flips"),
+                f"followed {labels.followed or 'none'}, {labels.flips} flips", len(labels.labels)),
         Verdict(f"{branch}: mobility, numeric rank vs MuJoCo rank vs truss (poses that differ)", float(disagree), 0.0,
                 f"Kutzbach {mobility['gruebler']}"
                 + (f" (+{mobility['idle_spins']} idle spin, taken off every count)" if mobility["idle_spins"] else "")
-                + f", instantaneous {mobility['start']['numeric']} at the start"),
+                + f", instantaneous {mobility['start']['numeric']} at the start", 1 + len(mobility["bifurcations"])),
         *_input_count_verdict(scene, branch, mobility),
     )  # fmt: skip
     return BranchRun(

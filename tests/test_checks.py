@@ -147,3 +147,12 @@ def test_blockage_without_contact_is_measured_against_the_end_of_the_path():
     stuck = assess(np.minimum(x, 0.9), x, np.zeros(50), FORCE_LIMIT, float("nan"), 1.2)
     assert stuck.stopped
     np.testing.assert_allclose(stuck.error, 0.3, atol=1e-15, rtol=0)
+
+
+def test_a_check_that_compared_nothing_cannot_pass():
+    from sim_origami.checks.verdict import Verdict
+
+    assert Verdict("error (rad)", 0.0, 1e-6, compared=200).passed
+    assert not Verdict("error (rad)", 0.0, 1e-6, compared=0).passed  # an empty max is no agreement
+    assert Verdict("events", 0.0, 0.0).passed  # a count of events compares no samples
+    assert not Verdict("error (rad)", float("nan"), 1e-6, compared=5).passed

@@ -528,7 +528,8 @@ def _verdicts(doc: dict, n: int) -> tuple[Verdict, ...]:
                        f"{s['branch_gap_rad']:.3g} rad apart)" for s in jumps)  # fmt: skip
     unsimulated = [s for s in doc["branches"] if s.get("mujoco_samples") == 0]
     return (
-        Verdict("reference curves vs numeric loop closure: samples over tolerance", float(over), 0.0, detail),
+        Verdict("reference curves vs numeric loop closure: samples over tolerance", float(over), 0.0, detail,
+                doc["compared_samples"]),
         Verdict("reference samples outside every branch's domain", float(len(outside)), 0.0, where or "none"),
         Verdict("reference: numeric loop solve stalled (stretches)", float(len(doc["numeric_stalls"])), 0.0,
                 "; ".join(s["error"] for s in doc["numeric_stalls"]) or "none"),

@@ -16,7 +16,7 @@ from ..errors import DomainError, ParameterError, SimulationError
 from ..files import check_folder, claimed_folder, write_text
 from ..mjcf import PRESETS
 from ..report import as_dict, motion_view, plain, write
-from ..report_page import write_index, write_page
+from ..report_page import write_index, write_page, write_thumbnail
 from ..scenes.fold_file import fold_scene
 from ..scenes.linkage_file import linkage_scene
 from ..simulate import start_input
@@ -131,8 +131,11 @@ def run_one(scene, args, out: Path, reference=None) -> dict:
                                height=height)  # fmt: skip
         doc["render"] = {"gl_renderer": frames.gl_renderer, "seconds_per_frame": frames.seconds_per_frame,
                          "frames": len(frames.pngs)}  # fmt: skip
+    if args.all and (thumb := write_thumbnail(out)) is not None:  # index.html shows it
+        doc["thumbnail"] = thumb.name
+    if args.render or "thumbnail" in doc:
         write_text(out / "report.json", json.dumps(doc, indent=2, default=plain) + "\n")
-    write_page(doc, out, motion_view(report))
+    write_page(doc, out, motion_view(report), in_index=args.all)
     return doc
 
 
@@ -240,7 +243,8 @@ def validate_scene(scene, args: argparse.Namespace) -> int:
             print(f"  adjusted {a.text()}")
         for v in doc["verdicts"] + [v for b in doc["branches"] for v in b["verdicts"]]:
             mark = "ok  " if v["passed"] else "FAIL"
-            print(f"  {mark} {v['name']}: {number(v['measured'], '.3g')} (tolerance {v['tolerance']:g})")
+            over = "" if v.get("compared") is None else f", {v['compared']} compared"
+            print(f"  {mark} {v['name']}: {number(v['measured'], '.3g')} (tolerance {v['tolerance']:g}{over})")
             if not v["passed"]:  # why it failed: the samples over tolerance, a singular pose crossed, ...
                 print(f"       {v['detail']}")
         if "reference" in doc:
