@@ -25,12 +25,13 @@ LAG_S2 = 4.5e-7
 TARGET_FRACTION = 0.2
 # A sweep never runs faster than its preset's own duration (the presets' errors were measured on it) nor slower than
 # this many times it: 512 s of `fast`, 64000 steps, about 1.5 s of CPU for a Bennett linkage. The registered scenes
-# ask for 1.4-5.6x; a Bennett linkage with K = 87 swept across theta1 = pi (150 -> 210 deg) for 48x (3.3e-7 rad).
+# ask for 1.4-5.6x (blockage runs included); a Bennett linkage with K = 87 swept across theta1 = pi (150 -> 210 deg)
+# for 48x (3.3e-7 rad).
 MAX_SCALE = 256.0
 # Samples of the path; then windows of ZOOM_POINTS samples around the largest acceleration, each spanning four of the
 # previous spacings, until that spacing is below MIN_SPACING_RAD or the peak stops growing: a near-singular span can be
-# narrower than one sample (a Bennett linkage with K = 88 turns theta2 by pi / 2 within 2 / K rad of theta1 = pi).
-# Finite differences at 1e-4 rad keep the closed forms' rounding (1e-14 rad) below 1e-5 rad of acceleration.
+# narrower than one sample (a Bennett linkage with K = 87 turns theta2 by pi / 2 within 2 / K rad of theta1 = pi).
+# Finite differences at 1e-4 rad keep the closed forms' rounding (1e-14 rad) to about 1e-5 rad of acceleration.
 SAMPLES = 33
 ZOOM_POINTS = 17
 MIN_SPACING_RAD = 1e-4
@@ -65,7 +66,7 @@ def _accelerations(
     x, q = x[keep], q[keep]
     if len(x) < 3:
         return x, np.zeros(len(x))
-    q = q[0] + np.cumsum(np.vstack([0 * q[:1], wrap(np.diff(q, axis=0))]), axis=0)  # continuous across +-pi
+    q = q[0] + np.cumsum(np.vstack([np.zeros_like(q[:1]), wrap(np.diff(q, axis=0))]), axis=0)  # continuous across +-pi
     q_x = np.gradient(q, x, axis=0, edge_order=2)
     q_xx = np.gradient(q_x, x, axis=0, edge_order=2)
     dx = stop - start
