@@ -97,9 +97,14 @@ PRECISION_KEY = "frame_sim_origami:precision"
 ADJUSTMENTS_SHOWN = 4
 # A folded form whose pattern has no freedom without special geometry is fitted with this many further states on its
 # rigid motion (`_on_a_motion`): a 3 x 3 Miura sheet printed to 4 decimals then folds to its lock, as does Hull's
-# square twist (6 decimals) through its state; up to this many vertices (the fit's least-squares steps are dense).
+# square twist (6 decimals) through its state. Up to this many vertices: a 10 x 10 sheet's fit (121 vertices, 1815
+# coordinates with its further states) had not converged after 30 steps (6.6e-7 left, 14 s CPU).
 MOTION_STATES = 4
-MOTION_VERTICES = 200
+FREE_STATES = 1e6
+MOTION_VERTICES = 50
+# ... unless the developable state's closure Jacobian already has a null direction, its smallest singular value at
+# most this fraction of its largest.
+MOBILE_RTOL = 1e-13
 # Their guesses close the loops as far as the rounded pattern lets them (a least-squares minimum, 3e-9 to 2e-8 on the
 # 4-decimal Miura sheet): the fit closes them.
 GUESS_TOL = 1e-14
@@ -855,6 +860,9 @@ def _on_a_motion(
         return None
     locks = tuple(Coupling(j, j, 0.0) for j, c in enumerate(pattern.creases) if c.assignment == "F")
     loops = pattern.loop_system(locks)
+    sigma = np.linalg.svd(loops.jacobian(rho), compute_uv=False)
+    if len(sigma) < len(rho) or sigma[-1] <= MOBILE_RTOL * sigma[0]:
+        return None  # its state already moves (an exact Miura sheet: 1e-15 of the largest; 6 decimals 1e-11)
     fixed = np.zeros(len(rho), dtype=bool)
     fixed[k] = True
     faces = list(pattern.faces)
@@ -871,7 +879,8 @@ def _on_a_motion(
                        key=lambda v: np.linalg.norm(np.cross(fit.xyz[b] - fit.xyz[a], fit.xyz[v] - fit.xyz[a])))
                    for f in (left, right))  # fmt: skip
     conditions = fold_mesh.MotionConditions(fit.xyz, faces, states, root, marker)
-    cheap = np.full(fit.given.shape, fold_mesh.size(fit.given))  # the further states are free to move
+    # the further states are free to move: 1e6 x the form's precision (as free as the least squares can tell)
+    cheap = np.full(fit.given.shape, FREE_STATES * float(np.max(fit.precision)))
     n = len(fit.given)
     found = fold_mesh.nearest_rigid(np.vstack([fit.given, *states]), np.vstack([fit.precision, *[cheap] * len(states)]),
                                     conditions, bounded=n)  # fmt: skip
