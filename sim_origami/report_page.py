@@ -11,7 +11,10 @@ import math
 import re
 from pathlib import Path
 
-from .files import write_text
+import imageio.v3 as iio
+import numpy as np
+
+from .files import atomic_path, write_text
 
 STYLE = """
 body { font-family: system-ui, sans-serif; margin: 2em auto; max-width: 64em; color: #222; padding: 0 1em; }
@@ -27,6 +30,8 @@ img { max-width: 100%; border: 1px solid #ddd; }
 .controls { display: flex; gap: 0.8em; align-items: center; flex-wrap: wrap; max-width: 800px; }
 .controls input[type=range] { flex: 1; min-width: 12em; }
 """
+# index.html's thumbnails: width in pixels.
+THUMB_WIDTH = 200
 # The 3-D view's renderer (package data), inlined into each page.
 VIEWER = Path(__file__).with_name("assets") / "viewer.js"
 
@@ -168,10 +173,43 @@ creases mountain <span style="color:#d91a1a">red</span>, valley <span style="col
 <script>{VIEWER.read_text()}</script>"""
 
 
-def page(doc: dict, out: Path, view: dict | None = None) -> str:
+def _step_cpu(timings: dict) -> str:
+    """MuJoCo's stepping CPU per step (ms) and in total (s): the total alone hid a scene's step cost."""
+    total, steps = timings.get("mujoco_step_cpu_s"), timings.get("mujoco_steps")
+    if total is None:
+        return "-"
+    if not steps:
+        return f"{_num(total)} s in total"
+    return f"{_num(total / steps * 1e3)} ms per step ({int(steps)} steps, {_num(total)} s in total)"
+
+
+def _params(doc: dict) -> str:
+    """The parameters in the units typed (`params_user`: deg, m) beside the API's radians and metres."""
+    api = doc["params"]
+    if not api:
+        return "<p>None.</p>"
+    typed = doc.get("params_user") or {}
+    rows = "".join(
+        f"<tr><td>{_e(name)}</td><td class=num>{_e(_typed(typed[name]['value']))}</td><td>{_e(typed[name]['unit'])}"
+        f"</td><td class=num>{_num(value)}</td></tr>"
+        if name in typed
+        else f"<tr><td>{_e(name)}</td><td class=num>-</td><td></td><td class=num>{_num(value)}</td></tr>"
+        for name, value in api.items()
+    )
+    return ('<table id="params"><tr><th>parameter</th><th>value</th><th>unit</th><th>API value (rad, m)</th></tr>'
+            f"{rows}</table>")  # fmt: skip
+
+
+def _typed(value) -> str:
+    """A parameter as people type it: up to 10 significant digits (30 deg, not 29.999999999999996)."""
+    return "-" if value is None else f"{value:.10g}"
+
+
+def page(doc: dict, out: Path, view: dict | None = None, in_index: bool = False) -> str:
     """
     The HTML of one run's report (`doc` as in report.json), embedding out/curves.png and out/fold.gif if present
-    and the 3-D view of `view` (`report.motion_view`).
+    and the 3-D view of `view` (`report.motion_view`); `in_index`: the run is one of `validate --all`'s, whose
+    index.html is one folder up.
     """
     scene, passed = doc["scene"], doc["passed"]
     verdicts = doc["verdicts"] + [v for b in doc["branches"] for v in b["verdicts"]]
@@ -181,7 +219,7 @@ def page(doc: dict, out: Path, view: dict | None = None) -> str:
         ("input", f"{doc['input']['name']} (drives {doc['input']['drive_joint']})"),
         ("max path error (rad)", _num(doc["angle_error_max_rad"])),
         ("max closure residual (m)", _num(doc["closure_residual_max_m"])),
-        ("MuJoCo step CPU (s)", _num(doc["timings_s"].get("mujoco_step_cpu_s"))),
+        ("MuJoCo step CPU", _step_cpu(doc["timings_s"])),
     ]
     if "render" in doc:
         render = doc["render"]
@@ -193,7 +231,7 @@ def page(doc: dict, out: Path, view: dict | None = None) -> str:
         f"<td class=num>{b['steps']}</td></tr>"
         for b in doc["branches"]
     )
-    params = "".join(f"<tr><td>{_e(k)}</td><td class=num>{_num(v)}</td></tr>" for k, v in doc["params"].items())
+    params = _params(doc)
     adjusted = "".join(
         f"<tr><td>{_e(a['name'])}</td><td class=num>{_num(a['given'])}</td><td class=num>{_num(a['value'])}</td>"
         f"<td class=num>{_num(a['moved'])}</td><td class=num>{_num(a['precision'])}</td>"
@@ -231,7 +269,9 @@ def page(doc: dict, out: Path, view: dict | None = None) -> str:
 <html lang="en"><head><meta charset="utf-8"><title>{_e(scene)}: {"PASS" if passed else "FAIL"}</title>
 <style>{STYLE}</style></head>
 <body>
+{'<p><a id="index" href="../index.html">&larr; every scene (index.html)</a></p>' if in_index else ""}
 <h1>sim_origami: {_e(scene)}</h1>
+{f"<p>{_e(doc['summary'])}</p>" if doc.get("summary") else ""}
 <p id="verdict" class="verdict {"pass" if passed else "fail"}">{"PASS" if passed else "FAIL"}:
 {sum(v["passed"] for v in verdicts)} of {len(verdicts)} checks passed</p>
 <h2>Key numbers</h2>
@@ -245,8 +285,8 @@ def page(doc: dict, out: Path, view: dict | None = None) -> str:
 <th>max closure residual (m)</th><th>steps</th></tr>
 {branches}
 </table>
-<h2>Parameters (radians, metres)</h2>
-<table>{params or "<tr><td>none</td></tr>"}</table>
+<h2>Parameters</h2>
+{params}
 {adjusted}
 {_view(view)}
 {_pattern_svg(view["pattern"], doc.get("events", [])) if view and "pattern" in view else ""}
@@ -260,30 +300,76 @@ def page(doc: dict, out: Path, view: dict | None = None) -> str:
 """
 
 
-def write_page(doc: dict, out: str | Path, view: dict | None = None) -> Path:
+def write_page(doc: dict, out: str | Path, view: dict | None = None, in_index: bool = False) -> Path:
     """Write out/report.html (atomically), with the 3-D view of `view` (`report.motion_view`) if given."""
     out = Path(out)
-    return write_text(out / "report.html", page(doc, out, view))
+    return write_text(out / "report.html", page(doc, out, view, in_index))
+
+
+def write_thumbnail(out: str | Path) -> Path | None:
+    """
+    out/thumb.png, at most THUMB_WIDTH pixels wide, for the index: the middle rendered frame (the fold under way)
+    if frames were rendered, else the curves plot; None without either.
+    """
+    out = Path(out)
+    frames = sorted((out / "frames").glob("frame_*.png"))
+    source = frames[len(frames) // 2] if frames else out / "curves.png"
+    if not source.is_file():
+        return None
+    image = np.asarray(iio.imread(source))[..., :3].astype(float)
+    k = max(1, -(-image.shape[1] // THUMB_WIDTH))  # whole pixels averaged k x k
+    h, w = image.shape[0] // k * k, image.shape[1] // k * k
+    small = image[:h, :w].reshape(h // k, k, w // k, k, 3).mean(axis=(1, 3)).round().astype(np.uint8)
+    with atomic_path(out / "thumb.png") as tmp:
+        iio.imwrite(tmp, small, extension=".png")
+    return out / "thumb.png"
 
 
 def index(docs: list[dict]) -> str:
-    """The HTML of `validate --all`'s index: one row per scene, linking its report.html (in <scene>/)."""
+    """
+    The HTML of `validate --all`'s index: one row per scene (its thumbnail, name and summary linking its
+    report.html in <scene>/, verdict, checks, errors, MuJoCo's step cost), then the versions and the totals.
+    """
     passed = sum(d["passed"] for d in docs)
-    rows = "\n".join(
-        f'<tr><td><a href="{_e(d["scene"])}/report.html">{_e(d["scene"])}</a></td><td>{_status(d["passed"])}</td>'
-        f"<td>{_e(d['preset'])}</td><td class=num>{_num(d['angle_error_max_rad'])}</td>"
-        f"<td class=num>{_num(d['closure_residual_max_m'])}</td></tr>"
-        for d in docs
-    )
+    rows = []
+    for d in docs:
+        name = _e(d["scene"])
+        checks = d["verdicts"] + [v for b in d.get("branches", []) for v in b["verdicts"]]
+        thumb = (f'<a href="{name}/report.html"><img class="thumb" alt="{name}" src="{name}/{_e(d["thumbnail"])}"></a>'
+                 if d.get("thumbnail") else "")  # fmt: skip
+        timings = d.get("timings_s", {})
+        per_step = (f"{_num(timings['mujoco_step_cpu_s'] / timings['mujoco_steps'] * 1e3)}"
+                    if timings.get("mujoco_steps") else "-")  # fmt: skip
+        rows.append(
+            f'<tr><td>{thumb}</td><td class="scene"><a href="{name}/report.html">{name}</a>'
+            f"<br><small>{_e(d.get('summary', ''))}</small></td><td>{_status(d['passed'])}</td>"
+            f"<td class=num>{sum(v['passed'] for v in checks)} / {len(checks)}</td><td>{_e(d['preset'])}</td>"
+            f"<td class=num>{_num(d.get('angle_error_max_rad'))}</td>"
+            f"<td class=num>{_num(d.get('closure_residual_max_m'))}</td><td class=num>{per_step}</td></tr>"
+        )
+    made = next((d["provenance"] for d in docs if d.get("provenance")), None)
+    versions = ""
+    if made:
+        commit = f" (commit {_e(made['git_commit'])})" if made["git_commit"] else ""
+        versions = (f'<p id="versions">sim_origami {_e(made["sim_origami"])}{commit}, MuJoCo {_e(made["mujoco"])}, '
+                    f"Python {_e(made['python'])}, numpy {_e(made['numpy'])}; {_e(made['machine']['os'])}, "
+                    f"{_e(made['machine']['cores'])} cores; {_e(made['date_utc'])}"
+                    + (f"; <code>{_e(made['command'])}</code>" if made["command"] else "") + "</p>")  # fmt: skip
+    checks = [v for d in docs for v in d["verdicts"] + [v for b in d.get("branches", []) for v in b["verdicts"]]]
+    cpu = sum(d.get("timings_s", {}).get("total_cpu_s", 0.0) for d in docs)
+    totals = (f'<p id="totals">{passed} of {len(docs)} scenes pass; {sum(v["passed"] for v in checks)} of '
+              f"{len(checks)} checks; {_num(cpu)} s of CPU in the validations.</p>")  # fmt: skip
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>sim_origami: {passed} of {len(docs)} scenes pass</title>
-<style>{STYLE}</style></head>
+<style>{STYLE} img.thumb {{ width: 160px; max-width: none; }}</style></head>
 <body>
 <h1>sim_origami validation</h1>
 <p id="verdict" class="verdict {"pass" if passed == len(docs) else "fail"}">{passed} of {len(docs)} scenes pass</p>
-<table id="scenes"><tr><th>scene</th><th>result</th><th>preset</th><th>max path error (rad)</th>
-<th>max closure residual (m)</th></tr>
-{rows}
+{totals}
+{versions}
+<table id="scenes"><tr><th></th><th>scene</th><th>result</th><th>checks passed</th><th>preset</th>
+<th>max path error (rad)</th><th>max closure residual (m)</th><th>MuJoCo CPU per step (ms)</th></tr>
+{chr(10).join(rows)}
 </table>
 </body></html>
 """

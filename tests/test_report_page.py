@@ -16,7 +16,7 @@ from chromium import INSTALL, Chromium, executable  # tests/chromium.py (pytest 
 
 from sim_origami.cli import main
 from sim_origami.report import provenance
-from sim_origami.report_page import write_index
+from sim_origami.report_page import write_index, write_page, write_thumbnail
 
 # every test here starts a browser, most after a MuJoCo run: all slow
 pytestmark = [pytest.mark.skipif(executable() is None, reason=INSTALL), pytest.mark.slow]
@@ -52,6 +52,24 @@ VIEW = """(() => {
           branches: Array.from(document.getElementById('view-branch').options).map(o => o.textContent),
           label: document.getElementById('view-input').textContent};
 })()"""
+
+INDEX = """({
+  verdict: document.getElementById('verdict').textContent,
+  links: Array.from(document.querySelectorAll('#scenes td.scene a')).map(a => a.getAttribute('href')),
+  columns: Array.from(document.querySelectorAll('#scenes th')).map(th => th.textContent),
+  thumbs: Array.from(document.querySelectorAll('#scenes img')).map(i => [i.getAttribute('src'),
+          i.complete && i.naturalWidth > 0, i.width]),
+  summaries: Array.from(document.querySelectorAll('#scenes td.scene small')).map(s => s.textContent),
+  totals: document.getElementById('totals').textContent,
+  versions: document.getElementById('versions').textContent,
+})"""
+PARAMS = """({
+  params: Array.from(document.querySelectorAll('#params tr')).slice(1).map(r => Array.from(r.cells).map(
+          c => c.textContent)),
+  cpu: Array.from(document.querySelectorAll('th')).find(th => th.textContent === 'MuJoCo step CPU')
+       .nextElementSibling.textContent,
+  back: document.getElementById('index'),
+})"""
 
 
 @pytest.fixture(scope="module")
@@ -118,13 +136,41 @@ def test_report_page_renders_with_its_verdict_plot_and_animation(run, browser):
 def test_index_links_each_scene_page_with_its_verdict(run, browser):
     _, out = run
     doc = json.loads((out / "bennett" / "report.json").read_text())
-    failed = dict(doc, scene="bennett-copy", passed=False)
+    doc["thumbnail"] = write_thumbnail(out / "bennett").name  # as validate --all makes it
+    failed = dict(doc, scene="bennett-copy", passed=False, thumbnail=None)
     write_index([doc, failed], out)
-    page = browser.load(out / "index.html", PROBE)
+    page = browser.load(out / "index.html", INDEX)
     assert page.errors == []
     assert not_blank(page.screenshot) > 5.0
-    assert page.value["verdict"] == "1 of 2 scenes pass"
-    assert page.value["links"] == ["bennett/report.html", "bennett-copy/report.html"]
+    seen = page.value
+    assert seen["verdict"] == "1 of 2 scenes pass"
+    assert seen["links"] == ["bennett/report.html", "bennett-copy/report.html"]
+    assert seen["columns"] == ["", "scene", "result", "checks passed", "preset", "max path error (rad)",
+                               "max closure residual (m)", "MuJoCo CPU per step (ms)"]  # fmt: skip
+    # the rendered run's thumbnail (its middle frame, 200 px wide at most), decoded; none for the copy
+    assert seen["thumbs"] == [["bennett/thumb.png", True, 160]]
+    assert 0 < iio.imread(out / "bennett" / "thumb.png").shape[1] <= 200
+    assert seen["summaries"] == [doc["summary"]] * 2 and doc["summary"].startswith("Bennett 4R")
+    checks = len(doc["verdicts"]) + sum(len(b["verdicts"]) for b in doc["branches"])
+    assert seen["totals"].startswith(f"1 of 2 scenes pass; {2 * checks} of {2 * checks} checks")
+    made = doc["provenance"]
+    assert f"sim_origami {made['sim_origami']}" in seen["versions"] and f"MuJoCo {made['mujoco']}" in seen["versions"]
+    # a scene's page in validate --all links back to the index
+    (out / "bennett-copy").mkdir(exist_ok=True)
+    write_page(failed, out / "bennett-copy", in_index=True)
+    back = browser.load(out / "bennett-copy" / "report.html", "document.getElementById('index').href")
+    assert back.errors == [] and back.value == (out / "index.html").as_uri()
+
+
+def test_parameters_are_shown_in_the_units_typed(run, browser):
+    _, out = run
+    page = browser.load(out / "bennett" / "report.html", PARAMS)
+    assert page.errors == []
+    rows = {r[0]: r[1:] for r in page.value["params"]}
+    assert rows["alpha"][:2] == ["30", "deg"] and float(rows["alpha"][2]) == pytest.approx(np.pi / 6, rel=1e-3)
+    assert rows["a"][:2] == ["1", "m"] and rows["b"][:2] == ["1.5", "m"]
+    assert "ms per step" in page.value["cpu"] and "s in total" in page.value["cpu"]
+    assert page.value["back"] is None  # a single run has no index to go back to
 
 
 def test_the_browser_check_sees_errors_and_blank_pages(tmp_path, browser):
