@@ -155,3 +155,18 @@ def test_fold_angles_printed_to_two_decimals_read_as_the_state_they_round(tmp_pa
     direction = read_fold(write(tmp_path, "direction", square))
     assert direction.fit is None and "a direction to trace towards" in direction.notes[-1]
     np.testing.assert_array_equal(np.rad2deg(direction.fold_angles), [-90.0, 90.0, 90.0, 90.0])
+
+
+@pytest.mark.slow
+def test_a_cone_far_from_any_developable_state_is_a_verdict(tmp_path):
+    # a pyramid (240 deg round its apex) printed to one decimal: its nearest developable state is flat, 0.8 away, 16 x
+    # the precision 0.05; it was refused 'not developable' (exit 2), then 'input crease flat in the target state'
+    doc = {"vertices_coords": [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]],
+           "edges_vertices": [[0, 1], [0, 2], [0, 3], [0, 4], [1, 2], [2, 3], [3, 4], [4, 1]],
+           "edges_assignment": ["M"] * 4 + ["B"] * 4,
+           "faces_vertices": [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 1]]}  # fmt: skip
+    code, report = validated(tmp_path, "pyramid", doc)
+    verdict = state_verdict(report)
+    assert code == 1 and not verdict["passed"] and verdict["measured"] == pytest.approx(16.0, rel=1e-3)
+    assert "vertices_coords are 0.8 (0.267 of the form's size 3)" in verdict["detail"]
+    assert "largest at vertex 0 (creases e0, e1, e2, e3)" in verdict["detail"]

@@ -52,13 +52,16 @@ REGULARIZATION_SCALE = 1e-6
 LARGE_TIMECONST_SCALE = 1.2
 # ... and sweep slower than the path's rates ask (`sweep_rate`) as the square root of the sheet's flat extent (in units
 # of its longest edge) beyond this: the gap grows in proportion to it and falls as 1 / T^2. With the tree rooted at
-# the pattern's centre (below) at most 0.022 x the extent of the tolerance was measured at x2 (12 x 12 and 16 x 16 sheets at a zigzag of 0.2 edge), so at
-# most 0.65 of it at any extent (a 20 x 20 sheet, extent 27: 0.52 at x2). Rooted at the input crease's face the gaps
-# were twice as large, and this extent 15.
+# the pattern's centre (below) at most 0.022 x the extent of the tolerance was measured at x2 (12 x 12 and 16 x 16
+# sheets at a zigzag of 0.2 edge), so at most 0.65 of it at any extent (a 20 x 20 sheet, extent 27: 0.52 at x2).
+# Rooted at the input crease's face the gaps were twice as large, and this extent 15.
 LARGE_EXTENT = 30.0
 # Exact frame angles may be this far (rad) from the rigid motion through them: FOLD writers round angles (the
 # same allowance as `numeric_pattern.TARGET_TOL`).
 FRAMES_TOL = TARGET_TOL
+# A folded state whose every angle is within this (rad) of flat is flat: the trace could not be driven from it
+# (`numeric_pattern` refuses such an input crease).
+FLAT_STATE = 1e-6
 # A step of the motion in which no crease turns more than this (rad) says nothing about their rates (repeated frames).
 MOVING = 1e-9
 # Steadiness scores (fractions of the fastest crease's rate) this close are a tie (`steadiest`).
@@ -126,8 +129,8 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     frames = fold.frames if fold.frames is not None and len(fold.frames) else None
     target = frames[-1] if frames is not None else fold.fold_angles
     signs = assignment_signs(pattern)
-    if target is not None and not np.any(np.nan_to_num(target) != 0):
-        target = None
+    if target is not None and not np.any(np.abs(np.nan_to_num(target)) > FLAT_STATE):
+        target = None  # a flat state (a cone's nearest developable state is one) says no more than the letters
     several = frames if frames is not None and len(frames) > 1 else None
     folded = np.abs(target[np.nan_to_num(target) != 0]) if target is not None else None
     fully = several is None and folded is not None and bool(np.all(folded >= np.pi - LOCK_MARGIN))
