@@ -15,11 +15,12 @@ system holds one hinge per spin at 0 (`gauge`), so it has the mechanism's true m
 the angles the spin moves (`observed`; `loop_angles` fills them back in by closing the loops).
 
 `evaluate` closes interpolated poses by chord steps (all inputs at once, `path.ChordPolish`) to 1e-15, or to the
-rounding floor of the placed model where that lies higher (twice the nodes' median residual: a linkage drawn rotated
-and offset closes its loops only to a few 1e-15), and the full solve where those do not close; within SINGULAR_ZONE
-of a meeting it extrapolates from regular poses either side. Held to 1e-15 regardless, a spherical 4R drawn 70 units
-from the origin sent nearly every pose to the full solve (its validation 116 s of CPU, 1.7 s at the origin;
-scripts/placement_bench.py, docs/performance.md). Angles in radians; translations in the loops' length unit.
+rounding floor of the placed model where that lies higher (FLOOR_SHARE times the trace nodes' median residual: a
+linkage drawn rotated and offset closes its loops only to a few 1e-15), and the full solve where those do not close;
+within SINGULAR_ZONE of a meeting it extrapolates from regular poses either side. Held to 1e-15 regardless, a
+spherical 4R drawn 70 units from the origin sent nearly every pose to the full solve (its validation 55 s of CPU, 1.5 s
+at the origin; scripts/placement_bench.py, docs/performance.md). Angles in radians; translations in the loops'
+length unit.
 """
 
 from collections.abc import Sequence
@@ -71,6 +72,11 @@ MEET_BRACKET = 1e-4
 # 7.5e-11 rad from the exact theta2 = 0).
 SINGULAR_ZONE = 1e-5
 SINGULAR_STEP = 1e-3
+# `evaluate` polishes to this multiple of the median residual of a branch's trace nodes where that exceeds POLISH_TOL
+# (the rounding floor of the placed model; `path.ChordPolish`'s floor mode takes the same multiple). Its floor mode
+# itself, which accepts any pose below CLOSE_TOL whose residual stops falling, located the Myard RSRRR file's
+# bifurcation 4.4e-4 rad off (the chord stalls near the singular pose at about the square root of that residual).
+FLOOR_SHARE = 2.0
 
 
 class AssemblyError(ParameterError):
@@ -223,8 +229,8 @@ class LinkagePath(Kinematics):
         s = np.concatenate([p[0] for p in parts])
         q = np.vstack([p[1] for p in parts])
         m = np.concatenate([p[2] for p in parts])
-        if len(s) < 2:
-            raise ParameterError(f"input.range: the linkage does not move from its start ({self.input_name} = "
+        if len(s) < 2:  # rigid: an overconstrained linkage's numbers rounded (the drawn pose of an axes file closes)
+            raise AssemblyError(f"input.range: the linkage does not move from its start ({self.input_name} = "
                                  f"{np.rad2deg(x0):.6g} deg): {(down or up).stop.detail}")
         for other, (s2, _, _) in self.nodes.items():
             # an assembly on a branch already traced (two starts on one curve, or the same pose): not a new branch
@@ -357,8 +363,11 @@ class LinkagePath(Kinematics):
         if branch not in self._polishers:
             fixed = np.zeros(self._loops.n_joints, dtype=bool)
             fixed[self.input_index] = True
-            self._polishers[branch] = ChordPolish(self._loops, self.nodes[branch][1], fixed, tol=POLISH_TOL,
-                                                  close_tol=CLOSE_TOL, floor=True)  # fmt: skip
+            nodes = self.nodes[branch][1]
+            # the placed model's rounding floor: what its trace's nodes reached (their median), FLOOR_SHARE over
+            floor = FLOOR_SHARE * float(np.median(self._loops.residual_size(self._loops.residual(nodes))))
+            self._polishers[branch] = ChordPolish(self._loops, nodes, fixed, tol=max(POLISH_TOL, floor),
+                                                  close_tol=CLOSE_TOL)  # fmt: skip
         guess = self._interp(branch, x[valid])
         guess[:, self.input_index] = x[valid]
         values[valid] = self._polishers[branch].polish(guess, nearest_nodes(self.nodes[branch][0], x[valid]))

@@ -17,6 +17,7 @@ nearest mobile linkage within their precision (`nearest_mobile`), which is valid
 `adjustments`; beyond the precision the refusal states how far the nearest mobile linkage lies.
 """
 
+from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
 
@@ -43,7 +44,8 @@ from .base import LENGTH_RANGE, Scene
 EVENT_CLEAR = 0.1
 # The nearest mobile linkage closes its loops at SAMPLES inputs spread over the stretch of the range along which the
 # file's own linkage nearly closes: least-squares poses followed from the start in steps of at most SAMPLE_STEP (rad)
-# while their residual stays within SAMPLE_GROWTH times the start's, and no joint jumps by JUMP (rad) in a step.
+# while their residual stays within SAMPLE_GROWTH times the start's or what the numbers' precision can make there,
+# and no joint jumps by JUMP (rad) in a step.
 SAMPLES = 6
 SAMPLE_STEP = 0.1
 SAMPLE_GROWTH = 100.0
@@ -62,8 +64,10 @@ PROJECTION_TOL = 1e-15
 # Central differences of the loops in a value: steps of this times the value's size (at least its unit).
 VALUE_STEP = 1e-6
 # Singular values below this share of the largest are dropped in the projection's least-squares steps: the closures
-# at several inputs repeat the linkage's few mobility conditions.
-PROJECTION_RCOND = 1e-10
+# at several inputs repeat the linkage's few mobility conditions, and the rest is the residual's rounding. On the
+# Bennett linkage drawn as axis lines to 4 decimals the 6 kept lie within 1e-2 of the largest, the rounding's below
+# 4e-7 of it; kept down to 1e-10 those made the steps wander (residual 1e-11 after 15 steps, 4e-16 after 4 at 1e-8).
+PROJECTION_RCOND = 1e-8
 
 
 def linkage_scene(path: str | Path) -> Scene:
@@ -167,7 +171,17 @@ def nearest_mobile(
 
     loops = system(given)
     assert loops is not None  # the file as read
-    poses = _near_poses(loops, spec, input_index)
+
+    def reach(q: NDArray[np.float64]) -> float:
+        """The largest closure residual at pose q that moving each value by its precision makes (to first order)."""
+        base = _weights(loops) * loops.residual(q)
+        total = np.zeros_like(base)
+        for i in range(len(values)):
+            moved = system(given + scale * (np.arange(len(values)) == i))
+            total += np.abs(_weights(loops) * moved.residual(q) - base) if moved is not None else 0.0
+        return float(np.max(total))
+
+    poses = _near_poses(loops, spec, input_index, reach)
     fixed = np.zeros(loops.n_joints, dtype=bool)
     fixed[input_index] = True
     free = ~fixed
@@ -241,7 +255,9 @@ def _weights(loops: LoopSystem) -> NDArray[np.float64]:
     return np.r_[np.tile(loop, len(loops.loops)), np.ones(len(loops.couplings))]
 
 
-def _near_poses(loops: LoopSystem, spec: LinkageSpec, input_index: int) -> NDArray[np.float64]:
+def _near_poses(
+    loops: LoopSystem, spec: LinkageSpec, input_index: int, reach: Callable[[NDArray[np.float64]], float]
+) -> NDArray[np.float64]:
     """
     SAMPLES least-squares poses (SAMPLES, n_joints) of a linkage whose loops do not quite close, spread over the
     stretch of the input range they can be followed along from the start: the given start configuration, or the
@@ -261,8 +277,13 @@ def _near_poses(loops: LoopSystem, spec: LinkageSpec, input_index: int) -> NDArr
     closed = [correct(loops, q, fixed, CLOSE_TOL, max_iter=MISS_ITER)[0] for q in starts]
     sizes = [float(loops.residual_size(loops.residual(q))) for q in closed]
     q0 = closed[int(np.argmin(sizes))]
-    limit = SAMPLE_GROWTH * max(min(sizes), CLOSE_TOL)
     x0 = float(q0[input_index])
+    # followed while the residual stays within a multiple of the start's or what the numbers' precision can make one
+    # step on (the drawn pose of an axes file closes whatever its numbers: their rounding shows once the input moves)
+    probe = q0.copy()
+    probe[input_index] += SAMPLE_STEP if hi - x0 > x0 - lo else -SAMPLE_STEP
+    limit = max(SAMPLE_GROWTH * max(min(sizes), CLOSE_TOL),
+                reach(correct(loops, probe, fixed, CLOSE_TOL, max_iter=MISS_ITER)[0]))  # fmt: skip
     nodes = [(x0, q0)]
     for end in (lo, hi):
         behind, (x, q) = None, (x0, q0)
