@@ -12,7 +12,8 @@ option of a preset (`stabilize` in `mjcf_templates/options/`), never applied to 
 Modes: "none" (plain MuJoCo), "position" (qpos only), "position-velocity" (qpos, then qvel).
 """
 
-from collections.abc import Callable
+import contextlib
+from collections.abc import Callable, Iterator
 
 import mujoco
 import numpy as np
@@ -30,6 +31,25 @@ PRESET_NUMERIC = "stabilize"
 METRIC_WEIGHT = 1e-10
 
 StepFunction = Callable[[mujoco.MjModel, mujoco.MjData], None]
+
+# Open `before_projection` blocks, innermost last: each stabilised step appends its qpos before projecting to the last.
+_BEFORE: list[list[np.ndarray]] = []
+
+
+@contextlib.contextmanager
+def before_projection() -> Iterator[list[np.ndarray]]:
+    """
+    Inside the block every stabilised step (`step_function`, "position" modes) appends a copy of qpos as MuJoCo's own
+    step left it, before its projection: what MuJoCo's dynamics alone did from the last projected state, which
+    `validation.run_branch` scores as the dynamic check of a projected preset (after the projection the path is
+    on the closures by construction, a repeat of the kinematic projection's check).
+    """
+    log: list[np.ndarray] = []
+    _BEFORE.append(log)
+    try:
+        yield log
+    finally:
+        _BEFORE.remove(log)
 
 
 def preset_mode(preset: str) -> str:
@@ -139,6 +159,8 @@ def step_function(model: mujoco.MjModel, data: mujoco.MjData, mode: str, skip: t
 
     def stabilized(m: mujoco.MjModel, d: mujoco.MjData) -> None:
         step(m, d)
+        if _BEFORE:
+            _BEFORE[-1].append(qpos.copy())
         for k in range(iterations):
             if k == 0:
                 mujoco.mj_fwdPosition(m, d)

@@ -6,6 +6,7 @@ projection, and each path is compared with the closed form at the simulated inpu
 with the branch it followed. Thick scenes add a blockage run. The result is a `Report`.
 """
 
+import dataclasses
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -18,10 +19,12 @@ from .checks.paths import PathComparison, closure_conditions, compare, floor_ver
 from .checks.reference import ReferenceCheck, ReferenceCurves, compare_reference
 from .checks.verdict import Verdict
 from .errors import ConvergenceError, ParameterError
-from .mjcf import PRESETS, preset_duration
+from .mjcf import PRESETS, ModelOptions, preset_duration
 from .scenes.base import Scene
 from .simulate import (
+    Bindings,
     Trajectory,
+    compile_model,
     contact_input,
     mujoco_mobility,
     project,
@@ -29,6 +32,7 @@ from .simulate import (
     simulate,
     simulate_free,
 )
+from .stabilize import before_projection
 from .tolerances import TOLERANCES
 from .truss import truss_mobility
 
@@ -234,7 +238,8 @@ def _point_verdicts(scene: Scene, branch: str, preset: str, q: np.ndarray, x: np
 
 def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
     """MuJoCo dynamic run and projection on one branch, compared and classified."""
-    dynamic = simulate(scene, branch, preset=preset, seed=seed)
+    with before_projection() as own:
+        dynamic = simulate(scene, branch, preset=preset, seed=seed)
     dyn = compare(scene, branch, dynamic.q)
     labels = classify(scene.kinematics, dyn.input, dyn.simulated)
     start, stop = scene.branch_path(branch)
@@ -254,8 +259,9 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
                 MIN_SWEEP_RAD / swept if swept > 0 else float("inf"), 1.0,
                 f"the input moved over {swept:.3g} rad; a run that sweeps less than {MIN_SWEEP_RAD:g} rad cannot pass"),
         *_point_verdicts(scene, branch, preset, dynamic.q, dyn.input),
-        Verdict(f"{branch}: MuJoCo {preset} path error (rad)", dyn.max_error(),
-                TOLERANCES.angle(preset),
+        *_own_step_verdicts(scene, branch, preset, own),
+        Verdict(f"{branch}: MuJoCo {preset} path error" + (" after projection" if own else "") + " (rad)",
+                dyn.max_error(), TOLERANCES.angle(preset),
                 "max over samples and joints of |sim - closed form at the simulated input|"
                 + _singular_crossings(scene, branch, dyn.input, dyn.error, mobility)
                 + _conditioning(scene, dyn, TOLERANCES.angle(preset)), len(dyn.input)),
@@ -352,6 +358,21 @@ def _input_count_verdict(scene: Scene, branch: str, mobility: dict) -> tuple[Ver
                     f"{', '.join(scene.drives)}"),)  # fmt: skip
 
 
+def _own_step_verdicts(scene: Scene, branch: str, preset: str, own: list[np.ndarray]) -> tuple[Verdict, ...]:
+    """
+    A projected preset's dynamic check: the path error of MuJoCo's own steps, each from the last projected state and
+    read before its projection (`stabilize.before_projection`), held to the plain fast preset's tolerance; () for a
+    plain preset (it records nothing). After the projection the path is on the closures whatever the dynamics did.
+    """
+    if not own:
+        return ()
+    model, _ = compile_model(scene, ModelOptions(preset=preset))
+    path = compare(scene, branch, Bindings(scene, model).angles(scene, np.array(own)))
+    return (Verdict(f"{branch}: MuJoCo {preset} path error before projection (rad)", path.max_error(),
+                    TOLERANCES.angle("fast"), "MuJoCo's own step from each projected state, before its projection: "
+                    "max over steps and joints of |sim - closed form at the simulated input|", len(own)),)  # fmt: skip
+
+
 def run_blockage(scene: Scene, branch: str) -> tuple[Blockage, float]:
     """Force-limited servo from the path start to the branch's end in the direction of travel, held BLOCKAGE_HOLD."""
     start, stop = scene.branch_path(branch)
@@ -366,8 +387,11 @@ def run_blockage(scene: Scene, branch: str) -> tuple[Blockage, float]:
 
 
 def run_free(scene: Scene, preset: str) -> tuple[dict, list[Verdict]]:
-    """Release the scene at rest under gravity for FREE_DURATION s: energy drift and path error."""
-    run = simulate_free(scene, scene.free_branch, scene.free_start, FREE_DURATION, preset=preset)
+    """Release the scene at rest under gravity for FREE_DURATION s: energy drift (at the run's states) and path error;
+    under a projected preset also the path error of MuJoCo's own steps before their projections (`_own_step_verdicts`:
+    after them the run is on the closures whatever the dynamics did)."""
+    with before_projection() as own:
+        run = simulate_free(scene, scene.free_branch, scene.free_start, FREE_DURATION, preset=preset)
     path = compare(scene, scene.free_branch, run.q)
     drift = float(np.max(np.abs(run.energy - run.energy[0])))
     doc = {"duration_s": FREE_DURATION, "steps": run.steps, "step_cpu_time_s": run.cpu_time_s,
@@ -379,11 +403,16 @@ def run_free(scene: Scene, preset: str) -> tuple[dict, list[Verdict]]:
         tool, seconds = scene.free_run_peer
         doc |= {"peer": tool, "peer_time_s": seconds, "peer_over_mujoco": seconds / run.cpu_time_s}
         peer = f" ({tool}: {seconds} s)"
+    own_step = _own_step_verdicts(scene, scene.free_branch, preset, own)
+    if own_step:
+        doc["angle_error_before_projection_max_rad"] = own_step[0].measured
     verdicts = [
         Verdict(f"free run ({FREE_DURATION:g} s under gravity): energy drift (J)", drift, TOLERANCES.energy(preset),
-                f"E0 = {run.energy[0]:.6g} J; {run.cpu_time_s:.3g} s CPU{peer}"),
-        Verdict("free run: path error against the closed form (rad)", path.max_error(),
-                TOLERANCES.angle(preset),
+                f"E0 = {run.energy[0]:.6g} J at the release, E at each state after a step; "
+                f"{run.cpu_time_s:.3g} s CPU{peer}"),
+        *(dataclasses.replace(v, name=f"free run: {v.name}") for v in own_step),
+        Verdict("free run: path error against the closed form" + (" after projection" if own else "") + " (rad)",
+                path.max_error(), TOLERANCES.angle(preset),
                 "unforced motion stays on the closed-form branch"),
     ]  # fmt: skip
     return doc, verdicts

@@ -12,7 +12,7 @@ from sim_origami.errors import ParameterError
 from sim_origami.mjcf import ModelOptions
 from sim_origami.report import as_dict
 from sim_origami.simulate import Bindings, compile_model, drive_targets, simulate, simulate_free, start_pose
-from sim_origami.stabilize import preset_mode, run_step, step_function
+from sim_origami.stabilize import before_projection, preset_mode, run_step, step_function
 from sim_origami.studies.peer_model import body_poses, potential_energy, rigid_model
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
@@ -25,6 +25,7 @@ def scene_of(name: str):
     return scenes.get(name).build()
 
 
+@pytest.mark.slow
 def test_fast_projected_closes_the_bennett_sweep():
     """Measured 2.2e-15 rad and 2.4e-15 m over a 6 s sweep (fast: 6.7e-8 rad, 1.0e-7 m)."""
     scene = scene_of("bennett")
@@ -37,6 +38,7 @@ def test_fast_projected_closes_the_bennett_sweep():
     assert x[0] == pytest.approx(0.6, abs=1e-4) and x[-1] == pytest.approx(2.4, abs=1e-4)
 
 
+@pytest.mark.slow
 def test_fast_projected_a04_free_run_keeps_energy():
     """A04, 10 s free: measured 2.7e-15 rad off the closed form and 1.6e-6 J of energy drift at its states (fast:
     4.4e-7 rad, 1.4e-5 J)."""
@@ -118,12 +120,43 @@ def test_preset_modes_and_bad_mode():
         step_function(model, data, "velocity")
 
 
+@pytest.mark.slow
 def test_report_states_the_stabilisation():
-    """validate --preset fast-projected passes on Bennett and report.json names the preset and its stabilisation."""
+    """
+    validate --preset fast-projected passes on Bennett and report.json names the preset and its stabilisation, and
+    gives MuJoCo's own path error before each projection (measured 6.7e-8 rad: the dynamic check, held to fast's
+    1e-6) beside the path after it (3.1e-15: the projection's work, held to 1e-11). The plain preset has neither.
+    """
     report = validate(scene_of("bennett"), preset="fast-projected", branch="bennett")
     doc = as_dict(report)
     assert report.passed and doc["preset"] == "fast-projected" and doc["stabilize"] == "position"
-    assert as_dict(validate(scene_of("bennett"), branch="bennett"))["stabilize"] == "none"
+    checks = {v["name"]: v for v in doc["branches"][0]["verdicts"]}
+    before = checks["bennett: MuJoCo fast-projected path error before projection (rad)"]
+    after = checks["bennett: MuJoCo fast-projected path error after projection (rad)"]
+    assert before["tolerance"] == TOLERANCES.angle("fast") and after["tolerance"] == TOLERANCES.angle("fast-projected")
+    assert before["compared"] == after["compared"] == report.runs[0].dynamic.steps
+    assert 1e-9 < before["measured"] < TOLERANCES.angle("fast") and after["measured"] < 1e-13
+    plain = as_dict(validate(scene_of("bennett"), branch="bennett"))
+    assert plain["stabilize"] == "none"
+    assert not [v for v in plain["branches"][0]["verdicts"] if "projection (rad)" in v["name"] and "fast" in v["name"]]
+
+
+def test_before_projection_records_mujocos_own_steps():
+    """Inside the block each stabilised step logs qpos before its projection (off the closures by MuJoCo's own step,
+    here up to 4e-9 rad on A04's first second), after which the state is on them (to 1e-14); plain steps log nothing."""
+    scene = scene_of("iftomm-a04")
+    with before_projection() as own:
+        run = simulate_free(scene, scene.free_branch, scene.free_start, 1.0, preset="fast-projected")
+        simulate_free(scene, scene.free_branch, scene.free_start, 1.0, preset="fast")
+    assert len(own) == run.steps == 125
+    model, _ = compile_model(scene, ModelOptions(preset="fast-projected", drive="none", gravity=True))
+    raw = compare(scene, scene.free_branch, Bindings(scene, model).angles(scene, np.array(own)))
+    assert 1e-11 < raw.max_error() < TOLERANCES.angle("fast")
+    assert compare(scene, scene.free_branch, run.q).max_error() < 1e-13
+    with before_projection() as outside:
+        pass
+    simulate_free(scene, scene.free_branch, scene.free_start, 0.1, preset="fast-projected")
+    assert outside == []
 
 
 def test_peer_model_is_the_mechanism():
