@@ -13,7 +13,7 @@ from sim_origami.mjcf import ModelOptions
 from sim_origami.report import as_dict
 from sim_origami.simulate import Bindings, compile_model, drive_targets, simulate, simulate_free, start_pose
 from sim_origami.stabilize import before_projection, preset_mode, run_step, step_function
-from sim_origami.studies.peer_model import body_poses, potential_energy, rigid_model
+from sim_origami.studies.peer_model import body_poses, potential_energy, rigid_model, tree_model
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
 
@@ -180,3 +180,24 @@ def test_peer_model_is_the_mechanism():
     branch = balls.kinematics.branches()[0].name
     with pytest.raises(ParameterError, match="hinges only"):
         rigid_model(balls, start_pose(balls, branch, balls.branch_path(branch)[0]))
+
+
+def test_tree_model_is_the_mechanism_in_minimal_coordinates():
+    """The kinematic tree the peer's minimal-coordinate model is built from: each link's frame chains from its
+    parent's, carries its body's principal frame where the rigid model puts it, and tree coordinates c (a link's
+    sign times its hinge's turn from q0) give back every mechanism angle, the cut hinge's included."""
+    scene = scene_of("bennett")
+    start, stop = scene.branch_path("bennett")
+    q0, q1 = (start_pose(scene, "bennett", x) for x in (start, 0.5 * (start + stop)))
+    tree = tree_model(scene, q0)
+    mech = scene.mechanism
+    assert len(tree.links) == len(mech.joints) - len(mech.cut_joints) == 3
+    bodies = {b.name: b for b in tree.rigid.bodies}
+    for k, link in enumerate(tree.links):
+        base = np.eye(4) if link.parent < 0 else tree.frames[link.parent]
+        np.testing.assert_allclose(base @ link.transform, tree.frames[k], atol=1e-14)
+        np.testing.assert_allclose(tree.frames[k] @ link.com_frame, bodies[link.body].pose, atol=1e-14)
+    np.testing.assert_allclose(tree.angles(np.zeros(3), mech)[0], q0, atol=1e-14)
+    c = np.array([link.sign * (q1[link.joint] - q0[link.joint]) for link in tree.links])
+    np.testing.assert_allclose(tree.angles(c, mech)[0], q1, atol=1e-13)
+    assert np.ptp(q1 - q0) > 0.1  # the pose moved

@@ -56,17 +56,18 @@ class RigidModel:
     gravity: NDArray[np.float64]
 
 
-def rigid_model(scene: Scene, q: NDArray[np.float64]) -> RigidModel:
+def rigid_model(scene: Scene, q: NDArray[np.float64], couplings: bool = False) -> RigidModel:
     """
     The scene at mechanism angles q (n_joints,) (a closed pose) as rigid bodies and hinges.
 
     Raises
     ------
     ParameterError
-      For a mechanism with spherical joints or joint couplings (only plain hinge loops are written).
+      For a mechanism with spherical joints, or joint couplings unless `couplings` says the caller imposes them
+      (`Mechanism.couplings`: in body coordinates a coupling of two hinge angles is no standard joint).
     """
     mech = scene.mechanism
-    if mech.balls or mech.couplings:
+    if mech.balls or (mech.couplings and not couplings):
         raise ParameterError(f"scene {scene.name!r}: the peer model takes hinges only (no ball joints, no couplings)")
     model, _ = compile_model(scene, ModelOptions(drive="none"))
     poses, cut = mech.body_poses(np.asarray(q, dtype=float)), set(mech.cut_joints)
@@ -106,3 +107,84 @@ def kinetic_energy(rigid: RigidModel, velocity: dict[str, NDArray], omega_local:
 def potential_energy(rigid: RigidModel, position: dict[str, NDArray]) -> NDArray:
     """Gravitational potential energy (n,) (J) from centre-of-mass positions (n, 3) of every body."""
     return sum(-b.mass * position[b.name] @ rigid.gravity for b in rigid.bodies)
+
+
+@dataclass(frozen=True)
+class TreeLink:
+    """
+    One link of the spanning tree in minimal coordinates: `parent` the parent link's index (-1: the root, fixed to
+    the world), `joint` the mechanism joint it turns about and `sign` its direction (the link's coordinate is
+    sign (q_joint - q0_joint)), `transform` (4, 4) its joint frame at coordinate 0 in the parent link's frame (the
+    world for the root), `body` the moving body it carries, whose principal frame in the link's frame is `com_frame`.
+    """
+
+    parent: int
+    joint: int
+    sign: int
+    transform: NDArray[np.float64]
+    body: str
+    com_frame: NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class TreeModel:
+    """
+    The scene as a kinematic tree (a minimal-coordinate multibody model) at the closed pose `q0`: `links` in tree
+    order (parents first), each link frame's world pose `frames` (n_links, 4, 4) at q0; the cut hinges close the
+    loops, the couplings tie two tree coordinates.
+    """
+
+    rigid: RigidModel
+    links: tuple[TreeLink, ...]
+    frames: NDArray[np.float64]
+    q0: NDArray[np.float64]
+    link_of_body: dict[str, int]
+
+    def angles(self, coordinates: NDArray[np.float64], mechanism) -> NDArray[np.float64]:
+        """Every mechanism joint angle (n, n_joints) from the tree's coordinates (n, n_links): tree joints directly,
+        the cut ones from the body poses (`Mechanism.angles_from_poses`)."""
+        c = np.atleast_2d(coordinates)
+        q = np.broadcast_to(self.q0, (len(c), len(self.q0))).copy()
+        for k, link in enumerate(self.links):
+            q[:, link.joint] = self.q0[link.joint] + link.sign * c[:, k]
+        return mechanism.angles_from_poses(mechanism.body_poses(q))
+
+
+def tree_model(scene: Scene, q: NDArray[np.float64]) -> TreeModel:
+    """
+    The scene at mechanism angles q (a closed pose) as the spanning tree of `Scene.mechanism` in minimal coordinates:
+    the same bodies, masses and inertias as `rigid_model`, each tree hinge a link whose coordinate is 0 at q.
+
+    Raises
+    ------
+    ParameterError
+      As `rigid_model` for ball joints; couplings are the caller's (they tie two tree coordinates).
+    """
+    mech = scene.mechanism
+    if mech.balls:
+        raise ParameterError(f"scene {scene.name!r}: the peer model takes hinges only (no ball joints)")
+    q0 = np.asarray(q, dtype=float)
+    rigid = rigid_model(scene, q0, couplings=True)
+    bodies = {b.name: b for b in rigid.bodies}
+    poses = mech.body_poses(q0)
+    link_of_body: dict[str, int] = {}
+    links, frames = [], []
+    for edge in mech.tree:
+        j = mech.joints[edge.joint]
+        start, sign = (j.frame_parent, 1) if edge.parent == j.parent else (j.frame_child, -1)
+        frame = poses[edge.parent] @ start @ _turn_z(sign * q0[edge.joint])
+        parent = link_of_body.get(edge.parent, -1)
+        base = np.eye(4) if parent < 0 else frames[parent]
+        link_of_body[edge.child] = len(links)
+        links.append(TreeLink(parent, edge.joint, sign, invert(base) @ frame, edge.child,
+                              invert(frame) @ bodies[edge.child].pose))  # fmt: skip
+        frames.append(frame)
+    return TreeModel(rigid, tuple(links), np.array(frames), q0, link_of_body)
+
+
+def _turn_z(angle: float) -> NDArray[np.float64]:
+    """A turn by `angle` (rad) about z as a (4, 4) transform."""
+    c, s = np.cos(angle), np.sin(angle)
+    out = np.eye(4)
+    out[:2, :2] = [[c, -s], [s, c]]
+    return out
