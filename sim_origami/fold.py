@@ -159,7 +159,8 @@ class FormFit:
     angles): lengths in the file's `unit`. `distance` the largest vertex move, at file vertex `vertex` (on creases
     `creases`), `size` the form's bounding-box diagonal, `ratio` the largest coordinate move over that coordinate's
     precision (<= 1: within what its printing allows), `precision` the precision of the coordinate moved the most
-    against it; `compared` says what was compared with what. `adjustments`: the coordinates moved the most.
+    against it; `compared` says what was compared with what, `values` how many numbers. `adjustments`: the
+    coordinates moved the most.
     """
 
     field: str
@@ -172,6 +173,7 @@ class FormFit:
     creases: tuple[str, ...]
     compared: str
     adjustments: tuple[Adjustment, ...]
+    values: int
 
     @property
     def within(self) -> bool:
@@ -837,7 +839,8 @@ def _worst(sheet: _Sheet) -> FormFit | None:
     if len(fits) < 2:
         return fits[0] if fits else None
     worst = max(fits, key=lambda f: f.ratio)
-    return replace(worst, compared=f"{worst.compared}; the farthest of {len(fits)} folded states read")
+    return replace(worst, compared=f"{worst.compared}; the farthest of {len(fits)} folded states read",
+                   values=sum(f.values for f in fits))  # fmt: skip
 
 
 def _on_a_motion(
@@ -916,7 +919,8 @@ def _form_fit(fit: fold_mesh.Fit, pattern: CreasePattern, source: NDArray[np.int
     compared = (f"{fit.given.size} coordinates of {len(fit.given)} vertices held to {fit.conditions}; {moved} moved, "
                 f"rms {np.sqrt(np.mean(fit.moved**2)):.3g}")  # fmt: skip
     return FormFit(label, "" if unit == "unit" else unit, fit.distance, fold_mesh.size(fit.given), fit.ratio,
-                   float(fit.precision[worst]), int(source[v]), creases, compared, adjustments)  # fmt: skip
+                   float(fit.precision[worst]), int(source[v]), creases, compared, adjustments,
+                   fit.given.size)  # fmt: skip
 
 
 def _coords_precision(frame: Mapping[str, Any], xyz: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -980,7 +984,7 @@ def _nearest_closed(
     worst = int(np.argmax(moved))
     compared = f"{len(rho)} fold angles held to {loops.n_residuals} closure conditions; {np.count_nonzero(moved)} moved"
     fit = AngleFit(float(np.max(moved, initial=0.0)), float(np.rad2deg(np.max(np.abs(closed - rho), initial=0.0))),
-                   float(np.rad2deg(precision[worst])), names[worst], compared, adjustments)  # fmt: skip
+                   float(np.rad2deg(precision[worst])), names[worst], compared, adjustments, len(rho))  # fmt: skip
     if not fit.within:
         notes.append(f"edges_foldAngle: {fit.distance:.3g} deg from the nearest state closing every loop, "
                      f"{fit.ratio:.3g} x the angles' precision: a direction to trace towards")  # fmt: skip
@@ -1012,8 +1016,7 @@ class AngleFit:
     """
     A folded state given as fold angles against the nearest one closing every loop: `ratio` the largest move over its
     angle's precision, `distance` the largest move (deg) at crease `crease`, `precision` (deg) that angle's;
-    `compared` says what was compared. `adjustments`: the angles moved the most (none beyond the precision: the
-    file's angles are then traced towards as they are).
+    `compared` says what was compared, `values` how many angles. `adjustments`: the angles moved the most.
     """
 
     ratio: float
@@ -1022,6 +1025,7 @@ class AngleFit:
     crease: str
     compared: str
     adjustments: tuple[Adjustment, ...]
+    values: int
 
     @property
     def within(self) -> bool:

@@ -52,7 +52,7 @@ def test_rounded_folded_form_validates_with_its_adjustments(tmp_path):
     code, report = validated(tmp_path, "vertex 4 decimals", doc)
     assert code == 0 and report["passed"]
     verdict = state_verdict(report)
-    assert verdict["passed"] and 0.05 < verdict["measured"] < 0.5
+    assert verdict["passed"] and 0.05 < verdict["measured"] < 0.5 and verdict["compared"] == 15  # 5 vertices x 3
     assert "the rigid motion passes through it" in verdict["detail"]
     scene = fold_scene(write(tmp_path, "again", doc))
     assert len(scene.adjustments) == 4 and all(a.ratio <= 1 for a in scene.adjustments)

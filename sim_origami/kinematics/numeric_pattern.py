@@ -350,11 +350,12 @@ class PatternPath(JointSpaceKinematics):
                 parts.append(f"{e.kind} at {e.input:.6g} rad: {e.detail}")
         return "; ".join(parts)
 
-    def state_check(self) -> tuple[float, float, str] | None:
+    def state_check(self) -> tuple[float, float, str, int] | None:
         """
-        The file's folded state against the nearest rigid state read in its place (`state_fit`): (its largest
-        coordinate move over that coordinate's precision, 1, where it is largest and whether the rigid motion reaches
-        the state); None without a folded form. Beyond 1 the file's state is not a rigid one within its precision.
+        The file's folded state against the nearest rigid state read in its place (`state_fit`): (its largest move
+        of a value over that value's precision, 1, where it is largest and whether the rigid motion reaches the
+        state, how many values were compared); None without one. Beyond 1 the file's state is not a rigid one within
+        its precision.
         """
         fit = self.state_fit
         if fit is None:
@@ -374,7 +375,7 @@ class PatternPath(JointSpaceKinematics):
             stop = next((p for p in self.stops if p.kind != "end"), None)
             reach = "the rigid motion does not reach it" + (f": it stops at {stop.s:.6g} rad ({stop.kind})" if stop
                                                             else "")  # fmt: skip
-        return fit.ratio, 1.0, f"{fit.text()}; {reach}"
+        return fit.ratio, 1.0, f"{fit.text()}; {reach}", fit.values
 
     def unfolded_letters(self) -> tuple[str, ...] | None:
         """
