@@ -140,20 +140,44 @@ def test_a_spherical_4r_as_dh_rows_validates(tmp_path, capsys):
     assert code == 0, out
 
 
-def placed(tmp_path: Path, rows, q0, rotation: np.ndarray, offset: np.ndarray, name: str) -> Path:
-    """The spherical 4R drawn as axis lines at pose q0, turned and moved (each point one unit out along its axis)."""
+def placed(tmp_path: Path, rows, q0, rotation: np.ndarray, offset: np.ndarray, name: str, span=(10.0, 60.0),
+           decimals: int | None = None) -> Path:  # fmt: skip
+    """A 4R drawn as axis lines at pose q0, turned and moved (each point one unit out along its axis), its numbers
+    rounded to `decimals` if given."""
     poses = chain_poses(rows, q0)
     joints = []
+
+    def printed(v: np.ndarray) -> list[float]:
+        return [round(float(x), decimals) if decimals is not None else float(x) for x in np.atleast_1d(v)]
+
     for k in range(4):
         T = poses[f"link_{k + 1}"][0]
         joints.append({"name": f"theta{k + 1}", "bodies": [f"link_{(k - 1) % 4 + 1}", f"link_{k + 1}"],
-                       "point": (rotation @ (T[:3, 3] + T[:3, 2]) + offset).tolist(),
-                       "direction": (rotation @ T[:3, 2]).tolist(), "theta0": float(np.rad2deg(q0[k]))})  # fmt: skip
+                       "point": printed(rotation @ (T[:3, 3] + T[:3, 2]) + offset),
+                       "direction": printed(rotation @ T[:3, 2]), "theta0": printed(np.rad2deg(q0[k]))[0]})  # fmt: skip
     doc = {"sim_origami_linkage": 1, "form": "axes", "ground": "link_4", "name": name, "joints": joints,
-           "input": {"joint": "theta1", "range": [10.0, 60.0]}}  # fmt: skip
+           "input": {"joint": "theta1", "range": list(span)}}  # fmt: skip
     path = tmp_path / f"{name}.json"
     path.write_text(json.dumps(doc))
     return path
+
+
+@pytest.mark.slow
+def test_a_bennett_linkage_drawn_as_axes_to_4_decimals_moves_to_the_nearest_bennett(tmp_path):
+    """Rounded, the drawn pose still closes but the linkage is rigid ('does not move from its start'); the nearest
+    mobile one moves its points and directions within their precision (0.92 of it at most, measured) and moves over
+    the whole range."""
+    dh = tmp_path / "bennett.toml"
+    dh.write_text(bennett_text(beta="48.590377890729144"))
+    q0 = linkage_scene(dh).kinematics.evaluate("path-1", [math.radians(30.0)])[0][0]
+    rows = tuple(DHRow(0.0, a, math.radians(t)) for a, t in [(1.0, 30.0), (1.5, 48.590377890729144)] * 2)
+    rotation = Rotation.from_rotvec([0.3, -1.1, 0.7]).as_matrix()
+    path = placed(tmp_path, rows, q0, rotation, np.array([3.7, -1.2, 5.5]), "bennett-axes", (20.0, 140.0), 4)
+    scene = linkage_scene(path)
+    assert scene.adjustments and max(a.ratio for a in scene.adjustments) <= 1.0
+    assert any(".direction[" in a.name for a in scene.adjustments)
+    (branch,) = scene.kinematics.branches()
+    assert branch.domain == pytest.approx((math.radians(20.0), math.radians(140.0)))
 
 
 @pytest.mark.slow
