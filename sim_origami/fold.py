@@ -1068,9 +1068,7 @@ def _measured(sheet: _Sheet, frame: Mapping[str, Any], field: str) -> NDArray[np
     given = xyz[sheet.source]
     fold_mesh.dihedral_angles(given, list(sheet.pattern.faces), sheet.hinges, sheet.signs, field)  # faces with area
     faces = list(sheet.pattern.faces)
-    pairs = {key(a, b) for face in faces for a, b in _sides(face)}
-    pairs |= {key(face[0], face[j]) for face in faces for j in range(2, len(face) - 1)}
-    bars = np.array(sorted(pairs), dtype=int).reshape(-1, 2)
+    bars = fold_mesh.face_bars(faces)
     unit = frame.get("frame_unit", "unit")
     rest = np.linalg.norm(sheet.pattern.vertices[bars[:, 0]] - sheet.pattern.vertices[bars[:, 1]], axis=1)
     # in the frame's unit; "unit" (no physical meaning) in either frame compares the numbers as they are

@@ -642,6 +642,14 @@ def nearest_developable(xyz: NDArray[np.float64], faces: list[Face], precision: 
     return nearest_rigid(xyz, precision, RigidConditions(xyz, faces))
 
 
+def face_bars(faces: list[Face]) -> NDArray[np.int_]:
+    """Vertex pairs (b, 2) whose lengths fix every face's shape with its planarity: its sides and the diagonals
+    from its first vertex (shared sides once)."""
+    pairs = {key(a, b) for face in faces for a, b in sides(face)}
+    pairs |= {key(face[0], face[j]) for face in faces for j in range(2, len(face) - 1)}
+    return np.array(sorted(pairs), dtype=int).reshape(-1, 2)
+
+
 class MotionConditions:
     """
     The conditions for a folded form X0 (n, 3) to lie on a rigid motion of its own crease pattern, for patterns
@@ -663,9 +671,7 @@ class MotionConditions:
         self.n, self.k = len(xyz), len(states)
         self.base = RigidConditions(xyz, faces)
         self.shape = RigidConditions(xyz, faces, np.zeros((0, 2), dtype=int), np.zeros(0))  # planarity only
-        pairs = {key(a, b) for face in faces for a, b in sides(face)}
-        pairs |= {key(face[0], face[j]) for face in faces for j in range(2, len(face) - 1)}
-        self.bars = np.array(sorted(pairs), dtype=int).reshape(-1, 2)
+        self.bars = face_bars(faces)
         self.gauge = np.array(faces[root], dtype=int)
         self.marker = np.array(marker, dtype=int)
         self.reach = np.array([np.linalg.norm(x[marker[0]] - x[marker[1]]) for x in states])
