@@ -14,9 +14,11 @@ import numpy as np
 import pytest
 from chromium import INSTALL, Chromium, executable  # tests/chromium.py (pytest puts tests/ on sys.path)
 
+from sim_origami import scenes
 from sim_origami.cli import main
-from sim_origami.report import provenance
+from sim_origami.report import as_dict, motion_view, provenance
 from sim_origami.report_page import write_index, write_page, write_thumbnail
+from sim_origami.validation import validate
 
 # every test here starts a browser, most after a MuJoCo run: all slow
 pytestmark = [pytest.mark.skipif(executable() is None, reason=INSTALL), pytest.mark.slow]
@@ -240,3 +242,40 @@ def test_an_origami_page_draws_its_crease_pattern_and_folds_it_in_3d(fold_run, b
     assert 'href="curves.svg"' in (fold_run / "report.html").read_text()
     view = browser.load(fold_run / "report.html", VIEW)
     assert view.errors == [] and view.value["drawn"] > 0.02 and view.value["changed"] > 0.005
+
+
+# Evaluated in a report with several branches: the picture after each control is used.
+CONTROLS = """(() => {
+  const canvas = document.getElementById('view');
+  const pixels = () => { const copy = document.createElement('canvas'); copy.width = canvas.width;
+    copy.height = canvas.height; const g = copy.getContext('2d'); g.drawImage(canvas, 0, 0);
+    return Array.from(g.getImageData(0, 0, canvas.width, canvas.height).data); };
+  const differs = (a, b) => a.some((v, i) => v !== b[i]);
+  const select = document.getElementById('view-branch');
+  const first = pixels();
+  select.value = '1';
+  select.dispatchEvent(new Event('change'));
+  const branch = pixels();
+  const at = {clientX: 400, clientY: 250, pointerId: 1, bubbles: true};
+  canvas.dispatchEvent(new PointerEvent('pointerdown', at));
+  canvas.dispatchEvent(new PointerEvent('pointermove', {...at, clientX: 480, clientY: 220}));
+  canvas.dispatchEvent(new PointerEvent('pointerup', at));
+  const turned = pixels();
+  canvas.dispatchEvent(new WheelEvent('wheel', {deltaY: -400, bubbles: true, cancelable: true}));
+  const zoomed = pixels();
+  return {options: Array.from(select.options).map(o => o.value), label: document.getElementById('view-input')
+          .textContent, branch: differs(first, branch), turned: differs(branch, turned),
+          zoomed: differs(turned, zoomed)};
+})()"""
+
+
+def test_the_3d_view_switches_branch_turns_and_zooms(tmp_path, browser):
+    report = validate(scenes.get("vertex4").build())
+    assert len(report.runs) >= 2
+    write_page(as_dict(report), tmp_path, motion_view(report))
+    page = browser.load(tmp_path / "report.html", CONTROLS)
+    assert page.errors == []
+    seen = page.value
+    assert seen["options"] == [str(k) for k in range(len(report.runs))]
+    assert seen["branch"] and seen["turned"] and seen["zoomed"]
+    assert seen["label"].startswith(f"{report.scene.kinematics.input_name} = ")
