@@ -73,10 +73,14 @@ def plot_report(report: Report, path: str | Path) -> Path:
         pick = np.linspace(0, len(sim.input) - 1, MARKERS).astype(int)
         # a driven joint follows its input exactly (error 0): a flat line at the floor says nothing
         driven = [k for k in range(len(kin.joint_names)) if np.all(sim.error[:, k] == 0)]
+        # MuJoCo's angles a whole turn from the reference's are drawn on it, as the error measures them (a marker at
+        # -180 deg under a line at +180 deg looked like a disagreement)
+        turn = np.angle(np.exp(1j * (sim.simulated - sim.analytic)))
+        shown = np.where(np.isfinite(sim.analytic), sim.analytic + turn, sim.simulated)
         if len(kin.joint_names) > LEGEND_MAX:
             ref = run.projection_path
             on = np.all(np.isfinite(ref.analytic), axis=1)
-            _many_joints(top, np.rad2deg(ref.input[on]), ref.analytic[on], sim, pick, colors)
+            _many_joints(top, np.rad2deg(ref.input[on]), ref.analytic[on], sim, shown, pick, colors)
             kept = [k for k in range(len(kin.joint_names)) if k not in driven]
             _envelope(bottom, np.rad2deg(sim.input), sim.error[:, kept], [kin.joint_names[k] for k in kept])
         else:
@@ -85,7 +89,7 @@ def plot_report(report: Report, path: str | Path) -> Path:
             for k, name in enumerate(kin.joint_names):
                 c = colors[k]
                 top.plot(np.rad2deg(dense[valid]), np.rad2deg(values[valid, k]), color=c, lw=1.2, label=name)
-                top.plot(np.rad2deg(sim.input[pick]), np.rad2deg(sim.simulated[pick, k]), "o", ms=3.5,
+                top.plot(np.rad2deg(sim.input[pick]), np.rad2deg(shown[pick, k]), "o", ms=3.5,
                          mfc="none", color=c)  # fmt: skip
                 if k not in driven:
                     bottom.semilogy(np.rad2deg(sim.input), np.maximum(sim.error[:, k], FLOOR), color=c, lw=1,
@@ -125,7 +129,7 @@ def plot_report(report: Report, path: str | Path) -> Path:
             # corrugated-unit's six branches
             free = "left" if np.rad2deg(np.mean(sim.input[[0, -1]])) > (lo + hi) / 2 else "right"
             bottom.legend(fontsize=7, ncol=2 if len(kin.joint_names) <= LEGEND_MAX else 1, loc=f"lower {free}")
-    crosses = "; crosses: reference curves (error: to the numeric solve)" if report.reference is not None else ""
+    crosses = ";\ncrosses: reference curves (error: to the numeric solve)" if report.reference is not None else ""
     fig.suptitle(f"lines: {reference}; markers: MuJoCo{crosses}", fontsize=9)
     path = Path(path)
     with atomic_path(path) as tmp:
@@ -137,7 +141,7 @@ def plot_report(report: Report, path: str | Path) -> Path:
     return path
 
 
-def _many_joints(top, x_deg, values, sim, pick, colors) -> None:
+def _many_joints(top, x_deg, values, sim, shown, pick, colors) -> None:
     """
     The same curves and markers for more joints than a legend names, one artist per kind: drawn as 1440 separate
     lines the 16 x 16 Miura FOLD sheet's 480 creases took 1.5 s of CPU. Both are pixels in the SVG (waterbomb-tube's
@@ -147,7 +151,7 @@ def _many_joints(top, x_deg, values, sim, pick, colors) -> None:
     top.add_collection(LineCollection([np.c_[x_deg, np.rad2deg(values[:, j])] for j in range(k)], colors=colors,
                                       linewidths=1.2, rasterized=True))  # fmt: skip
     edges = np.repeat(to_rgba_array(colors), len(pick), axis=0)  # joint by joint, as the values below
-    top.scatter(np.tile(np.rad2deg(sim.input[pick]), k), np.rad2deg(sim.simulated[pick].T).ravel(), s=12,
+    top.scatter(np.tile(np.rad2deg(sim.input[pick]), k), np.rad2deg(shown[pick].T).ravel(), s=12,
                 facecolors="none", edgecolors=edges, linewidths=1.0, rasterized=True)  # fmt: skip
     top.autoscale_view()
 
