@@ -57,6 +57,12 @@ PROJECTION_ITER = 20
 POSE_STEPS = 3
 # The projection stops when the residual has not halved in this many steps in a row.
 STALLED = 3
+# Loops whose traced nodes close no better than this (median; rad, lengths in units of the loops' size) are no exact
+# linkage: the trace accepts nodes to 100 x CLOSE_TOL, so a Bennett file with beta printed to 8 and 10 decimals traced
+# its whole range, closed to 1.7e-11 and 2.4e-13, and failed validation (the projection's path error 8.1e-13 against
+# 1e-13 at 10). The examples' nodes close to 2.7e-16 .. 8.6e-15 (median); a spherical 4R drawn 5500 units from the
+# origin to 1.5e-13, its 17-digit numbers rounded to 5e-13: refused, 1.09 precision units from a mobile one.
+UNCLOSED = CLOSE_TOL
 # A projection that leaves more than this residual (rad, lengths in units of the loops' size) found no mobile linkage:
 # the trace accepts nodes closed to 100 x CLOSE_TOL.
 CONVERGED = 10 * CLOSE_TOL
@@ -95,6 +101,10 @@ def linkage_scene(path: str | Path) -> Scene:
     gauge, spinning = idle_spin_gauge(mechanism)
     try:
         kinematics = _kinematics(spec, gauge, spinning)
+        floor = _closed_to(kinematics)
+        if floor > UNCLOSED:
+            raise AssemblyError(f"joints: the loops close only to {floor:.3g} along the traced motion (median of its "
+                                f"nodes; an exact linkage closes to {CLOSE_TOL:g})")
     except AssemblyError as err:
         spec, adjustments = nearest_mobile(path, spec, gauge, err)
         mechanism = spec.mechanism
@@ -119,6 +129,13 @@ def linkage_scene(path: str | Path) -> Scene:
         contact_pairs=spec.contact_pairs, sweep_time_scale=spec.sweep_time_scale,
         notes=f"{spec.notes}; {notes}" if spec.notes else notes, adjustments=adjustments,
     )  # fmt: skip
+
+
+def _closed_to(kinematics: LinkagePath) -> float:
+    """The median closure residual of the traced nodes of every branch (rad, lengths in units of the loops' size)."""
+    loops = kinematics.loop_system()
+    q = np.vstack([nodes for _, nodes, _ in kinematics.nodes.values()])
+    return float(np.median(loops.residual_size(loops.residual(q))))
 
 
 def _kinematics(spec: LinkageSpec, gauge: tuple[int, ...], spinning: NDArray[np.bool_]) -> LinkagePath:
