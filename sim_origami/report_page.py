@@ -49,6 +49,11 @@ def _num(value) -> str:
     return f"{value:.3g}"
 
 
+def _deg(radians: float | None) -> str:
+    """An angle in radians as degrees (as typed on the command line), 4 significant digits."""
+    return "-" if radians is None else f"{math.degrees(radians):.4g}"
+
+
 def _status(passed: bool) -> str:
     return f'<span class="{"pass" if passed else "fail"}">{"PASS" if passed else "FAIL"}</span>'
 
@@ -226,7 +231,7 @@ def page(doc: dict, out: Path, view: dict | None = None, in_index: bool = False)
         key.append(("seconds per frame", f"{_num(render['seconds_per_frame'])} ({render['gl_renderer']})"))
     branches = "\n".join(
         f"<tr><td>{_e(b['branch_requested'])}</td><td>{_e(b['branch_followed'] or '-')}</td>"
-        f"<td class=num>{_num(b['input_range_rad'][0])} .. {_num(b['input_range_rad'][1])}</td>"
+        f"<td class=num>{_deg(b['input_range_rad'][0])} .. {_deg(b['input_range_rad'][1])}</td>"
         f"<td class=num>{_num(b['angle_error_max_rad'])}</td><td class=num>{_num(b['closure_residual_max_m'])}</td>"
         f"<td class=num>{b['steps']}</td></tr>"
         for b in doc["branches"]
@@ -281,7 +286,7 @@ def page(doc: dict, out: Path, view: dict | None = None, in_index: bool = False)
 {_verdict_rows(verdicts)}
 </table>
 <h2>Branches</h2>
-<table><tr><th>requested</th><th>followed</th><th>input (rad)</th><th>max path error (rad)</th>
+<table><tr><th>requested</th><th>followed</th><th>input (deg)</th><th>max path error (rad)</th>
 <th>max closure residual (m)</th><th>steps</th></tr>
 {branches}
 </table>
