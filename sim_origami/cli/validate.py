@@ -15,7 +15,7 @@ from ..conventions import deg_to_rad
 from ..errors import DomainError, ParameterError, SimulationError
 from ..files import check_folder, claimed_folder, write_text
 from ..mjcf import PRESETS
-from ..report import as_dict, motion_view, plain, write
+from ..report import as_dict, motion_view, plain, provenance, write
 from ..report_page import write_index, write_page, write_thumbnail
 from ..scenes.fold_file import fold_scene
 from ..scenes.linkage_file import linkage_scene
@@ -141,9 +141,11 @@ def run_one(scene, args, out: Path, reference=None) -> dict:
 
 def failed_run(scene, args, out: Path, err: SimulationError) -> dict:
     """report.json for a run MuJoCo could not finish: the failing check and the configuration where it happened."""
-    doc = {"scene": scene.name, "params": scene.params, "preset": args.preset or scene.preset, "passed": False,
+    preset = args.preset or scene.preset
+    doc = {"scene": scene.name, "params": scene.params, "preset": preset, "passed": False,
            "notes": scene.notes, "verdicts": [{"name": "MuJoCo run finished without a warning", "measured": 1.0,
-                                               "tolerance": 0.0, "passed": False, "detail": str(err)}]}  # fmt: skip
+                                               "tolerance": 0.0, "passed": False, "detail": str(err)}],
+           "provenance": provenance(preset, getattr(args, "command_line", None))}  # fmt: skip
     write_text(out / "report.json", json.dumps(doc, indent=2, default=plain) + "\n")
     return doc
 
