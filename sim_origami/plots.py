@@ -42,9 +42,12 @@ def joint_colors(k: int) -> list:
 
 
 def _tolerance(report: Report, run) -> float | None:
-    """The path-error tolerance the run's verdict used (its 'MuJoCo <preset> path error (rad)' check)."""
-    name = f"MuJoCo {report.preset} path error (rad)"
-    return next((v.tolerance for v in run.verdicts if v.name.endswith(name)), None)
+    """
+    The path-error tolerance the run's verdict used: its 'MuJoCo <preset> path error (rad)' check, '... after
+    projection (rad)' under a projected preset (the path drawn), not the one 'before projection'.
+    """
+    names = (f"MuJoCo {report.preset} path error (rad)", f"MuJoCo {report.preset} path error after projection (rad)")
+    return next((v.tolerance for v in run.verdicts if v.name.endswith(names)), None)
 
 
 def _events(report: Report, run) -> list[dict]:

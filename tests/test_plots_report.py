@@ -54,3 +54,13 @@ def test_many_joints_error_is_an_envelope(tmp_path):
     assert len(band) == 1 and int(band[0].split()[2]) <= len(scene.kinematics.joint_names)
     assert "median" in texts and any(t.startswith("worst: ") for t in texts)
     assert (tmp_path / "curves.svg").stat().st_size < 400_000  # the many curves are pixels inside the SVG
+
+
+@pytest.mark.slow
+def test_a_projected_preset_draws_the_tolerance_of_the_path_it_plots(tmp_path):
+    # fast-projected checks the path after projection (drawn) and MuJoCo's own steps before it (not drawn)
+    report = validate(scenes.get("bennett").build(), preset="fast-projected")
+    plot_report(report, tmp_path / "curves.png")
+    drawn = next(v for v in report.runs[0].verdicts if v.name.endswith("path error after projection (rad)"))
+    texts = svg_text(tmp_path / "curves.svg")
+    assert f"tolerance {drawn.tolerance:.2g} rad" in texts and sum(t.startswith("tolerance ") for t in texts) == 1
