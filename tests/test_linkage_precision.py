@@ -68,10 +68,11 @@ def test_numbers_carry_their_printed_precision(tmp_path):
 
 @pytest.mark.slow
 def test_bennett_with_every_number_to_4_decimals_validates_the_nearest_bennett(tmp_path, capsys):
-    """As typed, the loops do not close (residual 1e-7); the nearest Bennett linkage within the numbers' precision is
-    validated (exit 0) and every value it moved is on the scene, each within its precision, and meets the Bennett
-    conditions exactly."""
-    path = write(tmp_path, bennett_text())
+    """docs/examples/linkages/bennett-typed.toml: as typed, the loops do not close (residual 1.1e-7); the nearest
+    Bennett linkage within the numbers' precision is validated (exit 0) and every value it moved is on the scene, each
+    within its precision, and meets the Bennett conditions exactly."""
+    path = EXAMPLES / "bennett-typed.toml"
+    assert all(v.precision == pytest.approx(5e-5) for v in read_linkage(path).values if v.precision)  # 4 decimals
     scene = linkage_scene(path)
     assert scene.adjustments and all(a.ratio <= 1.0 for a in scene.adjustments)
     value = {v.field: v.given for v in read_linkage(path).values} | {a.name: a.value for a in scene.adjustments}
@@ -141,13 +142,16 @@ SPHERICAL = {"sim_origami_linkage": 1, "form": "dh", "name": "spherical-4r",
 
 
 @pytest.mark.slow
-def test_a_spherical_4r_as_dh_rows_validates(tmp_path, capsys):
-    """Every a = 0 (an origami vertex's form): the loop takes its size from one length unit (it was refused, 'the
-    loop has no size'); two assemblies, both validated."""
-    path = tmp_path / "sph.json"
-    path.write_text(json.dumps(SPHERICAL))
+@pytest.mark.parametrize("example", [None, "vertex4.toml"])
+def test_a_spherical_4r_as_dh_rows_validates(tmp_path, capsys, example):
+    """Every a = 0 (a spherical 4R; vertex4.toml: an origami vertex, the twists its sector angles): the loop takes
+    its size from one length unit (it was refused, 'the loop has no size'); two assemblies, both validated."""
+    path = tmp_path / "sph.json" if example is None else EXAMPLES / example
+    if example is None:
+        path.write_text(json.dumps(SPHERICAL))
     scene = linkage_scene(path)
     assert len(scene.kinematics.branches()) == 2
+    assert scene.mechanism.length_scale == pytest.approx(0.05)  # the bars: 5% of one length unit
     code, out = validate(tmp_path, path, capsys)
     assert code == 0, out
 
