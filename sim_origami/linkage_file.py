@@ -14,6 +14,11 @@ the direction, or the D-H theta) or `spherical` (a ball: three hinge angles `<na
 intrinsic x-y-z, `mechanism.ball_joint`). Angles in the file are in `units.angle` (deg by default, as people write
 them), lengths in `units.length` (m by default); everything read is returned in radians and metres.
 
+Every geometry number (D-H a, alpha, offset; axis points and directions) is read with its precision: half a unit in
+its last printed digit (`precision.Typed`; an integer +-0.5), or the file's `precision` table for every length and
+angle. `LinkageSpec.values` lists them, and `read_linkage(path, values)` reads the file with some replaced: the
+nearest mobile linkage (`scenes.linkage_file.nearest_mobile`).
+
 Every refusal is one ParameterError naming the field by its path, e.g. `joints[3].alpha: ...`.
 """
 

@@ -20,6 +20,11 @@ from sim_origami.scenes.linkage_file import linkage_scene
 EXAMPLES = Path(__file__).resolve().parents[1] / "docs" / "examples" / "linkages"
 
 
+SPHERICAL = {"sim_origami_linkage": 1, "form": "dh", "name": "spherical-4r",
+             "joints": [{"a": 0.0, "alpha": alpha} for alpha in (70.0, 90.0, 80.0, 100.0)],
+             "input": {"joint": "theta1", "range": [10.0, 60.0]}}  # fmt: skip
+
+
 def bennett_text(beta: str = "48.5904", a: str = "1.0000", b: str = "1.5000", alpha: str = "30.0000") -> str:
     """The Bennett example as TOML with its numbers printed as given."""
     rows = "".join(f'[[joints]]\nname = "theta{k + 1}"\na = {length}\nalpha = {twist}\n\n'
@@ -64,6 +69,17 @@ def test_numbers_carry_their_printed_precision(tmp_path):
     path.write_text(json.dumps(doc))
     with pytest.raises(ParameterError, match=r"precision\.angle = 0: it must be > 0"):
         read_linkage(path)
+
+
+@pytest.mark.parametrize("junk", [None, "1e-4", [], {"length": None}, {"angle": True}, {"angle": -1.0},
+                                  {"length": float("nan")}, {"lenght": 1e-4}])  # fmt: skip
+def test_a_precision_table_that_is_no_table_of_positive_numbers_is_refused_in_one_line(tmp_path, junk):
+    doc = {**SPHERICAL, "precision": junk}
+    path = tmp_path / "p.json"
+    path.write_text(json.dumps(doc))
+    with pytest.raises(ParameterError, match=r"^precision") as refused:
+        read_linkage(path)
+    assert "\n" not in str(refused.value)
 
 
 @pytest.mark.slow
@@ -136,9 +152,6 @@ def test_a_stated_precision_replaces_the_printed_one(tmp_path):
     assert moved["joints[1].alpha"] > 1e-6 > max(moved.get(f"joints[{k}].a", 0.0) for k in range(4))
 
 
-SPHERICAL = {"sim_origami_linkage": 1, "form": "dh", "name": "spherical-4r",
-             "joints": [{"a": 0.0, "alpha": alpha} for alpha in (70.0, 90.0, 80.0, 100.0)],
-             "input": {"joint": "theta1", "range": [10.0, 60.0]}}  # fmt: skip
 
 
 @pytest.mark.slow
