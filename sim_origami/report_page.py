@@ -104,7 +104,8 @@ def _pattern_svg(pattern: dict, events: list[dict]) -> str:
     xy = [(pattern["vertices"][2 * i], pattern["vertices"][2 * i + 1]) for i in range(len(pattern["vertices"]) // 2)]
     xs, ys = [p[0] for p in xy], [p[1] for p in xy]
     span = max(max(xs) - min(xs), max(ys) - min(ys)) or 1.0
-    pad, scale = 14, (PATTERN_PX - 28) / span
+    pad = 14
+    scale = (PATTERN_PX - 2 * pad) / span
     width, height = (max(xs) - min(xs)) * scale + 2 * pad, (max(ys) - min(ys)) * scale + 2 * pad
 
     def at(i: int) -> tuple[float, float]:  # y up on paper, down in SVG
@@ -169,7 +170,8 @@ def _view(view: dict | None) -> str:
     return f"""<h2>Motion in 3-D</h2>
 <p id="view-note"><small>MuJoCo's run, every body as simulated: drag to turn, wheel to zoom; paper front
 <span style="background:#f5dba3">&nbsp;&nbsp;</span> and back <span style="background:#9ebde0">&nbsp;&nbsp;</span>,
-creases mountain <span style="color:#d91a1a">red</span>, valley <span style="color:#1a4de6">blue</span>.</small></p>
+creases mountain <span style="color:{SIDE_COLOURS["M"]}">red</span>,
+valley <span style="color:{SIDE_COLOURS["V"]}">blue</span>.</small></p>
 <canvas id="view" width="800" height="500"></canvas>
 <div class="controls"><button id="view-play" type="button">play</button>
 <input id="view-frame" type="range" min="0" max="0" value="0" aria-label="frame">
@@ -366,7 +368,7 @@ def index(docs: list[dict]) -> str:
               f"{len(checks)} checks; {_num(cpu)} s of CPU in the validations.</p>")  # fmt: skip
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>sim_origami: {passed} of {len(docs)} scenes pass</title>
-<style>{STYLE} img.thumb {{ width: 160px; max-width: none; }}</style></head>
+<style>{STYLE} img.thumb {{ width: 160px; height: 120px; object-fit: contain; max-width: none; }}</style></head>
 <body>
 <h1>sim_origami validation</h1>
 <p id="verdict" class="verdict {"pass" if passed == len(docs) else "fail"}">{passed} of {len(docs)} scenes pass</p>
