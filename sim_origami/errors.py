@@ -22,7 +22,12 @@ class ConvergenceError(SimOrigamiError):
 
 
 class SimulationError(SimOrigamiError):
-    """MuJoCo reported a warning (e.g. bad qacc) or the run diverged."""
+    """
+    MuJoCo reported a warning (e.g. bad qacc) or the run diverged. `verdicts`: the checks a validation had made when
+    it stopped, with those that need no MuJoCo (`validation.validate` sets them), which the failed run's report keeps.
+    """
+
+    verdicts: tuple = ()
 
 
 class RenderError(SimOrigamiError):

@@ -45,7 +45,7 @@ def _num(value: float) -> float | None:
     return value if math.isfinite(value) else None
 
 
-def _verdict(v) -> dict:
+def verdict_json(v) -> dict:
     """A check as JSON; `compared`: how many values it compared (null where it counts no samples)."""
     return {"name": v.name, "measured": _num(v.measured), "tolerance": v.tolerance, "passed": v.passed,
             "detail": v.detail, "compared": v.compared}  # fmt: skip
@@ -115,7 +115,7 @@ def as_dict(report: Report, command: str | None = None) -> dict:
                 "step_cpu_time_s": run.dynamic.cpu_time_s,
                 "events": run.events,
                 "mobility": run.mobility,
-                "verdicts": [_verdict(v) for v in run.verdicts],
+                "verdicts": [verdict_json(v) for v in run.verdicts],
             }
         )
     out = {
@@ -136,7 +136,7 @@ def as_dict(report: Report, command: str | None = None) -> dict:
         "events": [e for r in report.runs for e in r.events],
         "bifurcation_study": list(report.bifurcations),
         "free_run": report.free_run,
-        "verdicts": [_verdict(v) for v in report.verdicts],
+        "verdicts": [verdict_json(v) for v in report.verdicts],
         "timings_s": report.timings,
         "passed": report.passed,
         "provenance": provenance(report.preset, command),

@@ -18,7 +18,7 @@ from .checks.branches import classify
 from .checks.paths import PathComparison, closure_conditions, compare, floor_verdict_values
 from .checks.reference import ReferenceCheck, ReferenceCurves, compare_reference
 from .checks.verdict import Verdict
-from .errors import ConvergenceError, ParameterError
+from .errors import ConvergenceError, ParameterError, SimulationError
 from .mjcf import PRESETS, ModelOptions, preset_duration
 from .scenes.base import Scene
 from .simulate import (
@@ -171,12 +171,19 @@ def mobility_report(scene: Scene, branch: str, start: float) -> dict:
     points = [e.input for e in kin.events() if e.kind == "bifurcation" and branch in e.branches]
     out = {"gruebler": kin.gruebler(), "idle_spins": idle, "inputs": len(scene.drives), "start": at(start),
            "bifurcations": [at(x) for x in points]}  # fmt: skip
-    along = getattr(kin, "mobility", None)  # a traced reference's mobility at each of its nodes
-    if along is not None and not callable(along):
-        values, counts = np.unique(along, return_counts=True)
-        out["along_path"] = {"min": int(np.min(along)), "max": int(np.max(along)),
-                             "typical": int(values[np.argmax(counts)])}  # fmt: skip
+    along = _along_path(kin)
+    if along is not None:
+        out["along_path"] = along
     return out
+
+
+def _along_path(kin) -> dict | None:
+    """A traced reference's mobility over its nodes (min, max, the most common), None for a closed form."""
+    along = getattr(kin, "mobility", None)  # a traced reference's mobility at each of its nodes
+    if along is None or callable(along):
+        return None
+    values, counts = np.unique(along, return_counts=True)
+    return {"min": int(np.min(along)), "max": int(np.max(along)), "typical": int(values[np.argmax(counts)])}
 
 
 def _followed(scene: Scene, branch: str, run: Trajectory) -> str:
@@ -462,7 +469,13 @@ def validate(
     runs = []
     for name in names:
         phase(f"MuJoCo {preset} and its projection, {name}")
-        runs.append(run_branch(scene, name, preset, seed))
+        try:
+            runs.append(run_branch(scene, name, preset, seed))
+        except SimulationError as err:  # the report keeps what is known without MuJoCo: often the first cause
+            known = _input_count_verdict(scene, name, {"along_path": _along_path(scene.kinematics),
+                                                       "inputs": len(scene.drives)})  # fmt: skip
+            err.verdicts = (*verdicts, *known)
+            raise
     timings["mujoco_step_cpu_s"] = sum(r.dynamic.cpu_time_s for r in runs)
     timings["mujoco_steps"] = float(sum(r.dynamic.steps for r in runs))
     blockage = None

@@ -522,10 +522,13 @@ def test_mujoco_diverging_on_a_users_file_is_a_failed_check_with_its_report(tmp_
     printed = capsys.readouterr().out
     assert code == 1, printed
     report = json.loads((out / "report.json").read_text())
-    (verdict,) = report["verdicts"]
+    *known, verdict = report["verdicts"]  # the checks made before MuJoCo stopped come first, as they were measured
     assert not report["passed"] and verdict["name"] == "MuJoCo run finished without a warning"
     assert "preset fast" in verdict["detail"] and "first went wrong at step" in verdict["detail"]
     assert "mjWARN_BADQACC" in verdict["detail"] and "FAIL fold-grid" in printed
+    undriven = next(v for v in known if "freedoms not driven" in v["name"])
+    assert undriven["measured"] == 40 and not undriven["passed"]  # 15 of 55 inputs: the cause, printed first
+    assert "FAIL through-target: freedoms not driven (mobility along the path - inputs): 40" in printed
 
 
 @pytest.mark.slow

@@ -15,7 +15,7 @@ from ..conventions import deg_to_rad
 from ..errors import DomainError, ParameterError, SimulationError
 from ..files import check_folder, claimed_folder, write_text
 from ..mjcf import PRESETS
-from ..report import as_dict, motion_view, plain, provenance, write
+from ..report import as_dict, motion_view, plain, provenance, verdict_json, write
 from ..report_page import write_index, write_page, write_thumbnail
 from ..scenes.fold_file import fold_scene
 from ..scenes.linkage_file import linkage_scene
@@ -142,9 +142,10 @@ def run_one(scene, args, out: Path, reference=None) -> dict:
 def failed_run(scene, args, out: Path, err: SimulationError) -> dict:
     """report.json for a run MuJoCo could not finish: the failing check and the configuration where it happened."""
     preset = args.preset or scene.preset
+    stopped = {"name": "MuJoCo run finished without a warning", "measured": 1.0, "tolerance": 0.0, "passed": False,
+               "detail": str(err), "compared": None}
     doc = {"scene": scene.name, "params": scene.params, "preset": preset, "passed": False,
-           "notes": scene.notes, "verdicts": [{"name": "MuJoCo run finished without a warning", "measured": 1.0,
-                                               "tolerance": 0.0, "passed": False, "detail": str(err)}],
+           "notes": scene.notes, "verdicts": [*map(verdict_json, err.verdicts), stopped],
            "provenance": provenance(preset, getattr(args, "command_line", None))}  # fmt: skip
     write_text(out / "report.json", json.dumps(doc, indent=2, default=plain) + "\n")
     return doc
@@ -234,7 +235,10 @@ def validate_scene(scene, args: argparse.Namespace) -> int:
         try:
             doc = run_one(scene, args, stage, reference)
         except SimulationError as err:  # MuJoCo diverged: a failed check on this pattern, not bad input
-            failed_run(scene, args, stage, err)
+            doc = failed_run(scene, args, stage, err)
+            # the checks made without MuJoCo first: an under-driven pattern's divergence is the symptom, not the cause
+            for v in (v for v in doc["verdicts"] if not v["passed"] and v is not doc["verdicts"][-1]):
+                print(f"  FAIL {v['name']}: {number(v['measured'], '.3g')} (tolerance {v['tolerance']:g})")
             print(f"FAIL {scene.name}: {err}\noutputs in {out}/")
             return 1
     if args.json:
