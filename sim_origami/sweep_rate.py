@@ -13,6 +13,7 @@ TARGET_FRACTION of the path-error tolerance, whatever the linkage or pattern.
 import numpy as np
 from numpy.typing import NDArray
 
+from .errors import ConvergenceError
 from .geometry import wrap
 from .mjcf import preset_duration
 from .scenes.base import Scene
@@ -81,21 +82,25 @@ def path_acceleration(scene: Scene, branch: str, start: float, stop: float) -> f
     """
     The largest |d^2 q_j / dp^2| (rad) of any output or driven joint over a minimum-jerk sweep start -> stop (rad) on
     `branch`, p the ramp's phase: on a sweep of T seconds the joints' peak acceleration is this / T^2 (rad/s^2).
-    Inputs within END_CLEARANCE of the branch's domain ends are left out.
+    Inputs within END_CLEARANCE of the branch's domain ends are left out; 0 where the closed form cannot be evaluated
+    over the sweep (the preset's own duration is then used).
     """
     lo, hi = scene.kinematics.branch(branch).domain
     margin = min(END_CLEARANCE * max(abs(lo), abs(hi)), 0.25 * (hi - lo))
     a, b = np.clip(sorted((start, stop)), lo + margin, hi - margin)
     if b <= a:
         return 0.0
-    x, accel = _accelerations(scene, branch, np.linspace(a, b, SAMPLES), start, stop)
-    best = 0.0
-    while len(x) > 2 and np.max(accel) > 1.02 * best:
-        best, i, h = float(np.max(accel)), int(np.argmax(accel)), float(np.min(np.diff(x)))
-        if h < MIN_SPACING_RAD:
-            break
-        window = np.linspace(max(a, x[i] - 2 * h), min(b, x[i] + 2 * h), ZOOM_POINTS)
-        x, accel = _accelerations(scene, branch, window, start, stop)
+    try:
+        x, accel = _accelerations(scene, branch, np.linspace(a, b, SAMPLES), start, stop)
+        best = 0.0
+        while len(x) > 2 and np.max(accel) > 1.02 * best:
+            best, i, h = float(np.max(accel)), int(np.argmax(accel)), float(np.min(np.diff(x)))
+            if h < MIN_SPACING_RAD:
+                break
+            window = np.linspace(max(a, x[i] - 2 * h), min(b, x[i] + 2 * h), ZOOM_POINTS)
+            x, accel = _accelerations(scene, branch, window, start, stop)
+    except ConvergenceError:  # a design driven past its closed form's turning point (a blockage run into contact)
+        return 0.0
     return max(best, float(np.max(accel, initial=0.0)))
 
 

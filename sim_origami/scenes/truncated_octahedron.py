@@ -106,7 +106,7 @@ def build(zeta: float) -> Scene:
             "path reaches the cube (rho1 = rho2 = 0 together) with theta rising monotonically (Yang 2017, §5.5: "
             "feasible -60.9 <= zeta <= 19.5 deg); simulate it with interference_scene(zeta)"
         )
-    return interference_scene(zeta, model)
+    return interference_scene(zeta, model, drivable=True)
 
 
 def describe(outcome: PathOutcome) -> str:
@@ -125,13 +125,17 @@ def describe(outcome: PathOutcome) -> str:
     return f"the path {ends[outcome.kind]}{turns}"
 
 
-def interference_scene(zeta: float, model: TruncatedOctahedronCube | None = None) -> Scene:
+def interference_scene(
+    zeta: float, model: TruncatedOctahedronCube | None = None, drivable: bool | None = None
+) -> Scene:
     """
     The scene of any design (zeta in rad), without `build`'s check: for designs outside the feasible range only
     the mechanism, its drive and its contact pairs are meaningful (simulate from the deployed pose, `initial` =
     zeros, to A1 = theta_f - theta_d); the closed form's poses exist only where its path is a function of theta.
+    `drivable`: whether the closed form follows the design to the cube (`outcome`, traced when not given).
     """
     model = model or TruncatedOctahedronCube(zeta)
+    drivable = model.outcome().drivable if drivable is None else drivable
     mechanism = assembly(zeta)
     revolute = tuple(revolute_axes(zeta))
     cube = model.theta_f - model.theta_d
@@ -158,7 +162,9 @@ def interference_scene(zeta: float, model: TruncatedOctahedronCube | None = None
         # rad (15 deg) from the contact in 5.1-5.7 s of CPU, stiff 16x 2.0e-11 and 2.4e-5 in 8.5 s; fast 8x 3.5e-4
         # and 1.1e-2 (too short at 15 deg). The path's rates ask for 3.4-3.6x (`sweep_rate`); the blockage, 16x.
         preset="fast",
-        sweep_time_scale=4.5,
+        # A design the closed form cannot follow to the cube has no path rates past its turning point
+        # (`sweep_rate` then times the preset's duration alone): it keeps the 16x the blockage needs.
+        sweep_time_scale=4.5 if drivable else 16.0,
         # Squares share no joint: every pair may collide (faces passing through each other, Yang 2017's
         # "interference"); the collision plates touch 9.8 mrad of A1 before the cube, where the servo stops
         # (blockage study).
