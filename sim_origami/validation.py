@@ -337,8 +337,9 @@ def _conditioning(scene: Scene, path: PathComparison, tol: float) -> str:
 def _input_count_verdict(scene: Scene, branch: str, mobility: dict) -> tuple[Verdict, ...]:
     """A numerically traced reference must be driven in every freedom it has: more freedoms than inputs leave the
     motion undetermined (MuJoCo and the reference may then part along the free directions). With a frames'
-    tolerance (exact frame angles, or asked for), each frame's distance from the rigid motion is checked too; on a
-    trace of M/V letters, that it folds every lettered crease (`PatternPath.unfolded_letters`)."""
+    tolerance (exact frame angles, or asked for), each frame's distance from the rigid motion is checked too, as is a
+    single folded state's where the trace reaches its inputs (`PatternPath.target_check`); on a trace of M/V letters,
+    that it folds every lettered crease (`PatternPath.unfolded_letters`)."""
     along = mobility.get("along_path")
     if along is None:
         return ()
@@ -350,6 +351,9 @@ def _input_count_verdict(scene: Scene, branch: str, mobility: dict) -> tuple[Ver
         worst = float("inf") if any(d is None for d in far) else max(far)
         frames = (Verdict(f"{branch}: frames' distance from the rigid motion (rad)", worst, tolerance,
                           f"{len(far)} frames; beyond the traced motion counts as infinite"),)  # fmt: skip
+    target = kin.target_check() if hasattr(kin, "target_check") else None  # a FOLD file's folded state, reached?
+    if target is not None:
+        frames += (Verdict(f"{branch}: folded state's distance from the rigid motion (rad)", *target),)
     state = kin.state_check() if hasattr(kin, "state_check") else None  # a FOLD file's folded form (fold.FormFit)
     if state is not None:
         frames += (Verdict(f"{branch}: file state's distance from the nearest rigid state (/ its precision)", *state),)

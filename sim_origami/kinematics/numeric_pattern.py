@@ -207,7 +207,8 @@ class PatternPath(JointSpaceKinematics):
         self.mobility = np.concatenate([inward.mobility[::-1], outward.mobility[1:]])
         order = np.argsort(s)
         self.s_nodes, self.nodes = s[order], q[order]
-        self.target_gap = 0.0
+        self.target_gap = float(np.max(np.abs(q_target - self.target)))
+        self.target_end, self.target_state = x, q_target
 
     def _knots(self) -> NDArray:
         """The inputs' path from flat: through each frame's inputs, or straight to the target's."""
@@ -285,6 +286,7 @@ class PatternPath(JointSpaceKinematics):
         order = np.argsort(s[closed])
         self.s_nodes, self.nodes, self.mobility = s[closed][order], q[closed][order], mobility[closed][order]
         self.target_gap = np.nan
+        self.target_end, self.target_state = float(traced.s[-1]), traced.q[-1]
         self.frame_distances = self._frame_distances() if self.frames is not None else []
         if self.target is not None and traced.stop.kind == "end":
             known = np.isfinite(self.target)
@@ -376,6 +378,29 @@ class PatternPath(JointSpaceKinematics):
             reach = "the rigid motion does not reach it" + (f": it stops at {stop.s:.6g} rad ({stop.kind})" if stop
                                                             else "")  # fmt: skip
         return fit.ratio, 1.0, f"{fit.text()}; {reach}", fit.values
+
+    def target_check(self) -> tuple[float, float, str, int] | None:
+        """
+        A folded state given as the motion's target (not letters, not frames) against the rigid motion: (the largest
+        distance, rad, of a given angle from the traced state at the target's inputs, TARGET_TOL, what was compared, how
+        many angles);
+        None when there is no such state or the trace stopped before the target's inputs (its stall, lock or contact
+        event says where and why). A file giving a folded state asks whether the pattern folds rigidly to it, so a
+        state beyond TARGET_TOL, the rounding allowed to FOLD writers' angles as to exact frames, fails.
+        """
+        if self.letters_only or self.frames is not None or not np.isfinite(self.target_gap):
+            return None
+        names = [c.name for c in self.pattern.creases]
+        known = np.flatnonzero(np.isfinite(self.target))
+        worst = int(known[np.argmax(np.abs(self.target_state[known] - self.target[known]))]) if known.size else 0
+        at = f"the inputs' end {self.target_end:.6g} rad" if self.target_input is None else \
+            f"its input {self.target_input:.6g} rad (traced from it)"  # fmt: skip
+        detail = (f"the file's folded state is {self.target_gap:.3g} rad ({np.rad2deg(self.target_gap):.3g} deg) from "
+                  f"the rigid motion's state at {at}, largest at crease {names[worst]}; {len(known)} given "
+                  f"angles of {len(names)} creases compared")  # fmt: skip
+        if self.target_gap > TARGET_TOL:
+            detail += ": the pattern does not fold rigidly to it"
+        return self.target_gap, TARGET_TOL, detail, len(known)
 
     def unfolded_letters(self) -> tuple[str, ...] | None:
         """
@@ -473,7 +498,7 @@ class PatternPath(JointSpaceKinematics):
             out.append(Event("frame", float(d["input"]) if np.isfinite(d["input"]) else float("nan"), (BRANCH,),
                              detail))  # fmt: skip
         if self.target_gap > TARGET_TOL:
-            out.append(Event("off-target", float(self.s_nodes[-1]), (BRANCH,),
+            out.append(Event("off-target", self.target_end, (BRANCH,),
                              f"the target state is off the rigid motion: at the inputs' end the traced state differs "
                              f"from it by {self.target_gap:.3g} rad"))  # fmt: skip
         if self.open_chain:

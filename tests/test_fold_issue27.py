@@ -1,0 +1,40 @@
+"""FOLD files the validation judged wrongly or let through (issue 27): a folded state off the rigid motion passed, a
+stall at the start failed as 'MuJoCo unstable', and malformed numbers, angles and inputs crashed, hung or were read
+as something else. Files are built as other tools write them (small generated FOLD dicts)."""
+
+import numpy as np
+import pytest
+from fold_fixtures import degree4_letters, validated, write
+
+from sim_origami.fold import read_fold
+from sim_origami.kinematics.numeric_pattern import BRANCH, TARGET_TOL, PatternPath, assignment_signs
+from sim_origami.scenes.fold_file import fold_scene
+
+
+def four_mountains(angle: float) -> dict:
+    """The degree-4 vertex of tests/fold_fixtures.py with four M creases, each asked to fold to `angle` deg."""
+    return degree4_letters() | {"edges_assignment": ["M"] * 4 + ["B"] * 4, "edges_foldAngle": [angle] * 4 + [0] * 4}
+
+
+@pytest.mark.slow
+def test_a_folded_state_off_the_rigid_motion_fails_with_its_distance(tmp_path, capsys):
+    # four mountains at -160 deg: a degree-4 vertex folds one diagonal pair only (Maekawa), so the state is far off
+    # its rigid motion (measured 3.28 rad at the inputs' end); it passed with exit 0 and an event in report.json only
+    code, report = validated(tmp_path, "four mountains", four_mountains(-160.0))
+    verdict = next(v for b in report["branches"] for v in b["verdicts"] if "folded state's distance" in v["name"])
+    assert code == 1 and not report["passed"] and not verdict["passed"] and verdict["measured"] > 3.0
+    assert verdict["tolerance"] == TARGET_TOL and "does not fold rigidly to it" in verdict["detail"]
+    shown = capsys.readouterr().out
+    assert "FAIL through-target: folded state's distance from the rigid motion (rad): 3.28" in shown
+    assert "does not fold rigidly to it" in shown
+
+
+def test_a_folded_state_on_the_rigid_motion_passes_the_check(tmp_path):
+    doc = degree4_letters()
+    pattern = read_fold(doc).pattern
+    exact = np.rad2deg(PatternPath(pattern, "e1", signs=assignment_signs(pattern)).evaluate(BRANCH, [1.2])[0][0])
+    scene = fold_scene(write(tmp_path, "exact", doc | {"edges_foldAngle": [*exact.tolist(), 0, 0, 0, 0]}))
+    gap, tol, detail, compared = scene.kinematics.target_check()
+    assert gap <= 1e-12 and tol == TARGET_TOL and compared == 4 and "does not fold" not in detail
+    off = fold_scene(write(tmp_path, "off", four_mountains(-160.0))).kinematics.target_check()
+    assert off[0] > 3.0 and "largest at crease" in off[2]
