@@ -26,6 +26,7 @@ import json
 import math
 import re
 import sys
+import unicodedata
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -44,6 +45,8 @@ from .linkage_forms import reduced_form
 from .mechanism import Body, Joint, Mechanism, ball_joint
 from .origami import PALETTE
 from .precision import Typed
+from .scenes.base import LENGTH_RANGE, LENGTH_RATIO_MAX
+from .solids import MESH_FORMATS, mujoco_mesh_problem
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -69,6 +72,16 @@ LENGTH_LIMIT = 1e9
 # of 1e308 deg would never end); the sweep lasts at most SWEEP_SCALE_LIMIT times the preset's duration.
 RANGE_LIMIT = 2 * math.pi
 SWEEP_SCALE_LIMIT = 100.0
+# The input range spans at least RANGE_MIN (rad): the trace's first step (`linkage_path.FIRST_STEP`); below it the
+# trace takes no step and the bifurcation study's poses (+-2e-3 rad about a meeting) leave the range.
+RANGE_MIN = 0.01
+# Documents nested deeper than this are refused as they are read: the schema's deepest value is a number in a vector
+# in a joint's table in the joints list (depth 4), and the parsers recurse once a level (thousands of levels gave a
+# RecursionError in json and tomllib alike; so did repr of the values).
+DEPTH_LIMIT = 32
+# A TOML key of more dotted parts than that is refused before tomllib reads it: it walks each part's prefix, a cost
+# quadratic in their number (4000 parts: 0.3 s; a file of a megabyte would take an hour).
+DOTTED = re.compile(rf"(?<![\w-])(?:[\w-]++\s*+\.\s*+){{{DEPTH_LIMIT},}}")
 
 TOP_FIELDS = {VERSION_KEY, "form", "name", "units", "precision", "joints", "bodies", "ground", "input", "shapes",
               "contact", "anchor", "sweep_time_scale", "notes"}  # fmt: skip
@@ -125,9 +138,19 @@ def read_linkage(source: str | Path, values: Mapping[str, float] | None = None) 
     Read a linkage file (`.json` or `.toml`); the module docstring and docs/linkage_files.md give the rules.
 
     `values` replaces geometry numbers by field path (`Value.field`, file units): the nearest exact linkage.
+
+    Raises
+    ------
+    ParameterError
+      For a source that is no path, `values` that are no table of geometry fields and numbers, and any field of the
+      file that breaks the schema (named by its path).
     """
+    if not isinstance(source, (str, Path)) or (isinstance(source, str) and not source) or "\0" in str(source):
+        raise ParameterError(f"source = {_shown(source)}: give the linkage file's path (a str or Path)")
     path = Path(source)
     doc = _load(path)
+    if values is not None and not isinstance(values, Mapping):
+        raise ParameterError(f"values = {_shown(values)}: give a table of field paths and numbers")
     if values:
         doc = _replaced(doc, values)
     _known(doc, TOP_FIELDS, "")
@@ -136,18 +159,18 @@ def read_linkage(source: str | Path, values: Mapping[str, float] | None = None) 
         raise ParameterError(f"{VERSION_KEY}: missing; a linkage file starts with {VERSION_KEY} = {VERSION} (the "
                              "schema version it is written for)")
     if isinstance(version, bool) or version != VERSION:
-        raise ParameterError(f"{VERSION_KEY} = {version!r}: this sim_origami reads schema version {VERSION}")
+        raise ParameterError(f"{VERSION_KEY} = {_shown(version)}: this sim_origami reads schema version {VERSION}")
     form = doc.get("form")
     if form not in FORMS:
-        raise ParameterError(f"form = {form!r}: it must be one of {', '.join(map(repr, FORMS))} (D-H rows of one "
+        raise ParameterError(f"form = {_shown(form)}: it must be one of {', '.join(map(repr, FORMS))} (D-H rows of one "
                              "loop, or axis lines between named bodies)")
     units = _table(doc.get("units", {}), "units")
     _known(units, {"length", "angle"}, "units")
     length_unit, angle_unit = units.get("length", "m"), units.get("angle", "deg")
     if not isinstance(length_unit, str) or length_unit not in LENGTH_UNITS:
-        raise ParameterError(f"units.length = {length_unit!r}: it must be one of {', '.join(LENGTH_UNITS)}")
+        raise ParameterError(f"units.length = {_shown(length_unit)}: it must be one of {', '.join(LENGTH_UNITS)}")
     if not isinstance(angle_unit, str) or angle_unit not in ANGLE_UNITS:
-        raise ParameterError(f"units.angle = {angle_unit!r}: it must be one of {', '.join(ANGLE_UNITS)}")
+        raise ParameterError(f"units.angle = {_shown(angle_unit)}: it must be one of {', '.join(ANGLE_UNITS)}")
     stated = _table(doc.get("precision", {}), "precision")
     _known(stated, {"length", "angle"}, "precision")
     read = _Reader(LENGTH_UNITS[length_unit], ANGLE_UNITS[angle_unit], path.parent)
@@ -163,14 +186,17 @@ def read_linkage(source: str | Path, values: Mapping[str, float] | None = None) 
     _known(given, {"joint", "range", "start"}, "input")
     joint = given.get("joint")
     if not isinstance(joint, str) or joint not in input_names:
-        raise ParameterError(f"input.joint = {joint!r}: it must name a revolute joint, one of "
+        raise ParameterError(f"input.joint = {_shown(joint)}: it must name a revolute joint, one of "
                              f"{', '.join(input_names)}")
     mech_input = input_names[joint]
     span = read.angles(given.get("range"), "input.range", 2)
     if not span[0] < span[1]:
         raise ParameterError("input.range: give [low, high] with low < high")
+    if span[1] - span[0] < RANGE_MIN:
+        raise ParameterError(f"input.range = {_shown(given['range'])}: it must span at least "
+                             f"{RANGE_MIN / read.rad:.3g} {angle_unit} (the trace's first step)")
     if max(abs(span[0]), abs(span[1])) > RANGE_LIMIT + 1e-12:
-        raise ParameterError(f"input.range = {given['range']!r}: it must lie within one turn either way "
+        raise ParameterError(f"input.range = {_shown(given['range'])}: it must lie within one turn either way "
                              f"(+-{RANGE_LIMIT / read.rad:g} {angle_unit})")
     start_input = read.angle(given["start"], "input.start") if "start" in given else None
     if start_input is not None and not span[0] <= start_input <= span[1]:
@@ -188,12 +214,10 @@ def read_linkage(source: str | Path, values: Mapping[str, float] | None = None) 
     scale = read.positive(doc.get("sweep_time_scale", SWEEP_TIME_SCALE), "sweep_time_scale", length=False)
     if scale > SWEEP_SCALE_LIMIT:
         raise ParameterError(f"sweep_time_scale = {scale:g}: it must be at most {SWEEP_SCALE_LIMIT:g}")
-    notes = doc.get("notes", "")
-    if not isinstance(notes, str):
-        raise ParameterError(f"notes = {notes!r}: it must be a string")
-    name = doc.get("name", path.stem)
-    if not isinstance(name, str) or not name.strip() or any(c.isspace() or c in "/\\" for c in name):
-        raise ParameterError(f"name = {name!r}: it must be a non-empty word (no spaces or slashes)")
+    notes = _text(doc.get("notes", ""), "notes", "a string")
+    name = _text(doc.get("name", path.stem), "name", "a non-empty word (no spaces or slashes)")
+    if not name.strip() or any(c.isspace() or c in "/\\" for c in name):
+        raise ParameterError(f"name = {_shown(name)}: it must be a non-empty word (no spaces or slashes)")
     geometry = tuple(v for v in read.seen.values() if GEOMETRY.fullmatch(v.field))
     return LinkageSpec(name, form, mechanism, names, mech_input, (span[0], span[1]), start, start_input, contact,
                        scale, read.length_m, notes, geometry)  # fmt: skip
@@ -206,14 +230,19 @@ def _replaced(doc: dict, values: Mapping[str, float]) -> dict:
     doc = {**doc, "joints": [{k: list(v) if isinstance(v, list) else v for k, v in j.items()}
                              if isinstance(j, dict) else j for j in joints] if isinstance(joints, list) else joints}
     for field, value in values.items():
-        match = re.fullmatch(r"joints\[(\d+)\]\.(\w+)(?:\[(\d)\])?", field)
+        match = re.fullmatch(r"joints\[(\d+)\]\.(\w+)(?:\[(\d)\])?", field) if isinstance(field, str) else None
         if match is None or not GEOMETRY.fullmatch(field):
-            raise ParameterError(f"{field}: not a geometry field of a linkage file")
+            raise ParameterError(f"{_shown(field)}: not a geometry field of a linkage file")
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise ParameterError(f"values[{field!r}] = {_shown(value)}: it must be a number")
         k, key, i = int(match[1]), match[2], match[3]
-        if i is None:
-            doc["joints"][k][key] = value
-        else:
-            doc["joints"][k][key][int(i)] = value
+        try:
+            if i is None:
+                doc["joints"][k][key] = value
+            else:
+                doc["joints"][k][key][int(i)] = value
+        except (IndexError, KeyError, TypeError) as err:  # a field the file does not hold
+            raise ParameterError(f"{field}: the file has no such number to replace") from err
     return doc
 
 
@@ -229,9 +258,11 @@ class _Reader:
 
     def number(self, value: Any, field: str, kind: str = "") -> float:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise ParameterError(f"{field} = {value!r}: it must be a number")
+            raise ParameterError(f"{field} = {_shown(value)}: it must be a number")
+        if isinstance(value, int) and abs(value) > sys.float_info.max:  # beyond a float: math.isfinite overflows
+            raise ParameterError(f"{field} = {_shown(value)}: it must be a finite number (within a float's range)")
         if not math.isfinite(value):
-            raise ParameterError(f"{field} = {value!r}: it must be a finite number")
+            raise ParameterError(f"{field} = {_shown(value)}: it must be a finite number")
         if kind in self.stated:
             precision = self.stated[kind]
         elif isinstance(value, Typed):
@@ -244,28 +275,40 @@ class _Reader:
     def length(self, value: Any, field: str) -> float:
         out = self.number(value, field, "length") * self.length_m
         if abs(out) > LENGTH_LIMIT:
-            raise ParameterError(f"{field} = {value!r}: lengths beyond {LENGTH_LIMIT:g} m are not simulated")
+            raise ParameterError(f"{field} = {_shown(value)}: lengths beyond {LENGTH_LIMIT:g} m are not simulated")
         return out
 
     def angle(self, value: Any, field: str) -> float:
         return self.number(value, field, "angle") * self.rad
 
+    def sized(self, value: Any, field: str, size: float) -> float:
+        """A positive length within the simulated range and within LENGTH_RATIO_MAX of the linkage's size (m), as
+        every scene's lengths: a bar 1e-300 wide gave MuJoCo a body of no mass, found only after the trace."""
+        out = self.positive(value, field)
+        low, high = max(LENGTH_RANGE[0], size / LENGTH_RATIO_MAX), min(LENGTH_RANGE[1], size * LENGTH_RATIO_MAX)
+        if not low <= out <= high:
+            raise ParameterError(f"{field} = {_shown(value)}: it must lie within {low / self.length_m:.3g} .. "
+                                 f"{high / self.length_m:.3g} {self.units['length']} ({LENGTH_RANGE[0]:g} .. "
+                                 f"{LENGTH_RANGE[1]:g} m and within {LENGTH_RATIO_MAX:g} times the linkage's size, "
+                                 f"{size:.3g} m)")
+        return out
+
     def positive(self, value: Any, field: str, length: bool = True) -> float:
         out = self.length(value, field) if length else self.number(value, field)
         if not out > 0:
-            raise ParameterError(f"{field} = {value!r}: it must be > 0")
+            raise ParameterError(f"{field} = {_shown(value)}: it must be > 0")
         return out
 
     def vector(self, value: Any, field: str, length: bool = False) -> NDArray[np.float64]:
         """Three numbers: lengths (in metres) or unitless (a direction)."""
         if not isinstance(value, list) or len(value) != 3:
-            raise ParameterError(f"{field} = {value!r}: give three numbers [x, y, z]")
+            raise ParameterError(f"{field} = {_shown(value)}: give three numbers [x, y, z]")
         read = self.length if length else self.number
         return np.array([read(v, f"{field}[{k}]") for k, v in enumerate(value)])
 
     def angles(self, value: Any, field: str, n: int) -> list[float]:
         if not isinstance(value, list) or len(value) != n:
-            raise ParameterError(f"{field} = {value!r}: give {n} angles")
+            raise ParameterError(f"{field} = {_shown(value)}: give {n} angles")
         return [self.angle(v, f"{field}[{k}]") for k, v in enumerate(value)]
 
 
@@ -277,28 +320,77 @@ def _load(path: Path) -> dict:
         raise ParameterError(f"cannot read linkage file {path}: {err.strerror}") from err
     except UnicodeDecodeError as err:
         raise ParameterError(f"{path} is not UTF-8 text ({err.reason}); a linkage file is JSON or TOML") from err
+    deep = ParameterError(f"{path}: lists or tables nested more than {DEPTH_LIMIT} deep; a linkage file's numbers "
+                          "lie 4 deep")
+    toml = path.suffix.lower() == ".toml"
+    if toml and DOTTED.search(text):
+        raise deep
     try:
         # each float keeps the precision it was printed with (`precision.Typed`)
-        doc = (tomllib.loads(text, parse_float=Typed) if path.suffix.lower() == ".toml"
-               else json.loads(text, parse_float=Typed))  # fmt: skip
+        doc = tomllib.loads(text, parse_float=Typed) if toml else json.loads(text, parse_float=Typed)
+    except RecursionError:  # both parsers recurse once a level
+        raise deep from None
     except tomllib.TOMLDecodeError as err:
         raise ParameterError(f"{path} is not TOML ({err})") from err
     except json.JSONDecodeError as err:
         raise ParameterError(f"{path} is not JSON ({err}); a linkage file is JSON (or TOML, named .toml)") from err
+    except ValueError as err:  # Python's int-from-text limit: an integer of over 4,300 digits
+        raise ParameterError(f"{path}: an integer of over {sys.get_int_max_str_digits()} digits; a linkage file's "
+                             "numbers lie within a float's range") from err
     if not isinstance(doc, dict):
         raise ParameterError(f"{path} holds a JSON {type(doc).__name__}; a linkage file is an object")
+    if _depth(doc) > DEPTH_LIMIT:  # repr, copies and checks of the values recurse as well
+        raise deep
     return doc
+
+
+def _depth(doc: Any) -> int:
+    """The deepest nesting of lists and tables in a parsed document (counted without recursion: TOML's dotted keys
+    nest tables any depth without a bracket)."""
+    deepest, stack = 0, [(doc, 0)]
+    while stack:
+        value, depth = stack.pop()
+        if isinstance(value, (list, dict)):
+            deepest = max(deepest, depth + 1)
+            stack += [(v, depth + 1) for v in (value.values() if isinstance(value, dict) else value)]
+    return deepest
+
+
+# How many characters of a value a message quotes: a refusal stays one short line whatever the value.
+SHOWN = 60
+
+
+def _shown(value: Any) -> str:
+    """A value as a message quotes it: its repr, cut to SHOWN characters (an integer by its digit count)."""
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value).bit_length() > 200:
+        # repr of an integer over 4,300 digits raises; the count is what matters
+        return f"<an integer of {int(abs(value).bit_length() * math.log10(2)) + 1} digits>"
+    if isinstance(value, (list, dict)) and len(value) > SHOWN:  # repr of a long list costs its length
+        return f"<a {type(value).__name__} of {len(value)} items>"
+    text = repr(value)
+    return text if len(text) <= SHOWN else f"{text[:SHOWN - 20]}...{text[-12:]} ({len(text)} characters)"
+
+
+def _text(value: Any, field: str, rule: str) -> str:
+    """A string without control characters (NUL, line breaks) or lone surrogates: names and notes end up in file
+    names, XML and one-line messages."""
+    if not isinstance(value, str):
+        raise ParameterError(f"{field} = {_shown(value)}: it must be {rule}")
+    bad = next((c for c in value if unicodedata.category(c) in ("Cc", "Cs")), None)
+    if bad is not None:
+        raise ParameterError(f"{field} = {_shown(value)}: it holds the control character {bad!r}; it must be {rule}")
+    return value
 
 
 def _table(value: Any, field: str) -> dict:
     if not isinstance(value, dict):
-        raise ParameterError(f"{field}: {'missing' if value is None else repr(value)}; it must be a table of fields")
+        raise ParameterError(f"{field}: {'missing' if value is None else _shown(value)}; it must be a table of fields")
     return value
 
 
 def _list(value: Any, field: str) -> list:
     if not isinstance(value, list):
-        raise ParameterError(f"{field} = {value!r}: it must be a list")
+        raise ParameterError(f"{field} = {_shown(value)}: it must be a list")
     return value
 
 
@@ -313,28 +405,28 @@ def _known(table: dict, fields: set[str], where: str) -> None:
 def _pair(value: Any, field: str, bodies: set[str]) -> tuple[str, str]:
     if not isinstance(value, list) or len(value) != 2 or not all(isinstance(v, str) for v in value) or \
             value[0] == value[1]:
-        raise ParameterError(f"{field} = {value!r}: give two different body names")
+        raise ParameterError(f"{field} = {_shown(value)}: give two different body names")
     for name in value:
         if name not in bodies:
-            raise ParameterError(f"{field}: unknown body {name!r}; bodies are {', '.join(sorted(bodies))}")
+            raise ParameterError(f"{field}: unknown body {_shown(name)}; bodies are {', '.join(sorted(bodies))}")
     return value[0], value[1]
 
 
 def _joint_type(joint: dict, field: str) -> str:
     kind = joint.get("type", "revolute")
     if kind not in JOINT_TYPES:
-        raise ParameterError(f"{field}.type = {kind!r}: unknown joint type; types are {', '.join(JOINT_TYPES)}")
+        raise ParameterError(f"{field}.type = {_shown(kind)}: unknown joint type; types are {', '.join(JOINT_TYPES)}")
     return kind
 
 
 def _names(joints: list[dict], default: str) -> list[str]:
     names = []
     for k, j in enumerate(joints):
-        name = j.get("name", default.format(k + 1))
-        if not isinstance(name, str) or not name or any(c.isspace() for c in name):
-            raise ParameterError(f"joints[{k}].name = {name!r}: it must be a non-empty word")
+        name = _text(j.get("name", default.format(k + 1)), f"joints[{k}].name", "a non-empty word")
+        if not name or any(c.isspace() for c in name):
+            raise ParameterError(f"joints[{k}].name = {_shown(name)}: it must be a non-empty word")
         if name in names:
-            raise ParameterError(f"joints[{k}].name = {name!r}: joints[{names.index(name)}] has that name too")
+            raise ParameterError(f"joints[{k}].name = {_shown(name)}: joints[{names.index(name)}] has that name too")
         names.append(name)
     return names
 
@@ -355,21 +447,32 @@ def _shapes(doc: dict, read: _Reader, size: float, bodies: set[str]) -> tuple[fl
     """Bar side (m) and mesh solids per body (in the body's frame, metres) from the `shapes` table."""
     shapes = _table(doc.get("shapes", {}), "shapes")
     _known(shapes, {"width", "meshes"}, "shapes")
-    width = read.positive(shapes["width"], "shapes.width") if "width" in shapes else WIDTH_SHARE * size
+    width = read.sized(shapes["width"], "shapes.width", size) if "width" in shapes else WIDTH_SHARE * size
     meshes = {}
     for body, file in _table(shapes.get("meshes", {}), "shapes.meshes").items():
-        field = f"shapes.meshes.{body}"
         if body not in bodies:
-            raise ParameterError(f"{field}: unknown body {body!r}; bodies are {', '.join(sorted(bodies))}")
-        if not isinstance(file, str):
-            raise ParameterError(f"{field} = {file!r}: give a mesh file name (STL, OBJ, PLY), relative to the file")
+            raise ParameterError(f"shapes.meshes: unknown body {_shown(body)}; bodies are {', '.join(sorted(bodies))}")
+        field = f"shapes.meshes.{body}"
+        file = _text(file, field, "a mesh file name (STL, OBJ, PLY), relative to the file")
+        if Path(file).suffix.lower().lstrip(".") not in MESH_FORMATS:
+            raise ParameterError(f"{field} = {_shown(file)}: a mesh file ends in "
+                                 f"{', '.join('.' + f for f in MESH_FORMATS)}")
         try:
             mesh = trimesh.load_mesh(read.folder / file)
-        except (OSError, ValueError) as err:
-            raise ParameterError(f"{field}: cannot read mesh {file!r} ({err})") from err
+        except OSError as err:
+            raise ParameterError(f"{field}: cannot read mesh {_shown(file)} ({err.strerror})") from err
+        except Exception as err:  # trimesh's parsers raise anything on a damaged file: it is the file's fault
+            raise ParameterError(f"{field}: cannot read mesh {_shown(file)} ({type(err).__name__}: "
+                                 f"{_shown(str(err))})") from err
         if not isinstance(mesh, trimesh.Trimesh) or not len(mesh.faces):
-            raise ParameterError(f"{field}: {file!r} holds no single triangle mesh")
+            raise ParameterError(f"{field}: {_shown(file)} holds no single triangle mesh")
+        if not np.all(np.isfinite(mesh.vertices)) or np.max(np.abs(mesh.vertices)) * read.length_m > LENGTH_LIMIT:
+            raise ParameterError(f"{field}: {_shown(file)} has a vertex that is not finite or lies beyond "
+                                 f"{LENGTH_LIMIT:g} m")
         mesh.apply_scale(read.length_m)
+        problem = mujoco_mesh_problem(mesh)  # MuJoCo would otherwise refuse it only after the trace
+        if problem:
+            raise ParameterError(f"{field}: {_shown(file)} is no solid MuJoCo can simulate ({problem})")
         meshes[body] = mesh
     return width, meshes
 
@@ -395,7 +498,7 @@ def _dh(doc: dict, joints: list[dict], read: _Reader):
                                      "alpha (twist to the next joint)")
         a = read.length(j["a"], f"{field}.a")
         if a < 0:
-            raise ParameterError(f"{field}.a = {j['a']!r}: a length to the next joint must be >= 0")
+            raise ParameterError(f"{field}.a = {_shown(j['a'])}: a length to the next joint must be >= 0")
         rows.append(DHRow(read.length(j.get("offset", 0.0), f"{field}.offset"), a, read.angle(j["alpha"],
                                                                                             f"{field}.alpha")))
     names = _names(joints, "theta{}")
@@ -407,7 +510,7 @@ def _dh(doc: dict, joints: list[dict], read: _Reader):
             raise ParameterError("joints: every a and offset is 0 and every alpha 0 or 180 deg; the axes are one "
                                  "line, which is no linkage")
         size = read.positive(doc["anchor"], "anchor") / ANCHOR_SHARE if "anchor" in doc else read.length_m
-    anchor = read.positive(doc["anchor"], "anchor") if "anchor" in doc else ANCHOR_SHARE * size
+    anchor = read.sized(doc["anchor"], "anchor", size) if "anchor" in doc else ANCHOR_SHARE * size
     width, meshes = _shapes(doc, read, size, {f"link_{k + 1}" for k in range(n)})
     hinges = [k + 1 for k in range(n) if k + 1 not in spherical]
     if not hinges:
@@ -438,9 +541,11 @@ def _axes(doc: dict, joints: list[dict], read: _Reader):
         _known(j, AXIS_FIELDS, field)
         pair = j.get("bodies")
         if not isinstance(pair, list) or len(pair) != 2 or not all(isinstance(b, str) and b for b in pair):
-            raise ParameterError(f"{field}.bodies = {pair!r}: give the two bodies it joins, [first, second]")
+            raise ParameterError(f"{field}.bodies = {_shown(pair)}: give the two bodies it joins, [first, second]")
+        for i, body in enumerate(pair):
+            _text(body, f"{field}.bodies[{i}]", "a body name")
         if pair[0] == pair[1]:
-            raise ParameterError(f"{field}.bodies: {pair[0]!r} twice; a joint joins two different bodies")
+            raise ParameterError(f"{field}.bodies: {_shown(pair[0])} twice; a joint joins two different bodies")
         pairs.append(tuple(pair))
     bodies = list(dict.fromkeys(b for p in pairs for b in p))
     listed = doc.get("bodies")
@@ -448,10 +553,10 @@ def _axes(doc: dict, joints: list[dict], read: _Reader):
         listed = _list(listed, "bodies")
         for k, b in enumerate(listed):
             if b not in bodies:
-                raise ParameterError(f"bodies[{k}] = {b!r}: no joint names it")
+                raise ParameterError(f"bodies[{k}] = {_shown(b)}: no joint names it")
         bodies = list(dict.fromkeys([*listed, *bodies]))
     if ground not in bodies:
-        raise ParameterError(f"ground = {ground!r}: it must name a body, one of {', '.join(bodies)}")
+        raise ParameterError(f"ground = {_shown(ground)}: it must name a body, one of {', '.join(bodies)}")
     if len(joints) < len(bodies):  # a spanning tree has len(bodies) - 1 joints: one more closes a loop
         raise ParameterError(f"joints: the axes form no closed loop ({len(joints)} joints between {len(bodies)} "
                              "bodies make a tree or less); a linkage file needs at least one loop")
@@ -467,7 +572,7 @@ def _axes(doc: dict, joints: list[dict], read: _Reader):
             raise ParameterError(f"{field}.direction: missing; a revolute joint turns about a direction")
         d = read.vector(j.get("direction", [0.0, 0.0, 1.0]), f"{field}.direction")
         if not np.max(np.abs(d)) > 0:
-            raise ParameterError(f"{field}.direction = {j['direction']!r}: it must be a nonzero vector")
+            raise ParameterError(f"{field}.direction = {_shown(j['direction'])}: it must be a nonzero vector")
         d = d / np.max(np.abs(d))  # any length is read, 1e308 included, without overflowing its norm
         if kind == "spherical" and "theta0" in j:
             raise ParameterError(f"{field}.theta0: a spherical joint's angles are 0 in the drawn pose")
@@ -484,7 +589,7 @@ def _axes(doc: dict, joints: list[dict], read: _Reader):
     width, meshes = _shapes(doc, read, size, set(bodies))
     for mesh in meshes.values():
         mesh.apply_translation(-centre)
-    anchor = read.positive(doc["anchor"], "anchor") if "anchor" in doc else ANCHOR_SHARE * size
+    anchor = read.sized(doc["anchor"], "anchor", size) if "anchor" in doc else ANCHOR_SHARE * size
     theta0 = _starts(joints, read, required=True)
     body_list = []
     for k, b in enumerate(bodies):

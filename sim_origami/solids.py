@@ -77,3 +77,26 @@ def hinge_hull(outline: ArrayLike, heights: ArrayLike) -> trimesh.Trimesh:
     ends = np.stack([p, np.roll(p, -1, axis=0)], 1)[np.isfinite(h)]  # (edges, 2, 2)
     points = np.concatenate([ends, np.broadcast_to(h[np.isfinite(h)][:, None, None], (len(ends), 2, 1))], -1)
     return trimesh.convex.convex_hull(points.reshape(-1, 3))
+
+
+# Mesh files a linkage file's `shapes.meshes` may name (trimesh reads them; others it refuses or misreads as points).
+MESH_FORMATS = ("stl", "obj", "ply")
+
+
+def mujoco_mesh_problem(mesh: trimesh.Trimesh) -> str | None:
+    """
+    Why MuJoCo cannot compile `mesh` (metres) as a moving body's solid, or None: a mesh of no volume (one
+    triangle, coplanar points) has no inertia. A one-body model is compiled, a few ms, so the refusal comes before
+    any trace.
+    """
+    import mujoco  # here: the solids of the built-in scenes never need it
+
+    vertex = " ".join(f"{v:.17g}" for v in np.ravel(mesh.vertices))
+    face = " ".join(str(int(i)) for i in np.ravel(mesh.faces))
+    xml = (f'<mujoco><asset><mesh name="m" vertex="{vertex}" face="{face}"/></asset><worldbody><body>'
+           '<freejoint/><geom type="mesh" mesh="m"/></body></worldbody></mujoco>')  # fmt: skip
+    try:
+        mujoco.MjModel.from_xml_string(xml)
+    except ValueError as err:
+        return " ".join(str(err).split())[:200]
+    return None

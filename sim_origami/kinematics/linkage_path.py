@@ -84,6 +84,30 @@ class AssemblyError(ParameterError):
     then lie within their precision of a mobile linkage (`scenes.linkage_file.nearest_mobile`)."""
 
 
+def _check_arguments(loops: LoopSystem, joint_names: Sequence[str], input_joint: int,
+                     input_range: tuple[float, float], start: ArrayLike | None) -> None:
+    """Refuse arguments of the wrong type or shape with a ParameterError (not an AttributeError or IndexError deep in
+    the solve)."""
+    if not isinstance(loops, LoopSystem):
+        raise ParameterError(f"loops = {type(loops).__name__}: it must be a closure.LoopSystem")
+    n = loops.n_joints
+    if isinstance(joint_names, str) or len(joint_names) != n or not all(isinstance(j, str) for j in joint_names):
+        raise ParameterError(f"joint_names: give {n} names (one per loop joint)")
+    if isinstance(input_joint, bool) or not isinstance(input_joint, (int, np.integer)) or not 0 <= input_joint < n:
+        raise ParameterError(f"input_joint = {input_joint!r}: it must be a joint index from 0 to {n - 1}")
+    span = np.asarray(input_range, dtype=object)
+    if span.shape != (2,) or not all(isinstance(v, (int, float, np.number)) and not isinstance(v, bool)
+                                     and np.isfinite(v) for v in span):  # fmt: skip
+        raise ParameterError(f"input_range = {input_range!r}: give (lo, hi), two finite angles (rad)")
+    if start is not None:
+        try:
+            q = np.asarray(start, dtype=float)
+        except (TypeError, ValueError) as err:
+            raise ParameterError("start: it must be an array of joint angles (rad)") from err
+        if q.shape != (n,) or not np.all(np.isfinite(q)):
+            raise ParameterError(f"start: it must hold {n} finite joint angles (rad), not shape {q.shape}")
+
+
 class LinkagePath(Kinematics):
     """
     Every branch through the start input of a linkage, traced numerically over the input range.
@@ -128,6 +152,7 @@ class LinkagePath(Kinematics):
         gauge: Sequence[int] = (),
         observed: ArrayLike | None = None,
     ):
+        _check_arguments(loops, joint_names, input_joint, input_range, start)
         self._mechanism_loops = loops
         self.input_index = int(input_joint)
         self.gauge = tuple(int(j) for j in gauge)
@@ -139,6 +164,12 @@ class LinkagePath(Kinematics):
         self.joint_names = tuple(n for n, seen in zip(joint_names, self.observed, strict=True) if seen)
         self.input_name = self.loop_joint_names[self.input_index]
         self.lo, self.hi = float(min(input_range)), float(max(input_range))
+        kutzbach = self.gruebler()
+        if kutzbach > 1:  # Kutzbach's count is a lower bound of the mobility: refused before any solve
+            raise ParameterError(f"joints: {loops.n_joints - len(self.gauge)} joint freedoms in {len(loops.loops)} "
+                                 f"loop{'s' if len(loops.loops) > 1 else ''} leave at least {kutzbach} freedoms "
+                                 "(Kutzbach); a linkage file drives one input joint, so its linkage must move with "
+                                 "one freedom")
         self.ball_middles = np.asarray(ball_middles, dtype=int)
         self.compared = np.ones(loops.n_joints, dtype=bool) if compared is None else np.asarray(compared, dtype=bool)
         fixed = np.zeros(loops.n_joints, dtype=bool)
@@ -172,6 +203,13 @@ class LinkagePath(Kinematics):
             shown = ", ".join(f"{v:.4g}" for v in np.rad2deg(starts[0]))
             self.assembly = (f"assembled at {self.input_name} = {np.rad2deg(x0):.6g} deg: {len(starts)} "
                              f"assembl{'y' if len(starts) == 1 else 'ies'} found, path-1 starts at ({shown}) deg")
+        mobility = [self._loops.mobility(q) for q in starts]
+        if min(mobility) > 1:
+            # more freedoms than the one input: the trace would stall at every step (40 D-H rows or a Goldberg 5R with
+            # every axis parallel ran for minutes), and MuJoCo's sweep would not follow one path
+            raise ParameterError(f"joints: the linkage moves with {min(mobility)} freedoms at {self.input_name} = "
+                                 f"{np.rad2deg(x0):.6g} deg (the rank of its closure Jacobian there); a linkage file "
+                                 "drives one input joint, so it must move with one freedom")
         self.start_input = x0
         self.traces: dict[str, tuple[TracedPath, TracedPath]] = {}
         self._polishers: dict[str, ChordPolish] = {}  # per branch: its nodes' factorisations, kept
