@@ -57,6 +57,17 @@ STUDY_SPAN = 0.3
 BLOCKAGE_HOLD = 3.0
 
 
+class ZeroSweepError(SimulationError):
+    """
+    A branch whose drive has zero length (a traced reference stuck at its start): no MuJoCo run is made, and the
+    checks made without MuJoCo (`verdicts`, the trace's stop among them) and the reference's `events` say why.
+    """
+
+    def __init__(self, message: str, verdicts: tuple[Verdict, ...], events: tuple[dict, ...]):
+        super().__init__(message)
+        self.verdicts, self.events = verdicts, events
+
+
 @dataclass(frozen=True)
 class BranchRun:
     """One branch: requested and followed, MuJoCo path comparisons, events on the path."""
@@ -344,7 +355,8 @@ def _input_count_verdict(scene: Scene, branch: str, mobility: dict) -> tuple[Ver
     if along is None:
         return ()
     kin = scene.kinematics
-    frames = ()
+    stuck = kin.start_check() if hasattr(kin, "start_check") else None  # a trace that never left its start
+    frames = () if stuck is None else (Verdict(f"{branch}: traced motion stops at its start", *stuck),)
     tolerance = getattr(kin, "frames_tolerance", None)
     if tolerance is not None and getattr(kin, "frame_distances", None):
         far = [d["distance_rad"] for d in kin.frame_distances]
@@ -473,6 +485,13 @@ def validate(
     runs = []
     for name in names:
         phase(f"MuJoCo {preset} and its projection, {name}")
+        start, stop = scene.branch_path(name)
+        if start == stop:  # a trace that never left its start: MuJoCo would hold one pose, and may diverge doing it
+            known = _input_count_verdict(scene, name, {"along_path": _along_path(scene.kinematics),
+                                                       "inputs": len(scene.drives)})  # fmt: skip
+            events = path_events(scene, name, np.array([start]), ("",))
+            raise ZeroSweepError(f"no MuJoCo run: the drive of {name} sweeps 0 rad ({start:.6g} -> {stop:.6g} rad)",
+                          (*verdicts, *known), events)
         try:
             runs.append(run_branch(scene, name, preset, seed))
         except SimulationError as err:  # the report keeps what is known without MuJoCo: often the first cause

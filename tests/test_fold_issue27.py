@@ -4,7 +4,7 @@ as something else. Files are built as other tools write them (small generated FO
 
 import numpy as np
 import pytest
-from fold_fixtures import degree4_letters, validated, write
+from fold_fixtures import degree4_letters, miura_letters_only, validated, write
 
 from sim_origami.fold import read_fold
 from sim_origami.kinematics.numeric_pattern import BRANCH, TARGET_TOL, PatternPath, assignment_signs
@@ -38,3 +38,20 @@ def test_a_folded_state_on_the_rigid_motion_passes_the_check(tmp_path):
     assert gap <= 1e-12 and tol == TARGET_TOL and compared == 4 and "does not fold" not in detail
     off = fold_scene(write(tmp_path, "off", four_mountains(-160.0))).kinematics.target_check()
     assert off[0] > 3.0 and "largest at crease" in off[2]
+
+
+@pytest.mark.slow
+def test_a_trace_stuck_at_its_start_fails_on_its_stall_without_a_mujoco_run(tmp_path, capsys):
+    # a 4 x 4 Miura sheet as Rabbit Ear writes it, one interior vertex moved off the flat-foldable geometry: 9 vertices
+    # hold 24 creases rigid, the trace stalls at its first step; it failed on a zero-length sweep (or as 'MuJoCo
+    # unstable' holding a pose that does not close), the stall shown only as an event
+    doc = miura_letters_only(4, 4)
+    doc["vertices_coords"][6] = [doc["vertices_coords"][6][0] + 0.05, doc["vertices_coords"][6][1] + 0.03]
+    code, report = validated(tmp_path, "moved vertex", doc)
+    failing = [v for v in report["verdicts"] if not v["passed"]]
+    assert code == 1 and [v["name"] for v in failing] == ["through-target: traced motion stops at its start"]
+    assert failing[0]["detail"].startswith("stall at 0.153906 rad: no rigid configuration beyond")
+    assert not any("MuJoCo" in v["name"] for v in report["verdicts"]) and report["events"][0]["kind"] == "stall"
+    shown = capsys.readouterr().out
+    assert "FAIL through-target: traced motion stops at its start" in shown and "stall at 0.153906 rad" in shown
+    assert "no MuJoCo run: the drive of through-target sweeps 0 rad" in shown

@@ -20,7 +20,7 @@ from ..report_page import write_index, write_page, write_thumbnail
 from ..scenes.fold_file import fold_scene
 from ..scenes.linkage_file import linkage_scene
 from ..simulate import start_input
-from ..validation import validate
+from ..validation import ZeroSweepError, validate
 from .options import add_params, number_at_least, out_folder, parse_params
 
 NAME = "validate"
@@ -144,9 +144,13 @@ def failed_run(scene, args, out: Path, err: SimulationError) -> dict:
     preset = args.preset or scene.preset
     stopped = {"name": "MuJoCo run finished without a warning", "measured": 1.0, "tolerance": 0.0, "passed": False,
                "detail": str(err), "compared": None}
+    # no run made (a --fold trace stuck at its start): the trace's stop is the failing check, and its events say more
+    ran = not isinstance(err, ZeroSweepError)
     doc = {"scene": scene.name, "params": scene.params, "preset": preset, "passed": False,
-           "notes": scene.notes, "verdicts": [*map(verdict_json, err.verdicts), stopped],
+           "notes": scene.notes, "verdicts": [*map(verdict_json, err.verdicts), *([stopped] if ran else [])],
            "provenance": provenance(preset, getattr(args, "command_line", None))}  # fmt: skip
+    if not ran:
+        doc["events"] = list(err.events)
     write_text(out / "report.json", json.dumps(doc, indent=2, default=plain) + "\n")
     return doc
 
@@ -237,8 +241,10 @@ def validate_scene(scene, args: argparse.Namespace) -> int:
         except SimulationError as err:  # MuJoCo diverged: a failed check on this pattern, not bad input
             doc = failed_run(scene, args, stage, err)
             # the checks made without MuJoCo first: an under-driven pattern's divergence is the symptom, not the cause
-            for v in (v for v in doc["verdicts"] if not v["passed"] and v is not doc["verdicts"][-1]):
+            for v in (v for v in doc["verdicts"] if not v["passed"] and v["detail"] != str(err)):
                 print(f"  FAIL {v['name']}: {number(v['measured'], '.3g')} (tolerance {v['tolerance']:g})")
+                if isinstance(err, ZeroSweepError):  # why the trace stopped is the reason the run failed
+                    print(f"       {v['detail']}")
             print(f"FAIL {scene.name}: {err}\noutputs in {out}/")
             return 1
     if args.json:

@@ -379,6 +379,19 @@ class PatternPath(JointSpaceKinematics):
                                                             else "")  # fmt: skip
         return fit.ratio, 1.0, f"{fit.text()}; {reach}", fit.values
 
+    def start_check(self) -> tuple[float, float, str] | None:
+        """
+        (1, 0, where and why it stopped) when the trace never left its start (a single node: a stall, lock or contact
+        at its first step), else None. Such a motion gives MuJoCo a drive of zero length to sweep, so this stop is
+        the run's first real cause of failure (`validation.validate` then runs no MuJoCo).
+        """
+        if len(self.s_nodes) > 1:
+            return None
+        stop = next((e for e in self.events() if e.kind in ("stall", "lock", "contact")), None)
+        why = f"{stop.kind} at {stop.input:.6g} rad: {stop.detail}" if stop is not None else \
+            f"no node beyond {self.s_nodes[0]:.6g} rad"  # fmt: skip
+        return 1.0, 0.0, f"{why}; the pattern does not fold rigidly from there, so there is no motion to simulate"
+
     def target_check(self) -> tuple[float, float, str, int] | None:
         """
         A folded state given as the motion's target (not letters, not frames) against the rigid motion: (the largest
