@@ -39,12 +39,14 @@ def test_a_projection_over_repeated_inputs_stays_finite(tmp_path):
 
 def test_a_one_point_motion_exits_1_with_a_report(tmp_path, capsys):
     """Was an internal error (exit 3): first the NaN projection, then printing the swept-range verdict's inf (null in
-    JSON)."""
+    JSON); then a failing swept range. Its trace stops at its first step, so that stop is the failing check and no
+    MuJoCo run is made on the zero-length drive (issue 27)."""
     path = write_fold(tmp_path / "vertex.fold", near_square_vertex())
     out = tmp_path / "out"
     assert main(["validate", "--fold", str(path), "--preset", "fast", "--out", str(out)]) == 1
     printed = capsys.readouterr().out
-    assert "FAIL through-target: swept range" in printed and "null (inf or nan)" in printed
+    assert "FAIL through-target: traced motion stops at its start: 1" in printed and "lock at -0.0628319" in printed
+    assert "no MuJoCo run: the drive of through-target sweeps 0 rad" in printed
     report = json.loads((out / "report.json").read_text())
     assert report["passed"] is False
 
