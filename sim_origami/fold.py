@@ -69,6 +69,8 @@ thick panels), or null where there is none.
 
 import json
 import os
+import reprlib
+import sys
 from collections import Counter
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field, replace
@@ -396,17 +398,75 @@ def _load(source: str | os.PathLike | Mapping[str, Any]) -> Mapping[str, Any]:
     """The FOLD JSON object of a path or an already parsed mapping."""
     if isinstance(source, Mapping):
         return source
-    try:  # each float keeps the precision of its text (`precision.Typed`)
-        doc = json.loads(Path(source).read_text(), parse_float=Typed)
+    try:  # each float keeps the precision of its text (`precision.Typed`); NaN and Infinity are no JSON numbers
+        doc = json.loads(Path(source).read_text(), parse_float=Typed, parse_int=_integer, parse_constant=_constant)
     except json.JSONDecodeError as err:
         raise ParameterError(f"{source} is not JSON ({err}); a FOLD file is a JSON object") from err
     except OSError as err:
         raise ParameterError(f"cannot read FOLD file {source}: {err.strerror}") from err
     except UnicodeDecodeError as err:
         raise ParameterError(f"{source} is not UTF-8 text ({err.reason}); a FOLD file is JSON text") from err
+    except RecursionError:  # the reader recurses once per array or object level
+        raise ParameterError(f"{source} nests its JSON arrays or objects thousands of levels deep; a FOLD file's "
+                             "fields are at most three levels deep") from None  # fmt: skip
     if not isinstance(doc, dict):
         raise ParameterError(f"{source} holds a JSON {type(doc).__name__}; a FOLD file is a JSON object")
     return doc
+
+
+class _LongInteger:
+    """An integer whose text is longer than Python converts (4300 digits): kept as its length, refused where read."""
+
+    def __init__(self, text: str):
+        self.digits = len(text.lstrip("-"))
+
+    def __repr__(self) -> str:
+        return f"an integer of {self.digits} digits"
+
+
+def _integer(text: str) -> "int | _LongInteger":
+    """A JSON integer; one too long for int() is read as a _LongInteger, refused only in a field that is read (a
+    custom or metadata field may hold anything)."""
+    try:
+        return int(text)
+    except ValueError:
+        return _LongInteger(text)
+
+
+def _constant(text: str) -> float:
+    """JSON has no NaN or Infinity, though Python's reader takes them: refused (null is FOLD's unknown value)."""
+    raise ParameterError(f"the FOLD file holds {text}, which is no JSON number; give finite numbers (null where a fold "
+                         "angle is unknown)")  # fmt: skip
+
+
+def _shown(value: Any) -> str:
+    """A value of the file as a refusal quotes it: short whatever its size or depth."""
+    if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 1024:
+        return f"an integer of about {int(value.bit_length() * np.log10(2)) + 1} digits"
+    return reprlib.repr(value)
+
+
+def _number(value: Any, where: str, allow_null: bool) -> float:
+    """One number of a FOLD number field, named `where` in a refusal: finite, within a double's range, and not a
+    boolean or a string (which numpy would read as 1.0 or parse); null is NaN where allowed."""
+    if value is None and allow_null:
+        return np.nan
+    if isinstance(value, _LongInteger) or (isinstance(value, int) and not isinstance(value, bool)
+                                           and abs(value) > sys.float_info.max):  # fmt: skip
+        raise ParameterError(f"{where} = {_shown(value)}; numbers must lie within a double's range (+-1.8e308)")
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        null = " or null" if allow_null else ""
+        raise ParameterError(f"{where} = {_shown(value)} ({_json_type(value)}); it must be a number{null}")
+    if not np.isfinite(value):
+        raise ParameterError(f"{where} = {value}; numbers must be finite" + ("; null is an unknown value" if allow_null
+                                                                             else ""))  # fmt: skip
+    return float(value)
+
+
+def _json_type(value: Any) -> str:
+    """The JSON name of a Python value's type, with its article."""
+    names = {bool: "a boolean", str: "a string", list: "an array", dict: "an object", type(None): "null"}
+    return names.get(type(value), f"a {type(value).__name__}")
 
 
 def _unit_scale(unit: Any) -> float:
@@ -416,27 +476,18 @@ def _unit_scale(unit: Any) -> float:
     return UNITS[unit]
 
 
-def _numbers(value: Any, field: str, allow_nan: bool = False) -> NDArray[np.float64]:
-    """A FOLD number array as floats; every entry must be a finite number (or NaN, if allowed)."""
-    try:
-        out = np.asarray(value, dtype=float)
-    except (TypeError, ValueError) as err:
-        raise ParameterError(f"{field} must hold numbers only ({err})") from err
-    bad = np.argwhere(~np.isfinite(out) & ~(allow_nan & np.isnan(out)))
-    if len(bad):
-        at = tuple(int(i) for i in bad[0])
-        raise ParameterError(f"{field}{list(at)} = {out[at]}; numbers must be finite")
-    return out
+def _numbers(values: list, field: str, allow_null: bool = False) -> NDArray[np.float64]:
+    """A FOLD list of numbers as floats, each checked by `_number` and named by its index; null is NaN where
+    allowed."""
+    return np.array([_number(x, f"{field}[{i}]", allow_null) for i, x in enumerate(values)], dtype=float)
 
 
 def _per_edge(value: Any, n_edges: int, field: str, allow_null: bool = False) -> NDArray[np.float64]:
     """A per-edge number field (n_edges,); null entries are NaN when allowed."""
-    if allow_null and isinstance(value, list):
-        value = [np.nan if entry is None else entry for entry in value]
-    out = _numbers(value, field, allow_nan=allow_null)
-    if out.shape != (n_edges,):
-        raise ParameterError(f"{field} has shape {out.shape}; it needs one number per edge ({n_edges})")
-    return out
+    rows = _list(value, field)
+    if len(rows) != n_edges:
+        raise ParameterError(f"{field} has {len(rows)} entries; it needs one number per edge ({n_edges})")
+    return _numbers(rows, field, allow_null=allow_null)
 
 
 def _heights(value: Any, letters: list[str]) -> NDArray[np.float64]:
@@ -446,7 +497,7 @@ def _heights(value: Any, letters: list[str]) -> NDArray[np.float64]:
     for k, (entry, letter) in enumerate(zip(value, letters, strict=True)):
         if entry is None and letter not in ("B", "C", "J"):
             raise ParameterError(f"{HEIGHT_KEY}[{k}] is null on a {letter!r} edge; only border edges may have no hinge")
-    return _numbers([np.nan if entry is None else entry for entry in value], HEIGHT_KEY, allow_nan=True)
+    return _numbers(value, HEIGHT_KEY, allow_null=True)
 
 
 def _degrees(value: Any, creases: tuple[int, ...], n_edges: int, field: str) -> NDArray[np.float64]:
@@ -476,10 +527,10 @@ def _coords(value: Any, field: str) -> tuple[NDArray[np.float64], int]:
         if not isinstance(c, list) or len(c) not in (2, 3):
             raise ParameterError(f"{field}[{v}] = {c!r}; a vertex has 2 or 3 coordinates")
         dim = max(dim, len(c))
-        rows.append([*c, 0.0][:3])
+        rows.append([*(_number(x, f"{field}[{v}][{j}]", False) for j, x in enumerate(c)), 0.0][:3])
     if not rows:
         raise ParameterError(f"{field} is empty; a crease pattern needs vertices")
-    return _numbers(rows, field).reshape(-1, 3), dim
+    return np.array(rows, dtype=float), dim
 
 
 def _vertex_lists(value: Any, field: str, n_vertices: int) -> list[tuple[int, ...]]:
@@ -938,10 +989,11 @@ def _coords_precision(frame: Mapping[str, Any], xyz: NDArray[np.float64]) -> NDA
     """
     floor = EXACT_ULPS * np.spacing(fold_mesh.size(xyz))
     if PRECISION_KEY in frame:
-        stated = frame[PRECISION_KEY]
-        if isinstance(stated, bool) or not isinstance(stated, (int, float)) or not 0 < stated < np.inf:
-            raise ParameterError(f"{PRECISION_KEY} = {stated!r}; it must be a positive number (frame_unit)")
-        return np.full(xyz.shape, max(float(stated), floor))
+        stated = _number(frame[PRECISION_KEY], PRECISION_KEY, False)
+        if not stated > 0:
+            raise ParameterError(f"{PRECISION_KEY} = {_shown(frame[PRECISION_KEY])}; it must be a positive number "
+                                 "(frame_unit)")  # fmt: skip
+        return np.full(xyz.shape, max(stated, floor))
     rows = [[*c, 0][:3] for c in frame["vertices_coords"]]
     return _printed_precision([x for row in rows for x in row], xyz.ravel(), floor).reshape(xyz.shape)
 

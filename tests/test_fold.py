@@ -237,7 +237,7 @@ def test_a_folded_form_off_any_developable_state_is_read_with_its_distance():
         ),
         (edited(faces_vertices=[[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 9]]), r"faces_vertices\[3\] = \[0, 4, 9\]"),
         (edited(edges_foldAngle=[0, 181.0, 0, 0, 0, 0, 0, 999]), r"edges_foldAngle\[1\] = 181 deg"),
-        (edited(edges_foldAngle=[0.0] * 7), r"edges_foldAngle has shape \(7,\); it needs one number per edge \(8\)"),
+        (edited(edges_foldAngle=[0.0] * 7), r"edges_foldAngle has 7 entries; it needs one number per edge \(8\)"),
     ],
     ids=[
         "missing-edges",

@@ -2,10 +2,15 @@
 stall at the start failed as 'MuJoCo unstable', and malformed numbers, angles and inputs crashed, hung or were read
 as something else. Files are built as other tools write them (small generated FOLD dicts)."""
 
+import json
+import re
+
 import numpy as np
 import pytest
 from fold_fixtures import degree4_letters, miura_letters_only, validated, write
 
+from sim_origami.cli import main
+from sim_origami.errors import ParameterError
 from sim_origami.fold import read_fold
 from sim_origami.kinematics.numeric_pattern import BRANCH, TARGET_TOL, PatternPath, assignment_signs
 from sim_origami.scenes.fold_file import fold_scene
@@ -55,3 +60,81 @@ def test_a_trace_stuck_at_its_start_fails_on_its_stall_without_a_mujoco_run(tmp_
     shown = capsys.readouterr().out
     assert "FAIL through-target: traced motion stops at its start" in shown and "stall at 0.153906 rad" in shown
     assert "no MuJoCo run: the drive of through-target sweeps 0 rad" in shown
+
+
+# Bad input: one typed error naming the field, the index and the rule; on the command line one line, exit 2 ---------
+
+
+def text_with(doc: dict, old: str, new: str) -> str:
+    """`doc` as JSON text with the first `old` replaced by `new` (numbers JSON cannot carry as Python values)."""
+    text = json.dumps(doc)
+    assert old in text
+    return text.replace(old, new, 1)
+
+
+def refused_on_the_command_line(capsys, path, *options: str) -> str:
+    """The one line `validate --fold path` prints on stderr, checked to exit 2 before any output folder is made."""
+    code = main(["validate", "--fold", str(path), "--out", str(path.parent / "out"), *options])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and not (path.parent / "out").exists()
+    return err[0]
+
+
+@pytest.mark.parametrize(
+    ("number", "message"),
+    [("1" + "0" * 330, "an integer of about 331 digits"), ("9" * 5000, "an integer of 5000 digits")],
+    ids=["beyond-a-double", "beyond-int-text"],
+)
+def test_integers_beyond_a_double_are_refused(tmp_path, capsys, number, message):
+    # were exit 3: OverflowError (int too large to convert to float), ValueError (over 4300 digits)
+    path = tmp_path / "huge.fold"
+    path.write_text(text_with(degree4_letters(), "[1.0, 0.0]", f"[{number}, 0.0]"))
+    with pytest.raises(ParameterError, match=re.escape(f"vertices_coords[1][0] = {message}; numbers must lie")):
+        read_fold(path)
+    assert "double's range (+-1.8e308)" in refused_on_the_command_line(capsys, path)
+    # in a field the reader ignores, such a number is no reason to refuse the file
+    path.write_text(text_with(degree4_letters(), '"file_creator"', f'"file_sim_count": {number}, "file_creator"'))
+    assert len(read_fold(path).pattern.creases) == 4
+
+
+@pytest.mark.parametrize(
+    ("angle", "shown"),
+    [("true", "True (a boolean); it must be a number or null"), ('"90"', "'90' (a string); it must be a number"),
+     ("[90]", "[90] (an array)"), ("{}", "{} (an object)")],
+    ids=["boolean", "string", "list", "object"],
+)
+def test_fold_angles_that_are_not_numbers_are_refused_naming_field_and_index(tmp_path, capsys, angle, shown):
+    # a boolean angle was read as 1 deg (the validation then hung), "90" as 90 deg
+    doc = degree4_letters() | {"edges_foldAngle": [-60.0, 60.0, 60.0, 60.0, 0, 0, 0, 0]}
+    path = tmp_path / "angles.fold"
+    path.write_text(text_with(doc, "60.0, 0", f"{angle}, 0"))
+    with pytest.raises(ParameterError, match=re.escape(f"edges_foldAngle[3] = {shown}")):
+        read_fold(path)
+    assert refused_on_the_command_line(capsys, path).startswith("sim-origami: error: edges_foldAngle[3] = ")
+
+
+def test_nan_fold_angles_are_refused_not_read_as_free_creases(tmp_path, capsys):
+    # NaN (Python's JSON reader takes it) was read as a null angle, a free crease, without a word
+    path = tmp_path / "nan.fold"
+    path.write_text(text_with(degree4_letters() | {"edges_foldAngle": [-60.0] * 4 + [0] * 4}, "-60.0", "NaN"))
+    with pytest.raises(ParameterError, match="holds NaN, which is no JSON number"):
+        read_fold(path)
+    assert "null where a fold angle is unknown" in refused_on_the_command_line(capsys, path)
+    doc = degree4_letters() | {"edges_foldAngle": [-60.0, float("nan"), 60.0, 60.0, 0, 0, 0, 0]}
+    with pytest.raises(ParameterError, match=r"edges_foldAngle\[1\] = nan; numbers must be finite; null is an"):
+        read_fold(doc)  # a parsed mapping, as an API caller gives it
+    assert np.isnan(read_fold(doc | {"edges_foldAngle": [-60.0, None, 60.0, 60.0, 0, 0, 0, 0]}).fold_angles[1])
+
+
+def test_deeply_nested_json_is_refused(tmp_path, capsys):
+    path = tmp_path / "deep.fold"
+    path.write_text(text_with(degree4_letters(), '"A text editor"', "[" * 100_000 + "]" * 100_000))
+    with pytest.raises(ParameterError, match="nests its JSON arrays or objects thousands of levels deep"):
+        read_fold(path)  # was RecursionError
+    refused_on_the_command_line(capsys, path)
+
+
+def test_an_input_crease_that_is_not_text_is_a_parameter_error(tmp_path):
+    path = write(tmp_path, "vertex", degree4_letters())
+    with pytest.raises(ParameterError, match="input crease 123 is a int; name creases as text"):
+        fold_scene(path, input_crease=123)  # was AttributeError: 'int' object has no attribute 'split'

@@ -89,6 +89,9 @@ def parse_inputs(text: str | None, pattern: CreasePattern) -> tuple[str, ...] | 
     """Crease names from a comma list (`e1,e5`); ParameterError naming an unknown one."""
     if text is None:
         return None
+    if not isinstance(text, str):
+        raise ParameterError(f"input crease {text!r} is a {type(text).__name__}; name creases as text, e<FOLD edge "
+                             "index>[,e<FOLD edge index>...]")  # fmt: skip
     names = tuple(t.strip() for t in text.split(",") if t.strip())
     known = {c.name for c in pattern.creases}
     for name in names:
