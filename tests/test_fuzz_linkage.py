@@ -13,6 +13,7 @@ SIM_ORIGAMI_FUZZ=big runs 10x as many. The counts (examples, reads, refusals, sc
 """
 
 import atexit
+import copy
 import json
 import math
 import os
@@ -102,6 +103,11 @@ def _load(name: str) -> dict:
     return tomllib.loads(text) if name.endswith(".toml") else json.loads(text)
 
 
+def _junk(draw) -> Any:
+    """A junk value, a copy of its own: a later change (a row appended) must not alter JUNK, nor make a cycle."""
+    return copy.deepcopy(draw(st.sampled_from(JUNK)))
+
+
 @st.composite
 def mutant(draw, name: str) -> tuple[str, str]:
     """(file suffix, text): the example with 1-3 changes (junk, plausible numbers, fields dropped or added, rows
@@ -119,17 +125,18 @@ def mutant(draw, name: str) -> tuple[str, str]:
             # a plausible number: the linkage changed, its file still well formed
             parent[path[-1]] = value * draw(st.sampled_from((0.0, -1.0, 0.5, 0.999, 1.001, 2.0, 1e3, 1e-3)))
         elif kind in ("junk", "near"):
-            parent[path[-1]] = draw(st.sampled_from(JUNK))
+            parent[path[-1]] = _junk(draw)
         elif kind == "drop":
             parent.pop(path[-1])
         elif kind == "extra" and isinstance(parent, list):
-            parent.append(draw(st.sampled_from(JUNK)))
+            parent.append(_junk(draw))
         elif kind == "row" and isinstance(doc.get("joints"), list) and doc["joints"]:
             rows = doc["joints"]
-            rows += [json.loads(json.dumps(draw(st.sampled_from(rows))))] * draw(st.sampled_from((1, 4, 40)))
+            row = draw(st.sampled_from(rows))
+            rows += [copy.deepcopy(row) for _ in range(draw(st.sampled_from((1, 4, 40))))]
         elif kind == "field" and isinstance(parent, dict):
             parent[draw(st.sampled_from(("bogus", "anchor", "notes", "shapes", "precision", "contact")))] = \
-                draw(st.sampled_from(JUNK))  # fmt: skip
+                _junk(draw)  # fmt: skip
     if draw(st.booleans()):
         return ".json", _json(doc)
     return ".toml", "\n".join(f"{json.dumps(str(k))} = {_toml(v)}" for k, v in doc.items()) + "\n"
