@@ -1020,9 +1020,8 @@ def _nearest_closed(
     """
     The key frame's edges_foldAngle `rho` (rad, the pattern's signs) against the nearest state closing every loop
     (F creases flat): least-norm Gauss-Newton in units of each angle's printed precision (`_printed_precision`).
-    Within the precision, that state replaces `rho`, with the fit; beyond it `rho` is kept, a direction to trace
-    towards as FOLD writers use a target (every crease at 90 deg), without a fit (a note gives the distance, the
-    off-target event the trace's).
+    Within the precision, that state replaces `rho`, with the fit; beyond it `rho` is kept and traced towards, without
+    a fit (a note gives the distance; the trace's distance from it is a check, `PatternPath.target_check`).
     """
     numbers = [key["edges_foldAngle"][e] for e in sheet.edge_of_crease]
     precision = np.deg2rad(_printed_precision(numbers, np.rad2deg(sheet.sign * rho), np.rad2deg(EXACT_ANGLE)))
