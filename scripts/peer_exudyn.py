@@ -33,7 +33,7 @@ stepping loop; Exudyn: SolveDynamic), best of `--rounds` rounds that run every s
 tube) driven along its default sweep with MuJoCo fast and fast-projected and Exudyn's tree (and body model where it
 takes the scene) at MuJoCo's step with tight and default tolerances, interleaved.
 
-    .venv/bin/python scripts/peer_exudyn.py [--rounds 3] [--scaling] [--long]
+    .venv/bin/python scripts/peer_exudyn.py [--rounds 3] [--scaling | --long]
 """
 
 import argparse
@@ -501,6 +501,7 @@ def reference_run(case: Case, h: float) -> Run:
 
 def print_free(results: list[Result]) -> None:
     fast = results[0].cpu
+    print(f"`fast`: {fast:.3g} s of CPU (best of the rounds)\n")
     print("| tool | setting | trajectory error (rad, max over 10 s) | period error (s) | energy drift (J) | "
           "manifold distance (rad) | CPU vs `fast` |")  # fmt: skip
     print("|---|---|---|---|---|---|---|")
@@ -520,24 +521,29 @@ def print_equal(results: list[Result], score: str) -> None:
     print(f"\nEqual error ({score}): the cheapest setting of each tool reaching it, CPU vs `fast`\n")
     print("| error at most | " + " | ".join(tools) + " |")
     print("|---|" + "---|" * len(tools))
-    for level in 10.0 ** np.arange(-2, -16, -1):
+    last: list[str] = []
+    for level in 10.0 ** np.arange(-2, -16, -1):  # a row where the cheapest settings change
         cells = []
         for tool in tools:
             within = [r for r in ok if r.tool == tool and getattr(r, score) <= level]
             best = min(within, key=lambda r: r.cpu) if within else None
             cells.append(f"{best.cpu / fast:.2f}: {best.label} ({getattr(best, score):.2g})" if best else "-")
-        if any(c != "-" for c in cells):
+        if any(c != "-" for c in cells) and cells != last:
             print(f"| {level:.0e} | " + " | ".join(cells) + " |")
+        last = cells
     print(f"\nEqual CPU: the most accurate setting of each tool within the CPU ({score})\n")
     print("| CPU vs `fast` at most | " + " | ".join(tools) + " |")
     print("|---|" + "---|" * len(tools))
-    for budget in (1, 2, 4, 8, 16, 32, 64, 128):
+    last = []
+    for budget in (0.5, 1, 2, 4, 8, 16, 32, 64, 128):
         cells = []
         for tool in tools:
             within = [r for r in ok if r.tool == tool and r.cpu <= budget * fast]
             best = min(within, key=lambda r: getattr(r, score)) if within else None
             cells.append(f"{getattr(best, score):.2g}: {best.label} ({best.cpu / fast:.2f})" if best else "-")
-        print(f"| {budget} | " + " | ".join(cells) + " |")
+        if cells != last:
+            print(f"| {budget:g} | " + " | ".join(cells) + " |")
+        last = cells
 
 
 def fold_sheet_scene() -> Scene:
@@ -551,25 +557,30 @@ def fold_sheet_scene() -> Scene:
         return fold_scene(path)
 
 
-def scaling(rounds: int) -> None:
-    """CPU against bodies, both tools, each scene's default sweep, interleaved over every scene and setting."""
+def scaling(rounds: int, only: set[str] | None = None) -> None:
+    """CPU against bodies, both tools, each scene's default sweep, interleaved over every scene and setting; each
+    scene's rows are printed once its last round is done (a long run shows what it has)."""
     builders = [("bennett", lambda: scenes.get("bennett").build(), None),
                 ("miura-sheet", lambda: scenes.get("miura-sheet").build(), None),
                 ("corrugated-sheet", lambda: scenes.get("corrugated-sheet").build(), None),
                 ("waterbomb-tube", lambda: scenes.get("waterbomb-tube").build(), None),
                 # Exudyn's dense solve on 255 links and 1125 closure rows: a step costs seconds, so only the sweep's
                 # first steps are run (per-step CPU; the error is of those steps only)
-                (f"FOLD 16 x 16 Miura, first {FOLD_STEPS} steps", fold_sheet_scene, FOLD_STEPS)]  # fmt: skip
+                ("fold-sheet", fold_sheet_scene, FOLD_STEPS)]  # fmt: skip
     table = []
     for name, build, steps in builders:
+        if only and name not in only:
+            continue
         scene = build()
-        case = driven_case(scene, name)
+        case = driven_case(scene, name if steps is None else f"FOLD 16 x 16 Miura, first {steps} steps")
         if steps is not None:
             model, _ = compile_model(scene, ModelOptions(preset="fast"))
             case = dataclasses.replace(case, end=steps * model.opt.timestep)
         table.append((case, driven_settings(case, exudyn_h=(), body=len(scene.mechanism.bodies) < 40)))
     results = [[Result(tool, label) for tool, label, _ in runs] for _, runs in table]
-    for _ in range(rounds):  # one round takes every scene's every setting in turn
+    print("| scene | bodies | hinges (cut) | couplings | tool, setting | path error (rad) | CPU s | CPU vs `fast` |")
+    print("|---|---|---|---|---|---|---|---|", flush=True)  # bodies: the moving ones (the root is fixed)
+    for round_ in range(rounds):  # one round takes every scene's every setting in turn
         for (case, runs), res in zip(table, results, strict=True):
             done = measure(case, runs, 1)
             for r, new in zip(res, done, strict=True):
@@ -577,25 +588,25 @@ def scaling(rounds: int) -> None:
                     r.failed = r.failed or new.failed
                     continue
                 r.cpu, r.path, r.steps = min(r.cpu, new.cpu), new.path, new.steps
-            print(f"  ({case.label}: round done)", file=sys.stderr, flush=True)
-    print("| scene | bodies | hinges (cut) | couplings | tool, setting | path error (rad) | CPU s | CPU vs `fast` |")
-    print("|---|---|---|---|---|---|---|---|")  # bodies: the moving ones (the root is fixed)
-    for (case, _), res in zip(table, results, strict=True):
-        mech = case.scene.mechanism
-        for k, r in enumerate(res):
-            head = (f"| {case.label} | {len(mech.bodies) - 1} | {len(mech.joints)} ({len(mech.cut_joints)}) | "
-                    f"{len(mech.couplings)} " if k == 0 else "| | | | ")  # fmt: skip
-            if r.failed:
-                print(f"{head}| {r.tool}, {r.label} | failed: {r.failed} | | |")
-            else:
-                print(f"{head}| {r.tool}, {r.label} | {r.path:.2g} | {r.cpu:.3g} | {r.cpu / res[0].cpu:.2f} |")
+            if round_ == rounds - 1:
+                mech = case.scene.mechanism
+                for k, r in enumerate(res):
+                    head = (f"| {case.label} | {len(mech.bodies) - 1} | {len(mech.joints)} ({len(mech.cut_joints)}) | "
+                            f"{len(mech.couplings)} " if k == 0 else "| | | | ")  # fmt: skip
+                    if r.failed:
+                        print(f"{head}| {r.tool}, {r.label} | failed: {r.failed} | | |", flush=True)
+                    else:
+                        print(f"{head}| {r.tool}, {r.label} | {r.path:.2g} | {r.cpu:.3g} | {r.cpu / res[0].cpu:.2f} |",
+                              flush=True)  # fmt: skip
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--rounds", type=int, default=3, help="rounds of every setting in turn (best CPU kept)")
     parser.add_argument("--scaling", action="store_true", help="CPU against bodies on five driven scenes")
-    parser.add_argument("--long", action="store_true", help="also the free run's trajectory at 100 s (few settings)")
+    parser.add_argument("--scenes", help="with --scaling: only these (bennett, miura-sheet, corrugated-sheet, "
+                        "waterbomb-tube, fold-sheet; comma-separated)")
+    parser.add_argument("--long", action="store_true", help="only the free run at 100 s (a few settings)")
     args = parser.parse_args()
     if importlib.util.find_spec("exudyn") is None:
         print("Exudyn is not installed (pip install -e '.[peers]'); nothing to compare.")
@@ -604,7 +615,10 @@ def main() -> int:
 
     print(f"MuJoCo {mujoco.__version__}, Exudyn {exu.config.Version()}, best of {args.rounds} interleaved rounds\n")
     if args.scaling:
-        scaling(args.rounds)
+        scaling(args.rounds, set(args.scenes.split(",")) if args.scenes else None)
+        return 0
+    if args.long:
+        long_run(args.rounds)
         return 0
     case = free_case()
     reference = reference_run(case, REFERENCE_H)
@@ -632,21 +646,23 @@ def main() -> int:
         print(f"| {r.tool} | {r.label} | " + (f"failed: {r.failed} | |" if r.failed else
                                                  f"{r.path:.2g} | {r.cpu / results[0].cpu:.2f} |"))  # fmt: skip
     print_equal(results, "path")
-    if args.long:
-        long_run(args.rounds)
     return 0
 
 
 def long_run(rounds: int) -> None:
-    """A04 at 100 s: a few settings against a reference at 0.1 ms (accurate), checked by its halving at 10 s."""
+    """A04 at 100 s: a few settings against MuJoCo accurate at 0.1 ms, checked by a run at 0.2 ms."""
     a04 = free_case().scene
     case = Case("IFToMM A04, 100 s free", a04, a04.free_branch, a04.free_start, a04.free_start, 100.0, True)
     reference = reference_run(case, 1e-4)
-    runs = [("MuJoCo", "fast", mujoco_run(case, "fast")),
-            ("MuJoCo", "fast-projected", mujoco_run(case, "fast-projected")),
-            ("MuJoCo", "fast at 2 ms", mujoco_run(case, "fast", h=0.002)),
-            ("Exudyn tree", "h 2 ms, rho 0.9, tight", exudyn_tree_run(case, 0.002, 0.9, TIGHT)),
-            ("Exudyn tree", "h 8 ms, rho 0.9, tight", exudyn_tree_run(case, 0.008, 0.9, TIGHT))]  # fmt: skip
+    check = reference_run(case, 2e-4)
+    print(f"Reference: MuJoCo accurate at 0.1 ms; at 0.2 ms it differs by "
+          f"{np.max(np.abs(on_samples(check, SAMPLE_S) - on_samples(reference, SAMPLE_S))):.2g} rad over 100 s")
+    runs = [("MuJoCo", "fast (RK4 8 ms, closures 20 ms)", mujoco_run(case, "fast")),
+            ("MuJoCo", "fast-projected (RK4 8 ms, closures 64 ms, 1 projection)", mujoco_run(case, "fast-projected")),
+            ("MuJoCo", "fast at 2 ms (closures 5 ms)", mujoco_run(case, "fast", h=0.002)),
+            ("Exudyn tree", "h 8 ms, rho 1, Newton tight 1e-12/1e-14", exudyn_tree_run(case, 0.008, 1.0, TIGHT)),
+            ("Exudyn tree", "h 2 ms, rho 1, Newton tight 1e-12/1e-14", exudyn_tree_run(case, 0.002, 1.0, TIGHT)),
+            ("Exudyn tree", "h 1 ms, rho 1, Newton tight 1e-12/1e-14", exudyn_tree_run(case, 0.001, 1.0, TIGHT))]
     print(f"\n### {case.label}\n")
     print_free(measure(case, runs, rounds, reference))
 
