@@ -34,6 +34,7 @@ def test_a_folded_state_off_the_rigid_motion_fails_with_its_distance(tmp_path, c
     assert "does not fold rigidly to it" in shown
 
 
+@pytest.mark.slow
 def test_a_folded_state_on_the_rigid_motion_passes_the_check(tmp_path):
     doc = degree4_letters()
     pattern = read_fold(doc).pattern
