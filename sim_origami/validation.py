@@ -361,8 +361,8 @@ def _input_count_verdict(scene: Scene, branch: str, mobility: dict) -> tuple[Ver
     if tolerance is not None and getattr(kin, "frame_distances", None):
         far = [d["distance_rad"] for d in kin.frame_distances]
         worst = float("inf") if any(d is None for d in far) else max(far)
-        frames = (Verdict(f"{branch}: frames' distance from the rigid motion (rad)", worst, tolerance,
-                          f"{len(far)} frames; beyond the traced motion counts as infinite"),)  # fmt: skip
+        frames += (Verdict(f"{branch}: frames' distance from the rigid motion (rad)", worst, tolerance,
+                           f"{len(far)} frames; beyond the traced motion counts as infinite"),)  # fmt: skip
     target = kin.target_check() if hasattr(kin, "target_check") else None  # a FOLD file's folded state, reached?
     if target is not None:
         frames += (Verdict(f"{branch}: folded state's distance from the rigid motion (rad)", *target),)
@@ -494,7 +494,7 @@ def validate(
                                                        "inputs": len(scene.drives)})  # fmt: skip
             events = path_events(scene, name, np.array([start]), ("",))
             raise ZeroSweepError(f"no MuJoCo run: the drive of {name} sweeps 0 rad ({start:.6g} -> {stop:.6g} rad)",
-                          (*verdicts, *known), events)
+                                 (*verdicts, *known), events)
         try:
             runs.append(run_branch(scene, name, preset, seed))
         except SimulationError as err:  # the report keeps what is known without MuJoCo: often the first cause
