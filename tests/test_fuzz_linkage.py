@@ -9,7 +9,8 @@ scene builds in well under a second, `linkage_scene` as well. Never another exce
 
 Profiles: the default ("ci") runs a fixed seed and EXAMPLES examples per file (about half a minute on 2 cores);
 SIM_ORIGAMI_FUZZ=big runs 10x as many. The counts (examples, reads, refusals, scenes built) are printed at the end
-(`pytest -s`).
+(`pytest -s`). Measured: ci 250 examples, 23 read, 5 scenes built and 2 refused, 33 s; big 2500 examples, 315 read,
+103 scenes built and 53 refused, 310 s; no other exception in either.
 """
 
 import atexit
