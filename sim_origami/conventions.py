@@ -20,6 +20,14 @@ flat-foldable modes S and C) and followed by continuity, never by the +/- label 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+# Lengths every model accepts (m), scenes and linkage files alike. MuJoCo, the collision meshes (qhull) and the
+# solvers' floors work in absolute units: below 1e-4 m a thick panel's hull falls under trimesh's volume floor and
+# qhull's precision, above 1e4 m the closure sites' 1e-15 m projection floor is lost in rounding. Inside, every
+# tolerance scales with the model's size.
+LENGTH_RANGE = (1e-4, 1e4)
+# Largest ratio of two positive lengths of one model: beyond it the small one (a thickness) is rounding on the large.
+LENGTH_RATIO_MAX = 1e4
+
 
 def deg_to_rad(value_deg: ArrayLike) -> NDArray[np.float64]:
     """Degrees (command line, tables) to radians (API, JSON)."""

@@ -36,6 +36,7 @@ import numpy as np
 import trimesh
 from numpy.typing import NDArray
 
+from .conventions import LENGTH_RANGE, LENGTH_RATIO_MAX
 from .errors import ParameterError
 from .fold import UNITS as LENGTH_UNITS
 from .geometry import transform, transform_z
@@ -45,7 +46,6 @@ from .linkage_forms import reduced_form
 from .mechanism import Body, Joint, Mechanism, ball_joint
 from .origami import PALETTE
 from .precision import Typed
-from .scenes.base import LENGTH_RANGE, LENGTH_RATIO_MAX
 from .solids import MESH_FORMATS, mujoco_mesh_problem
 
 if sys.version_info >= (3, 11):
@@ -66,7 +66,7 @@ ANCHOR_SHARE = 0.5
 # driven path falls as 1/T^2, and the built-in linkages need 3-4x to stay below 1e-7 rad).
 SWEEP_TIME_SCALE = 4.0
 # Lengths beyond this (m) are refused as they are read, before any solid is built (1e308 overflowed trimesh); the
-# scene then holds the linkage's size to the simulated range (`scenes.base.LENGTH_RANGE`, 1e-4 .. 1e4 m).
+# scene then holds the linkage's size to the simulated range (`conventions.LENGTH_RANGE`, 1e-4 .. 1e4 m).
 LENGTH_LIMIT = 1e9
 # The input range lies within +-RANGE_LIMIT (rad): a turn either way (the trace steps at most 0.05 rad, so a range
 # of 1e308 deg would never end); the sweep lasts at most SWEEP_SCALE_LIMIT times the preset's duration.

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..conventions import LENGTH_RANGE, LENGTH_RATIO_MAX
 from ..creases import CreasePattern
 from ..errors import AssemblyError, ParameterError
 from ..kinematics.base import Kinematics
@@ -26,12 +27,6 @@ UNITS = {"deg": np.pi / 180.0, "m": 1.0, "": 1.0}
 CLOSURE_SAMPLES = 9
 
 
-# Lengths every scene accepts (m). MuJoCo, the collision meshes (qhull) and the solvers' floors work in absolute
-# units: below 1e-4 m a thick panel's hull falls under trimesh's volume floor and qhull's precision, above 1e4 m the
-# closure sites' 1e-15 m projection floor is lost in rounding. Inside, every tolerance scales with the model's size.
-LENGTH_RANGE = (1e-4, 1e4)
-# Largest ratio of two positive lengths of one scene: beyond it the small one (a thickness) is rounding on the large.
-LENGTH_RATIO_MAX = 1e4
 
 # Angle ranges (deg) shared by many parameters: sector angles and twists of a spherical or spatial link. An angle
 # within ANGLE_MARGIN of a degenerate end (a zero sector, a straight one) makes panels of zero area: trimesh and qhull

@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 from scipy.linalg import block_diag
 
 from ..closure import Coupling, LoopSystem
+from ..conventions import LENGTH_RANGE
 from ..errors import ParameterError
 from ..geometry import wrap
 from ..kinematics.base import Kinematics
@@ -36,7 +37,7 @@ from ..mechanism import Mechanism
 from ..mjcf import PRESETS, preset_duration, preset_timestep
 from ..path import correct, secant
 from ..precision import Adjustment
-from .base import LENGTH_RANGE, Scene
+from .base import Scene
 
 # Share of the sweep's stretch kept clear of a bifurcation at each end it meets one. Measured on the plane-symmetric
 # Bricard (case 10) over theta2 = -60 .. 60 deg, through its crossing at 0: fast path error 4.3e-5 rad, closure
