@@ -6,6 +6,7 @@ import time
 from pathlib import Path
 
 import pytest
+from linkage_fixtures import BENNETT, EXAMPLES  # tests/linkage_fixtures.py (tests/ is on sys.path)
 
 from sim_origami.cli import main
 from sim_origami.errors import ParameterError
@@ -13,15 +14,6 @@ from sim_origami.kinematics.linkage_path import LinkagePath
 from sim_origami.linkage_file import read_linkage
 from sim_origami.scenes.linkage_file import linkage_scene
 
-EXAMPLES = Path(__file__).resolve().parents[1] / "docs" / "examples" / "linkages"
-BENNETT = {
-    "sim_origami_linkage": 1,
-    "form": "dh",
-    "name": "bennett-json",
-    "joints": [{"name": f"theta{k + 1}", "a": a, "alpha": alpha}
-               for k, (a, alpha) in enumerate([(1.0, 30.0), (1.5, 48.590377890729144)] * 2)],
-    "input": {"joint": "theta1", "range": [20.0, 140.0]},
-}  # fmt: skip
 TOML = """sim_origami_linkage = 1
 form = "dh"
 {extra}

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from linkage_fixtures import BENNETT, EXAMPLES  # tests/linkage_fixtures.py (tests/ is on sys.path)
 
 from sim_origami import scenes
 from sim_origami.checks.reference import compare_reference, read_reference
@@ -21,16 +22,6 @@ from sim_origami.linkage_file import read_linkage
 from sim_origami.linkage_forms import chain_poses
 from sim_origami.scenes.linkage_file import linkage_scene
 from sim_origami.validation import run_branch
-
-EXAMPLES = Path(__file__).resolve().parents[1] / "docs" / "examples" / "linkages"
-BENNETT = {
-    "sim_origami_linkage": 1,
-    "form": "dh",
-    "name": "bennett-json",
-    "joints": [{"name": f"theta{k + 1}", "a": a, "alpha": alpha}
-               for k, (a, alpha) in enumerate([(1.0, 30.0), (1.5, 48.590377890729144)] * 2)],
-    "input": {"joint": "theta1", "range": [20.0, 140.0]},
-}  # fmt: skip
 
 
 def write(tmp_path: Path, doc: dict, name: str = "linkage.json") -> Path:
