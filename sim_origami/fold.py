@@ -156,32 +156,40 @@ class FoldPattern:
 
 
 @dataclass(frozen=True)
-class FormFit:
+class StateFit:
     """
-    A folded form in the file against the nearest rigid one, which is what is read (its unfolding, its dihedral
-    angles): lengths in the file's `unit`. `distance` the largest vertex move, at file vertex `vertex` (on creases
-    `creases`), `size` the form's bounding-box diagonal, `ratio` the largest coordinate move over that coordinate's
-    precision (<= 1: within what its printing allows), `precision` the precision of the coordinate moved the most
-    against it; `compared` says what was compared with what, `values` how many numbers. `adjustments`: the
-    coordinates moved the most.
+    A folded state in the file against the nearest rigid one: `ratio` the largest move over the moved value's precision
+    (<= 1: within what its printing allows), `distance` the largest move and `precision` the precision of the value
+    moved the most against it (in the fit's unit); `compared` says what was compared with what, `values` how many
+    numbers; `adjustments` the values moved the most.
     """
 
-    field: str
-    unit: str
-    distance: float
-    size: float
     ratio: float
+    distance: float
     precision: float
-    vertex: int
-    creases: tuple[str, ...]
     compared: str
     adjustments: tuple[Adjustment, ...]
     values: int
 
     @property
     def within(self) -> bool:
-        """The file's form is rigid within its precision."""
+        """The file's state is rigid within its precision."""
         return self.ratio <= 1.0
+
+
+@dataclass(frozen=True)
+class FormFit(StateFit):
+    """
+    A folded form (`StateFit`), which is what is read (its unfolding, its dihedral angles): lengths in the file's
+    `unit`; the largest vertex move at file vertex `vertex` (on creases `creases`), `size` the form's bounding-box
+    diagonal.
+    """
+
+    field: str
+    unit: str
+    size: float
+    vertex: int
+    creases: tuple[str, ...]
 
     def text(self) -> str:
         """The distance in words: absolute, against the size and the precision, and where it is largest."""
@@ -974,9 +982,9 @@ def _form_fit(fit: fold_mesh.Fit, pattern: CreasePattern, source: NDArray[np.int
     moved = int(np.count_nonzero(fit.moved))
     compared = (f"{fit.given.size} coordinates of {len(fit.given)} vertices held to {fit.conditions}; {moved} moved, "
                 f"rms {np.sqrt(np.mean(fit.moved**2)):.3g}")  # fmt: skip
-    return FormFit(label, "" if unit == "unit" else unit, fit.distance, fold_mesh.size(fit.given), fit.ratio,
-                   float(fit.precision[worst]), int(source[v]), creases, compared, adjustments,
-                   fit.given.size)  # fmt: skip
+    return FormFit(ratio=fit.ratio, distance=fit.distance, precision=float(fit.precision[worst]), compared=compared,
+                   adjustments=adjustments, values=fit.given.size, field=label, unit="" if unit == "unit" else unit,
+                   size=fold_mesh.size(fit.given), vertex=int(source[v]), creases=creases)  # fmt: skip
 
 
 def _coords_precision(frame: Mapping[str, Any], xyz: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -1039,8 +1047,10 @@ def _nearest_closed(
     )  # fmt: skip
     worst = int(np.argmax(moved))
     compared = f"{len(rho)} fold angles held to {loops.n_residuals} closure conditions; {np.count_nonzero(moved)} moved"
-    fit = AngleFit(float(np.max(moved, initial=0.0)), float(np.rad2deg(np.max(np.abs(closed - rho), initial=0.0))),
-                   float(np.rad2deg(precision[worst])), names[worst], compared, adjustments, len(rho))  # fmt: skip
+    fit = AngleFit(ratio=float(np.max(moved, initial=0.0)),
+                   distance=float(np.rad2deg(np.max(np.abs(closed - rho), initial=0.0))),
+                   precision=float(np.rad2deg(precision[worst])), compared=compared, adjustments=adjustments,
+                   values=len(rho), crease=names[worst])  # fmt: skip
     if not fit.within:
         notes.append(f"edges_foldAngle: {fit.distance:.3g} deg from the nearest state closing every loop, "
                      f"{fit.ratio:.3g} x the angles' precision: a direction to trace towards")  # fmt: skip
@@ -1068,25 +1078,11 @@ class _Closing:
 
 
 @dataclass(frozen=True)
-class AngleFit:
-    """
-    A folded state given as fold angles against the nearest one closing every loop: `ratio` the largest move over its
-    angle's precision, `distance` the largest move (deg) at crease `crease`, `precision` (deg) that angle's;
-    `compared` says what was compared, `values` how many angles. `adjustments`: the angles moved the most.
-    """
+class AngleFit(StateFit):
+    """A folded state given as fold angles (`StateFit`, in deg) against the nearest one closing every loop, its
+    largest move at crease `crease`."""
 
-    ratio: float
-    distance: float
-    precision: float
     crease: str
-    compared: str
-    adjustments: tuple[Adjustment, ...]
-    values: int
-
-    @property
-    def within(self) -> bool:
-        """The file's angles close the loops within their precision."""
-        return self.ratio <= 1.0
 
     def text(self) -> str:
         """The distance in words."""
