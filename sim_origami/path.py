@@ -505,6 +505,7 @@ def trace(
     names: tuple[str, ...] | None = None,
     previous: tuple[float, ArrayLike] | None = None,
     stop_when: Callable[[NDArray[np.float64]], str | None] | None = None,
+    toward: ArrayLike | None = None,
 ) -> TracedPath:
     """
     Follow the closed configurations of `loops` from q0 (closed, or nearly, at `path.at(s0)`) while the driven
@@ -514,7 +515,11 @@ def trace(
     label joints in the details; `previous` (s, q) is a closed configuration behind the start that the first
     step's secant predictor uses (e.g. the flat state, when the start lies just off it on the wanted branch);
     `stop_when(q)` returns why the path must end at configuration q (a contact), or None; it is asked at every
-    node. See the module docstring for the stops.
+    node. `toward` (n_joints, NaN: no preference) is a state the joints fold towards where the path has more
+    freedoms than driven joints: the predictor is then the tangent step nearest in least squares to moving every
+    joint towards it in proportion (`toward_step`), so the spare freedoms follow the state's direction, not the
+    last secant (which takes a flat, singular start's direction from the start guess alone). See the module
+    docstring for the stops.
     """
     driven = np.atleast_1d(np.asarray(driven, dtype=int))
     if len(driven) != path.k:
@@ -551,6 +556,8 @@ def trace(
             guess = secant(behind[0], behind[1], s, q, s_new)
         else:
             guess = q.copy()
+        if toward is not None and mob[-1] > len(driven):
+            guess = toward_step(loops, q, driven, path.at(s_new) - q[driven], np.asarray(toward, dtype=float), guess)
         guess[driven] = path.at(s_new)
         q_new, r, stationary = correct(loops, guess, fixed, tol)
         jumped = r <= 100 * tol and np.max(np.abs(q_new - q)) > JUMP
@@ -593,6 +600,32 @@ def trace(
         s, q = s_new, q_new
         step.accept()
     return TracedPath(np.array(nodes_s), np.array(nodes_q), np.array(mob), np.array(res), stop, tuple(events))
+
+
+def toward_step(loops: ClosureSystem, q: NDArray[np.float64], driven: NDArray[np.int64], dx: NDArray[np.float64],
+                toward: NDArray[np.float64], fallback: NDArray[np.float64]) -> NDArray[np.float64]:
+    """
+    q + dq, the first-order closed step (J dq = 0) that moves the driven joints by dx and the others as near as
+    least squares allows to lam * (toward - q), lam the driven joints' share of their way (NaN entries of `toward`:
+    no preference, held). This is "every crease towards its target at once" in the tangent space; `fallback` when
+    the drive does not head towards `toward` (lam <= 0).
+    """
+    d = np.nan_to_num(toward - q)
+    share = float(d[driven] @ d[driven])
+    lam = float(d[driven] @ dx) / share if share > 0 else 0.0
+    if lam <= 0:
+        return fallback
+    free = np.ones(len(q), dtype=bool)
+    free[driven] = False
+    dq = lam * d
+    dq[driven] = dx
+    J = jacobian(loops, q)
+    rhs = J @ dq  # the part of the wish that opens the loops, removed by the least-norm change of the free joints
+    if sp.issparse(J):
+        dq[free] -= sp.linalg.lsqr(J[:, free], rhs, atol=1e-15, btol=1e-15, iter_lim=20 * len(q))[0]
+    else:
+        dq[free] -= np.linalg.lstsq(J[:, free], rhs, rcond=None)[0]
+    return q + dq
 
 
 def _first(

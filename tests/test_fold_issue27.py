@@ -139,3 +139,32 @@ def test_an_input_crease_that_is_not_text_is_a_parameter_error(tmp_path):
     path = write(tmp_path, "vertex", degree4_letters())
     with pytest.raises(ParameterError, match="input crease 123 is a int; name creases as text"):
         fold_scene(path, input_crease=123)  # was AttributeError: 'int' object has no attribute 'split'
+
+
+def alternating_degree8() -> dict:
+    """A square sheet creased along its diagonals (V) and midlines (M) through the centre, as a CP editor writes it:
+    a degree-8 vertex of alternating letters (5 freedoms off flat), eight triangles."""
+    ring = [[1, 0], [1, 1], [0, 1], [-1, 1], [-1, 0], [-1, -1], [0, -1], [1, -1]]
+    return {"file_spec": 1.1, "file_creator": "A CP editor", "vertices_coords": [[0, 0], *ring],
+            "edges_vertices": [[0, i] for i in range(1, 9)] + [[i, i % 8 + 1] for i in range(1, 9)],
+            "edges_assignment": ["M", "V"] * 4 + ["B"] * 8,
+            "faces_vertices": [[0, i, i % 8 + 1] for i in range(1, 9)]}  # fmt: skip
+
+
+def test_a_flat_vertex_with_spare_freedoms_folds_along_its_letters_not_into_a_false_lock():
+    # five inputs moved along a straight line towards +-180 deg forced the freedoms' shares by the inputs' letters
+    # alone: a V crease turned M 0.09-0.14 rad from flat and the file failed as a lock with nothing swept; led by the
+    # first input with the spare freedoms folding towards the letters, every letter is kept to a crease's lock
+    pattern = read_fold(alternating_degree8()).pattern
+    signs = assignment_signs(pattern)
+    kin = PatternPath(pattern, ("e0", "e1", "e2", "e3", "e4"), signs=signs)
+    assert kin.stops[-1].kind == "bound" and np.max(np.abs(kin.nodes[-1])) > np.pi - 2e-3
+    assert np.min(kin.nodes * signs) >= -1e-9 and kin.s_nodes[-1] > 5.0  # measured 5.27 rad of input arc
+    assert max(kin.loop_system().residual_norm(q) for q in kin.nodes) < 1e-12
+
+
+@pytest.mark.slow
+def test_a_flat_vertex_of_alternating_letters_validates_three_ways(tmp_path):
+    code, report = validated(tmp_path, "alternating degree 8", alternating_degree8())
+    assert code == 0 and report["passed"]
+    assert not [e for e in report["events"] if "against its" in e.get("detail", "")]

@@ -10,7 +10,15 @@ from scipy import sparse as sp
 
 from sim_origami.errors import ParameterError
 from sim_origami.kinematics.vertex4 import Vertex4
-from sim_origami.path import BIFURCATION_RTOL, ArcSystem, BandedNormal, ChordPolish, follow_arc, nearest_nodes
+from sim_origami.path import (
+    BIFURCATION_RTOL,
+    ArcSystem,
+    BandedNormal,
+    ChordPolish,
+    follow_arc,
+    nearest_nodes,
+    toward_step,
+)
 
 
 class Curves(ArcSystem):
@@ -133,3 +141,28 @@ def test_banded_normal_equations_solve_as_a_dense_solve():
     x = layout.factor(J.data).solve(b)
     assert np.allclose(A @ x, b, rtol=0, atol=1e-10) and x.shape == b.shape
     assert np.all(x[-1] == 0.0)
+
+
+@pytest.mark.parametrize("sparse", [False, True])
+def test_the_toward_step_is_closed_to_first_order_and_leans_every_spare_freedom_towards_the_state(sparse):
+    """A degree-8 vertex (5 freedoms) driven by one crease: the step moves the driven crease by dx, keeps J dq = 0, and
+    of all such steps is the one nearest the wished lam (toward - q); a drive away from the state gives the fallback."""
+    from sim_origami.fold import read_fold
+    from sim_origami.kinematics.numeric_pattern import lock_flat
+
+    ring = [[1, 0], [1, 1], [0, 1], [-1, 1], [-1, 0], [-1, -1], [0, -1], [1, -1]]
+    pattern = read_fold({"vertices_coords": [[0, 0], *ring], "edges_vertices": [[0, i] for i in range(1, 9)]
+                         + [[i, i % 8 + 1] for i in range(1, 9)], "edges_assignment": ["M", "V"] * 4 + ["B"] * 8,
+                         "faces_vertices": [[0, i, i % 8 + 1] for i in range(1, 9)]}).pattern  # fmt: skip
+    loops = replace(pattern.loop_system(lock_flat(pattern)), sparse=sparse)
+    toward = np.pi * np.array([-1.0, 1.0] * 4)
+    q = np.zeros(8)
+    dq = toward_step(loops, q, np.array([0]), np.array([-0.01]), toward, q) - q
+    J = loops.jacobian(q)
+    assert dq[0] == -0.01 and np.max(np.abs(J @ dq)) < 1e-12
+    wish = dq[0] / toward[0] * toward
+    null = np.linalg.svd(np.vstack([J, np.eye(8)[:1]]))[2][6:].T  # first-order steps that hold the driven crease
+    assert np.max(np.abs(null.T @ (dq - wish))) < 1e-9  # nothing within them brings dq nearer the wish
+    assert np.all(np.sign(dq) == np.sign(toward))  # at flat, every crease leaves on its letter's side
+    away = toward_step(loops, q, np.array([0]), np.array([0.01]), toward, q + 1.0)
+    assert np.array_equal(away, q + 1.0)
