@@ -452,7 +452,9 @@ class RigidConditions:
     state: each face planar (the distance of its vertices from the plane of its widest corner triangle), and either
     the sector angles round each interior vertex summing to 2 pi (developable; the defect times the vertex's mean
     edge length) or, given `bars` with their `rest` lengths, those lengths kept (faces congruent to a crease
-    pattern's). `residual` and the sparse `jacobian` (m, 3n).
+    pattern's). With `flat_foldable`, each interior vertex of four corners also keeps two opposite sector angles
+    summing to pi (Kawasaki's condition, the defect times the mean edge length). `residual` and the sparse
+    `jacobian` (m, 3n).
     """
 
     def __init__(
@@ -461,6 +463,7 @@ class RigidConditions:
         faces: list[Face],
         bars: NDArray[np.int_] | None = None,
         rest: NDArray[np.float64] | None = None,
+        flat_foldable: bool = False,
     ):
         self.n = len(xyz)
         count: dict[tuple[int, int], int] = {}
@@ -473,10 +476,19 @@ class RigidConditions:
         at = np.full(self.n, -1)
         at[self.interior] = np.arange(len(self.interior))
         keep = at[v] >= 0
-        self.corner_row, self.corner = at[v[keep]], (v[keep], nxt[keep], prv[keep])
-        lengths = np.linalg.norm(xyz[nxt[keep]] - xyz[v[keep]], axis=1)
-        self.edge = np.bincount(self.corner_row, weights=lengths, minlength=len(self.interior)).astype(float)
-        self.edge /= np.maximum(np.bincount(self.corner_row, minlength=len(self.interior)), 1)
+        self.corner = (v[keep], nxt[keep], prv[keep])
+        # sector rows: row k sums the angles of corners `sector_corner` (entries of row `sector_row`) to `total[k]`
+        self.sector_row, self.sector_corner = at[v[keep]], np.arange(int(np.sum(keep)))
+        self.total = np.full(len(self.interior), 2 * np.pi)
+        if flat_foldable:
+            rows, picked = _kawasaki_rows(*self.corner, self.sector_row, len(self.interior))
+            self.sector_row = np.concatenate([self.sector_row, rows + len(self.interior)])
+            self.sector_corner = np.concatenate([self.sector_corner, picked])
+            self.total = np.concatenate([self.total, np.full(int(rows.max(initial=-1)) + 1, np.pi)])
+        self.n_sectors = len(self.total)
+        lengths = np.linalg.norm(xyz[nxt[keep]] - xyz[v[keep]], axis=1)[self.sector_corner]
+        self.edge = np.bincount(self.sector_row, weights=lengths, minlength=self.n_sectors).astype(float)
+        self.edge /= np.maximum(np.bincount(self.sector_row, minlength=self.n_sectors), 1)
         planes, areas = [np.zeros((0, 4), dtype=int)], [np.zeros(0)]
         for k in sorted({len(face) for face in faces} - {3}):  # faces of each size at once (a 50 x 50 sheet: 2500)
             loops = np.array([face for face in faces if len(face) == k], dtype=int)
@@ -497,11 +509,13 @@ class RigidConditions:
     @property
     def size(self) -> int:
         """How many conditions."""
-        return len(self.interior) + len(self.planes) + len(self.bars)
+        return self.n_sectors + len(self.planes) + len(self.bars)
 
     def describe(self) -> str:
         """What is imposed, counted."""
         parts = [f"{len(self.interior)} vertex angle sums"] if len(self.interior) else []
+        kawasaki = self.n_sectors - len(self.interior)
+        parts += [f"{kawasaki} opposite-sector sums (flat-foldable vertices)"] if kawasaki else []
         parts += [f"{len(self.planes)} face planarities"] if len(self.planes) else []
         parts += [f"{len(self.bars)} face lengths"] if len(self.bars) else []
         return ", ".join(parts) or "none"
@@ -521,8 +535,8 @@ class RigidConditions:
 
     def residual(self, x: NDArray[np.float64]) -> NDArray[np.float64]:
         """The conditions' residuals (m,) at coordinates x (n, 3), file units."""
-        theta = self._corner_angles(x)[0]
-        defect = 2 * np.pi - np.bincount(self.corner_row, weights=theta, minlength=len(self.interior))
+        theta = self._corner_angles(x)[0][self.sector_corner]
+        defect = self.total - np.bincount(self.sector_row, weights=theta, minlength=self.n_sectors)
         e1, e2, e3 = self._plane(x)
         planar = np.einsum("ij,ij->i", np.cross(e1, e2), e3) / self.plane_area
         stretch = np.linalg.norm(x[self.bars[:, 0]] - x[self.bars[:, 1]], axis=1) - self.rest
@@ -537,22 +551,22 @@ class RigidConditions:
             cols.append((3 * vertex[:, None] + np.arange(3)).ravel())
             vals.append(grad.ravel())
 
-        _, uh, wh, lu, lw, c, s = self._corner_angles(x)
-        v, nxt, prv = self.corner
-        scale = self.edge[self.corner_row][:, None] / s[:, None]
+        _, uh, wh, lu, lw, c, s = (part[self.sector_corner] for part in self._corner_angles(x))
+        v, nxt, prv = (part[self.sector_corner] for part in self.corner)
+        scale = self.edge[self.sector_row][:, None] / s[:, None]
         d_u = (c[:, None] * uh - wh) / lu[:, None] * scale  # d theta / d u times the row's scale
         d_w = (c[:, None] * wh - uh) / lw[:, None] * scale
-        add(self.corner_row, nxt, -d_u)
-        add(self.corner_row, prv, -d_w)
-        add(self.corner_row, v, d_u + d_w)
+        add(self.sector_row, nxt, -d_u)
+        add(self.sector_row, prv, -d_w)
+        add(self.sector_row, v, d_u + d_w)
         e1, e2, e3 = self._plane(x)
-        row = len(self.interior) + np.arange(len(self.planes))
+        row = self.n_sectors + np.arange(len(self.planes))
         a, b, cc, d = self.planes.T
         g1, g2, g3 = (np.cross(e2, e3), np.cross(e3, e1), np.cross(e1, e2))
         area = self.plane_area[:, None]
         for vertex, grad in ((b, g1), (cc, g2), (d, g3), (a, -(g1 + g2 + g3))):
             add(row, vertex, grad / area)
-        row = len(self.interior) + len(self.planes) + np.arange(len(self.bars))
+        row = self.n_sectors + len(self.planes) + np.arange(len(self.bars))
         along = x[self.bars[:, 0]] - x[self.bars[:, 1]]
         along /= np.linalg.norm(along, axis=1)[:, None]
         add(row, self.bars[:, 0], along)
@@ -561,6 +575,25 @@ class RigidConditions:
         if not rows:
             return sp.csr_matrix(shape)
         return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=shape)
+
+
+def _kawasaki_rows(v: NDArray[np.int_], nxt: NDArray[np.int_], prv: NDArray[np.int_], row: NDArray[np.int_],
+                   n_rows: int) -> tuple[NDArray[np.int_], NDArray[np.int_]]:  # fmt: skip
+    """For each vertex row with four corners (entries of `v`, `nxt`, `prv` by `row`), a Kawasaki row: (row, corner)
+    entries of its first corner and the one opposite it (sharing no edge with it), rows numbered from 0."""
+    order = np.argsort(row, kind="stable")
+    counts = np.bincount(row, minlength=n_rows)
+    starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
+    four = starts[counts == 4]
+    quad = order[four[:, None] + np.arange(4)]  # (m, 4) corners of each four-corner vertex
+    first = quad[:, 0]
+    disjoint = np.column_stack([(nxt[quad[:, j]] != nxt[first]) & (nxt[quad[:, j]] != prv[first])
+                                & (prv[quad[:, j]] != nxt[first]) & (prv[quad[:, j]] != prv[first])
+                                for j in (1, 2, 3)])  # fmt: skip
+    ok = disjoint.sum(axis=1) == 1
+    opposite = quad[ok][np.arange(int(ok.sum())), 1 + np.argmax(disjoint[ok], axis=1)]
+    rows = np.repeat(np.arange(int(ok.sum())), 2)
+    return rows, np.column_stack([first[ok], opposite]).ravel()
 
 
 def nearest_rigid(
@@ -596,11 +629,11 @@ def nearest_rigid(
         done = worst <= tol if not np.any(z) else worst <= closed or (worst <= tol and worst > 0.5 * last)
         last = worst
         largest = np.max(np.abs(z[limit]), initial=0.0)
-        if done and (refined or not 1.0 < largest <= REFINE_UP_TO or z.size > DENSE_COORDS):
+        if done and (refined or not 1.0 < largest <= REFINE_UP_TO):
             break
         J = conditions.jacobian(x) @ sp.diags(w)
         if done:  # the least-norm point moves a value beyond its precision: the least largest move, closed again
-            z, refined, best_r, last = _least_largest(J.toarray(), z, limit), True, np.inf, np.inf
+            z, refined, best_r, last = _least_largest(J, z, limit), True, np.inf, np.inf
         else:
             z = z + _least_norm(J, -r) if refined else _least_norm(J, J @ z - r)
     return Fit(xyz, best_x, precision, best_r, conditions.describe())
@@ -624,26 +657,41 @@ def _least_norm(J: sp.csr_matrix, rhs: NDArray[np.float64]) -> NDArray[np.float6
     return z
 
 
-def _least_largest(J: NDArray[np.float64], z: NDArray[np.float64], limit: NDArray[np.bool_]) -> NDArray[np.float64]:
+def _least_largest(J: sp.csr_matrix, z: NDArray[np.float64], limit: NDArray[np.bool_]) -> NDArray[np.float64]:
     """
-    The point z + N y on the conditions' tangent at z (N spanning the null space of J (m, k)) whose largest |entry|
-    among `limit` is least: a linear programme in (y, t), minimise t with |z + N y| <= t there. The least-norm point
-    need not be it: a degree-4 vertex's four angles printed to 2 decimals moved one by 1.03 of its precision, where
-    the state they round is within it.
+    The point on the conditions' tangent at z (J (m, k)) whose largest |entry| among `limit` is least: a linear
+    programme, minimise t with |entry| <= t there. The least-norm point need not be it: a degree-4 vertex's four
+    angles printed to 2 decimals moved one by 1.03 of its precision, and a 16 x 16 Miura sheet printed to 4 decimals,
+    held flat-foldable, by 1.15, where the states they round are within it. Up to DENSE_COORDS in the tangent's null
+    space (z + N y, N by SVD: robust where the columns' scales differ by 1e6, as a motion fit's free states make
+    them); beyond, in z' itself with J z' = J z as sparse equalities.
     """
-    _, sigma, vt = np.linalg.svd(J)
-    rank = int(np.sum(sigma > sigma[0] * 1e-10)) if len(sigma) else 0
-    null = vt[rank:].T[limit]
-    if not null.shape[1]:
-        return z
-    k = null.shape[1]
-    ones = np.ones((len(null), 1))
-    a_ub = np.block([[null, -ones], [-null, -ones]])
-    b_ub = np.concatenate([-z[limit], z[limit]])
+    if J.shape[1] <= DENSE_COORDS:
+        _, sigma, vt = np.linalg.svd(J.toarray())
+        rank = int(np.sum(sigma > sigma[0] * 1e-10)) if len(sigma) else 0
+        basis = vt[rank:].T
+        if not basis.shape[1]:
+            return z
+        y = _minimax(sp.csr_matrix(basis[limit]), z[limit], None, None)
+        return z if y is None else z + basis @ y
+    rows = np.flatnonzero(limit)
+    pick = sp.csr_matrix((np.ones(len(rows)), (np.arange(len(rows)), rows)), shape=(len(rows), J.shape[1]))
+    found = _minimax(pick, np.zeros(len(rows)), J, J @ z)
+    return z if found is None else found
+
+
+def _minimax(A: sp.csr_matrix, c: NDArray[np.float64], a_eq: sp.csr_matrix | None,
+             b_eq: NDArray[np.float64] | None) -> NDArray[np.float64] | None:  # fmt: skip
+    """argmin over y of max |c + A y| (with a_eq y = b_eq, if given) by HiGHS; None when it finds none."""
+    k = A.shape[1]
+    minus = -np.ones((A.shape[0], 1))
+    a_ub = sp.vstack([sp.hstack([A, minus]), sp.hstack([-A, minus])]).tocsr()
+    eq = None if a_eq is None else sp.hstack([a_eq, sp.csr_matrix((a_eq.shape[0], 1))]).tocsr()
     cost = np.zeros(k + 1)
     cost[-1] = 1.0
-    found = linprog(cost, A_ub=a_ub, b_ub=b_ub, bounds=[(None, None)] * k + [(0, None)], method="highs")
-    return z + vt[rank:].T @ found.x[:k] if found.success else z
+    found = linprog(cost, A_ub=a_ub, b_ub=np.concatenate([-c, c]), A_eq=eq, b_eq=b_eq,
+                    bounds=[(None, None)] * k + [(0, None)], method="highs")  # fmt: skip
+    return found.x[:k] if found.success else None
 
 
 def nearest_developable(xyz: NDArray[np.float64], faces: list[Face], precision: NDArray[np.float64]) -> Fit:

@@ -172,3 +172,29 @@ def test_a_cone_far_from_any_developable_state_is_a_verdict(tmp_path):
     assert code == 1 and not verdict["passed"] and verdict["measured"] == pytest.approx(16.0, rel=1e-3)
     assert "vertices_coords are 0.8 (0.267 of the form's size 3)" in verdict["detail"]
     assert "largest at vertex 0 (creases e0, e1, e2, e3)" in verdict["detail"]
+
+
+def rounded_miura_sheet(n: int, decimals: int) -> dict:
+    """An n x n Miura sheet folded halfway to its lock by its first crease, printed to `decimals`."""
+    doc = miura_letters_only(n, n)
+    return folded_form(doc, folded_xyz(doc, read_fold(doc).pattern.creases[0].name, 0.5), decimals)
+
+
+@pytest.mark.parametrize("n", [6, 10])
+def test_a_rounded_miura_sheet_reads_as_a_flat_foldable_state_that_folds(tmp_path, n):
+    # rounding leaves a quadrilateral mesh rigid; the further-states fit missed by 1e-5 at 6 x 6 and was skipped
+    # above 50 vertices, so these stalled where they started (exit 1 from rounding alone); held flat-foldable too,
+    # their nearest states are within the precision (measured 0.76, 0.89) and the traces fold them to their locks
+    fold = read_fold(write(tmp_path, f"miura {n}", rounded_miura_sheet(n, 4)))
+    assert fold.fit.ratio <= 1.0 and "opposite-sector sums (flat-foldable vertices)" in fold.fit.compared
+    pattern = fold.pattern
+    path = PatternPath(pattern, pattern.creases[0].name, fold.fold_angles)
+    assert path.target_input is not None and abs(path.branches()[0].domain[1] - path.branches()[0].domain[0]) > 1.5
+
+
+@pytest.mark.slow
+def test_a_16_by_16_miura_sheet_printed_to_4_decimals_validates(tmp_path):
+    # 289 vertices: the least-norm flat-foldable state moved a coordinate by 1.15 of its precision, the least largest
+    # move (a sparse linear programme) by 0.86; validated three ways (path error 9.5e-9 rad, measured)
+    code, report = validated(tmp_path, "miura 16 4 decimals", rounded_miura_sheet(16, 4))
+    assert code == 0 and report["passed"] and state_verdict(report)["measured"] <= 1.0
