@@ -6,14 +6,15 @@ import json
 
 import numpy as np
 import pytest
+from fold_fixtures import slit_crane
 from test_fold_path import fan, strip, vertex
 
 from sim_origami import scenes
 from sim_origami.cli import main
 from sim_origami.creases import Crease, CreasePattern
-from sim_origami.fold import write_fold
+from sim_origami.fold import read_fold, write_fold
 from sim_origami.geometry import triangles_cross
-from sim_origami.kinematics.numeric_pattern import PatternPath
+from sim_origami.kinematics.numeric_pattern import PatternPath, assignment_signs
 from sim_origami.kinematics.self_contact import SelfContact, triangulate
 from sim_origami.kinematics.vertex4 import Vertex4
 from sim_origami.path import STOP_WHEN_TOL
@@ -143,3 +144,62 @@ def test_contact_is_reported_and_validated_three_ways_up_to_it(tmp_path, capsys)
     assert contact[0]["input_rad"] == pytest.approx(np.sqrt(2) * 2 * np.pi / 3, abs=1e-8)
     lo, hi = doc["branches"][0]["input_range_rad"]
     assert 0.9 * contact[0]["input_rad"] < hi < contact[0]["input_rad"] and hi - lo > 1.0  # the scene's margin
+
+
+def cut_square() -> CreasePattern:
+    """The square [0, 2]^2 with its centre joined to the four corners: the spoke to (0, 0) a cut C, the others V
+    creases e1 (to (2, 0)), e2 (to (2, 2), on the cut's line) and e3 (to (0, 2)). Faces f0 and f3 are the cut's
+    sides, sharing the centre and copies of the corner (0, 0)."""
+    doc = {"vertices_coords": [[1, 1], [0, 0], [2, 0], [2, 2], [0, 2]],
+           "edges_vertices": [[0, 1], [0, 2], [0, 3], [0, 4], [1, 2], [2, 3], [3, 4], [4, 1]],
+           "edges_assignment": ["C", "V", "V", "V", "B", "B", "B", "B"],
+           "faces_vertices": [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 1]]}  # fmt: skip
+    return read_fold(doc).pattern
+
+
+def sides_cross(sc: SelfContact, q, a: int, b: int) -> bool:
+    """Whether an edge of face a's triangles passes through face b's or back (`triangles_cross`), at angles q."""
+    xyz = sc.corners(q)
+    ta, tb = (xyz[sc.triangles[sc.tri_face == f]] for f in (a, b))
+    return bool(np.any(triangles_cross(ta[:, None], tb[None])))
+
+
+def test_the_sides_of_a_closed_cut_touch_along_it_and_of_an_open_one_are_tested(tmp_path):
+    """Issue 27. With e2 alone folded the square's halves turn about the diagonal, the cut's own line: the cut's
+    sides f0 and f3 stay edge to edge, hinged apart as faces across a crease are. The whole cut lay on both planes and
+    read as 'faces f0 and f3 touch' at every angle; it is now one shared edge while its two corner copies coincide.
+    Opened, the sides are tested as any faces: at (1, 1, 0.9) rad f0 and f3 cross (an edge through a face), at
+    (1, 1, 0.5) f3 passes over f0."""
+    sc = SelfContact(cut_square())
+    for rho in (1e-9, 1e-3, 0.5, 2.0, 3.1):
+        for q in ([0.0, rho, 0.0], [0.0, -rho, 0.0]):
+            assert sc(q) is None, q
+    corner = [k for k, v in enumerate(sc.corner_vertex) if np.all(sc.pattern.vertices[v] == 0.0)]
+    for q, crossed in (([1.0, 1.0, 0.9], True), ([1.0, 1.0, 0.5], False)):
+        assert np.ptp(sc.corners(q)[corner], axis=0).max() > 0.1  # the cut open: its corner copies apart
+        assert sides_cross(sc, q, 0, 3) == crossed
+        assert (sc(q) is not None and "faces f0 and f3 touch" in sc(q)) == crossed
+
+
+@pytest.mark.slow
+def test_a_slit_crane_folds_on_past_its_own_cut():
+    """Issue 27: a bird base with one wing slit along its diagonal (`fold_fixtures.slit_crane`), the slit's halves
+    folding up about the valley e27 that continues the cut. Its letters' motion (e18 driven, as `validate` picks it)
+    stopped at its first node on 'faces f8 and f15 touch; crease e27 at 0.0403883 rad ... already at the start', f8
+    and f15 being the two sides of the cut. The cut stays closed all along (its corner copies 5e-14 of the size
+    apart at most, measured) while e27 folds to 0.79 rad, and the motion runs to s = -2.1514 rad, where the neck and
+    tail flaps f1 and f6 do cross: no edge passes through a face 5e-3 rad before, one does 5e-3 rad after (a trace
+    on through the contact)."""
+    pattern = read_fold(slit_crane()).pattern
+    signs = assignment_signs(pattern)
+    path = PatternPath(pattern, "e18", signs=signs)
+    stop = path.stops[-1]
+    assert stop.kind == "contact" and stop.detail.startswith("faces f1 and f6 touch")
+    assert stop.s == pytest.approx(-2.1514, abs=1e-3) and len(path.s_nodes) > 10  # measured -2.151355, 43 nodes
+    sc = SelfContact(pattern)
+    copies = [k for k, v in enumerate(sc.corner_vertex) if np.all(pattern.vertices[v] == 0.0)]
+    assert max(np.ptp(sc.corners(q)[copies], axis=0).max() for q in path.nodes) < 1e-12
+    assert np.max(path.nodes[:, [c.name for c in pattern.creases].index("e27")]) > 0.75
+    through = PatternPath(pattern, "e18", signs=signs, contact=False)
+    before, after = through.evaluate(through.branches()[0].name, [stop.s + 5e-3, stop.s - 5e-3])[0]
+    assert not sides_cross(sc, before, 1, 6) and sides_cross(sc, after, 1, 6)

@@ -13,6 +13,15 @@ the placement, ~1e-14 of the size on a 480-crease sheet, which near a flat fold 
 right at the vertex); a penetration still shows as a segment from the vertex. Faces that lie on each other exactly
 (a fold of +-pi) are coplanar and not reported: the trace stops before, at a lock.
 
+Cuts. A cut's vertices are doubled (`fold.split_cuts`: one copy per side, at the same flat point), so its two sides
+share no crease and at most its inner end. Two copies of a vertex count as one shared vertex where they coincide
+(within CUT_CLOSED): while the cut stays closed, its two sides share its edge as faces across a crease do, lying
+edge to edge at flat and hinged apart about the cut's line when a crease continuing it folds, touching along that
+line only (it was read as a crossing at the start, the whole edge lying on both planes). Once the cut opens, the
+sides are tested as any others, so a side folded through the other is reported. Like faces across a crease, sides
+of a closed cut folded through each other about its line (through +-pi) are not seen: that takes the motion's
+history, not one pose (for a crease it is its lock).
+
 Cost: a sweep over the faces' bounding boxes along the longest axis, then the boxes of their triangles and each
 triangle's plane (all three corners of the other on one side: apart), and the interval test on what is left.
 Lengths are scaled to the pattern's longest extent, so the tolerances are relative. Patterns with thick panels
@@ -34,6 +43,8 @@ OVERLAP = 1e-9
 COPLANAR = 1e-12
 # Bounding boxes are widened by this (units of the size) so that a crossing is never lost in the broad phase.
 BOX_MARGIN = 1e-9
+# Copies of one vertex (a cut's two sides) closer than this (units of the size) are the same point: the cut is closed.
+CUT_CLOSED = 1e-9
 
 
 def triangulate(polygon: NDArray[np.float64]) -> list[tuple[int, int, int]]:
@@ -106,6 +117,8 @@ class SelfContact:
         # corners: (face, vertex) with the flat position; triangles index corners
         self.corner_face = np.array([f for f, face in enumerate(pattern.faces) for _ in face], dtype=int)
         self.corner_vertex = np.array([u for face in pattern.faces for u in face], dtype=int)
+        # one number per flat point: the copies of a vertex doubled along a cut share it
+        self.corner_point = np.unique(v, axis=0, return_inverse=True)[1].reshape(-1)[self.corner_vertex]
         self.flat = np.c_[v[self.corner_vertex] / self.size, np.zeros(len(self.corner_vertex))]
         starts = np.cumsum([0] + [len(f) for f in pattern.faces])
         tris = [tuple(starts[f] + t for t in tri) for f, face in enumerate(pattern.faces)
@@ -176,9 +189,15 @@ class SelfContact:
             apart |= np.all(d > BOX_MARGIN, axis=1) | np.all(d < -BOX_MARGIN, axis=1)
         i, j, fi, fj = i[~apart], j[~apart], fi[~apart], fj[~apart]
         A, B = tri[i], tri[j]
-        # a vertex of the sheet that both triangles have: each is taken relative to its own copy of it, put first
+        # a vertex of the sheet that both triangles have: each is taken relative to its own copy of it, put first;
+        # copies of a vertex along a cut are one where they coincide (the cut closed there)
         va, vb = self.corner_vertex[self.triangles[i]], self.corner_vertex[self.triangles[j]]
+        pa, pb = self.corner_point[self.triangles[i]], self.corner_point[self.triangles[j]]
         same = va[:, :, None] == vb[:, None, :]
+        twins = (pa[:, :, None] == pb[:, None, :]) & ~same
+        if np.any(twins):
+            gap = np.linalg.norm(A[:, :, None] - B[:, None, :], axis=-1)
+            same |= twins & (gap <= CUT_CLOSED)
         shared = np.flatnonzero(same.any(axis=(1, 2)))
         first = same[shared]
         for T, k in ((A, np.argmax(first.any(axis=2), axis=1)), (B, np.argmax(first.any(axis=1), axis=1))):
