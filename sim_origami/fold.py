@@ -660,6 +660,22 @@ def _sides(face: tuple[int, ...]) -> Iterator[tuple[int, int]]:
     return zip(face, face[1:] + face[:1], strict=True)
 
 
+def _split_cuts_as_borders(edges: list[tuple[int, int]], letters: list[str], faces: list[Face],
+                           notes: list[str]) -> list[str]:  # fmt: skip
+    """
+    `letters` with each C edge that borders one face read as B: a cut written already split (its vertices doubled,
+    each side an edge of its own, as some writers give a slit) is a border on each side. A note counts them.
+    """
+    count = Counter(key(*side) for face in faces for side in _sides(face))
+    split = {k for k, (e, letter) in enumerate(zip(edges, letters, strict=True))
+             if letter == "C" and count[key(*e)] == 1}
+    if not split:
+        return letters
+    notes.append(f"{len(split)} cut edge(s) C bordering one face each (a cut written with its vertices already "
+                 "doubled) read as borders")  # fmt: skip
+    return ["B" if k in split else letter for k, letter in enumerate(letters)]
+
+
 def _check_incidence(edges: list[tuple[int, int]], letters: list[str], faces: list[Face]) -> None:
     """Every face side is an edge; a boundary edge borders one face, every other edge two."""
     index = {key(*e) for e in edges}
@@ -770,6 +786,7 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
         count = Counter(key(*side) for face in faces for side in _sides(face))
         letters = ["B" if count[key(*e)] == 1 else "U" for e in edges]
         notes.append("no edges_assignment: edges of one face read as B, of two faces as U")
+    letters = _split_cuts_as_borders(edges, letters, faces, notes)
     _check_incidence(edges, letters, faces)
     if not flat and prefer_frame:
         raise _FoldedFormError(f"{label} are 3-D", "3-D")
@@ -1070,8 +1087,9 @@ def _nearest_closed(
     """
     The key frame's edges_foldAngle `rho` (rad, the pattern's signs) against the nearest state closing every loop
     (F creases flat): least-norm Gauss-Newton in units of each angle's printed precision (`_printed_precision`).
-    Within the precision, that state replaces `rho`, with the fit; beyond it `rho` is kept and traced towards, without
-    a fit (a note gives the distance; the trace's distance from it is a check, `PatternPath.target_check`).
+    Within the precision, that state replaces `rho`, with the fit; beyond it `rho` is kept and traced towards (a note
+    gives the distance; the trace's distance from it is a check, `PatternPath.target_check`), with the fit (nothing
+    adjusted) when the angles were printed with decimals, so that their precision judges the state.
     """
     numbers = [key["edges_foldAngle"][e] for e in sheet.edge_of_crease]
     precision = np.deg2rad(_printed_precision(numbers, np.rad2deg(sheet.sign * rho), np.rad2deg(EXACT_ANGLE)))
@@ -1094,9 +1112,13 @@ def _nearest_closed(
                    precision=float(np.rad2deg(precision[worst])), compared=compared, adjustments=adjustments,
                    values=len(rho), crease=names[worst])  # fmt: skip
     if not fit.within:
+        # printed with decimals, the angles state their precision, and a state beyond it is not a rigid state as
+        # typed: kept (traced towards) and judged by that precision (`PatternPath.state_check`). Angles without
+        # decimals (integers, parsed floats) state none: judged by the trace's distance from them (TARGET_TOL)
+        printed = bool(np.any(precision > EXACT_ANGLE * (1 + 1e-9)))
         notes.append(f"edges_foldAngle: {fit.distance:.3g} deg from the nearest state closing every loop, "
                      f"{fit.ratio:.3g} x the angles' precision: a direction to trace towards")  # fmt: skip
-        return rho, None
+        return rho, replace(fit, adjustments=()) if printed else None
     if fit.distance > 0:
         notes.append(f"edges_foldAngle: the nearest state closing every loop is {fit.distance:.3g} deg away, "
                      f"{fit.ratio:.3g} x the angles' precision; it is what is read")  # fmt: skip

@@ -152,11 +152,31 @@ def test_fold_angles_printed_to_two_decimals_read_as_the_state_they_round(tmp_pa
     assert {a.name for a in moved} == {f"edges_foldAngle[{k}]" for k in range(4)} and moved[0].unit == "deg"
     assert moved[0].given == 66.48 and moved[0].ratio == pytest.approx(got.fit.ratio)
     assert np.max(np.abs(np.rad2deg(got.fold_angles) - exact)) < 0.005
-    # every crease at 90 deg is no state of this vertex (9.9 deg from the nearest): a direction, kept as given
+    # every crease at 90 deg is no state of this vertex (9.9 deg from the nearest): a direction, kept as given, and
+    # with its precision (0.05 deg, printed "90.0") its fit stands, far beyond it, with nothing adjusted
     square = doc | {"edges_foldAngle": [-90.0, 90.0, 90.0, 90.0, 0, 0, 0, 0]}
     direction = read_fold(write(tmp_path, "direction", square))
-    assert direction.fit is None and "a direction to trace towards" in direction.notes[-1]
+    assert "a direction to trace towards" in direction.notes[-1]
+    assert not direction.fit.within and direction.fit.adjustments == () and direction.fit.distance > 9.0
     np.testing.assert_array_equal(np.rad2deg(direction.fold_angles), [-90.0, 90.0, 90.0, 90.0])
+    # as integers they state no precision: no fit, the trace's distance from them (0.01 rad) judges them
+    integers = read_fold(write(tmp_path, "integers", doc | {"edges_foldAngle": [-90, 90, 90, 90, 0, 0, 0, 0]}))
+    assert integers.fit is None
+
+
+@pytest.mark.slow
+def test_fold_angles_beyond_their_printed_precision_fail_by_it_not_by_the_trace_distance(tmp_path, capsys):
+    # one angle 0.2 deg off a rigid state, printed to 2 decimals: 0.0036 rad from the rigid motion passed the trace
+    # distance's 0.01 rad (exit 0); it is 40 x its precision 0.005 deg, a failing verdict with the distance
+    doc = degree4_letters()
+    pattern = read_fold(doc).pattern
+    exact = np.rad2deg(PatternPath(pattern, "e1", signs=assignment_signs(pattern)).evaluate(BRANCH, [1.2])[0][0])
+    angles = np.round(exact, 2)
+    angles[2] = round(angles[2] + 0.2, 2)
+    code, report = validated(tmp_path, "off by 0.2 deg", doc | {"edges_foldAngle": [*angles.tolist(), 0, 0, 0, 0]})
+    verdict = state_verdict(report)
+    assert code == 1 and not verdict["passed"] and 35 < verdict["measured"] < 45  # measured 40
+    assert "FAIL through-target: file state's distance from the nearest rigid state" in capsys.readouterr().out
 
 
 @pytest.mark.slow
