@@ -23,6 +23,7 @@ and NaN entries are free.
 Signs and frames are those of `sim_origami.creases` (rho > 0 valley seen from +z, radians).
 """
 
+import re
 from collections.abc import Sequence
 from dataclasses import replace
 from functools import cached_property
@@ -293,7 +294,8 @@ class PatternPath(JointSpaceKinematics):
         self.path = path
         self.stops = [p.stop for p in parts]
         if self._lead_stop is not None and traced.stop.kind == "end":  # the lead's end is where its motion stopped
-            self.stops[-1] = replace(self._lead_stop, s=traced.stop.s)
+            lead = self._lead_stop  # its detail's "(at s = ...)" is in the lead's own parameter, not this path's
+            self.stops[-1] = replace(lead, s=traced.stop.s, detail=re.sub(r" \(at s = [^)]*\)", "", lead.detail))
         self.rank_events = [e for p in parts for e in p.events]
         s = np.concatenate([parts[0].s, *(p.s[1:] for p in parts[1:])])
         q = np.vstack([parts[0].q, *(p.q[1:] for p in parts[1:])])
