@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 from fold_fixtures import frog_base, slit_crane, three_flap_base, validated, waterbomb_base
 
-from sim_origami.errors import ParameterError
 from sim_origami.fold import read_fold
 from sim_origami.kinematics.vertex4 import Vertex4
 
@@ -148,8 +147,6 @@ def test_the_slit_crane_folds_past_its_cut_to_a_real_contact(tmp_path, capsys):
     assert contact[0]["input_rad"] == pytest.approx(4.780, abs=1e-2)  # measured 4.7796
 
 
-@pytest.mark.xfail(raises=ParameterError, strict=True, reason="the reader takes a cut as one C edge between two "
-                   "faces only: 'edge 26 (0-13, 'C') borders 1 face(s); a cut runs between two faces'")  # fmt: skip
 def test_a_cut_written_as_two_edges_on_doubled_vertices_reads_as_one_cut():
     """FOLD writes a cut also as the slit's vertices doubled, one C edge per side, each bordering one face: the same
     paper as one C edge between the two faces."""
