@@ -4,7 +4,7 @@ Names: bodies as in the mechanism (`panel_<i>`, `link_<i>` or a crease pattern's
 geoms sit on the world body), hinges as the mechanism's joints, meshes `<body>_solid` /
 `<body>_collision`, closure sites `<joint>_parent_<k>` / `<joint>_child_<k>`, connects
 `close_<joint>_<k>`, joint couplings `couple_<joint>_<other>`, the drive `drive_<joint>`, keyframes
-`start_<branch>`.
+`start_<branch>`; model.xml adds a position servo `drive_<joint>` per driven joint and materials named by colour.
 
 A hinge's qpos equals the mechanism's joint angle: a joint traversed from its child to its parent
 in the spanning tree gets the reversed axis. Each cut joint is closed by one site-based `connect`
@@ -13,6 +13,7 @@ mechanism marks it implied (closed by its couplings and the other loops): then o
 Contact, gravity and render assets enter only the models that use them.
 """
 
+import colorsys
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from importlib import resources
@@ -24,7 +25,7 @@ from . import __version__
 from .errors import ParameterError
 from .geometry import invert, quaternion, quaternion_matrix, xyz_angles, xyz_rotation
 from .mechanism import Body, Mechanism
-from .mjcf_tidy import attach_comments, box_of, tidy
+from .mjcf_tidy import attach_comments, box_of, short, tidy
 
 ORDER = (
     "compiler", "option", "size", "custom", "visual", "default", "asset", "worldbody",
@@ -32,6 +33,17 @@ ORDER = (
 )  # fmt: skip
 # fast-projected: fast plus a projection onto the closures after each step (`stabilize`), not plain MuJoCo
 PRESETS = ("fast", "stiff", "accurate", "fast-projected")
+# The templates' one-line comments name this package's code or notes; model.xml is read by people without them, so
+# those words are replaced as the comments enter a model (better reworded in mjcf_templates/ itself).
+OUTSIDER_WORDS = {
+    "the biggest accuracy lever (section 4.1)": "the biggest accuracy lever measured",
+    "times 0.01 (simulate.compile_model)": "times 0.01 (regularization_scale below)",
+    "(sim_origami.stabilize)": "after each step (the validation run's projection onto the closures, not MuJoCo's)",
+}
+# model.xml: colour names of its materials, by hue (degrees: the upper end of each name's range), for colours with
+# some saturation; the others are white, grey or black by lightness.
+HUES = ((15, "red"), (45, "orange"), (70, "yellow"), (165, "green"), (200, "cyan"), (255, "blue"), (290, "violet"),
+        (335, "magenta"), (360, "red"))  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -114,6 +126,9 @@ def _merge(root: ET.Element, fragment: ET.Element) -> None:
     """
     for child in [c for c in fragment.iter() if c.tag is ET.Comment and "\n" in (c.text or "")]:
         _drop(fragment, child)
+    for child in [c for c in fragment.iter() if c.tag is ET.Comment]:
+        for code, words in OUTSIDER_WORDS.items():
+            child.text = (child.text or "").replace(code, words)
     for child in fragment:
         if child.tag is ET.Comment:
             root.append(child)
@@ -371,15 +386,19 @@ def _note_preset(root: ET.Element, preset: str) -> None:
     custom = root.find("custom")
     scale = next(i for i, e in enumerate(custom) if e.get("name") == "regularization_scale")
     custom.insert(scale, ET.Comment(
-        " regularization_scale: multiply model.body_invweight0 and model.dof_invweight0 by it after loading "
-        "(simulate.scale_regularization); no MJCF attribute sets it (impedance is capped at 0.9999) "
+        " regularization_scale: the validation run multiplied the compiled model's body_invweight0 and dof_invweight0 "
+        "by it (as impedance 0.999999: MuJoCo caps solimp at 0.9999, so no attribute states it); do the same to repeat "
+        "its numbers, holding and folding do not need it "
     ))  # fmt: skip
 
 
-def _keyframes(mechanism: Mechanism, keyframes: dict[str, np.ndarray]) -> ET.Element:
+def _keyframes(mechanism: Mechanism, keyframes: dict[str, np.ndarray], drives: tuple[str, ...] = ()) -> ET.Element:
+    """Keys `start_<name>` at mechanism angles, exact (state, not geometry); with `drives`, ctrl at their angles."""
     frames = ET.Element("keyframe")
     for name, q in keyframes.items():
-        ET.SubElement(frames, "key", name=f"start_{name}", qpos=_fmt(keyframe_qpos(mechanism, q)))
+        key = ET.SubElement(frames, "key", name=f"start_{name}", qpos=_fmt(keyframe_qpos(mechanism, q)))
+        if drives:
+            key.set("ctrl", _fmt([q[mechanism.joint_index(j)] for j in drives]))
     return frames
 
 
@@ -390,6 +409,93 @@ def with_keyframes(xml: str, mechanism: Mechanism, keyframes: dict[str, np.ndarr
     ET.indent(frames, space="  ", level=1)
     head, tail = xml.rsplit("</mujoco>", 1)
     return f"{head}  {ET.tostring(frames, encoding='unicode')}\n</mujoco>{tail}"
+
+
+@dataclass(frozen=True)
+class Replay:
+    """
+    What model.xml adds to the MJCF a run stepped so that plain MuJoCo plays it alone: keyframes `start_<branch>` at
+    mechanism angles `poses` with ctrl at each driven joint's angle there, and per driven joint a position servo
+    (`kp` N m/rad, `kv` N m s/rad, `ctrlrange` rad: the viewer's slider) critically damped with time constant
+    `timeconst` (s).
+    """
+
+    poses: dict[str, NDArray[np.float64]]
+    kp: tuple[float, ...]
+    kv: tuple[float, ...]
+    ctrlrange: tuple[tuple[float, float], ...]
+    timeconst: float
+
+
+def replay_xml(xml: str, mechanism: Mechanism, drives: tuple[str, ...], replay: Replay) -> str:
+    """
+    model.xml: `xml`, the text of a run's model (joint-equality drive, no keyframes), with what plain MuJoCo needs
+    to play it alone, each addition under a comment starting 'replay': a header, named materials for the colours,
+    the drive equalities off and a position servo per driven joint instead, keyframes with ctrl. The run's text is
+    otherwise kept as it is: options, masses, constraints and qpos0 (where MuJoCo reads the regulariser's weights).
+    """
+    root = ET.fromstring(xml, parser=ET.XMLParser(target=ET.TreeBuilder(insert_comments=True)))
+    root.insert(1, ET.Comment(
+        " replay: the model the validation run stepped (its options, masses and constraints), with what plain MuJoCo "
+        "needs to play it alone under comments starting 'replay'; reset to a keyframe and step: the start pose holds; "
+        "move ctrl to fold "))  # fmt: skip
+    _name_materials(root)
+    _add_servos(root, drives, replay)
+    root.append(ET.Comment(
+        " replay: the validation runs' start poses (closures closed), ctrl holding the input; the default pose qpos0 "
+        "stays the run's reference, where MuJoCo reads the regulariser's weights "))  # fmt: skip
+    root.append(_keyframes(mechanism, replay.poses, drives))
+    ET.indent(root, space="  ")
+    return ET.tostring(root, encoding="unicode")
+
+
+def colour_name(rgba: str) -> str:
+    """A colour's name (model.xml's materials): white, grey or black when nearly unsaturated, else its hue's."""
+    r, g, b = (float(v) for v in rgba.split()[:3])
+    hue, light, _ = colorsys.rgb_to_hls(r, g, b)
+    if max(r, g, b) - min(r, g, b) < 0.1:
+        return "white" if light > 0.85 else "black" if light < 0.15 else "grey"
+    return next(name for top, name in HUES if hue * 360 < top)
+
+
+def _name_materials(root: ET.Element) -> None:
+    """Each body colour (a geom's rgba) as a named material in the asset section, the geoms using it by name."""
+    geoms = [g for g in root.find("worldbody").iter("geom") if g.get("rgba")]
+    names: dict[str, str] = {}
+    uses: dict[str, int] = {}
+    for rgba in dict.fromkeys(g.get("rgba") for g in geoms):
+        name = colour_name(rgba)
+        uses[name] = uses.get(name, 0) + 1
+        names[rgba] = name if uses[name] == 1 else f"{name}_{uses[name]}"  # two blues: blue, blue_2
+    asset = root.find("asset")
+    if asset is None:
+        asset = ET.Element("asset")
+        root.insert(list(root).index(root.find("worldbody")), asset)
+    materials = [ET.Element("material", name=name, rgba=rgba) for rgba, name in names.items()]
+    asset[:0] = [ET.Comment(" replay: the bodies' colours, named (drawing only) "), *materials]
+    for geom in geoms:
+        items = list(geom.items())
+        geom.attrib.clear()
+        for attr, value in items:  # in place of rgba, keeping the attributes' order
+            geom.set(*(("material", names[value]) if attr == "rgba" else (attr, value)))
+
+
+def _add_servos(root: ET.Element, drives: tuple[str, ...], replay: Replay) -> None:
+    """The drive equalities off (active false) and, after the equality section, a position servo per driven joint."""
+    equality = root.find("equality")
+    held = [e for e in equality.iter("joint") if e.get("name") in {f"drive_{j}" for j in drives}]
+    for element in held:
+        element.set("active", "false")
+    equality.insert(list(equality).index(held[-1]) + 1, ET.Comment(
+        " replay: the input's equality is off here (active false): the position servo below drives it "))  # fmt: skip
+    actuator = ET.Element("actuator")
+    actuator.append(ET.Comment(
+        f" replay: ctrl = the driven joint's angle (rad); critically damped with time constant {replay.timeconst:g} s "
+        "on the mechanism's inertia at that joint in its lightest start pose "))  # fmt: skip
+    for joint, kp, kv, (lo, hi) in zip(drives, replay.kp, replay.kv, replay.ctrlrange, strict=True):
+        ET.SubElement(actuator, "position", name=f"drive_{joint}", joint=joint, kp=f"{kp:.4g}", kv=f"{kv:.4g}",
+                      ctrlrange=f"{short(lo, 0.0)} {short(hi, 0.0)}")  # fmt: skip
+    root.insert(list(root).index(equality) + 1, actuator)
 
 
 def build_xml(
@@ -468,7 +574,8 @@ def build_xml(
         ).set("class", "closure")  # fmt: skip
 
     if options.drive == "equality":
-        equality.append(ET.Comment(" input: the harness writes the target angle into eq_data[drive, 0] each step "))
+        equality.append(ET.Comment(" input: a joint equality whose target angle (eq_data[0]) the validation run "
+                                   "rewrote every step "))  # fmt: skip
         for joint in setup.drives:
             ET.SubElement(equality, "joint", name=f"drive_{joint}", joint1=joint, polycoef="0 0 0 0 0").set(
                 "class", "drive"

@@ -11,6 +11,7 @@ import subprocess
 from datetime import datetime, timezone
 from pathlib import Path
 
+import mujoco
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.spatial.transform import Rotation
@@ -18,8 +19,8 @@ from scipy.spatial.transform import Rotation
 from . import __version__
 from .files import write_text
 from .fold import write_fold
-from .mjcf import ModelOptions
-from .simulate import scene_xml, start_input
+from .mjcf import ModelOptions, Replay, replay_xml
+from .simulate import Bindings, Scene, closure_model, constraint_jacobian, scene_xml, start_input
 from .stabilize import preset_mode
 from .tolerances import TOLERANCES
 from .validation import Report
@@ -34,6 +35,13 @@ PAPER_FRONT = (0.96, 0.86, 0.64)
 PAPER_BACK = (0.62, 0.74, 0.88)
 # Frames of the simulated motion written to motion.fold (evenly spaced over the first run).
 FOLD_FRAMES = 60
+# model.xml's position servo on each driven joint: critically damped with this time constant (s) on the mechanism's
+# inertia at that joint in the lightest start pose. It is explicit in MuJoCo (RK4 steps kv / I h with I the inertia of
+# the pose reached): along every built-in path that inertia falls to at most 1/6.7 of the start's (vertex4, measured),
+# where 2 h / SERVO_TIMECONST x 6.7 = 1.1 at h = 8 ms (1.3 at 10 ms) stays inside RK4's stability limit of 2.8.
+SERVO_TIMECONST = 0.1
+# Singular values of the closures' Jacobian below this times the largest span its null space (free motions).
+NULL_RTOL = 1e-9
 # Samples of each run that curves.csv keeps (plus each joint's worst): every MuJoCo step of every joint made the main
 # job's curves 197 MB (81 MB for corrugated-sheet alone); `validate --full-curves` writes them all.
 CURVE_ROWS = 400
@@ -332,15 +340,70 @@ def pattern_drawing(report: Report) -> dict:
 
 
 def model_xml(report: Report) -> str:
-    """
-    The MJCF the dynamic runs stepped (preset, joint-equality drive, no contact), with each branch's start pose as
-    keyframe `start_<branch>`. Load it with `mujoco.MjModel.from_xml_path`, multiply `body_invweight0` and
-    `dof_invweight0` by its numeric `regularization_scale`, reset to the keyframe and write the drive's targets
-    (`simulate.drive_targets`) into eq_data of `drive_<joint>`: the run is repeated bitwise.
-    """
+    """model.xml of a validation (`replay_model_xml` for its runs' branches and start inputs)."""
     scene = report.scene
-    starts = {r.requested: scene.pose(r.requested, start_input(scene, r.requested, report.seed)) for r in report.runs}
-    return scene_xml(scene, ModelOptions(preset=report.preset), keyframes=starts) + "\n"
+    return replay_model_xml(scene, report.preset, {r.requested: start_input(scene, r.requested, report.seed)
+                                                   for r in report.runs})  # fmt: skip
+
+
+def replay_model_xml(scene: Scene, preset: str, starts: dict[str, float]) -> str:
+    """
+    model.xml for runs from these start inputs (rad) by branch: the MJCF the dynamic runs stepped (preset,
+    joint-equality drive, no contact) with what plain MuJoCo needs to play it alone (`mjcf.replay_xml`): keyframes
+    `start_<branch>` at the closed form's start poses with ctrl there, and a position servo per driven joint. Loaded
+    with `mujoco.MjModel.from_xml_path`, reset to a keyframe and stepped, it holds the start pose. To repeat a run
+    bitwise: multiply `body_invweight0` and `dof_invweight0` by its numeric `regularization_scale`, disable actuation,
+    reset to the keyframe, turn the equality `drive_<joint>` on and write the drive's targets
+    (`simulate.drive_targets`) into its eq_data each step.
+    """
+    poses = {branch: scene.pose(branch, x) for branch, x in starts.items()}
+    kp, kv = servo_gains(scene, preset, poses)
+    replay = Replay(poses, kp, kv, _ctrl_ranges(scene, starts), SERVO_TIMECONST)
+    return replay_xml(scene_xml(scene, ModelOptions(preset=preset)), scene.mechanism, scene.drives, replay) + "\n"
+
+
+def servo_gains(
+    scene: Scene, preset: str, poses: dict[str, NDArray[np.float64]]
+) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """model.xml's servo gains (kp, kv) per driven joint: critically damped with SERVO_TIMECONST on the mechanism's
+    inertia at that joint (`drive_inertia`) in the lightest of the start poses."""
+    model, data, _ = closure_model(scene, ModelOptions(preset=preset))
+    binds = Bindings(scene, model)
+    dofs = np.array([model.jnt_dofadr[model.joint(j).id] for j in scene.drives])
+    inertia = []
+    for q in poses.values():
+        binds.set_pose(data, q)
+        inertia.append(drive_inertia(model, data, dofs))
+    rate = 1.0 / SERVO_TIMECONST
+    lightest = np.min(inertia, axis=0)
+    return tuple((lightest * rate**2).tolist()), tuple((2.0 * lightest * rate).tolist())
+
+
+def drive_inertia(model: mujoco.MjModel, data: mujoco.MjData, dofs: NDArray[np.int64]) -> NDArray[np.float64]:
+    """
+    The inertia (kg m^2) a torque at each dof in `dofs` meets at data's qpos: the others moving as the active
+    equalities (the closures) allow with the least kinetic energy, 1 / (e' N (N' M N)^-1 N' e) over a basis N of
+    their Jacobian's null space; the dof's own mass-matrix entry where the closures hold it (N' e = 0).
+    """
+    mujoco.mj_forward(model, data)
+    M = np.zeros((model.nv, model.nv))
+    mujoco.mj_fullM(model, data, M)
+    J = constraint_jacobian(model, data)[data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY]
+    _, s, Vt = np.linalg.svd(J) if len(J) else (None, np.zeros(0), np.eye(model.nv))
+    N = Vt[int(np.sum(s > NULL_RTOL * s.max(initial=0.0))) :].T
+    out = np.diag(M)[dofs].copy()
+    for k, dof in enumerate(dofs):
+        e = N[dof]
+        if e @ e > NULL_RTOL:
+            out[k] = 1.0 / (e @ np.linalg.solve(N.T @ M @ N, e))
+    return out
+
+
+def _ctrl_ranges(scene: Scene, starts: dict[str, float]) -> tuple[tuple[float, float], ...]:
+    """Each driven joint's angles (rad) over the branches' paths from their starts: the range of its ctrl slider."""
+    x = np.concatenate([np.linspace(x0, scene.branch_path(b)[1], 65) for b, x0 in starts.items()])
+    angles = scene.drive_values(x)
+    return tuple((float(lo), float(hi)) for lo, hi in zip(angles.min(axis=0), angles.max(axis=0), strict=True))
 
 
 def write(report: Report, out: str | Path, *, full_curves: bool = False, doc: dict | None = None) -> dict[str, Path]:
