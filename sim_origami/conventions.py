@@ -27,6 +27,9 @@ from numpy.typing import ArrayLike, NDArray
 LENGTH_RANGE = (1e-4, 1e4)
 # Largest ratio of two positive lengths of one model: beyond it the small one (a thickness) is rounding on the large.
 LENGTH_RATIO_MAX = 1e4
+# A motion whose input moves less than this (rad) is no motion to validate: its swept-range check fails, and a
+# numeric trace that ends within it of its start is stuck there (no MuJoCo run is made of it).
+MIN_SWEEP_RAD = 1e-3
 
 
 def deg_to_rad(value_deg: ArrayLike) -> NDArray[np.float64]:

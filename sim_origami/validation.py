@@ -18,6 +18,7 @@ from .checks.branches import classify
 from .checks.paths import PathComparison, closure_conditions, compare, floor_verdict_values
 from .checks.reference import ReferenceCheck, ReferenceCurves, compare_reference
 from .checks.verdict import Verdict
+from .conventions import MIN_SWEEP_RAD
 from .errors import ConvergenceError, ParameterError, SimulationError
 from .mjcf import PRESETS, ModelOptions, preset_duration
 from .scenes.base import Scene
@@ -38,10 +39,9 @@ from .truss import truss_mobility
 
 # Samples of the closed form and of the numeric solve along each path.
 ANALYTIC_SAMPLES = 200
-# A run must sweep its input over at least this much (rad) to pass: below it the path's shape cannot show (the
-# fast preset's angle tolerance is 1e-6 rad, three orders smaller; a frozen input gives error 0 on nothing). The
-# shortest default sweep of a registered scene is far longer (every one spans at least a quarter of its domain).
-MIN_SWEEP_RAD = 1e-3
+# A run must sweep its input over at least MIN_SWEEP_RAD to pass: below it the path's shape cannot show (the fast
+# preset's angle tolerance is 1e-6 rad, three orders smaller; a frozen input gives error 0 on nothing). The shortest
+# default sweep of a registered scene is far longer (every one spans at least a quarter of its domain).
 # Events of a numerically traced reference (`kinematics.numeric_pattern`): where and why its trace ended, its
 # mobility changes, an open chain. Reported with every run, inside the sweep or not.
 REFERENCE_EVENTS = ("stall", "lock", "contact", "branch-point", "mobility-change", "open-chain", "off-target",
@@ -487,13 +487,15 @@ def validate(
         phase(f"MuJoCo {preset} and its projection, {name}")
         start, stop = scene.branch_path(name)
         stuck = getattr(scene.kinematics, "start_check", None)
-        if start == stop and stuck is not None and stuck() is not None:
-            # a trace that never left its start: MuJoCo would hold one pose (and may diverge doing it, on a start that
-            # does not close); the trace's stop is the cause. A sweep frozen otherwise fails its swept range.
+        if stuck is not None and stuck() is not None:
+            # a trace that never left its start (or ended within MIN_SWEEP_RAD of it): MuJoCo would hold one pose, and
+            # may diverge doing it on a start that does not close; the trace's stop is the cause. A sweep frozen
+            # otherwise fails its swept range.
             known = _input_count_verdict(scene, name, {"along_path": _along_path(scene.kinematics),
                                                        "inputs": len(scene.drives)})  # fmt: skip
             events = path_events(scene, name, np.array([start]), ("",))
-            raise ZeroSweepError(f"no MuJoCo run: the drive of {name} sweeps 0 rad ({start:.6g} -> {stop:.6g} rad)",
+            raise ZeroSweepError(f"no MuJoCo run: the drive of {name} sweeps {abs(stop - start):.3g} rad ({start:.6g} "
+                                 f"-> {stop:.6g} rad)",
                                  (*verdicts, *known), events)
         try:
             runs.append(run_branch(scene, name, preset, seed))

@@ -33,6 +33,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.sparse.linalg import lsqr
 
 from ..closure import Coupling, LoopSystem
+from ..conventions import MIN_SWEEP_RAD
 from ..creases import CreasePattern
 from ..errors import ParameterError
 from ..path import ChordPolish, PathStop, Polyline, TracedPath, correct, nearest_nodes, trace
@@ -404,16 +405,20 @@ class PatternPath(JointSpaceKinematics):
 
     def start_check(self) -> tuple[float, float, str] | None:
         """
-        (1, 0, where and why it stopped) when the trace never left its start (a single node: a stall, lock or contact
-        at its first step), else None. Such a motion gives MuJoCo a drive of zero length to sweep, so this stop is
-        the run's first real cause of failure (`validation.validate` then runs no MuJoCo).
+        (1, 0, where and why it stopped) when the trace never left its start (a single node, or nodes within
+        MIN_SWEEP_RAD of it: a stall, lock or contact at once), else None. Such a motion gives MuJoCo a drive of no
+        length to sweep, so this stop is the run's first real cause of failure (`validation.validate` then runs no
+        MuJoCo).
         """
-        if len(self.s_nodes) > 1:
+        span = float(self.s_nodes[-1] - self.s_nodes[0])
+        if span >= MIN_SWEEP_RAD:
             return None
         stop = next((e for e in self.events() if e.kind in ("stall", "lock", "contact")), None)
         why = f"{stop.kind} at {stop.input:.6g} rad: {stop.detail}" if stop is not None else \
             f"no node beyond {self.s_nodes[0]:.6g} rad"  # fmt: skip
-        return 1.0, 0.0, f"{why}; the pattern does not fold rigidly from there, so there is no motion to simulate"
+        moved = f" after {span:.3g} rad" if span > 0 else ""
+        return 1.0, 0.0, (f"{why}{moved}; the pattern does not fold rigidly from there, so there is no motion to "
+                          "simulate")  # fmt: skip
 
     def target_check(self) -> tuple[float, float, str, int] | None:
         """
