@@ -168,3 +168,15 @@ def test_a_flat_vertex_of_alternating_letters_validates_three_ways(tmp_path):
     code, report = validated(tmp_path, "alternating degree 8", alternating_degree8())
     assert code == 0 and report["passed"]
     assert not [e for e in report["events"] if "against its" in e.get("detail", "")]
+
+
+@pytest.mark.slow
+def test_a_large_waterbomb_tessellation_folds_from_flat_with_its_letters(tmp_path):
+    # 8 x 10 cells, 237 creases (solved sparse): started on the first-order closure plane, its corrector turned e10
+    # against its M 0.0076 rad from flat and the file failed as a lock; started from the sign-held solve (0.06-0.4 s
+    # here) it folds to a self-contact at 3.23 rad of input arc, MuJoCo 4.0e-9 rad from the trace (measured)
+    from test_fold_gallery import waterbomb
+
+    code, report = validated(tmp_path, "waterbomb 8 x 10", waterbomb(8, 10))
+    assert code == 0 and report["passed"]
+    assert [e["kind"] for e in report["events"] if e["kind"] in ("lock", "stall", "contact")] == ["contact"]

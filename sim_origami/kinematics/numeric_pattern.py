@@ -42,8 +42,8 @@ from .self_contact import SelfContact
 
 BRANCH = "through-target"
 # Patterns with more creases than this solve with sparse normal equations (16 x 16 Miura, 480 creases: a corrector
-# iteration 0.2 s dense, a few ms sparse), and start a letters-only trace on the first-order closure plane (the
-# sign-held solve costs 21 s there and missed); smaller ones keep the dense solve and the sign-held start.
+# iteration 0.2 s dense, a few ms sparse), and start a letters-only trace of one input on the first-order closure
+# plane; smaller ones keep the dense solve and the sign-held start.
 SPARSE_FROM = 100
 # Continuation: first step (fraction of the target input), how close to flat the trace goes (fraction of the
 # target input), how near pi a crease counts as folded flat (rad), and the largest step (rad of input).
@@ -153,6 +153,7 @@ class PatternPath(JointSpaceKinematics):
                 raise ParameterError(f"{name} has {state.shape[-1]} fold angles for {n} creases")
         self.stops: list[PathStop] = []
         self._lead_stop: PathStop | None = None  # why the lead trace of several inputs under letters ended (`_lead`)
+        self._lead_path: PatternPath | None = None  # that lead trace
         self._evaluated: dict[bytes, tuple] = {}  # the last EVALUATE_MEMO inputs evaluated and their values
         self.rank_events: list[PathStop] = []
         self.path: Polyline | None = None
@@ -241,7 +242,7 @@ class PatternPath(JointSpaceKinematics):
         lead = PatternPath(self.pattern, self.inputs[0], signs=self.signs, contact=self._contact is not None)
         if len(lead.s_nodes) < 2:
             return None
-        self._lead_stop = lead.stops[-1]
+        self._lead_stop, self._lead_path = lead.stops[-1], lead
         order = np.argsort(np.abs(lead.s_nodes))
         return np.vstack([np.zeros(len(self.driven)), lead.nodes[order][:, self.driven]])
 
@@ -250,6 +251,9 @@ class PatternPath(JointSpaceKinematics):
         the guess picks the branch heading for the folded state, or the M/V signs)."""
         n = len(self.joint_names)
         lettered = self.signs[[k for k, c in enumerate(self.pattern.creases) if c.assignment != "F"]] != 0
+        if self._lead_path is not None:  # s1 is the path's first knot, the lead's first node: closed, these inputs'
+            lead = self._lead_path
+            return lead.nodes[int(np.argmin(np.abs(lead.s_nodes)))].copy()
         if self.letters_only and np.all(lettered) and n <= SPARSE_FROM:
             x = float(path.at(s1)[0])
             q, _ = self._loops.solve_signed(np.where(self.signs == 0, 1.0, self.signs), self.input_index, x,
@@ -277,6 +281,8 @@ class PatternPath(JointSpaceKinematics):
         path = Polyline.through(self._knots())
         span = abs(path.s[-1] - path.s[0])
         s1 = path.s[0] + np.sign(path.s[-1] - path.s[0]) * FIRST_STEP * min(span, abs(path.s[1] - path.s[0]))
+        if self._lead_path is not None:
+            s1 = float(path.s[1])  # the lead's first node, where its closed state is known (`_start`)
         names = tuple(c.name for c in self.pattern.creases)
         anchor = self._frame_anchor(path)
         if anchor is None:
