@@ -85,6 +85,27 @@ class ModelSetup:
         return bool(self.contact_pairs) or self.self_contact_exclude is not None
 
 
+
+def drive_name(joint: str) -> str:
+    """The MJCF name of the drive (equality or actuator) of mechanism joint `joint`."""
+    return f"drive_{joint}"
+
+
+def site_name(joint: str, side: str, k: int) -> str:
+    """The MJCF name of closure site k of cut joint `joint` on its "parent" or "child" side."""
+    return f"{joint}_{side}_{k}"
+
+
+def collision_name(body: str) -> str:
+    """The MJCF name of body `body`'s collision solid (geom and mesh)."""
+    return f"{body}_collision"
+
+
+def keyframe_name(branch: str) -> str:
+    """The MJCF name of the keyframe at branch `branch`'s start pose."""
+    return f"start_{branch}"
+
+
 def template(name: str) -> ET.Element:
     """A fragment of `mjcf_templates/`, parsed with its comments."""
     text = resources.files("sim_origami.mjcf_templates").joinpath(name).read_text()
@@ -196,7 +217,7 @@ def _add_bodies(
         body = by_name[name]
         _solid_geom(parent, body)
         if contact and body.collision is not None:
-            ET.SubElement(parent, "geom", name=f"{name}_collision", mesh=f"{name}_collision")
+            ET.SubElement(parent, "geom", name=collision_name(name), mesh=collision_name(name))
             parent[-1].set("class", "collision")
 
     world.append(ET.Comment(f" {mechanism.root}: fixed to the world "))
@@ -396,7 +417,7 @@ def _keyframes(mechanism: Mechanism, keyframes: dict[str, np.ndarray], drives: t
     """Keys `start_<name>` at mechanism angles, exact (state, not geometry); with `drives`, ctrl at their angles."""
     frames = ET.Element("keyframe")
     for name, q in keyframes.items():
-        key = ET.SubElement(frames, "key", name=f"start_{name}", qpos=_fmt(keyframe_qpos(mechanism, q)))
+        key = ET.SubElement(frames, "key", name=keyframe_name(name), qpos=_fmt(keyframe_qpos(mechanism, q)))
         if drives:
             key.set("ctrl", _fmt([q[mechanism.joint_index(j)] for j in drives]))
     return frames
@@ -483,7 +504,7 @@ def _name_materials(root: ET.Element) -> None:
 def _add_servos(root: ET.Element, drives: tuple[str, ...], replay: Replay) -> None:
     """The drive equalities off (active false) and, after the equality section, a position servo per driven joint."""
     equality = root.find("equality")
-    held = [e for e in equality.iter("joint") if e.get("name") in {f"drive_{j}" for j in drives}]
+    held = [e for e in equality.iter("joint") if e.get("name") in {drive_name(j) for j in drives}]
     for element in held:
         element.set("active", "false")
     equality.insert(list(equality).index(held[-1]) + 1, ET.Comment(
@@ -493,7 +514,7 @@ def _add_servos(root: ET.Element, drives: tuple[str, ...], replay: Replay) -> No
         f" replay: ctrl = the driven joint's angle (rad); critically damped with time constant {replay.timeconst:g} s "
         "on the mechanism's inertia at that joint in its lightest start pose "))  # fmt: skip
     for joint, kp, kv, (lo, hi) in zip(drives, replay.kp, replay.kv, replay.ctrlrange, strict=True):
-        ET.SubElement(actuator, "position", name=f"drive_{joint}", joint=joint, kp=f"{kp:.4g}", kv=f"{kv:.4g}",
+        ET.SubElement(actuator, "position", name=drive_name(joint), joint=joint, kp=f"{kp:.4g}", kv=f"{kv:.4g}",
                       ctrlrange=f"{short(lo, 0.0)} {short(hi, 0.0)}")  # fmt: skip
     root.insert(list(root).index(equality) + 1, actuator)
 
@@ -550,14 +571,14 @@ def build_xml(
                                    "loops: their sites are measured, not connected "))  # fmt: skip
     for c in closures(mechanism):
         for side, body, pos in (("parent", c.parent, c.on_parent), ("child", c.child, c.on_child)):
-            ET.SubElement(elements[body], "site", name=f"{c.joint}_{side}_{c.k}", pos=_fmt(pos)).set(
+            ET.SubElement(elements[body], "site", name=site_name(c.joint, side, c.k), pos=_fmt(pos)).set(
                 "class", "closure_site"
             )
         if c.joint in mechanism.implied:
             continue
         ET.SubElement(
-            equality, "connect", name=f"close_{c.joint}_{c.k}", site1=f"{c.joint}_child_{c.k}",
-            site2=f"{c.joint}_parent_{c.k}",
+            equality, "connect", name=f"close_{c.joint}_{c.k}", site1=site_name(c.joint, "child", c.k),
+            site2=site_name(c.joint, "parent", c.k),
         ).set("class", "closure")  # fmt: skip
 
     if mechanism.couplings:
@@ -577,14 +598,14 @@ def build_xml(
         equality.append(ET.Comment(" input: a joint equality whose target angle (eq_data[0]) the validation run "
                                    "rewrote every step "))  # fmt: skip
         for joint in setup.drives:
-            ET.SubElement(equality, "joint", name=f"drive_{joint}", joint1=joint, polycoef="0 0 0 0 0").set(
+            ET.SubElement(equality, "joint", name=drive_name(joint), joint1=joint, polycoef="0 0 0 0 0").set(
                 "class", "drive"
             )
     elif options.drive == "servo":
         actuator = _section(root, "actuator")
         actuator.append(ET.Comment(" input: force-limited servo, so that contact can stop the motion "))
         for joint in setup.drives:
-            ET.SubElement(actuator, "position", name=f"drive_{joint}", joint=joint).set("class", "servo")
+            ET.SubElement(actuator, "position", name=drive_name(joint), joint=joint).set("class", "servo")
 
     if contact and setup.self_contact_exclude is not None:
         _add_self_contact(root, mechanism, setup.self_contact_exclude)
@@ -592,7 +613,7 @@ def build_xml(
         pairs = _section(root, "contact")
         pairs.append(ET.Comment(" only panels that fold onto each other may touch; all others share a vertex "))
         for a, b in setup.contact_pairs:
-            ET.SubElement(pairs, "pair", geom1=f"{a}_collision", geom2=f"{b}_collision").set("class", "contact")
+            ET.SubElement(pairs, "pair", geom1=collision_name(a), geom2=collision_name(b)).set("class", "contact")
 
     if keyframes:
         root.append(_keyframes(mechanism, keyframes))

@@ -27,7 +27,16 @@ import scipy.linalg
 from numpy.typing import NDArray
 
 from .errors import DomainError, ParameterError, SimulationError
-from .mjcf import ModelOptions, build_xml, closures, mujoco_joints, with_keyframes
+from .mjcf import (
+    ModelOptions,
+    build_xml,
+    closures,
+    collision_name,
+    drive_name,
+    mujoco_joints,
+    site_name,
+    with_keyframes,
+)
 from .path import rank, rank_of
 from .scenes.base import Scene
 from .stabilize import StepFunction, make_constraint, run_step
@@ -167,7 +176,7 @@ class Bindings:
         self.balls = [(j, adr) for j, adr in joints if j.triad is not None]
         self.drive_qpos = model.jnt_qposadr[model.joint(scene.drive_joint).id]
         self.drives_qpos = np.array([model.jnt_qposadr[model.joint(n).id] for n in scene.drives], dtype=int)
-        pairs = [(model.site(f"{c.joint}_parent_{c.k}").id, model.site(f"{c.joint}_child_{c.k}").id)
+        pairs = [(model.site(site_name(c.joint, "parent", c.k)).id, model.site(site_name(c.joint, "child", c.k)).id)
                  for c in closures(mech)]  # fmt: skip
         self.site_pairs = np.array(pairs, dtype=int).reshape(-1, 2)
 
@@ -295,13 +304,13 @@ def drive_targets(
     x = start + (stop - start) * shape
     if scene.drive_path is not None:
         if drive == "equality":
-            eq = model.equality(f"drive_{scene.drive_joint}").id
+            eq = model.equality(drive_name(scene.drive_joint)).id
             tau = max(model.eq_solref[eq, 0], 2 * h)
             return x, scene.drive_values(x + 2 * tau * model.eq_solref[eq, 1] * (stop - start) * rate / duration)
         return x, scene.drive_values(x)
     if drive != "equality":
         return x, scene.drive_scale * x
-    eq = model.equality(f"drive_{scene.drive_joint}").id
+    eq = model.equality(drive_name(scene.drive_joint)).id
     tau = max(model.eq_solref[eq, 0], 2 * h)
     return x, scene.drive_scale * (x + 2 * tau * model.eq_solref[eq, 1] * (stop - start) * rate / duration)
 
@@ -387,14 +396,14 @@ def simulate(
     step = run_step(model, data, preset, scene.drives)
     with captured_warnings() as messages:
         if drive == "equality" and scene.drive_path is not None:
-            rows = np.array([model.equality(f"drive_{j}").id for j in scene.drives])
+            rows = np.array([model.equality(drive_name(j)).id for j in scene.drives])
             cpu = track_path(model, data, rows, setpoints, qpos_log, step)
         elif drive == "equality":
-            eq = model.equality(f"drive_{scene.drive_joint}").id
+            eq = model.equality(drive_name(scene.drive_joint)).id
             cpu = track(model, data, model.eq_data[eq], 0, setpoints, qpos_log, step)
         else:
-            act = model.actuator(f"drive_{scene.drive_joint}").id
-            acts = np.array([model.actuator(f"drive_{j}").id for j in scene.drives])
+            act = model.actuator(drive_name(scene.drive_joint)).id
+            acts = np.array([model.actuator(drive_name(j)).id for j in scene.drives])
             cpu = time.thread_time()
             for k in range(n):
                 data.ctrl[acts if scene.drive_path is not None else act] = setpoints[k]
@@ -508,7 +517,7 @@ def _contact_probe(scene: Scene, branch: str) -> Callable[[NDArray[np.float64]],
         raise ParameterError(f"scene {scene.name!r} has no collision solids (no contact pairs, no self contact)")
     model, data = compile_model(scene, ModelOptions(contact=True))
     binds = Bindings(scene, model)
-    pairs = [(model.geom(f"{a}_collision").id, model.geom(f"{b}_collision").id) for a, b in scene.colliding_pairs]
+    pairs = [(model.geom(collision_name(a)).id, model.geom(collision_name(b)).id) for a, b in scene.colliding_pairs]
     fromto = np.zeros(6)
 
     def distance(inputs: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -589,7 +598,7 @@ def closure_model(scene: Scene, options: ModelOptions) -> tuple[mujoco.MjModel, 
     but the driven): what the kinematic projection, the mobility count and the projection's conditioning work on."""
     model, data = compile_model(scene, options)
     for name in scene.drives:
-        data.eq_active[model.equality(f"drive_{name}").id] = 0
+        data.eq_active[model.equality(drive_name(name)).id] = 0
     held = {model.jnt_dofadr[model.joint(name).id] for name in scene.drives}
     return model, data, np.array([a for a in range(model.nv) if a not in held], dtype=int)
 

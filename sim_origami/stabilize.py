@@ -19,7 +19,7 @@ import mujoco
 import numpy as np
 
 from .errors import ParameterError
-from .mjcf import preset_number
+from .mjcf import drive_name, preset_number
 
 MODES = ("none", "position", "position-velocity")
 # The custom numeric a preset states its mode with: 0 none, 1 position, 2 position-velocity.
@@ -84,7 +84,7 @@ def drive_step(
     if mode == "none" or not drive_joints:
         return step_function(model, data, mode, iterations=iterations)
     names = [model.equality(i).name for i in range(model.neq)]
-    skip = tuple(i for i, name in enumerate(names) if name in {f"drive_{j}" for j in drive_joints})
+    skip = tuple(i for i, name in enumerate(names) if name in {drive_name(j) for j in drive_joints})
     frozen = tuple(int(model.jnt_dofadr[model.joint(j).id]) for j in drive_joints)
     return step_function(model, data, mode, skip=skip, frozen=frozen, iterations=iterations)
 

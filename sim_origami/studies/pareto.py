@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..checks.paths import compare
-from ..mjcf import ModelOptions, preset_number, preset_timestep, template
+from ..mjcf import ModelOptions, drive_name, preset_number, preset_timestep, template
 from ..scenes.base import Scene, without_implied_closures
 from ..simulate import Bindings, drive_targets, scale_regularization, scene_xml, simulate, start_pose, track
 from ..stabilize import drive_step, preset_mode
@@ -153,7 +153,7 @@ class _Run:
 
     def step_through(self) -> None:
         """Run the sweep from its start pose once; keep the lowest stepping CPU time."""
-        model, data, drive = self.model, mujoco.MjData(self.model), f"drive_{self.scene.drive_joint}"
+        model, data, drive = self.model, mujoco.MjData(self.model), drive_name(self.scene.drive_joint)
         if self.setting.drive == "equality":
             setpoint, index = model.eq_data[model.equality(drive).id], 0
         else:
@@ -212,7 +212,7 @@ def bare_loop_cpu(scene: Scene, branch: str, target: NDArray, repeats: int = 3) 
     """
     model = model_for(scene, scene_presets(scene)["fast"])
     data = mujoco.MjData(model)
-    setpoint = model.eq_data[model.equality(f"drive_{scene.drive_joint}").id]
+    setpoint = model.eq_data[model.equality(drive_name(scene.drive_joint)).id]
     targets, pose = (scene.drive_scale * target).tolist(), start_pose(scene, branch, float(target[0]))
     best = np.inf
     for _ in range(repeats):
