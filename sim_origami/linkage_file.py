@@ -62,9 +62,9 @@ FORMS = ("dh", "axes")
 # use 0.05 m bars and anchors of half their longest link on links of about 1 m).
 WIDTH_SHARE = 0.05
 ANCHOR_SHARE = 0.5
-# The default sweep lasts this many times the preset's duration (the FOLD route's choice: MuJoCo's lag behind the
-# driven path falls as 1/T^2, and the built-in linkages need 3-4x to stay below 1e-7 rad).
-SWEEP_TIME_SCALE = 4.0
+# A file's sweep lasts this many times what the path's rule asks (`sweep_rate`, which keeps MuJoCo's lag near 0.2 of
+# the tolerance for any path): 1 by default; a file may ask for slower.
+SWEEP_TIME_SCALE = 1.0
 # Lengths beyond this (m) are refused as they are read, before any solid is built (1e308 overflowed trimesh); the
 # scene then holds the linkage's size to the simulated range (`conventions.LENGTH_RANGE`, 1e-4 .. 1e4 m).
 LENGTH_LIMIT = 1e9
