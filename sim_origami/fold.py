@@ -1003,13 +1003,15 @@ def _further_states(
 
 def _flat_foldable(fit: fold_mesh.Fit, pattern: CreasePattern, label: str, notes: list[str]) -> fold_mesh.Fit | None:
     """
-    For a pattern whose interior vertices all have four corners, the nearest developable form whose vertices are
-    also flat-foldable (Kawasaki: opposite sectors sum to pi), when it lies within the coordinates' precision: a
-    developable, flat-foldable quadrilateral mesh with one rigidly folded state folds rigidly (Tachi 2009,
-    "Generalization of rigid-foldable quadrilateral-mesh origami"), so this is a state on a rigid motion of its
-    pattern, found by one sparse projection at any size (`_on_a_motion`'s fit of further states costs 7.6 s at 121
-    vertices). None otherwise.
+    For a pattern without F creases whose interior vertices all have four corners, the nearest developable form whose
+    vertices are also flat-foldable (Kawasaki: opposite sectors sum to pi). A developable, flat-foldable
+    quadrilateral mesh with one rigidly folded state folds rigidly (Tachi 2009, "Generalization of rigid-foldable
+    quadrilateral-mesh origami"), so this is a state on a rigid motion of its pattern, found by one sparse projection
+    at any size (the fit of further states costs 7.6 s at 121 vertices). Used when within the coordinates' precision
+    or the developable state (`fit`) is not; None otherwise.
     """
+    if any(c.assignment == "F" for c in pattern.creases):
+        return None  # a vertex with a crease held flat is not one of four folding creases
     faces = list(pattern.faces)
     conditions = fold_mesh.RigidConditions(fit.given, faces, flat_foldable=True)
     if conditions.n_sectors != 2 * len(conditions.interior) or not len(conditions.interior):
