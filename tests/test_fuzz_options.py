@@ -102,12 +102,12 @@ def command_lines(draw) -> tuple[list[str], str]:
     return argv, draw(st.sampled_from(STATES))
 
 
-class Hang(Exception):
+class HangError(Exception):
     pass
 
 
 def _alarm(signum, frame):
-    raise Hang
+    raise HangError
 
 
 @settings(max_examples=EXAMPLES, derandomize=True, deadline=None, database=None, print_blob=False,
@@ -125,7 +125,7 @@ def test_option_combinations_into_any_folder_state_keep_the_contract(tmp_path_fa
     try:
         with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(err):
             code = main([*argv, "--out", str(out)])
-    except Hang:
+    except HangError:
         pytest.fail(f"no answer in {LIMIT_S} s: {argv} into {state}")
     finally:
         signal.alarm(0)
