@@ -3,8 +3,9 @@
 The model a run steps is the tidied text itself (`mjcf.build_xml` ends here); `model.xml` is that text with replay
 lines added (a position servo, keyframes with ctrl; marked in comments). Numbers within 1e-15 x the model's size (at
 least 1 m) of zero are written as 0, others as the shortest decimal within 4 units in their last place:
-`0.37499999999999994` -> `0.375`, `1.2246467991473532e-16` -> `0`, `-0.0` -> `0`. Keyframe poses are state, not geometry: written as exact round-trip reprs, so that a run restarted
-from them in plain MuJoCo is bitwise the harness's run.
+`0.37499999999999994` -> `0.375`, `1.2246467991473532e-16` -> `0`, `-0.0` -> `0`. Keyframe poses are state, not
+geometry: written as exact round-trip reprs, so that a run restarted from them in plain MuJoCo is bitwise the
+harness's run.
 """
 
 import itertools
