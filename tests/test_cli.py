@@ -161,3 +161,31 @@ def test_a_closed_pipe_ends_quietly():
     finally:
         os.close(write)
     assert done.stderr == "" and done.returncode == 141  # 128 + SIGPIPE, as shell tools end
+
+
+@pytest.mark.slow
+def test_a_scene_of_all_that_mujoco_cannot_finish_fails_with_its_report_and_the_others_go_on(tmp_path):
+    """Under --all, a MuJoCo divergence ended the whole run without that scene's report.json (only single-scene runs
+    caught it). Each scene of --all is `validate_in_all`: a triangulated 7 x 7 grid swept 100x too fast diverges; its
+    report.json says so, and its summary row shows dashes."""
+    import argparse
+    from dataclasses import replace
+
+    from fold_fixtures import write
+    from test_fold_gallery import GRID7_INPUTS, triangulated
+
+    from sim_origami.cli import validate as validate_command
+    from sim_origami.scenes.fold_file import fold_scene
+
+    path = write(tmp_path, "grid", triangulated(7))
+    parser = argparse.ArgumentParser()
+    validate_command.add_args(parser)
+    args = parser.parse_args(["--all", "--preset", "fast"])
+    scene = replace(fold_scene(path, GRID7_INPUTS.rsplit(",", 3)[0]), sweep_time_scale=0.01)
+    out = tmp_path / "grid"
+    out.mkdir()
+    doc = validate_command.validate_in_all(scene, args, out)
+    written = json.loads((out / "report.json").read_text())
+    assert not doc["passed"] and written == json.loads(json.dumps(doc, default=str))
+    assert written["verdicts"][-1]["name"] == "MuJoCo run finished without a warning"
+    assert validate_command.summary_line(doc) == f"| {scene.name} | FAIL | fast | - | - | - | - |"

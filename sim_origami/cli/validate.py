@@ -139,6 +139,15 @@ def run_one(scene, args, out: Path, reference=None) -> dict:
     return doc
 
 
+def validate_in_all(scene, args, out: Path) -> dict:
+    """One scene of `--all`: its report (`run_one`), or a run MuJoCo could not finish (`failed_run`), which fails
+    that scene with its report.json and lets the others run."""
+    try:
+        return run_one(scene, args, out)
+    except SimulationError as err:
+        return failed_run(scene, args, out, err)
+
+
 def failed_run(scene, args, out: Path, err: SimulationError) -> dict:
     """report.json for a run MuJoCo could not finish: the failing check and the configuration where it happened."""
     preset = args.preset or scene.preset
@@ -161,7 +170,10 @@ def number(value: float | None, spec: str) -> str:
 
 
 def summary_line(doc: dict) -> str:
+    """A report's row of the summary table; a run MuJoCo could not finish (`failed_run`) shows dashes."""
     status = "PASS" if doc["passed"] else "FAIL"
+    if "branches" not in doc:
+        return f"| {doc['scene']} | {status} | {doc['preset']} | - | - | - | - |"
     return (f"| {doc['scene']} | {status} | {doc['preset']} | "
             f"{', '.join(b['branch_followed'] or '-' for b in doc['branches'])} | "
             f"{number(doc['angle_error_max_rad'], '.2e')} | {number(doc['closure_residual_max_m'], '.2e')} | "
@@ -203,7 +215,7 @@ def run(args: argparse.Namespace) -> int:
             scenes_bar = tqdm(stages, desc="validate --all", unit="scene", file=sys.stderr)
             for name in scenes_bar:
                 scenes_bar.set_postfix_str(name)
-                docs.append(run_one(scenes.get(name).build(), args, stages[name]))
+                docs.append(validate_in_all(scenes.get(name).build(), args, stages[name]))
             table = "\n".join([HEADER, *map(summary_line, docs)])
             write_text(stage / "summary.md", f"# sim_origami validation\n\n{table}\n")
             write_text(stage / "summary.json", json.dumps(docs, indent=2, default=plain) + "\n")
