@@ -1,7 +1,9 @@
 """Report -> report.json, curves.csv (radians; field names carry their units) and model.xml."""
 
+import base64
 import csv
 import functools
+import gzip
 import io
 import json
 import math
@@ -17,7 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.spatial.transform import Rotation
 
 from . import __version__
-from .files import write_text
+from .files import atomic_path, write_text
 from .fold import write_fold
 from .mjcf import ModelOptions, Replay, replay_xml
 from .simulate import Bindings, Scene, closure_model, constraint_jacobian, scene_xml, start_input
@@ -25,10 +27,13 @@ from .stabilize import preset_mode
 from .tolerances import TOLERANCES
 from .validation import Report
 
-# Frames of each branch's motion in report.html's 3-D view, and the significant digits they keep: the biggest scene
-# (waterbomb-tube, 180 panels) stays near 1 MB of page.
+# Frames of each branch's motion in report.html's 3-D view, and the significant digits of its solids' vertices and
+# inputs. The poses are 16-bit integers (`_packed`): a position to 1/32767 of the largest offset of a body's origin
+# from the view's centre, a quaternion component to 1/32767 (a turn under 1e-4 rad), both far below a pixel of the
+# 800-pixel view; as 5-digit text waterbomb-twist's three branches' poses took 1.8 MB of page, as integers 0.6 MB.
 VIEW_FRAMES = 100
 VIEW_DIGITS = 5
+VIEW_INT = 32767
 # The view's paper: front (+z of the flat sheet) and back colours; crease lines mountain red, valley blue (the
 # colours of Origami Simulator and most crease-pattern drawings).
 PAPER_FRONT = (0.96, 0.86, 0.64)
@@ -45,6 +50,17 @@ NULL_RTOL = 1e-9
 # Samples of each run that curves.csv keeps (plus each joint's worst): every MuJoCo step of every joint made the main
 # job's curves 197 MB (81 MB for corrugated-sheet alone); `validate --full-curves` writes them all.
 CURVE_ROWS = 400
+# curves.csv's significant digits: the input and every angle (rad) CURVE_DIGITS (rounded by at most 5e-13 rad at
+# |angle| < 10, 20x under the tightest MuJoCo check's tolerance, fast-projected 1e-11), each error ERROR_DIGITS,
+# computed from the unrounded angles (an error of 1e-14, a projection's, is written as such; the written angles
+# resolve differences of about 1e-12 only). `--full-curves` writes every angle to 17 digits (each float exactly).
+CURVE_DIGITS = 13
+FULL_DIGITS = 17
+ERROR_DIGITS = 4
+# curves.csv text longer than this (bytes) is written gzip-compressed, as curves.csv.gz (a 5.5th of the text): the
+# wide files of the big patterns (waterbomb-twist's 453 columns: 13.0 MB at 17 digits, 10.8 MB at 13, 1.9 MB as .gz).
+# Python's csv with gzip.open(..., "rt"), pandas.read_csv and `zcat` read it as it is.
+CURVES_GZIP_BYTES = 1_000_000
 
 
 def _num(value: float) -> float | None:
@@ -177,10 +193,11 @@ def curve_rows(n: int, error: NDArray[np.float64], rows: int | None) -> NDArray[
     return np.unique(np.concatenate([np.linspace(0, n - 1, rows).round().astype(np.intp), worst]))
 
 
-def curves_csv(report: Report, rows: int | None = CURVE_ROWS) -> str:
+def curves_csv(report: Report, rows: int | None = CURVE_ROWS, digits: int = CURVE_DIGITS) -> str:
     """
     One row per sample: branch, mode, input and each joint simulated/analytic/error (rad); at most about `rows`
-    samples of each run (`curve_rows`), every one where `rows` is None.
+    samples of each run (`curve_rows`), every one where `rows` is None. The input and angles keep `digits`
+    significant digits, the errors ERROR_DIGITS.
     """
     names = report.scene.kinematics.joint_names
     buf = io.StringIO()
@@ -194,7 +211,8 @@ def curves_csv(report: Report, rows: int | None = CURVE_ROWS) -> str:
             keep = curve_rows(len(path.input), path.error, rows)
             values = np.stack([path.simulated, path.analytic, path.error], -1)[keep].reshape(len(keep), -1)
             # one format for the whole row: the branch and mode lead every line (names carry no '%')
-            fmt = ",".join([run.requested, mode, "%.17g"] + ["%.17g,%.17g,%.3e"] * len(names))
+            angle, error = f"%.{digits}g", f"%.{ERROR_DIGITS - 1}e"
+            fmt = ",".join([run.requested, mode, angle] + [f"{angle},{angle},{error}"] * len(names))
             np.savetxt(buf, np.column_stack([path.input[keep], values]), fmt=fmt)
     return buf.getvalue()
 
@@ -265,13 +283,20 @@ def _crease_segment(mech, joint) -> tuple[str, NDArray[np.float64]] | None:
     return joint.parent, ends
 
 
+def _packed(values: NDArray[np.float64]) -> str:
+    """`values` rounded to whole numbers within +-VIEW_INT, as little-endian int16 in base64 (the view's poses)."""
+    ints = np.clip(np.round(values), -VIEW_INT, VIEW_INT).astype("<i2")
+    return base64.b64encode(ints.tobytes()).decode("ascii")
+
+
 def motion_view(report: Report) -> dict:
     """
     The data of report.html's 3-D view: each body's solid (vertices and triangles in its frame, front and back
     colours), the creases as lines in a panel's frame (on both faces of a thin panel), and per branch about
-    VIEW_FRAMES frames of every body's pose (position, quaternion x y z w) from the MuJoCo run's joint angles,
-    with the input (rad) and each crease's side (M, V or F by the sign of its last angle). Numbers keep
-    VIEW_DIGITS significant digits.
+    VIEW_FRAMES frames of every body's pose from the MuJoCo run's joint angles, with the input (rad) and each
+    crease's side (M, V or F by the sign of its last angle). Vertices and inputs keep VIEW_DIGITS significant
+    digits. A branch's `poses` are frames x bodies x 7 int16 (`_packed`): the position's offset from `centre` in
+    units of the branch's `scale` (m), then the quaternion x y z w in units of 1 / VIEW_INT.
     """
     scene = report.scene
     mech = scene.mechanism
@@ -291,25 +316,31 @@ def motion_view(report: Report) -> dict:
                 creases.append({"name": c.name, "body": [b.name for b in bodies].index(segment[0]),
                                 "p": _rounded(segment[1])})  # fmt: skip
                 crease_joints.append(mech.joint_index(c.name))
-    branches, corners = [], []
+    branches, corners, frames = [], [], []
+    tol = TOLERANCES.angle(report.preset)
     for run in report.runs:
         q = run.dynamic.q
         rows = np.unique(np.linspace(0, len(q) - 1, min(VIEW_FRAMES, len(q))).round().astype(int))
         poses = mech.body_poses(q[rows])
         T = np.stack([poses[b.name] for b in bodies], 1)  # (frames, bodies, 4, 4)
-        pose = np.concatenate([T[..., :3, 3], _quaternions(T[..., :3, :3])], -1)
+        frames.append(T)
         for k, b in enumerate(bodies):  # every body's extent over the motion
             world = T[:, k, :3, :3] @ np.asarray(b.solid.vertices).T + T[:, k, :3, 3, None]  # (frames, 3, n)
             corners += [world.min(axis=(0, 2)), world.max(axis=(0, 2))]
         last = q[-1, crease_joints] if crease_joints else np.zeros(0)
-        tol = TOLERANCES.angle(report.preset)
         branches.append({"name": run.requested, "followed": run.followed,
-                         "input": _rounded(run.dynamic.target[rows]), "poses": [_rounded(f) for f in pose],
+                         "input": _rounded(run.dynamic.target[rows]),
                          "sides": "".join("V" if r > tol else "M" if r < -tol else "F" for r in last)})  # fmt: skip
     corners = np.array(corners)
     lo, hi = corners.min(0), corners.max(0)
+    centre = np.array(_rounded((lo + hi) / 2))
+    for branch, T in zip(branches, frames, strict=True):
+        offset = T[..., :3, 3] - centre
+        scale = float(f"{max(np.abs(offset).max(initial=0.0), 1e-9) / VIEW_INT * (1 + 1e-6):.6g}")
+        branch["scale"] = scale  # so that the largest offset, rounded up, still fits in VIEW_INT units
+        branch["poses"] = _packed(np.concatenate([offset / scale, _quaternions(T[..., :3, :3]) * VIEW_INT], -1))
     view = {"scene": scene.name, "input": scene.kinematics.input_name, "bodies": solids, "creases": creases,
-            "branches": branches, "centre": _rounded((lo + hi) / 2),
+            "branches": branches, "centre": centre.tolist(),
             "radius": _rounded(np.linalg.norm(hi - lo) / 2)[0]}  # fmt: skip
     if scene.pattern is not None:
         view["pattern"] = pattern_drawing(report)
@@ -406,17 +437,33 @@ def _ctrl_ranges(scene: Scene, starts: dict[str, float]) -> tuple[tuple[float, f
     return tuple((float(lo), float(hi)) for lo, hi in zip(angles.min(axis=0), angles.max(axis=0), strict=True))
 
 
+def write_curves(out: Path, text: str, limit: int = CURVES_GZIP_BYTES) -> Path:
+    """
+    out/curves.csv, or out/curves.csv.gz (gzip, no timestamp: the same curves give the same bytes) when the text is
+    longer than `limit` bytes; the other of the two, from an earlier write into `out`, is removed.
+    """
+    if len(text) <= limit:
+        path = write_text(out / "curves.csv", text)
+    else:
+        path = out / "curves.csv.gz"
+        with atomic_path(path) as tmp:
+            tmp.write_bytes(gzip.compress(text.encode(), compresslevel=6, mtime=0))
+    (out / ("curves.csv.gz" if path.name == "curves.csv" else "curves.csv")).unlink(missing_ok=True)
+    return path
+
+
 def write(report: Report, out: str | Path, *, full_curves: bool = False, doc: dict | None = None) -> dict[str, Path]:
     """
-    Write report.json (`doc`, default `as_dict(report)`), curves.csv (every sample with `full_curves`, else
-    CURVE_ROWS of each run), model.xml and, for crease-pattern scenes, motion.fold, with reference curves
-    reference.csv, into `out` (atomically).
+    Write report.json (`doc`, default `as_dict(report)`), curves.csv (`write_curves`: every sample to 17 digits with
+    `full_curves`, else CURVE_ROWS of each run to CURVE_DIGITS; curves.csv.gz when long), model.xml and, for
+    crease-pattern scenes, motion.fold, with reference curves reference.csv, into `out` (atomically).
     """
     out = Path(out)
     doc = as_dict(report) if doc is None else doc
+    text = curves_csv(report, None, FULL_DIGITS) if full_curves else curves_csv(report)
     paths = {
         "report": write_text(out / "report.json", json.dumps(doc, indent=2, default=plain) + "\n"),
-        "curves": write_text(out / "curves.csv", curves_csv(report, None if full_curves else CURVE_ROWS)),
+        "curves": write_curves(out, text),
         "model": write_text(out / "model.xml", model_xml(report)),
     }
     if report.scene.pattern is not None:

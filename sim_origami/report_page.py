@@ -1,7 +1,8 @@
-"""report.html per run and index.html for `validate --all`: self-contained pages that open from disk.
+"""report.html per run and index.html for `validate --all`: pages that open from disk, with no network.
 
-Everything a page shows is inside it (the plots and the animation as base64 data URIs, styles, the 3-D view's
-script and data inline): no network resource. The model download links to `model.xml` beside the page.
+What a page shows is inside it (the curves plot as a base64 data URI, styles, the 3-D view's script and data
+inline) except, with --render, the animation: the page shows fold.gif beside it, as its downloads link model.xml,
+curves.csv and the rest (embedded, each GIF was in its run's folder twice).
 """
 
 import base64
@@ -214,9 +215,9 @@ def _typed(value) -> str:
 
 def page(doc: dict, out: Path, view: dict | None = None, in_index: bool = False) -> str:
     """
-    The HTML of one run's report (`doc` as in report.json), embedding out/curves.png and out/fold.gif if present
-    and the 3-D view of `view` (`report.motion_view`); `in_index`: the run is one of `validate --all`'s, whose
-    index.html is one folder up.
+    The HTML of one run's report (`doc` as in report.json), embedding out/curves.png if present, showing
+    out/fold.gif from beside it, and the 3-D view of `view` (`report.motion_view`); `in_index`: the run is one of
+    `validate --all`'s, whose index.html is one folder up.
     """
     scene, passed = doc["scene"], doc["passed"]
     verdicts = doc["verdicts"] + [v for b in doc["branches"] for v in b["verdicts"]]
@@ -263,13 +264,18 @@ def page(doc: dict, out: Path, view: dict | None = None, in_index: bool = False)
                        "error with the check's tolerance (dashed) and the events on the branch marked"
                        f"{vector}.</small></p>\n"
                        f'<img alt="curves of {_e(scene)}" src="{curves}">')  # fmt: skip
-    gif = _data_uri(out / "fold.gif", "image/gif")
-    if gif:
-        figures.append(f'<h2>Motion</h2>\n<img alt="{_e(scene)} folding" src="{gif}">')
+    if (out / "fold.gif").is_file():  # beside the page: as base64, GIFs were about 21 of the main job's 37 MB of pages
+        video = ' (<a href="fold.mp4">fold.mp4</a>: full size)' if (out / "fold.mp4").is_file() else ""
+        figures.append(f"<h2>Motion</h2>\n<p><small>MuJoCo's frames, from fold.gif beside this page{video}."
+                       f'</small></p>\n<img id="motion" alt="{_e(scene)} folding" src="fold.gif">')  # fmt: skip
+    curves_file = "curves.csv.gz" if (out / "curves.csv.gz").is_file() else "curves.csv"
     downloads = ['<a href="model.xml" download>model.xml</a> (the MJCF that was stepped)',
-                 '<a href="report.json">report.json</a>', '<a href="curves.csv">curves.csv</a>']  # fmt: skip
+                 '<a href="report.json">report.json</a>', f'<a href="{curves_file}">{curves_file}</a>']  # fmt: skip
     if (out / "curves.svg").is_file():
         downloads.append('<a href="curves.svg">curves.svg</a>')
+    stills = len(list((out / "frames").glob("frame_*.png")))
+    if stills:
+        downloads.append(f'<a href="frames/">frames/</a> ({stills} PNG frame{"s" if stills > 1 else ""})')
     if (out / "motion.fold").is_file():
         downloads.append('<a href="motion.fold" download>motion.fold</a>')
     return f"""<!DOCTYPE html>

@@ -1,13 +1,15 @@
-"""curves.png / curves.svg: the error panel's tolerance line, event marks, the driven input left out, many joints."""
+"""curves.png / curves.svg: the error panel's tolerance line, event marks, the driven input left out, many joints, and
+the PNG on a palette (report.html embeds it)."""
 
 import xml.etree.ElementTree as ET
 
 import numpy as np
 import pytest
 from matplotlib.colors import to_rgb
+from PIL import Image
 
 from sim_origami import scenes
-from sim_origami.plots import LEGEND_MAX, joint_colors, plot_report
+from sim_origami.plots import LEGEND_MAX, PNG_COLOURS, joint_colors, plot_report
 from sim_origami.validation import validate
 
 SVG = "{http://www.w3.org/2000/svg}"
@@ -64,3 +66,18 @@ def test_a_projected_preset_draws_the_tolerance_of_the_path_it_plots(tmp_path):
     drawn = next(v for v in report.runs[0].verdicts if v.name.endswith("path error after projection (rad)"))
     texts = svg_text(tmp_path / "curves.svg")
     assert f"tolerance {drawn.tolerance:.2g} rad" in texts and sum(t.startswith("tolerance ") for t in texts) == 1
+
+
+@pytest.mark.slow
+def test_curves_png_is_a_palette_image_that_keeps_the_plot_colours(tmp_path):
+    report = validate(scenes.get("bennett").build())
+    plot_report(report, tmp_path / "curves.png")
+    png = Image.open(tmp_path / "curves.png")
+    assert png.mode == "P" and len(png.getcolors()) <= PNG_COLOURS
+    rgb = np.asarray(png.convert("RGB")).reshape(-1, 3)
+    colours = {tuple(c) for c in np.unique(rgb, axis=0)}
+    assert tuple(rgb[0]) == (255, 255, 255)  # the background stays white
+    # each joint's line colour (tab10), drawn in full, is in the palette exactly
+    assert {tuple(round(255 * v) for v in to_rgb(c)) for c in joint_colors(4)} <= colours
+    # measured: 25-30 kB (88 kB in full colour)
+    assert 10_000 < (tmp_path / "curves.png").stat().st_size < 50_000

@@ -1,4 +1,5 @@
-"""Real headless rendering (EGL on Mesa llvmpipe without a GPU): frames are not blank, files decode."""
+"""Real headless rendering (EGL on Mesa llvmpipe without a GPU): frames are not blank, files decode, and a run keeps
+a few PNG stills and a small GIF (the main job's output size, issue 30)."""
 
 import imageio.v2 as imageio
 import imageio.v3 as iio
@@ -6,7 +7,7 @@ import numpy as np
 import pytest
 
 from sim_origami import scenes
-from sim_origami.render import framing, render_frames
+from sim_origami.render import GIF_SHRINK, STILLS, framing, render_frames, shrink, still_indices
 
 
 @pytest.fixture(scope="module")
@@ -14,17 +15,56 @@ def frames(tmp_path_factory):
     scene = scenes.get("miura").build()
     q = np.stack([scene.pose("miura", x) for x in np.linspace(0.2, 0.9, 6)])
     out = tmp_path_factory.mktemp("render")
-    return render_frames(scene, q, out, width=160, height=120, fps=10), out
+    return render_frames(scene, q, out, width=160, height=120, fps=10, stills=None), out
 
 
 def test_frames_have_the_size_and_are_not_blank(frames):
-    result, _ = frames
-    assert len(result.pngs) == 6
+    result, out = frames
+    assert len(result.pngs) == result.count == 6  # stills=None: every frame
+    assert sorted(p.name for p in (out / "frames").iterdir()) == [f"frame_{k:04d}.png" for k in range(6)]
     for png in result.pngs:
         image = iio.imread(png)
         assert image.shape == (120, 160, 3)
         # A uniform sky has a pixel standard deviation near 1; the panels give tens.
         assert image.std() > 5.0
+
+
+def test_still_indices_are_the_start_middle_and_end():
+    assert STILLS == 3 and still_indices(60) == [0, 30, 59]
+    assert still_indices(2) == [0, 1] and still_indices(5, 2) == [0, 4] and still_indices(4, None) == [0, 1, 2, 3]
+
+
+def test_shrink_averages_pixel_blocks():
+    image = np.zeros((5, 7, 3), np.uint8)
+    image[0, 0] = 200  # one bright pixel in the top-left 2 x 2 block: its average, 50
+    small = shrink(image, 2)
+    assert small.shape == (2, 3, 3) and small[0, 0, 0] == 50 and small.sum() == 150
+    assert shrink(image, 1) is image
+
+
+@pytest.fixture(scope="module")
+def validated(tmp_path_factory):
+    """`validate --render` as the main job runs it (default size, 60 frames): what it writes and its sizes."""
+    from sim_origami.cli import main
+
+    out = tmp_path_factory.mktemp("validate") / "miura"
+    assert main(["validate", "miura", "--render", "--out", str(out)]) == 0
+    return out
+
+
+@pytest.mark.slow
+def test_a_rendered_run_keeps_three_stills_and_a_half_size_gif(validated):
+    stills = sorted(p.name for p in (validated / "frames").iterdir())
+    assert stills == ["frame_0000.png", "frame_0030.png", "frame_0059.png"]  # start, middle, end of 60
+    assert all(iio.imread(validated / "frames" / name).shape == (480, 640, 3) for name in stills)
+    gif = iio.imread(validated / "fold.gif")
+    assert gif.shape[:3] == (60, 480 // GIF_SHRINK, 640 // GIF_SHRINK)  # every frame, at half size
+    reader = imageio.get_reader(validated / "fold.mp4")
+    assert reader.get_meta_data()["size"] == (640, 480) and sum(1 for _ in reader) == 60  # full size, every frame
+    reader.close()
+    # measured (miura, 640 x 480): stills 3 x 35 kB, GIF about 200 kB (60 PNG frames were 2 MB, the GIF 0.3 MB)
+    assert sum((validated / "frames" / name).stat().st_size for name in stills) < 200_000
+    assert (validated / "fold.gif").stat().st_size < 400_000
 
 
 def test_consecutive_frames_differ_as_the_vertex_folds(frames):
@@ -64,6 +104,28 @@ def folding_tube(tmp_path_factory):
     out = tmp_path_factory.mktemp("tube")
     result = render_frames(scene, q, out, width=320, height=240, gif=False, mp4=False)
     return [iio.imread(p).astype(int) for p in result.pngs]
+
+
+@pytest.fixture(scope="module")
+def folding_tube_gif(tmp_path_factory):
+    """The same tube's motion at 640 x 480 in 5 frames: its GIF, half size on one palette."""
+    scene = scenes.get("waterbomb-tube").build(n=4, m=3)
+    start, stop = scene.branch_path("radial-contraction")
+    q = np.stack([scene.pose("radial-contraction", x) for x in np.linspace(start, stop, 5)])
+    result = render_frames(scene, q, tmp_path_factory.mktemp("tube_gif"), mp4=False)
+    return iio.imread(result.gif).astype(int), [iio.imread(p).astype(int) for p in result.pngs]
+
+
+def test_the_gif_keeps_the_crease_colours_and_the_frames(folding_tube_gif):
+    gif, stills = folding_tube_gif
+    assert gif.shape[:3] == (5, 240, 320) and len(stills) == 3
+    for image in gif:
+        r, g, b = image[..., 0], image[..., 1], image[..., 2]
+        # halved, the lines are thinner: measured hundreds of red and tens of blue pixels per frame
+        assert np.sum((r > 150) & (g < 80) & (b < 80)) > 50 and np.sum((b > 150) & (r < 80) & (g < 120)) > 3
+    # the GIF's frames are the stills averaged 2 x 2, within the shared palette's error
+    for k, still in zip((0, 2, 4), stills, strict=True):
+        assert np.abs(gif[k, ..., :3] - shrink(still.astype(np.uint8), 2)).mean() < 6.0
 
 
 def test_mountain_and_valley_creases_are_drawn_red_and_blue(folding_tube):

@@ -1,5 +1,6 @@
 """report.html and index.html in a real browser: headless Chromium opens them from disk (no network)."""
 
+import base64
 import json
 import os
 import platform
@@ -13,10 +14,11 @@ import mujoco
 import numpy as np
 import pytest
 from chromium import INSTALL, Chromium, executable  # tests/chromium.py (pytest puts tests/ on sys.path)
+from scipy.spatial.transform import Rotation
 
 from sim_origami import scenes
 from sim_origami.cli import main
-from sim_origami.report import as_dict, motion_view, provenance
+from sim_origami.report import VIEW_FRAMES, VIEW_INT, as_dict, motion_view, provenance
 from sim_origami.report_page import write_index, write_page, write_thumbnail
 from sim_origami.validation import validate
 
@@ -27,7 +29,7 @@ pytestmark = [pytest.mark.skipif(executable() is None, reason=INSTALL), pytest.m
 PROBE = """({
   verdict: document.getElementById('verdict').textContent,
   checks: document.querySelectorAll('#checks tr').length - 1,
-  images: Array.from(document.images).map(i => [i.src.slice(0, 15), i.complete && i.naturalWidth > 0]),
+  images: Array.from(document.images).map(i => [i.getAttribute('src').slice(0, 15), i.complete && i.naturalWidth > 0]),
   external: Array.from(document.querySelectorAll('[src], link[href]')).map(e => e.src || e.href)
              .filter(u => !u.startsWith('data:')),
   model: document.querySelector('a[href="model.xml"]') !== null,
@@ -129,10 +131,15 @@ def test_report_page_renders_with_its_verdict_plot_and_animation(run, browser):
     assert seen["verdict"].startswith("PASS" if doc["passed"] else "FAIL") and status == (0 if doc["passed"] else 1)
     verdicts = len(doc["verdicts"]) + sum(len(b["verdicts"]) for b in doc["branches"])
     assert seen["checks"] == verdicts and f"{verdicts} of {verdicts}" in seen["verdict"]
-    assert [s for s, _ in seen["images"]] == ["data:image/png;", "data:image/gif;"]  # curves, then the motion
+    # the curves inside the page, the motion from fold.gif beside it (embedded, it was there twice)
+    assert [s for s, _ in seen["images"]] == ["data:image/png;", "fold.gif"]
     assert all(decoded for _, decoded in seen["images"])
-    assert seen["external"] == [] and seen["model"]
+    assert seen["external"] == [(out / "bennett" / "fold.gif").as_uri()] and seen["model"]  # nothing off the disk
     assert (out / "bennett" / "model.xml").is_file()
+    html = (out / "bennett" / "report.html").read_text()
+    assert "data:image/gif" not in html and 'href="fold.mp4"' in html and 'href="frames/">frames/</a> (3 PNG' in html
+    # measured: 64 kB (the curves 39 kB as base64, the view 10 kB), the GIF not in it
+    assert len(html.encode()) < 120_000
 
 
 def test_index_links_each_scene_page_with_its_verdict(run, browser):
@@ -269,8 +276,34 @@ CONTROLS = """(() => {
 })()"""
 
 
-def test_the_3d_view_switches_branch_turns_and_zooms(tmp_path, browser):
-    report = validate(scenes.get("vertex4").build())
+@pytest.fixture(scope="module")
+def vertex4():
+    return validate(scenes.get("vertex4").build())
+
+
+def test_the_view_poses_are_packed_within_their_rounding(vertex4):
+    view = motion_view(vertex4)
+    mech, centre = vertex4.scene.mechanism, np.array(view["centre"])
+    bodies = [b for b in mech.bodies if not b.spacer]
+    for run, branch in zip(vertex4.runs, view["branches"], strict=True):
+        ints = np.frombuffer(base64.b64decode(branch["poses"]), "<i2").astype(float).reshape(-1, len(bodies), 7)
+        assert len(ints) == len(branch["input"]) == VIEW_FRAMES and np.abs(ints).max() <= VIEW_INT
+        q = run.dynamic.q
+        rows = np.unique(np.linspace(0, len(q) - 1, VIEW_FRAMES).round().astype(int))
+        poses = mech.body_poses(q[rows])
+        T = np.stack([poses[b.name] for b in bodies], 1)
+        position = centre + ints[..., :3] * branch["scale"]
+        assert np.abs(position - T[..., :3, 3]).max() <= 0.5 * branch["scale"] * (1 + 1e-6)
+        assert np.abs(ints[..., :3]).max() > 0.99 * VIEW_INT  # the largest offset spans the int16 range
+        quat = ints[..., 3:] / VIEW_INT
+        R = Rotation.from_quat(quat.reshape(-1, 4)).as_matrix().reshape(T[..., :3, :3].shape)
+        assert np.abs(R - T[..., :3, :3]).max() < 1e-4  # a turn under 1e-4 rad
+    # the poses as 5-digit numbers were 3.3x the bytes (waterbomb-twist: 1.84 MB, 0.6 MB packed)
+    assert sum(len(b["poses"]) for b in view["branches"]) <= len(view["branches"]) * VIEW_FRAMES * len(bodies) * 19
+
+
+def test_the_3d_view_switches_branch_turns_and_zooms(tmp_path, browser, vertex4):
+    report = vertex4
     assert len(report.runs) >= 2
     write_page(as_dict(report), tmp_path, motion_view(report))
     page = browser.load(tmp_path / "report.html", CONTROLS)

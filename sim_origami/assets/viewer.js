@@ -5,6 +5,23 @@
 (function () {
   "use strict";
   const data = JSON.parse(document.getElementById("motion-data").textContent);
+  // each branch's poses: base64 of little-endian int16, frames x bodies x 7 (report.py's motion_view): the position's
+  // offset from data.centre in units of the branch's scale (m), then the quaternion x y z w in units of 1 / 32767
+  const SEVEN = 7 * data.bodies.length;
+  data.branches.forEach((b) => {
+    const bytes = Uint8Array.from(atob(b.poses), (ch) => ch.charCodeAt(0));
+    const ints = new DataView(bytes.buffer);
+    const frames = [];
+    for (let at = 0; SEVEN > 0 && at + 2 * SEVEN <= bytes.length; at += 2 * SEVEN) {
+      const pose = new Float32Array(SEVEN);
+      for (let i = 0; i < SEVEN; i++) {
+        const v = ints.getInt16(at + 2 * i, true);
+        pose[i] = i % 7 < 3 ? data.centre[i % 7] + v * b.scale : v / 32767;
+      }
+      frames.push(pose);
+    }
+    b.poses = frames;
+  });
   const canvas = document.getElementById("view");
   const slider = document.getElementById("view-frame");
   const play = document.getElementById("view-play");
@@ -84,8 +101,9 @@
     }
     return m;
   }
-  function pose(p, q) { // position and quaternion (x, y, z, w)
-    const [x, y, z, w] = q;
+  function pose(p, q) { // position and quaternion (x, y, z, w), made unit length again after its rounding
+    const norm = Math.hypot(q[0], q[1], q[2], q[3]) || 1;
+    const [x, y, z, w] = [q[0] / norm, q[1] / norm, q[2] / norm, q[3] / norm];
     return new Float32Array([
       1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0,
       2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0,
