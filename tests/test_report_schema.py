@@ -270,4 +270,4 @@ def test_a_report_with_render_and_thumbnail_conforms(tmp_path):
     args = parser.parse_args(["--all", "--render", "--size", "64x48"])
     validate_command.run_one(scenes.get("bennett").build(), args, tmp_path)
     doc = conforming(tmp_path / "report.json")
-    assert doc["render"]["frames"] > 0 and doc["thumbnail"] == "thumb.png"
+    assert doc["render"]["frames"] == 60 and doc["render"]["stills"] == 3 and doc["thumbnail"] == "thumb.png"

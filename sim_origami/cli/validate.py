@@ -130,7 +130,7 @@ def run_one(scene, args, out: Path, reference=None) -> dict:
         frames = render_frames(scene, q[np.linspace(0, len(q) - 1, FRAMES).astype(int)], out, width=width,
                                height=height)  # fmt: skip
         doc["render"] = {"gl_renderer": frames.gl_renderer, "seconds_per_frame": frames.seconds_per_frame,
-                         "frames": len(frames.pngs)}  # fmt: skip
+                         "frames": frames.count, "stills": len(frames.pngs)}  # fmt: skip
     if args.all and (thumb := write_thumbnail(out)) is not None:  # index.html shows it
         doc["thumbnail"] = thumb.name
     if args.render or "thumbnail" in doc:
