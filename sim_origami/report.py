@@ -217,11 +217,25 @@ def curves_csv(report: Report, rows: int | None = CURVE_ROWS, digits: int = CURV
     return buf.getvalue()
 
 
-def plain(value):
-    """JSON fallback for numpy scalars and arrays."""
-    if isinstance(value, np.generic | np.ndarray):
-        return value.tolist()
-    raise TypeError(f"cannot write {type(value).__name__} to JSON")
+def finite(value):
+    """`value` (JSON-ready data, numpy included) with every non-finite number as None (JSON's null), as `_num`
+    writes the report's measured values: JSON has no NaN or inf, and a reader that follows the standard refuses them."""
+    if isinstance(value, dict):
+        return {k: finite(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [finite(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return finite(value.tolist())
+    if isinstance(value, float | np.floating):
+        return float(value) if np.isfinite(value) else None
+    if isinstance(value, np.integer | np.bool_):
+        return value.item()
+    return value
+
+
+def json_text(doc) -> str:
+    """The one writer of report.json and summary.json: indented, every number finite or null (`finite`)."""
+    return json.dumps(finite(doc), indent=2, allow_nan=False) + "\n"
 
 
 def motion_fold(report: Report, out: Path) -> Path:
@@ -462,7 +476,7 @@ def write(report: Report, out: str | Path, *, full_curves: bool = False, doc: di
     doc = as_dict(report) if doc is None else doc
     text = curves_csv(report, None, FULL_DIGITS) if full_curves else curves_csv(report)
     paths = {
-        "report": write_text(out / "report.json", json.dumps(doc, indent=2, default=plain) + "\n"),
+        "report": write_text(out / "report.json", json_text(doc)),
         "curves": write_curves(out, text),
         "model": write_text(out / "model.xml", model_xml(report)),
     }

@@ -96,7 +96,7 @@ class Report:
     blockage: Blockage | None
     bifurcations: tuple[dict, ...] = ()
     free_run: dict | None = None
-    timings: dict[str, float] = field(default_factory=dict)
+    timings: dict[str, float | int] = field(default_factory=dict)
     reference: ReferenceCheck | None = None  # the user's curves against the numeric path and MuJoCo
 
     @property
@@ -466,7 +466,7 @@ def validate(
     names = [branch] if branch else [b.name for b in scene.kinematics.branches()]
     for name in names:
         scene.kinematics.branch(name)
-    timings: dict[str, float] = {}
+    timings: dict[str, float | int] = {}
     verdicts: list[Verdict] = []
     phases = 2 * len(names) + bool(scene.contact_pairs) + (scene.gravity is not None) + (branch is None) + (
         reference is not None)
@@ -505,7 +505,7 @@ def validate(
             err.verdicts = (*verdicts, *known)
             raise
     timings["mujoco_step_cpu_s"] = sum(r.dynamic.cpu_time_s for r in runs)
-    timings["mujoco_steps"] = float(sum(r.dynamic.steps for r in runs))
+    timings["mujoco_steps"] = sum(r.dynamic.steps for r in runs)  # a count (int), beside the times (s)
     blockage = None
     if scene.contact_pairs:
         phase("blockage: a force-limited drive against contact")

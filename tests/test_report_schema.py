@@ -271,3 +271,16 @@ def test_a_report_with_render_and_thumbnail_conforms(tmp_path):
     validate_command.run_one(scenes.get("bennett").build(), args, tmp_path)
     doc = conforming(tmp_path / "report.json")
     assert doc["render"]["frames"] == 60 and doc["render"]["stills"] == 3 and doc["thumbnail"] == "thumb.png"
+
+
+def test_the_json_writer_writes_non_finite_numbers_as_null_never_nan():
+    """report.py wrote some numbers (a verdict's tolerance, an adjustment's ratio, free-run values) without `_num`:
+    a non-finite one became NaN or Infinity, which is not JSON. The one writer (`report.json_text`) makes them null."""
+    import numpy as np
+
+    from sim_origami.report import json_text
+
+    doc = {"a": float("nan"), "b": [np.float64(np.inf), 1.5, np.int64(3)], "c": {"d": np.array([1.0, -np.inf])}}
+    text = json_text(doc)
+    assert json.loads(text) == {"a": None, "b": [None, 1.5, 3], "c": {"d": [1.0, None]}}
+    assert "NaN" not in text and "Infinity" not in text

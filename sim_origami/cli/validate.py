@@ -2,7 +2,6 @@
 
 import argparse
 import contextlib
-import json
 import sys
 from pathlib import Path
 
@@ -15,7 +14,7 @@ from ..conventions import deg_to_rad
 from ..errors import DomainError, ParameterError, SimulationError
 from ..files import check_folder, claimed_folder, write_text
 from ..mjcf import PRESETS
-from ..report import as_dict, motion_view, plain, provenance, verdict_json, write
+from ..report import as_dict, json_text, motion_view, provenance, verdict_json, write
 from ..report_page import write_index, write_page, write_thumbnail
 from ..scenes.fold_file import fold_scene
 from ..scenes.linkage_file import linkage_scene
@@ -134,7 +133,7 @@ def run_one(scene, args, out: Path, reference=None) -> dict:
     if args.all and (thumb := write_thumbnail(out)) is not None:  # index.html shows it
         doc["thumbnail"] = thumb.name
     if args.render or "thumbnail" in doc:
-        write_text(out / "report.json", json.dumps(doc, indent=2, default=plain) + "\n")
+        write_text(out / "report.json", json_text(doc))
     write_page(doc, out, motion_view(report), in_index=args.all)
     return doc
 
@@ -160,7 +159,7 @@ def failed_run(scene, args, out: Path, err: SimulationError) -> dict:
            "provenance": provenance(preset, getattr(args, "command_line", None))}  # fmt: skip
     if not ran:
         doc["events"] = list(err.events)
-    write_text(out / "report.json", json.dumps(doc, indent=2, default=plain) + "\n")
+    write_text(out / "report.json", json_text(doc))
     return doc
 
 
@@ -218,7 +217,7 @@ def run(args: argparse.Namespace) -> int:
                 docs.append(validate_in_all(scenes.get(name).build(), args, stages[name]))
             table = "\n".join([HEADER, *map(summary_line, docs)])
             write_text(stage / "summary.md", f"# sim_origami validation\n\n{table}\n")
-            write_text(stage / "summary.json", json.dumps(docs, indent=2, default=plain) + "\n")
+            write_text(stage / "summary.json", json_text(docs))
             write_index(docs, stage)
         print(table)
         print(f"index: {out / 'index.html'}")
@@ -260,7 +259,7 @@ def validate_scene(scene, args: argparse.Namespace) -> int:
             print(f"FAIL {scene.name}: {err}\noutputs in {out}/")
             return 1
     if args.json:
-        print(json.dumps(doc, indent=2, default=plain))
+        print(json_text(doc), end="")
     else:
         print("\n".join([HEADER, summary_line(doc)]))
         for a in scene.adjustments:  # the model validated is the nearest exact one to the values as typed
