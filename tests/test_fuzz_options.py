@@ -118,7 +118,7 @@ def test_option_combinations_into_any_folder_state_keep_the_contract(tmp_path_fa
     out = tmp_path_factory.mktemp("fuzz") / "run"
     prepare(out, state, finished_run)
     before = contents(out)
-    user = {name: digest for name, digest in before.items() if name == USER_FILE}
+    user = {name: sha for name, sha in before.items() if name == USER_FILE}
     err = io.StringIO()
     previous = signal.signal(signal.SIGALRM, _alarm)
     signal.alarm(LIMIT_S)
@@ -133,7 +133,7 @@ def test_option_combinations_into_any_folder_state_keep_the_contract(tmp_path_fa
     after = contents(out)
     shown = f"{argv} into {state}: exit {code}, stderr {err.getvalue()!r}"
     assert code in (0, 1, 2), shown
-    assert all(after.get(name) == digest for name, digest in user.items()), f"a user's file was lost: {shown}"
+    assert all(after.get(name) == sha for name, sha in user.items()), f"a user's file was lost: {shown}"
     if code == 2:
         lines = [line for line in err.getvalue().splitlines() if line.strip()]
         assert len(lines) == 1 and "Traceback" not in err.getvalue(), shown
