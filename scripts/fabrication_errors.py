@@ -102,7 +102,7 @@ def bennett_tables(nominal: RSSR) -> None:
     header("Overconstrained Bennett with the same errors (a1R, a2R, alpha_R; ground twist beta nominal)")
     good = Bennett(nominal.a1, nominal.alpha, nominal.a2, nominal.beta)
     for name, error in [("length 1.5 mm, k = +1", FabricationError(0.0, 1.5, 1)),
-                        ("twist 1 deg, k = +1", FabricationError(DEG, 0.0, 1))]:  # fmt: skip
+                        ("twist 1 deg, k = +1", FabricationError(DEG, 0.0, 1))]:
         built = error.built(nominal)
         bad = Bennett(built.a1, built.alpha, built.a2, nominal.beta, check=False)
         gaps = []

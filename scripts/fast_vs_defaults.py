@@ -23,7 +23,7 @@ REPEATS = 7
 
 def main(names: list[str]) -> None:
     print("| scene | defaults error (rad) | `fast` error | more accurate, CPU | with MuJoCo's regulariser "
-          "| `fast-projected` error | more accurate, CPU |")  # fmt: skip
+          "| `fast-projected` error | more accurate, CPU |")
     print("|---|---|---|---|---|---|---|")
     for name in names or scenes.names():
         scene = scenes.get(name).build()
@@ -33,7 +33,7 @@ def main(names: list[str]) -> None:
         settings = [pareto.DEFAULTS, fast, plain, pareto.PROJECTED]
         default, ours, theirs, projected = pareto.measure_all(scene, branch, settings, REPEATS)
         print(f"| {name} | {default.error:.1e} | {ours.error:.1e} | {_gain(default, ours)} | {theirs.error:.1e} "
-              f"| {projected.error:.1e} | {_gain(default, projected)} |", flush=True)  # fmt: skip
+              f"| {projected.error:.1e} | {_gain(default, projected)} |", flush=True)
 
 
 def _gain(default: pareto.Point, point: pareto.Point) -> str:

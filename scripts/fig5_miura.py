@@ -52,7 +52,7 @@ def main() -> None:
         pick = np.linspace(0, len(dyn.input) - 1, 25).astype(int)
         for k, marker in ((0, "o"), (1, "s")):
             ax.plot(np.rad2deg(dyn.input[pick]), np.rad2deg(dyn.simulated[pick, k]), marker, mfc="none", ms=4,
-                    color=f"C{k}", label=f"{('phi', 'psi')[k]}, MuJoCo" if side == 1 else None)  # fmt: skip
+                    color=f"C{k}", label=f"{('phi', 'psi')[k]}, MuJoCo" if side == 1 else None)
         for i in range(len(x)):
             rows.append([x[i], *exact[i, :2], *numeric[i, :2], *proj.simulated[i, :2]])
     ax.axvline(np.rad2deg(lim), color="0.5", ls=":", lw=1)
@@ -67,7 +67,7 @@ def main() -> None:
     with atomic_path(args.out / "fig5.csv") as tmp, open(tmp, "w", newline="") as fh:
         writer = csv.writer(fh)
         writer.writerow(["theta_rad", "phi_rad", "psi_rad", "phi_numeric_rad", "psi_numeric_rad",
-                         "phi_projection_rad", "psi_projection_rad"])  # fmt: skip
+                         "phi_projection_rad", "psi_projection_rad"])
         writer.writerows(rows)
     print(f"theta_limit = {np.rad2deg(lim):.4f} deg; {2 * args.points} samples per method")
     for method, err in worst.items():

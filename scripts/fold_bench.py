@@ -40,16 +40,16 @@ def validate_cli(path: Path, out: Path, creases: int) -> list[tuple]:
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     command = "import sys; from sim_origami.cli import main; sys.exit(main(sys.argv[1:]))"
     code = subprocess.run([sys.executable, "-c", command, "validate", "--fold", str(path), "--preset", "fast",
-                           "--out", str(out)], capture_output=True, text=True).returncode  # fmt: skip
+                           "--out", str(out)], capture_output=True, text=True).returncode
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     total = after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
     doc = json.loads((out / "report.json").read_text())
     failed = [v["name"] for v in doc["verdicts"] + [v for b in doc["branches"] for v in b["verdicts"]]
-              if not v["passed"]]  # fmt: skip
+              if not v["passed"]]
     rows = [("16 x 16 Miura, M/V letters only: `validate --fold --preset fast`, whole process", creases, total,
-             f"exit {code}; failed: {', '.join(failed) or 'none'}")]  # fmt: skip
+             f"exit {code}; failed: {', '.join(failed) or 'none'}")]
     rows += [(f"  stage {name}", creases, seconds, "report.json timings_s") for name, seconds in
-             doc["timings_s"].items() if name.endswith("cpu_s")]  # fmt: skip
+             doc["timings_s"].items() if name.endswith("cpu_s")]
     return rows
 
 

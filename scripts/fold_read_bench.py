@@ -33,7 +33,7 @@ def miura(rows: int, cols: int, faces: bool, fold: float = 0.0) -> dict:
     vid = lambda i, j: j * (cols + 1) + i  # noqa: E731
     if faces or fold:
         doc["faces_vertices"] = [[vid(i, j), vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1)]
-                                 for j in range(rows) for i in range(cols)]  # fmt: skip
+                                 for j in range(rows) for i in range(cols)]
     if fold:
         doc["vertices_coords"] = folded_miura(rows, cols, zig, fold).tolist()
     return doc
@@ -67,7 +67,7 @@ def triangulated(n: int) -> dict:
     count = Counter(frozenset(side) for f in faces for side in zip(f, f[1:] + f[:1], strict=True))
     pairs = [sorted(e) for e in count]
     return {"vertices_coords": xy, "edges_vertices": pairs, "faces_vertices": faces,
-            "edges_assignment": ["B" if count[frozenset(e)] == 1 else "U" for e in pairs]}  # fmt: skip
+            "edges_assignment": ["B" if count[frozenset(e)] == 1 else "U" for e in pairs]}
 
 
 def best(work, repeat: int) -> tuple[float, object]:
@@ -95,13 +95,13 @@ def main(repeat: int = 3) -> None:
 
         def check(pattern=pattern):
             system = pattern.__class__(pattern.vertices, pattern.faces, pattern.creases, pattern.face_names,
-                                       pattern.border_heights).loop_system()  # fmt: skip
+                                       pattern.border_heights).loop_system()
             return float(system.residual_norm(np.zeros((1, len(pattern.creases)))).max())
 
         check_s, residual = best(check, repeat)
         assert residual <= 1e-12, residual
         print(f"{name:48s} {len(pattern.vertices):8d} {len(pattern.faces):6d} {len(pattern.creases):7d} "
-              f"{read_s:7.2f} {check_s:7.2f}")  # fmt: skip
+              f"{read_s:7.2f} {check_s:7.2f}")
 
 
 if __name__ == "__main__":

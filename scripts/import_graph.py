@@ -36,7 +36,7 @@ LAYERS = (
     ("outputs", "reports, plots, frames; studies built on the harness",
      ("report", "report_page", "plots", "render", "render_paper", "studies")),
     ("cli", "the sim-origami commands", ("cli", "__main__")),
-)  # fmt: skip
+)
 
 
 def _module(path: Path) -> str:

@@ -98,7 +98,7 @@ DECIMALS = 6
 # Peng 2018, Table A1 (regenerated here over the 256 variants): the class Ri of each all-sector variant code on the
 # pair (theta_1, theta_2).
 R_CLASS = {"aaaa": "R1", "paap": "R2", "appa": "R3", "pppp": "R4", "ppaa": "R5", "apap": "R6", "papa": "R7",
-           "aapp": "R8"}  # fmt: skip
+           "aapp": "R8"}
 # Legible rotation-case rows of Peng 2018, Table A4: transmission -> printed condition on the base.
 A4_ROWS = {
     "R2R5, R4R12, R3R13R12": "alpha12 + alpha23 = alpha34 + alpha41 = pi",
@@ -272,7 +272,7 @@ def census(base_name: str, base_deg: tuple[float, ...], transmission: str) -> li
         else:
             label = labels.get(sig) or ("mirror-symmetric" if mirror_symmetric(vertices) else "new")
         rows.append(Row(transmission, base_name, codes, True, closes, straight, best_open, worst_closed, corners, sig,
-                        label, ff))  # fmt: skip
+                        label, ff))
     return rows
 
 

@@ -37,7 +37,7 @@ def main(rows: int = 16, cols: int = 16) -> None:
     scene = scenes.get("miura-sheet").build(rows=rows, cols=cols)
     mech = scene.mechanism
     print(f"{rows} x {cols} Miura sheet: {len(mech.bodies)} panels, {len(mech.joints)} creases, "
-          f"{len(mech.cut_joints)} closed by connects")  # fmt: skip
+          f"{len(mech.cut_joints)} closed by connects")
     print(
         f"{'contact':8s} {'sweep (s)':>9s} {'steps':>6s} {'CPU (s)':>8s} {'max error (rad)':>16s} {'max contacts':>13s}"
     )

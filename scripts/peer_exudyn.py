@@ -134,7 +134,7 @@ def mujoco_run(case: Case, preset: str, h: float | None = None, iterations: int 
     """
     scene = case.scene
     model, data = compile_model(scene, ModelOptions(preset=preset, drive="none" if case.free else "equality",
-                                                    gravity=case.free))  # fmt: skip
+                                                    gravity=case.free))
     if h is not None:
         model.eq_solref[:, 0] *= h / model.opt.timestep
         model.opt.timestep = h
@@ -244,28 +244,28 @@ def exudyn_body_run(case: Case, h: float, rho: float, tolerances: tuple[float, f
                 inertia=RigidBodyInertia(b.mass, np.diag(b.inertia)), referencePosition=b.pose[:3, 3],
                 referenceRotationMatrix=b.pose[:3, :3], gravity=rigid.gravity,
                 nodeType=exu.NodeType.RotationEulerParameters,
-            )  # fmt: skip
+            )
             kinds = ["Position", "RotationMatrix"] + (["Velocity", "AngularVelocityLocal"] if case.free else [])
             sensors[b.name] = {
                 kind: mbs.AddSensor(SensorBody(bodyNumber=items[b.name], storeInternal=True,
                                                outputVariableType=getattr(exu.OutputVariableType, kind)))
                 for kind in kinds
-            }  # fmt: skip
+            }
         for j in rigid.hinges:
             pair, point, axes = [items[j.parent], items[j.child]], j.frame[:3, 3], j.frame[:3, :3]
             if j.driven and not case.free:
                 drive = CreateSymbolicUserFunction(mbs, offset, "offsetUserFunction", itemTypeName="ObjectJointGeneric")
                 mbs.CreateGenericJoint(itemNumbers=pair, position=point, rotationMatrixAxes=axes,
-                                       constrainedAxes=[1] * 6, offsetUserFunction=drive, show=False)  # fmt: skip
+                                       constrainedAxes=[1] * 6, offsetUserFunction=drive, show=False)
             elif j.cut:
                 mbs.CreateGenericJoint(itemNumbers=pair, position=point, rotationMatrixAxes=axes,
-                                       constrainedAxes=[1, 1, 1, 1, 1, 0], show=False)  # fmt: skip
+                                       constrainedAxes=[1, 1, 1, 1, 1, 0], show=False)
             else:
                 mbs.CreateRevoluteJoint(itemNumbers=pair, position=point, axis=axes[:, 2], show=False)
         mbs.Assemble()
         cpu = _solve(mbs, _settings(h, case.simulated, rho, tolerances), n)
         data = {b: {kind: mbs.GetSensorStoredData(s)[:, 1:] for kind, s in of_body.items()}
-                for b, of_body in sensors.items()}  # fmt: skip
+                for b, of_body in sensors.items()}
         stored = len(next(iter(data.values()))["Position"])
         if stored != n + 1:
             raise RuntimeError(f"Exudyn stored {stored} samples, not {n + 1}")
@@ -279,7 +279,7 @@ def exudyn_body_run(case: Case, h: float, rho: float, tolerances: tuple[float, f
         if case.free:
             energy = kinetic_energy(rigid, {b: d["Velocity"] for b, d in data.items()},
                                     {b: d["AngularVelocityLocal"] for b, d in data.items()}) + potential_energy(
-                rigid, {b: d["Position"] for b, d in data.items()})  # fmt: skip
+                rigid, {b: d["Position"] for b, d in data.items()})
         return Run(q, h, cpu, energy)
 
     return run
@@ -321,7 +321,7 @@ def exudyn_tree_run(case: Case, h: float, rho: float, tolerances: tuple[float, f
         mbs = SC.AddSystem()
         m = len(tree.links)
         node = mbs.AddNode(NodeGenericODE2(referenceCoordinates=[0.0] * m, initialCoordinates=[0.0] * m,
-                                           initialCoordinates_t=[0.0] * m, numberOfODE2Coordinates=m))  # fmt: skip
+                                           initialCoordinates_t=[0.0] * m, numberOfODE2Coordinates=m))
         inertias, coms = [], []
         for link in tree.links:
             R = link.com_frame[:3, :3]
@@ -333,7 +333,7 @@ def exudyn_tree_run(case: Case, h: float, rho: float, tolerances: tuple[float, f
             jointOffsets=exu.Vector3DList([lk.transform[:3, 3] for lk in tree.links]),
             linkInertiasCOM=exu.Matrix3DList(inertias), linkCOMs=exu.Vector3DList(coms),
             linkMasses=[bodies[lk.body].mass for lk in tree.links], baseOffset=[0.0, 0.0, 0.0],
-            gravity=list(tree.rigid.gravity) if case.free else [0.0, 0.0, 0.0]))  # fmt: skip
+            gravity=list(tree.rigid.gravity) if case.free else [0.0, 0.0, 0.0]))
         ground = mbs.AddObject(ObjectGround())
         for hinge in tree.rigid.hinges:
             if not hinge.cut or hinge.name in implied:  # implied: closed by the couplings and other loops, as MJCF
@@ -346,7 +346,7 @@ def exudyn_tree_run(case: Case, h: float, rho: float, tolerances: tuple[float, f
                     k = tree.link_of_body[body]
                     local = np.linalg.inv(tree.frames[k]) @ hinge.frame
                     markers.append(mbs.AddMarker(MarkerKinematicTreeRigid(objectNumber=kt, linkNumber=k,
-                                                                          localHT=local)))  # fmt: skip
+                                                                          localHT=local)))
             mbs.AddObject(ObjectJointGeneric(markerNumbers=markers, constrainedAxes=[1, 1, 1, 1, 1, 0]))
         coordinate = [mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node, coordinate=k)) for k in range(m)]
         for a, b, c in mech.couplings:  # q_a = c q_b; a link's coordinate is sign (q - q0); constraint f c_b - c_a
@@ -354,7 +354,7 @@ def exudyn_tree_run(case: Case, h: float, rho: float, tolerances: tuple[float, f
             sa, sb = tree.links[ka].sign, tree.links[kb].sign
             qa0, qb0 = tree.q0[mech.joint_index(a)], tree.q0[mech.joint_index(b)]
             mbs.AddObject(ObjectConnectorCoordinate(markerNumbers=[coordinate[ka], coordinate[kb]],
-                                                    factor1=c * sa * sb, offset=sa * (qa0 - c * qb0)))  # fmt: skip
+                                                    factor1=c * sa * sb, offset=sa * (qa0 - c * qb0)))
         if drives:
             k = link_of_joint[mech.joint_index(scene.drive_joint)]
             fixed = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=mbs.AddNode(NodePointGround()), coordinate=0))
@@ -363,7 +363,7 @@ def exudyn_tree_run(case: Case, h: float, rho: float, tolerances: tuple[float, f
                                               "offsetUserFunction", itemTypeName="ObjectConnectorCoordinate")
             mbs.SetObjectParameter(connector, "offsetUserFunction", ramp)
         sensors = [mbs.AddSensor(SensorNode(nodeNumber=node, storeInternal=True, outputVariableType=kind))
-                   for kind in (exu.OutputVariableType.Coordinates, exu.OutputVariableType.Coordinates_t)]  # fmt: skip
+                   for kind in (exu.OutputVariableType.Coordinates, exu.OutputVariableType.Coordinates_t)]
         mbs.Assemble()
         cpu = _solve(mbs, _settings(h, case.simulated, rho, tolerances), n)
         c, c_t = (mbs.GetSensorStoredData(s)[:, 1:] for s in sensors)
@@ -412,7 +412,7 @@ def on_samples(run: Run, every: float) -> np.ndarray:
 def free_case() -> Case:
     a04 = scenes.get("iftomm-a04").build()
     return Case(f"IFToMM A04, {FREE_S:g} s free under gravity", a04, a04.free_branch, a04.free_start, a04.free_start,
-                FREE_S, True)  # fmt: skip
+                FREE_S, True)
 
 
 def driven_case(scene: Scene, label: str | None = None, branch: str | None = None) -> Case:
@@ -421,7 +421,7 @@ def driven_case(scene: Scene, label: str | None = None, branch: str | None = Non
     start, stop = scene.branch_path(branch)
     T = sweep_duration(scene, branch, "fast", start, stop)
     return Case(label or f"{scene.name}, {start:.3g} -> {stop:.3g} rad in {T:.3g} s", scene, branch, start, stop, T,
-                False)  # fmt: skip
+                False)
 
 
 def free_settings(case: Case) -> list[tuple[str, str, Callable[[], Run]]]:
@@ -439,11 +439,11 @@ def free_settings(case: Case) -> list[tuple[str, str, Callable[[], Run]]]:
         for rho in (0.6, 0.9, 1.0):
             for name, tol in (("default", DEFAULT), ("tight", TIGHT)):
                 out.append(("Exudyn tree", f"h {h * 1e3:g} ms, rho {rho:g}, Newton {name} {tol[0]:g}/{tol[1]:g}",
-                            exudyn_tree_run(case, h, rho, tol)))  # fmt: skip
+                            exudyn_tree_run(case, h, rho, tol)))
     for h in (0.008, 0.002):
         for name, tol in (("default", DEFAULT), ("tight", TIGHT)):
             out.append(("Exudyn body", f"h {h * 1e3:g} ms, rho 0.9, Newton {name} {tol[0]:g}/{tol[1]:g}",
-                        exudyn_body_run(case, h, 0.9, tol)))  # fmt: skip
+                        exudyn_body_run(case, h, 0.9, tol)))
     return out
 
 
@@ -458,10 +458,10 @@ def driven_settings(case: Case, exudyn_h: tuple[float, ...] = (0.008,), body: bo
     for h in exudyn_h or (h0,):
         for name, tol in (("default", DEFAULT), ("tight", TIGHT)):
             out.append(("Exudyn tree", f"h {h * 1e3:g} ms, rho 0.6, Newton {name} {tol[0]:g}/{tol[1]:g}",
-                        exudyn_tree_run(case, h, 0.6, tol)))  # fmt: skip
+                        exudyn_tree_run(case, h, 0.6, tol)))
             if body and not case.scene.mechanism.couplings:
                 out.append(("Exudyn body", f"h {h * 1e3:g} ms, rho 0.6, Newton {name} {tol[0]:g}/{tol[1]:g}",
-                            exudyn_body_run(case, h, 0.6, tol)))  # fmt: skip
+                            exudyn_body_run(case, h, 0.6, tol)))
     return out
 
 
@@ -471,7 +471,7 @@ def measure(case: Case, runs: list, rounds: int, reference: Run | None = None) -
     if reference is not None:
         ref_q = on_samples(reference, SAMPLE_S)
         ref_period = turning_period(reference.q[:, case.scene.mechanism.joint_index(case.scene.drive_joint)],
-                                    reference.h)  # fmt: skip
+                                    reference.h)
     for _ in range(rounds):
         for (_, _, make), result in zip(runs, results, strict=True):
             if result.failed:
@@ -503,14 +503,14 @@ def print_free(results: list[Result]) -> None:
     fast = results[0].cpu
     print(f"`fast`: {fast:.3g} s of CPU (best of the rounds)\n")
     print("| tool | setting | trajectory error (rad, max over 10 s) | period error (s) | energy drift (J) | "
-          "manifold distance (rad) | CPU vs `fast` |")  # fmt: skip
+          "manifold distance (rad) | CPU vs `fast` |")
     print("|---|---|---|---|---|---|---|")
     for r in results:
         if r.failed:
             print(f"| {r.tool} | {r.label} | failed: {r.failed} | | | | |")
             continue
         print(f"| {r.tool} | {r.label} | {r.trajectory:.2g} | {r.period:.2g} | {r.drift:.2g} | {r.path:.2g} | "
-              f"{r.cpu / fast:.2f} |")  # fmt: skip
+              f"{r.cpu / fast:.2f} |")
 
 
 def print_equal(results: list[Result], score: str) -> None:
@@ -566,7 +566,7 @@ def scaling(rounds: int, only: set[str] | None = None) -> None:
                 ("waterbomb-tube", lambda: scenes.get("waterbomb-tube").build(), None),
                 # Exudyn's dense solve on 255 links and 1125 closure rows: a step costs seconds, so only the sweep's
                 # first steps are run (per-step CPU; the error is of those steps only)
-                ("fold-sheet", fold_sheet_scene, FOLD_STEPS)]  # fmt: skip
+                ("fold-sheet", fold_sheet_scene, FOLD_STEPS)]
     table = []
     for name, build, steps in builders:
         if only and name not in only:
@@ -592,12 +592,12 @@ def scaling(rounds: int, only: set[str] | None = None) -> None:
                 mech = case.scene.mechanism
                 for k, r in enumerate(res):
                     head = (f"| {case.label} | {len(mech.bodies) - 1} | {len(mech.joints)} ({len(mech.cut_joints)}) | "
-                            f"{len(mech.couplings)} " if k == 0 else "| | | | ")  # fmt: skip
+                            f"{len(mech.couplings)} " if k == 0 else "| | | | ")
                     if r.failed:
                         print(f"{head}| {r.tool}, {r.label} | failed: {r.failed} | | |", flush=True)
                     else:
                         print(f"{head}| {r.tool}, {r.label} | {r.path:.2g} | {r.cpu:.3g} | {r.cpu / res[0].cpu:.2f} |",
-                              flush=True)  # fmt: skip
+                              flush=True)
 
 
 def main() -> int:
@@ -644,7 +644,7 @@ def main() -> int:
     print("|---|---|---|---|")
     for r in results:
         print(f"| {r.tool} | {r.label} | " + (f"failed: {r.failed} | |" if r.failed else
-                                                 f"{r.path:.2g} | {r.cpu / results[0].cpu:.2f} |"))  # fmt: skip
+                                                 f"{r.path:.2g} | {r.cpu / results[0].cpu:.2f} |"))
     print_equal(results, "path")
     return 0
 

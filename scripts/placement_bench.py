@@ -28,7 +28,7 @@ OFFSET = np.array([37.3, -12.9, 55.1])  # length units: 40 times the spherical 4
 ROTATIONS = ([0.3, -1.1, 0.7], [2.0, 0.4, -0.9], [-0.6, 1.7, 2.2])  # rotation vectors (rad)
 # D-H rows (a in length units, alpha in deg) and the input range (deg)
 ROWS = {"spherical-4r": [(0.0, 70.0), (0.0, 90.0), (0.0, 80.0), (0.0, 100.0)],
-        "bennett": [(1.0, 30.0), (1.5, 48.590377890729144)] * 2}  # fmt: skip
+        "bennett": [(1.0, 30.0), (1.5, 48.590377890729144)] * 2}
 RANGE = {"spherical-4r": [10.0, 60.0], "bennett": [20.0, 140.0]}
 DRAWN_AT = 30.0  # theta1 (deg) of the drawn pose
 
@@ -37,7 +37,7 @@ def drawn_pose(folder: Path, name: str) -> tuple[tuple[DHRow, ...], np.ndarray]:
     """A linkage's D-H rows (length units, rad) and its joint angles (rad) at theta1 = DRAWN_AT, traced from its
     D-H file."""
     doc = {"sim_origami_linkage": 1, "form": "dh", "input": {"joint": "theta1", "range": RANGE[name]},
-           "joints": [{"a": a, "alpha": alpha} for a, alpha in ROWS[name]]}  # fmt: skip
+           "joints": [{"a": a, "alpha": alpha} for a, alpha in ROWS[name]]}
     source = folder / f"{name}-dh.json"
     source.write_text(json.dumps(doc))
     q0 = linkage_scene(source).kinematics.evaluate("path-1", [np.radians(DRAWN_AT)])[0][0]
@@ -53,9 +53,9 @@ def axes_file(folder: Path, name: str, rows, q0, rotation: np.ndarray, offset: n
         point = rotation @ (T[:3, 3] + T[:3, 2]) + offset  # one unit out along the axis: a sphere's joints apart
         joints.append({"name": f"theta{k + 1}", "bodies": [f"link_{(k - 1) % len(rows) + 1}", f"link_{k + 1}"],
                        "point": point.tolist(), "direction": (rotation @ T[:3, 2]).tolist(),
-                       "theta0": float(np.rad2deg(q0[k]))})  # fmt: skip
+                       "theta0": float(np.rad2deg(q0[k]))})
     doc = {"sim_origami_linkage": 1, "form": "axes", "name": f"{name}-{tag}", "ground": f"link_{len(rows)}",
-           "joints": joints, "input": {"joint": "theta1", "range": RANGE[name]}}  # fmt: skip
+           "joints": joints, "input": {"joint": "theta1", "range": RANGE[name]}}
     path = folder / f"{name}-{tag}.json"
     path.write_text(json.dumps(doc))
     return path
@@ -79,7 +79,7 @@ def run() -> None:
             rows, q0 = drawn_pose(folder, name)
             placements = [("origin", np.eye(3), np.zeros(3)), ("translated", np.eye(3), OFFSET)]
             placements += [(f"rotated {k + 1} + translated", Rotation.from_rotvec(r).as_matrix(), OFFSET)
-                           for k, r in enumerate(ROTATIONS)]  # fmt: skip
+                           for k, r in enumerate(ROTATIONS)]
             base = None
             for tag, rotation, offset in placements:
                 path = axes_file(folder, name, rows, q0, rotation, offset, tag.split()[0] + tag[-1])

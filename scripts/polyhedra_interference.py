@@ -26,7 +26,7 @@ from sim_origami.validation import BLOCKAGE_HOLD
 
 DEG = np.pi / 180
 ZETAS = (-89.9, -85, -80, -75, -70, -65, -63, -62, -61.5, -61, -60.9, -60.7, -60.5, -60, -55, -40, -20, -10, 0,
-         10, 15, 18, 18.3, 18.6, 18.9, 19, 19.5, 20, 22, 25, 30, 40, 50, 70)  # fmt: skip
+         10, 15, 18, 18.3, 18.6, 18.9, 19, 19.5, 20, 22, 25, 30, 40, 50, 70)
 ZETAS_MUJOCO = (-89.9, -80, -70, -63, -62, -60.7, -40, -20, 0, 15, 18.9, 19.5, 22, 30, 40)
 QUICK = (-70, 0, 30, 40)
 DELTAS = {"I": (-30, -10, -5, -4, -3.5, -3, 0, 5, 15), "II": (-10, -5, 0, 5, 10)}
@@ -62,7 +62,7 @@ def servo_run(scene: Scene, stop: float) -> tuple[np.ndarray, np.ndarray, float,
     contact input (nan if none), CPU (s)."""
     branch = scene.kinematics.branches()[0].name
     run = simulate(scene, branch, drive="servo", contact=True, start=0.0, stop=stop, hold=BLOCKAGE_HOLD,
-                   initial=np.zeros(len(scene.mechanism.joints)))  # fmt: skip
+                   initial=np.zeros(len(scene.mechanism.joints)))
     x = run.q[:, scene.mechanism.joint_index(scene.drive_joint)] / scene.drive_scale
     touched = np.flatnonzero(run.contacts > 0)
     return x, run.q, float(x[touched[0]]) if len(touched) else float("nan"), run.cpu_time_s
@@ -88,19 +88,19 @@ def octahedron_table(zetas: tuple[float, ...], mujoco: tuple[float, ...]) -> lis
     print("truncated octahedron -> cube (Yang 2017 §5.5): zeta study")
     print(f"{'zeta':>6} {'closed form':>14} {'rho1/rho2 at fold':>18} {'turns of theta':>16} {'rho1 max':>8} "
           f"{'max|rho1-rho2|':>14} | MuJoCo servo + contact: {'stop A1':>8} {'/ target':>8} {'contact':>8} "
-          f"{'rho1':>6} {'rho2':>6} {'gap m':>7} {'CPU s':>5}")  # fmt: skip
+          f"{'rho1':>6} {'rho2':>6} {'gap m':>7} {'CPU s':>5}")
     rows = []
     for z in zetas:
         o = TruncatedOctahedronCube(z * DEG).outcome()
         rows.append((z, o))
         turns = ",".join(f"{t / DEG:.2f}" for t in o.turns[:2]) or "-"
         line = (f"{z:6.1f} {o.kind:>14} {o.rho1 / DEG:8.3f}/{o.rho2 / DEG:8.3f} {turns:>16} {o.rho1_max / DEG:8.3f} "
-                f"{o.gap_max / DEG:14.2f} |")  # fmt: skip
+                f"{o.gap_max / DEG:14.2f} |")
         if z in mujoco:
             s = octahedron_stop(z)
             verdict = "cube" if s.reached else "stops"
             line += (f" {verdict:>5} {s.input / DEG:8.3f} / {s.target / DEG:8.3f} {s.contact / DEG:8.3f} "
-                     f"{s.rho1 / DEG:6.2f} {s.rho2 / DEG:6.2f} {s.corner_gap:7.4f} {s.cpu_s:5.2f}")  # fmt: skip
+                     f"{s.rho1 / DEG:6.2f} {s.rho2 / DEG:6.2f} {s.corner_gap:7.4f} {s.cpu_s:5.2f}")
         print(line, flush=True)
     return rows
 
@@ -121,7 +121,7 @@ def tetrahedron_table(scheme: str, deltas: tuple[float, ...]) -> None:
     """Print one row per delta (deg) of a truncated-tetrahedron scheme: closed form, then MuJoCo with contact."""
     print(f"\ntruncated tetrahedron -> tetrahedron, scheme {scheme} (Yang 2017 §6.5): delta{len(scheme)} study")
     print(f"{'delta':>6} {'closed form end':>34} {'rho max':>8} | MuJoCo servo + contact: {'stop':>8} "
-          f"{'/ end':>8} {'contact':>8} {'rho':>7} {'|BK| m':>7} {'|AE| m':>7} {'CPU s':>5}")  # fmt: skip
+          f"{'/ end':>8} {'contact':>8} {'rho':>7} {'|BK| m':>7} {'|AE| m':>7} {'CPU s':>5}")
     for d in deltas:
         try:
             scene = (
@@ -144,7 +144,7 @@ def tetrahedron_table(scheme: str, deltas: tuple[float, ...]) -> None:
         rho_stop = np.arctan2(np.linalg.norm(np.cross(u, w)), u @ w)
         bk, ae = np.linalg.norm(p["B"] - p["K"]), np.linalg.norm(p["A"] - p["E"])
         print(f"{d:6.1f} {end:>34} {rho.max() / DEG:8.3f} | {x[-1] / DEG:8.3f} / {far / DEG:8.3f} "
-              f"{touch / DEG:8.3f} {rho_stop / DEG:7.3f} {bk:7.4f} {ae:7.4f} {cpu:5.2f}", flush=True)  # fmt: skip
+              f"{touch / DEG:8.3f} {rho_stop / DEG:7.3f} {bk:7.4f} {ae:7.4f} {cpu:5.2f}", flush=True)
 
 
 def main() -> None:

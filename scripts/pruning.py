@@ -90,7 +90,7 @@ def variants(scene) -> dict[str, mujoco.MjModel]:
     )
     if scene.mechanism.couplings:
         out["- closures the couplings imply"] = compile_(scene_xml(without_implied_closures(scene), ModelOptions()))
-    return out  # fmt: skip
+    return out
 
 
 def main(names: list[str]) -> None:

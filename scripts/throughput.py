@@ -52,7 +52,7 @@ def main(names: list[str]) -> None:
 
             joints = evaluate(x[:2])[0].shape[1]
             print(f"| {name} | {branch.name} | {joints} | {best_rate(evaluate, x, N):.2e} | "
-                  f"{best_rate(evaluate, x, CHUNK):.2e} |", flush=True)  # fmt: skip
+                  f"{best_rate(evaluate, x, CHUNK):.2e} |", flush=True)
 
 
 if __name__ == "__main__":

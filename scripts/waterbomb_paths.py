@@ -29,9 +29,9 @@ def main(alpha_deg: float = 40.0, beta_deg: float = 40.0, mu: float = 0.5) -> No
     drive = thick.mechanism.joint_index(thick.drive_joint)
     loops = thick.kinematics.loop_system()
     print(f"alpha {alpha_deg:g} deg, beta {beta_deg:g} deg, mu {mu:g}; thick branches: "
-          f"{', '.join(b.name for b in thick.kinematics.branches())}")  # fmt: skip
+          f"{', '.join(b.name for b in thick.kinematics.branches())}")
     print(f"{'zero-thickness branch':22s} {'zero: MuJoCo error':>19s} {'thick loops at pose':>20s} "
-          f"{'thick from pose ->':>20s} {'error vs path I':>16s}")  # fmt: skip
+          f"{'thick from pose ->':>20s} {'error vs path I':>16s}")
     for branch in zero.kinematics.branches():
         own = compare(zero, branch.name, simulate(zero, branch.name).q).max_error()
         pose = zero.pose(branch.name, START)

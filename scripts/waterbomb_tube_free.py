@@ -28,7 +28,7 @@ def main(n: int = 6, m: int = 3) -> None:
         run = simulate(model, BRANCH)
         dev = np.nanmax(np.abs(compare(model, BRANCH, run.q).error), axis=0)
         print(f"{label:10s} {np.max(dev):14.3e} {np.median(dev):13.3e} {int(np.sum(dev > 0.1)):14d} "
-              f"{np.max(run.closure_residual):16.3e}")  # fmt: skip
+              f"{np.max(run.closure_residual):16.3e}")
 
 
 if __name__ == "__main__":

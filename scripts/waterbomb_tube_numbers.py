@@ -95,22 +95,22 @@ def rows_of_table() -> list[tuple[str, str, float | None, float | None, float]]:
     out.append((f"{PAPER} §2.1, n6 m5 a40 b35", "cannot contract rigidly (1 = yes)", 1.0, float(none is None), 0.0))
     # Fig. 8c (n6 m7 b40, alpha varies) and 8d (n6 m7 a45, beta varies), the paper's criterion
     out.append((f"{PAPER} Fig. 8c", "alpha where theta_min reaches 60",
-                31.3, threshold(lambda a: starts_fully_folded(N, 7, a, 40), 30.0, 33.0), 0.05))  # fmt: skip
+                31.3, threshold(lambda a: starts_fully_folded(N, 7, a, 40), 30.0, 33.0), 0.05))
     out.append((f"{PAPER} Fig. 8c", "alpha where top-row interference vanishes",
-                37.3, threshold(lambda a: not top_row_interferes(N, 7, a, 40), 36.0, 38.0), 0.05))  # fmt: skip
+                37.3, threshold(lambda a: not top_row_interferes(N, 7, a, 40), 36.0, 38.0), 0.05))
     out.append((f"{PAPER} Fig. 8c", "alpha where theta_min leaves 60",
-                44.5, threshold(lambda a: not starts_fully_folded(N, 7, a, 40), 44.0, 45.0), 0.05))  # fmt: skip
+                44.5, threshold(lambda a: not starts_fully_folded(N, 7, a, 40), 44.0, 45.0), 0.05))
     out.append((f"{PAPER} Fig. 8d", "beta where rigid contraction starts",
-                39.0, threshold(lambda b: assembles(N, 7, 45, b), 38.5, 39.5), 0.5))  # fmt: skip
+                39.0, threshold(lambda b: assembles(N, 7, 45, b), 38.5, 39.5), 0.5))
     out.append((f"{PAPER} Fig. 8d", "beta where theta_min reaches 60",
-                40.2, threshold(lambda b: starts_fully_folded(N, 7, 45, b), 39.5, 41.0), 0.05))  # fmt: skip
+                40.2, threshold(lambda b: starts_fully_folded(N, 7, 45, b), 39.5, 41.0), 0.05))
     out.append((f"{PAPER} Fig. 8d", "beta where top-row interference starts",
-                44.4, threshold(lambda b: top_row_interferes(N, 7, 45, b), 44.0, 45.0), 0.05))  # fmt: skip
+                44.4, threshold(lambda b: top_row_interferes(N, 7, 45, b), 44.0, 45.0), 0.05))
     # twist limits (Feng, Ma and Chen 2020, §3, eqns 38 and 40; Feng 2018, eqns 6-47, 6-49)
     out.append((f"{PAPER} eqn 38", "alpha limit (n6)", 49.1, alpha_limit(N) / D, 0.05))
     for alpha, printed in ((40, 42.01), (45, 45.59), (50, 49.17)):
         out.append((f"{PAPER} eqn 40 / Fig. 15", f"beta_max, alpha = {alpha}", printed,
-                    beta_max(alpha * D, N) / D, 0.005))  # fmt: skip
+                    beta_max(alpha * D, N) / D, 0.005))
     out.append((f"{PAPER} Fig. 8d", "upper beta bound = beta_max(45)", 45.6, beta_max(45 * D, N) / D, 0.05))
     for alpha in (40, 45, 50):
         r, kappa = equal_diameter(alpha)
@@ -124,21 +124,21 @@ def rows_of_table() -> list[tuple[str, str, float | None, float | None, float]]:
     grid = 0.12
     uniform = _uniform(N, 3, 45, 45)
     out += [(f"{THESIS} eqn 6-22", "uniform radius, lower", 65.88, uniform[0], grid),
-            (f"{THESIS} eqn 6-22", "uniform radius, upper", 144.0, uniform[1], grid)]  # fmt: skip
+            (f"{THESIS} eqn 6-22", "uniform radius, upper", 144.0, uniform[1], grid)]
     out.append((f"{THESIS} §6.2.2, m3 (known to differ)", "theta_max", 147.96, theta_range(N, 3, 45, 45)[1], grid))
     out.append((f"{THESIS} §6.2.2, m7", "theta_max", 144.24, theta_range(N, 7, 45, 45)[1], grid))
     window = _interference(N, 7, 45, 45)
     out += [(f"{THESIS} §6.2.2, m7", "interference from", 90.72, window[0], grid),
-            (f"{THESIS} §6.2.2, m7", "interference to", 128.52, window[1], grid)]  # fmt: skip
+            (f"{THESIS} §6.2.2, m7", "interference to", 128.52, window[1], grid)]
     rigid = _interference(N, 7, 40, 50)
     out += [(f"{THESIS} §6.2.2, m7 a40 b50", "rigid from", 142.97, rigid[0], grid),
-            (f"{THESIS} §6.2.2, m7 a40 b50", "rigid to", 146.54, theta_range(N, 7, 40, 50)[1], grid)]  # fmt: skip
+            (f"{THESIS} §6.2.2, m7 a40 b50", "rigid to", 146.54, theta_range(N, 7, 40, 50)[1], grid)]
     even = theta_range(N, 8, 45, 45)
     window = _interference(N, 8, 45, 45)
     out += [(f"{THESIS} §6.2.3, m8", "theta_min", 59.22, even[0], grid),
             (f"{THESIS} §6.2.3, m8", "theta_max", 144.09, even[1], grid),
             (f"{THESIS} §6.2.3, m8", "interference from", 81.0, window[0], 0.5),
-            (f"{THESIS} §6.2.3, m8", "interference to", 140.94, window[1], grid)]  # fmt: skip
+            (f"{THESIS} §6.2.3, m8", "interference to", 140.94, window[1], grid)]
     return out
 
 

@@ -185,7 +185,7 @@ def measure(n: int, m: int, option: Option) -> dict:
         "off": full.steps / full.cpu, "error": error, "window_off": off.steps / off.cpu,
         "window_on": on.steps / on.cpu, "contacts": on.contacts,
         "counts": bool(error <= ACCURACY and full.steps / full.cpu >= TARGET),
-    }  # fmt: skip
+    }
 
 
 def main() -> None:
@@ -193,12 +193,12 @@ def main() -> None:
     parser.add_argument("--sizes", default=",".join(f"{n}x{m}" for n, m in SIZES), help="tubes n x m, comma-separated")
     parser.add_argument("--options", default="", help=f"option names (default: all but {', '.join(SLOW)} on the "
                         f"largest tube, {BASELINE} and {FEWEST_ROWS} on every tube); any of "
-                        f"{', '.join(OPTIONS)}")  # fmt: skip
+                        f"{', '.join(OPTIONS)}")
     args = parser.parse_args()
     sizes = [tuple(int(v) for v in s.split("x")) for s in args.sizes.split(",")]
     largest = max(sizes, key=lambda s: s[0] * s[1])
     header = (f"{'tube':>6s} {'panels':>6s} {'nv':>4s} {'rows':>5s} {'option':20s} {'steps':>6s} {'off /s':>7s} "
-              f"{'error rad':>9s} {'win off':>7s} {'win on':>7s} {'ncon':>4s}  counts")  # fmt: skip
+              f"{'error rad':>9s} {'win off':>7s} {'win on':>7s} {'ncon':>4s}  counts")
     print(header, flush=True)
     for n, m in sizes:
         every = [name for name in OPTIONS if name not in SLOW]
@@ -207,7 +207,7 @@ def main() -> None:
             r = measure(n, m, OPTIONS[name])
             print(f"{n:>3d}x{m:<2d} {r['panels']:6d} {r['nv']:4d} {r['rows']:5d} {name:20s} {r['steps']:6d} "
                   f"{r['off']:7.0f} {r['error']:9.1e} {r['window_off']:7.0f} {r['window_on']:7.0f} "
-                  f"{r['contacts']:4d}  {'yes' if r['counts'] else 'no'}", flush=True)  # fmt: skip
+                  f"{r['contacts']:4d}  {'yes' if r['counts'] else 'no'}", flush=True)
 
 
 if __name__ == "__main__":

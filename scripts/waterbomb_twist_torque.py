@@ -140,7 +140,7 @@ def ring_turn(W0: NDArray, W: NDArray, top: NDArray[np.int64], bottom: NDArray[n
 def run(
     scene: Scene, theta: float | None = None, torque: float = TORQUE, damping: float = DAMPING,
     duration: float = DURATION,
-) -> TorqueRun:  # fmt: skip
+) -> TorqueRun:
     """
     The torque experiment on the free tube `scene` posed on the contraction at theta = eta01 (rad; default its lower
     end, 2 pi / n), torque (N m, counter-clockwise about the axis on the top row, the opposite on the bottom row),
@@ -185,7 +185,7 @@ def run(
     return TorqueRun(
         names=kin.crease_names, q0=q[0], q=q[1], ring_twist=ring_turn(W0, vertices.world(data), top, bottom),
         closure_gap=float(np.max(np.linalg.norm(sites[:, 0] - sites[:, 1], axis=-1))), cpu_time_s=cpu,
-    )  # fmt: skip
+    )
 
 
 def row_of(name: str) -> int:
@@ -203,7 +203,7 @@ def measure(run: TorqueRun, n: int = 6, m: int = 3) -> dict[str, float]:
     r0 = (m - 1) // 2
     a = run.angle
     out = {f"move_row{r}": float(np.max([abs(wrap(q - p)) for q, p, name in zip(run.q, run.q0, run.names, strict=True)
-                                          if row_of(name) == r])) for r in range(m)}  # fmt: skip
+                                          if row_of(name) == r])) for r in range(m)}
     out["phi_B04"] = max(abs(wrap(a(f"V{r0}_{k}") + np.pi)) for k in range(n))
     pairs = [(f"A{r}_{k}_2", f"A{r}_{k}_6") for r in range(m) for k in range(n) if r != r0]
     pairs += [(f"A{r}_{k}_3", f"A{r}_{k}_5") for r in range(m) for k in range(n) if r != r0]
@@ -236,15 +236,15 @@ def report(label: str, run: TorqueRun, twist: WaterbombTwist | None = None) -> N
     got = measure(run)
     moves = " ".join(f"{got[f'move_row{r}']:.3e}" for r in range(3))
     print(f"{label}: ring twist {np.rad2deg(run.ring_twist):+.4e} deg, crease motion per row (bottom..top) {moves}, "
-          f"closure gap {run.closure_gap:.2e} m, CPU {run.cpu_time_s:.2f} s")  # fmt: skip
+          f"closure gap {run.closure_gap:.2e} m, CPU {run.cpu_time_s:.2f} s")
     print(f"    phi_B0,4 {got['phi_B04']:.2e}, plane symmetry {got['plane_sym']:.2e}, middle-row line symmetry "
-          f"{got['line_sym']:.2e}, units alike {got['units']:.2e}, x {got['x']:.6f}")  # fmt: skip
+          f"{got['line_sym']:.2e}, units alike {got['units']:.2e}, x {got['x']:.6f}")
     if twist is not None:
         c = compare_twist(run, twist)
         rows = " ".join(f"{c[f'error_row{r}']:.2e}" for r in range(3))
         eta02 = np.rad2deg(np.pi - run.angle(twist.input_crease))
         print(f"    vs {c['branch']} (row {twist.row}): dx {c['dx']:+.4e}, max error {c['error']:.3e} (rows {rows}), "
-              f"ring twist model {np.rad2deg(c['ring_model']):+.4f} deg, eta02 {eta02:.3f} deg")  # fmt: skip
+              f"ring twist model {np.rad2deg(c['ring_model']):+.4f} deg, eta02 {eta02:.3f} deg")
 
 
 def main() -> None:

@@ -89,7 +89,7 @@ class LoopSystem:
             (np.array(ms), np.array([self.loops[m].joints for m in ms]),
              np.array([self.loops[m].signs for m in ms], dtype=float), np.stack([self.loops[m].links for m in ms]))
             for ms in groups.values()
-        )  # fmt: skip
+        )
 
     @property
     def n_residuals(self) -> int:
@@ -187,7 +187,7 @@ class LoopSystem:
             # axes x d written out (as np.cross computes it, the same values in a third of the time)
             move = np.stack([axes[..., 1] * d[..., 2] - axes[..., 2] * d[..., 1],
                              axes[..., 2] * d[..., 0] - axes[..., 0] * d[..., 2],
-                             axes[..., 0] * d[..., 1] - axes[..., 1] * d[..., 0]], axis=1)  # fmt: skip
+                             axes[..., 0] * d[..., 1] - axes[..., 1] * d[..., 0]], axis=1)
             rows = 6 * ms[:, None, None] + np.arange(6)[None, :, None]
             rows_out.append(np.broadcast_to(rows, (g, 6, n)).ravel())
             cols_out.append(np.broadcast_to(joints[:, None, :], (g, 6, n)).ravel())
@@ -244,7 +244,7 @@ class LoopSystem:
         u, r = levenberg_marquardt(
             lambda u: w * self.residual(q_of(u)), lambda u: _scale_rows(jacobian(q_of(u))[:, free], w), q[free], tol,
             max_iter, damping=damping,
-        )  # fmt: skip
+        )
         q = q_of(u)
         worst = float(np.max(np.abs(r), initial=0.0))
         if worst < 100 * tol:

@@ -78,7 +78,7 @@ class CreasePattern:
             for a, b in zip(face, face[1:] + face[:1], strict=True):
                 if (a, b) in out:
                     raise ParameterError(f"faces {self.face_names[out[a, b]]!r} and {self.face_names[f]!r} "
-                                         f"both run along edge {a}->{b}: overlapping or clockwise faces")  # fmt: skip
+                                         f"both run along edge {a}->{b}: overlapping or clockwise faces")
                 out[a, b] = f
         return out
 
@@ -105,7 +105,7 @@ class CreasePattern:
         for a, b in self._edge_face:
             into.setdefault(b, set()).add(a)
         return tuple(v for v in range(len(self.vertices))
-                     if v in self._out_edges and set(self._out_edges[v]) == into.get(v))  # fmt: skip
+                     if v in self._out_edges and set(self._out_edges[v]) == into.get(v))
 
     def crease(self, name: str) -> Crease:
         """The crease called `name`; ParameterError listing the names otherwise."""

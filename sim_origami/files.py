@@ -235,7 +235,7 @@ def _read_manifest(path: Path, option: str) -> dict[str, str]:
 
     def damaged(problem: str) -> ParameterError:
         return ParameterError(f"{option} {path}: {MANIFEST} {problem}, so nothing was removed; delete it (and the "
-                              "files of the run it lists) or pick another folder")  # fmt: skip
+                              "files of the run it lists) or pick another folder")
 
     if manifest.is_symlink() or not manifest.is_file():
         raise damaged("is not a file")
@@ -250,7 +250,7 @@ def _read_manifest(path: Path, option: str) -> dict[str, str]:
         raise damaged(f"lists its files as {str(files)[:40]!r}, not as a list of names")
     if "version" not in doc and hashes is None:
         raise damaged("was written by an earlier sim_origami without file hashes (a changed file cannot be told "
-                      "from its own)")  # fmt: skip
+                      "from its own)")
     if doc.get("version") != MANIFEST_VERSION or not isinstance(hashes, dict) or sorted(files) != sorted(hashes):
         raise damaged(f"is not a version {MANIFEST_VERSION} manifest listing each file with its sha256")
     for name in files:
@@ -269,7 +269,7 @@ def _relative_name(name: str) -> bool:
         return False
     parts = PurePosixPath(name).parts
     return (PurePosixPath(name).as_posix() == name and not name.startswith("/")
-            and not {"..", "."} & set(parts) and parts[0] not in (LOCK, MANIFEST, STAGING))  # fmt: skip
+            and not {"..", "."} & set(parts) and parts[0] not in (LOCK, MANIFEST, STAGING))
 
 
 def _ours(folder: Path, name: str, sha: str) -> bool:
@@ -308,7 +308,7 @@ def _commit(claim: _Claim) -> None:
         clash = _in_the_way(folder, name)
         if clash is not None:
             raise ParameterError(f"{claim.option} {folder}: {clash} is in the way of this run's {name}, so nothing "
-                                 "was replaced; move it and run again")  # fmt: skip
+                                 "was replaced; move it and run again")
     blocked = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
     try:
         for name in staged:
@@ -350,7 +350,7 @@ def _remove_staging(staging: Path) -> None:
 
 def _write_manifest(path: Path, hashes: dict[str, str]) -> None:
     doc = {"tool": "sim_origami", "version": MANIFEST_VERSION, "pid": os.getpid(), "files": sorted(hashes),
-           "sha256": dict(sorted(hashes.items()))}  # fmt: skip
+           "sha256": dict(sorted(hashes.items()))}
     write_text(path / MANIFEST, json.dumps(doc, indent=1) + "\n")
 
 

@@ -119,7 +119,7 @@ FOLDED = 1e-3
 # Metres per FOLD frame_unit; "unit" (no physical meaning) is read as metres.
 UNITS = {
     "unit": 1.0, "km": 1e3, "m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "nm": 1e-9, "in": 0.0254, "pt": 0.0254 / 72,
-}  # fmt: skip
+}
 # FOLD assignment -> crease assignment, seen from +z (UP) or from -z (DOWN: every face clockwise).
 UP = {"M": "M", "V": "V", "U": "U", "F": "F"}
 DOWN = {"M": "V", "V": "M", "U": "U", "F": "F"}
@@ -198,7 +198,7 @@ class FormFit(StateFit):
         return (f"{self.field} are {self.distance:.3g}{unit} ({self.distance / self.size:.3g} of the form's size "
                 f"{self.size:.4g}{unit}) from the nearest rigid folded state, {self.ratio:.3g} x the precision "
                 f"{self.precision:.3g}{unit} of the coordinate moved most, largest at vertex {self.vertex}{at}; "
-                f"{self.compared}")  # fmt: skip
+                f"{self.compared}")
 
 
 @dataclass
@@ -261,10 +261,10 @@ def read_fold(source: str | os.PathLike | Mapping[str, Any]) -> FoldPattern:
             sheet.notes.insert(0, f"the key frame is a folded form ({why.short}); the crease pattern is {where}")
     else:
         pick = crease_frame if crease_frame is not None else next(
-            (k for k, f in enumerate(frames) if "vertices_coords" in f), None)  # fmt: skip
+            (k for k, f in enumerate(frames) if "vertices_coords" in f), None)
         if pick is None:
             raise ParameterError("FOLD field 'vertices_coords' is missing from the key frame and every file_frames "
-                                 "entry; a crease pattern needs vertex coordinates")  # fmt: skip
+                                 "entry; a crease pattern needs vertex coordinates")
         geometry = frames[pick]
         sheet = _read_sheet(geometry, f"frame {pick + 1} vertices_coords", prefer_frame=False)
         why = "frame_classes creasePattern" if pick == crease_frame else "the first frame with vertices_coords"
@@ -277,14 +277,14 @@ def read_fold(source: str | os.PathLike | Mapping[str, Any]) -> FoldPattern:
         sheet = _swap_letters(sheet)
         sheet.notes.append(f"the M/V letters disagree with the measured fold directions at {disagree} of "
                            f"{agree + disagree} creases: the file's faces run for the other side of the paper, "
-                           "so M and V are read swapped")  # fmt: skip
+                           "so M and V are read swapped")
         fold_angles, rows, from_coords = _angles(key, geometry, raw, frames, sheet)
     fit: FormFit | AngleFit | None = _worst(sheet)
     complete = fold_angles is not None and bool(np.all(np.abs(fold_angles) < np.pi - FOLDED))  # NaN: free
     if fit is None and "edges_foldAngle" in key and complete and np.any(fold_angles != 0):
         fold_angles, fit = _nearest_closed(key, sheet, fold_angles, sheet.notes)
     return FoldPattern(sheet.pattern, fold_angles, sheet.edge_of_crease, rows, from_coords, tuple(sheet.notes),
-                       sheet.unit_scale, fit)  # fmt: skip
+                       sheet.unit_scale, fit)
 
 
 def fold_dict(
@@ -315,7 +315,7 @@ def fold_dict(
     rows = np.empty((0, n)) if frames is None else _frame_rows(frames, n)
     key = np.zeros(n) if fold_angles is None else np.asarray(fold_angles, dtype=float)
     states = np.vstack([_fold_radians(key, n, "fold_angles"), *(_fold_radians(r, n, f"frames[{k}]")
-                        for k, r in enumerate(rows))])  # fmt: skip
+                        for k, r in enumerate(rows))])
     if fold_angles is None and not len(rows):
         letters, said = np.array([[c.assignment for c in pattern.creases]]), []
     else:
@@ -344,7 +344,7 @@ def fold_dict(
         doc["file_frames"] = []
         for rho, own in zip(states[1:], letters[1:], strict=True):
             frame = {"frame_inherit": True, "frame_parent": 0, "frame_classes": ["creasePattern"],
-                     "edges_foldAngle": np.rad2deg(rho).tolist() + pad}  # fmt: skip
+                     "edges_foldAngle": np.rad2deg(rho).tolist() + pad}
             if np.any(own != letters[0]):
                 frame["edges_assignment"] = own.tolist() + ["B"] * len(boundary)
             doc["file_frames"].append(frame)
@@ -416,7 +416,7 @@ def _load(source: str | os.PathLike | Mapping[str, Any]) -> Mapping[str, Any]:
         raise ParameterError(f"{source} is not UTF-8 text ({err.reason}); a FOLD file is JSON text") from err
     except RecursionError:  # the reader recurses once per array or object level
         raise ParameterError(f"{source} nests its JSON arrays or objects thousands of levels deep; a FOLD file's "
-                             "fields are at most three levels deep") from None  # fmt: skip
+                             "fields are at most three levels deep") from None
     if not isinstance(doc, dict):
         raise ParameterError(f"{source} holds a JSON {type(doc).__name__}; a FOLD file is a JSON object")
     return doc
@@ -444,7 +444,7 @@ def _integer(text: str) -> "int | _LongInteger":
 def _constant(text: str) -> float:
     """JSON has no NaN or Infinity, though Python's reader takes them: refused (null is FOLD's unknown value)."""
     raise ParameterError(f"the FOLD file holds {text}, which is no JSON number; give finite numbers (null where a fold "
-                         "angle is unknown)")  # fmt: skip
+                         "angle is unknown)")
 
 
 def _shown(value: Any) -> str:
@@ -460,14 +460,14 @@ def _number(value: Any, where: str, allow_null: bool) -> float:
     if value is None and allow_null:
         return np.nan
     if isinstance(value, _LongInteger) or (isinstance(value, int) and not isinstance(value, bool)
-                                           and abs(value) > sys.float_info.max):  # fmt: skip
+                                           and abs(value) > sys.float_info.max):
         raise ParameterError(f"{where} = {_shown(value)}; numbers must lie within a double's range (+-1.8e308)")
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         null = " or null" if allow_null else ""
         raise ParameterError(f"{where} = {_shown(value)} ({_json_type(value)}); it must be a number{null}")
     if not np.isfinite(value):
         raise ParameterError(f"{where} = {value}; numbers must be finite" + ("; null is an unknown value" if allow_null
-                                                                             else ""))  # fmt: skip
+                                                                             else ""))
     return float(value)
 
 
@@ -609,7 +609,7 @@ def _segments_meet(p: tuple, q: tuple, r: tuple, s: tuple) -> bool:
         return a[0] - b[0], a[1] - b[1]
 
     d = (_cross(sub(q, p), sub(r, p)), _cross(sub(q, p), sub(s, p)), _cross(sub(s, r), sub(p, r)),
-         _cross(sub(s, r), sub(q, r)))  # fmt: skip
+         _cross(sub(s, r), sub(q, r)))
     if d[0] * d[1] < 0 and d[2] * d[3] < 0:
         return True
     ends = ((d[0], r, p, q), (d[1], s, p, q), (d[2], p, r, s), (d[3], q, r, s))
@@ -661,7 +661,7 @@ def _sides(face: tuple[int, ...]) -> Iterator[tuple[int, int]]:
 
 
 def _split_cuts_as_borders(edges: list[tuple[int, int]], letters: list[str], faces: list[Face],
-                           notes: list[str]) -> list[str]:  # fmt: skip
+                           notes: list[str]) -> list[str]:
     """
     `letters` with each C edge that borders one face read as B: a cut written already split (its vertices doubled,
     each side an edge of its own, as some writers give a slit) is a border on each side. A note counts them.
@@ -672,7 +672,7 @@ def _split_cuts_as_borders(edges: list[tuple[int, int]], letters: list[str], fac
     if not split:
         return letters
     notes.append(f"{len(split)} cut edge(s) C bordering one face each (a cut written with its vertices already "
-                 "doubled) read as borders")  # fmt: skip
+                 "doubled) read as borders")
     return ["B" if k in split else letter for k, letter in enumerate(letters)]
 
 
@@ -688,7 +688,7 @@ def _check_incidence(edges: list[tuple[int, int]], letters: list[str], faces: li
         n, need = count[key(*e)], 1 if letter == "B" else 2
         if n != need:
             rule = {"B": "a boundary edge borders one face", "C": "a cut runs between two faces",
-                    "J": "a join merges two faces"}.get(letter, "a crease joins two faces")  # fmt: skip
+                    "J": "a join merges two faces"}.get(letter, "a crease joins two faces")
             raise ParameterError(f"edge {k} ({e[0]}-{e[1]}, {letter!r}) borders {n} face(s); {rule}")
 
 
@@ -761,7 +761,7 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
     if short.size:
         a, b = edges[short[0]]
         raise ParameterError(f"edge {short[0]} joins vertices {a} and {b} at one point (length "
-                             f"{lengths[short[0]]:.3g}); edges must have length")  # fmt: skip
+                             f"{lengths[short[0]]:.3g}); edges must have length")
     flat = dim == 2 or bool(np.all(xyz[:, 2] == xyz[0, 2]))
     xy = xyz[:, :2].copy()
     if not flat:
@@ -864,7 +864,7 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
     )
     kept = {key(*side) for face in faces for side in _sides(face)}
     border = tuple((*new_edges[j], float(heights[fold_index[j]])) for j, letter in enumerate(new_letters)
-                   if letter == "B" and np.isfinite(heights[fold_index[j]]) and key(*new_edges[j]) in kept)  # fmt: skip
+                   if letter == "B" and np.isfinite(heights[fold_index[j]]) and key(*new_edges[j]) in kept)
     pattern = CreasePattern(xy, tuple(faces), creases, tuple(f"f{k}" for k in range(len(faces))), border)
     _check_developable(pattern)
     left = {side: f for f, face in enumerate(faces) for side in _sides(face)}
@@ -876,7 +876,7 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
             _check_developable(replace(pattern, vertices=xy * scale))
         except ParameterError as why:  # closed less well than the developable state: that one stands
             notes.append(f"{label}: the state on a rigid motion found does not unfold ({why}); its nearest "
-                         "developable state is read")  # fmt: skip
+                         "developable state is read")
         else:
             fit, folded, pattern = moving, moving.xyz, replace(pattern, vertices=xy * scale)
     if fit is not None:
@@ -884,13 +884,13 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
     return _Sheet(
         pattern, tuple(fold_index[j] for j in crease_edges), source, hinges, signs, sign, n,
         frame["edges_vertices"], scale, frame.get("frame_unit", "unit"), folded, notes, fit,
-    )  # fmt: skip
+    )
 
 
 def _nearest_rigid(
     frame: Mapping[str, Any], label: str, xyz: NDArray[np.float64], faces: list[Face], source: NDArray[np.int_],
     notes: list[str],
-) -> tuple[NDArray[np.float64], fold_mesh.Fit]:  # fmt: skip
+) -> tuple[NDArray[np.float64], fold_mesh.Fit]:
     """
     A folded form's nearest developable state (`fold_mesh.nearest_developable`) in units of its coordinates'
     precision (`_coords_precision`), per pattern vertex (file units), with the fit. ParameterError when none is
@@ -904,11 +904,11 @@ def _nearest_rigid(
             f"folded form not developable: {label} has no developable folded state near it (the nearest found still "
             f"misses its {fit.conditions} by {fit.residual:.3g}, {fit.residual / extent:.3g} of its size): the faces "
             "do not fit one flat sheet"
-        )  # fmt: skip
+        )
     if fit.distance > 0:
         notes.append(f"{label}: the nearest developable folded state (planar faces, 360 deg round every interior "
                      f"vertex) is {fit.distance:.3g} file units away, {fit.ratio:.3g} x the coordinates' "
-                     "precision")  # fmt: skip
+                     "precision")
     return fit.xyz, fit
 
 
@@ -921,13 +921,13 @@ def _worst(sheet: _Sheet) -> FormFit | None:
         return fits[0] if fits else None
     worst = max(fits, key=lambda f: f.ratio)
     return replace(worst, compared=f"{worst.compared}; the farthest of {len(fits)} folded states read",
-                   values=sum(f.values for f in fits))  # fmt: skip
+                   values=sum(f.values for f in fits))
 
 
 def _on_a_motion(
     fit: fold_mesh.Fit, pattern: CreasePattern, scale: float, hinges: list[tuple[int, int, int, int]],
     signs: NDArray[np.float64], label: str, notes: list[str],
-) -> fold_mesh.Fit | None:  # fmt: skip
+) -> fold_mesh.Fit | None:
     """
     For a folded form whose pattern has no freedom unless its geometry is special (creases <= 3 x interior vertices +
     F creases: a Miura or square-twist sheet, which rounding makes rigid), the nearest form that lies on a rigid
@@ -963,7 +963,7 @@ def _on_a_motion(
 def _further_states(
     fit: fold_mesh.Fit, pattern: CreasePattern, scale: float, hinges: list[tuple[int, int, int, int]],
     loops: LoopSystem, rho: NDArray[np.float64], k: int, label: str, notes: list[str],
-) -> fold_mesh.Fit | None:  # fmt: skip
+) -> fold_mesh.Fit | None:
     """`_on_a_motion`'s fit with MOTION_STATES further states of the same faces (crease k the most folded of rho)."""
     fixed = np.zeros(len(rho), dtype=bool)
     fixed[k] = True
@@ -979,25 +979,25 @@ def _further_states(
     a, b, left, right = hinges[k]
     marker = tuple(max((v for v in faces[f] if v not in (a, b)),
                        key=lambda v: np.linalg.norm(np.cross(fit.xyz[b] - fit.xyz[a], fit.xyz[v] - fit.xyz[a])))
-                   for f in (left, right))  # fmt: skip
+                   for f in (left, right))
     conditions = fold_mesh.MotionConditions(fit.xyz, faces, states, root, marker)
     # the further states are free to move: 1e6 x the form's precision (as free as the least squares can tell)
     cheap = np.full(fit.given.shape, FREE_STATES * float(np.max(fit.precision)))
     n = len(fit.given)
     found = fold_mesh.nearest_rigid(np.vstack([fit.given, *states]), np.vstack([fit.precision, *[cheap] * len(states)]),
-                                    conditions, bounded=n)  # fmt: skip
+                                    conditions, bounded=n)
     moving = fold_mesh.Fit(fit.given, found.xyz[:n], fit.precision, found.residual, conditions.describe())
     if not found.residual <= fold_mesh.DEVELOP_RTOL * fold_mesh.size(fit.given):
         notes.append(f"{label}: no state on a rigid motion of its pattern found near it (its conditions missed by "
-                     f"{found.residual:.3g}); its nearest developable state is read")  # fmt: skip
+                     f"{found.residual:.3g}); its nearest developable state is read")
         return None
     if moving.ratio > 1.0 >= fit.ratio:
         notes.append(f"{label}: the nearest state on a rigid motion of its pattern is {moving.ratio:.3g} x the "
-                     "coordinates' precision away; its nearest developable state, within it, is read")  # fmt: skip
+                     "coordinates' precision away; its nearest developable state, within it, is read")
         return None
     notes.append(f"{label}: its pattern moves only with special geometry (as many closure conditions as creases), so "
                  f"the nearest state on a rigid motion of it is read: {moving.distance:.3g} file units away, "
-                 f"{moving.ratio:.3g} x the coordinates' precision")  # fmt: skip
+                 f"{moving.ratio:.3g} x the coordinates' precision")
     return moving
 
 
@@ -1023,7 +1023,7 @@ def _flat_foldable(fit: fold_mesh.Fit, pattern: CreasePattern, label: str, notes
     notes.append(f"{label}: its pattern moves only with special geometry, and its vertices are flat-foldable within "
                  f"the precision: the nearest developable, flat-foldable state is read (such a quadrilateral mesh "
                  f"with one folded state folds rigidly): {flat.distance:.3g} file units away, {flat.ratio:.3g} x the "
-                 "coordinates' precision")  # fmt: skip
+                 "coordinates' precision")
     return flat
 
 
@@ -1038,14 +1038,14 @@ def _form_fit(fit: fold_mesh.Fit, pattern: CreasePattern, source: NDArray[np.int
         Adjustment(f"{label}[{source[i]}][{j}]", float(fit.given[i, j]), float(fit.xyz[i, j]),
                    float(fit.precision[i, j]), "" if unit == "unit" else unit)
         for i, j in shown
-    )  # fmt: skip
+    )
     worst = np.unravel_index(int(np.argmax(against)), against.shape)
     moved = int(np.count_nonzero(fit.moved))
     compared = (f"{fit.given.size} coordinates of {len(fit.given)} vertices held to {fit.conditions}; {moved} moved, "
-                f"rms {np.sqrt(np.mean(fit.moved**2)):.3g}")  # fmt: skip
+                f"rms {np.sqrt(np.mean(fit.moved**2)):.3g}")
     return FormFit(ratio=fit.ratio, distance=fit.distance, precision=float(fit.precision[worst]), compared=compared,
                    adjustments=adjustments, values=fit.given.size, field=label, unit="" if unit == "unit" else unit,
-                   size=fold_mesh.size(fit.given), vertex=int(source[v]), creases=creases)  # fmt: skip
+                   size=fold_mesh.size(fit.given), vertex=int(source[v]), creases=creases)
 
 
 def _coords_precision(frame: Mapping[str, Any], xyz: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -1061,7 +1061,7 @@ def _coords_precision(frame: Mapping[str, Any], xyz: NDArray[np.float64]) -> NDA
         stated = _number(frame[PRECISION_KEY], PRECISION_KEY, False)
         if not stated > 0:
             raise ParameterError(f"{PRECISION_KEY} = {_shown(frame[PRECISION_KEY])}; it must be a positive number "
-                                 "(frame_unit)")  # fmt: skip
+                                 "(frame_unit)")
         return np.full(xyz.shape, max(stated, floor))
     rows = [[*c, 0][:3] for c in frame["vertices_coords"]]
     return _printed_precision([x for row in rows for x in row], xyz.ravel(), floor).reshape(xyz.shape)
@@ -1106,24 +1106,24 @@ def _nearest_closed(
                    float(numbers[k]) + float(np.rad2deg(sheet.sign * (closed[k] - rho[k]))),
                    float(np.rad2deg(precision[k])), "deg")
         for k in shown
-    )  # fmt: skip
+    )
     worst = int(np.argmax(moved))
     compared = f"{len(rho)} fold angles held to {loops.n_residuals} closure conditions; {np.count_nonzero(moved)} moved"
     fit = AngleFit(ratio=float(np.max(moved, initial=0.0)),
                    distance=float(np.rad2deg(np.max(np.abs(closed - rho), initial=0.0))),
                    precision=float(np.rad2deg(precision[worst])), compared=compared, adjustments=adjustments,
-                   values=len(rho), crease=names[worst])  # fmt: skip
+                   values=len(rho), crease=names[worst])
     if not fit.within:
         # printed with decimals, the angles state their precision, and a state beyond it is not a rigid state as
         # typed: kept (traced towards) and judged by that precision (`PatternPath.state_check`). Angles without
         # decimals (integers, parsed floats) state none: judged by the trace's distance from them (TARGET_TOL)
         printed = bool(np.any(precision > EXACT_ANGLE * (1 + 1e-9)))
         notes.append(f"edges_foldAngle: {fit.distance:.3g} deg from the nearest state closing every loop, "
-                     f"{fit.ratio:.3g} x the angles' precision: a direction to trace towards")  # fmt: skip
+                     f"{fit.ratio:.3g} x the angles' precision: a direction to trace towards")
         return rho, replace(fit, adjustments=()) if printed else None
     if fit.distance > 0:
         notes.append(f"edges_foldAngle: the nearest state closing every loop is {fit.distance:.3g} deg away, "
-                     f"{fit.ratio:.3g} x the angles' precision; it is what is read")  # fmt: skip
+                     f"{fit.ratio:.3g} x the angles' precision; it is what is read")
     return closed, fit
 
 
@@ -1154,7 +1154,7 @@ class AngleFit(StateFit):
         """The distance in words."""
         return (f"edges_foldAngle are {self.distance:.3g} deg from the nearest state closing every loop, "
                 f"{self.ratio:.3g} x the precision {self.precision:.3g} deg of the angle moved most, largest at crease "
-                f"{self.crease}; {self.compared}")  # fmt: skip
+                f"{self.crease}; {self.compared}")
 
 
 def _drop_loose(faces: list[Face], notes: list[str]) -> list[Face]:
@@ -1168,7 +1168,7 @@ def _drop_loose(faces: list[Face], notes: list[str]) -> list[Face]:
     if not loose or len(loose) == len(faces):
         return faces
     notes.append(f"{len(loose)} face(s) cut free all round (face(s) {', '.join(map(str, loose[:5]))} of the built "
-                 "or given faces: a hole's cut-out) left out: they share no crease with the rest")  # fmt: skip
+                 "or given faces: a hole's cut-out) left out: they share no crease with the rest")
     dropped = set(loose)
     return [face for f, face in enumerate(faces) if f not in dropped]
 
@@ -1195,7 +1195,7 @@ def _measured(sheet: _Sheet, frame: Mapping[str, Any], field: str) -> NDArray[np
     fit = fold_mesh.nearest_rigid(given, _coords_precision(frame, xyz)[sheet.source], conditions)
     if not fit.residual <= fold_mesh.DEVELOP_RTOL * fold_mesh.size(given):
         sheet.notes.append(f"{field}: no rigid state of the crease pattern found near it (its faces' lengths missed by "
-                           f"{fit.residual:.3g}); its fold angles are measured as given")  # fmt: skip
+                           f"{fit.residual:.3g}); its fold angles are measured as given")
         return _dihedral(sheet, given, field)
     sheet.frame_fits.append((field, unit, fit))
     return _dihedral(sheet, fit.xyz, field)
@@ -1242,7 +1242,7 @@ def _key_angles(key: Mapping[str, Any], geometry: Mapping[str, Any], sheet: _She
     if "edges_foldAngle" in key:
         if key.get("edges_vertices") != sheet.edges_vertices:
             raise ParameterError("the key frame's edges_vertices differ from the crease pattern's; its "
-                                 "edges_foldAngle cannot be read on the crease pattern")  # fmt: skip
+                                 "edges_foldAngle cannot be read on the crease pattern")
         return sheet.sign * _degrees(key["edges_foldAngle"], sheet.edge_of_crease, n_edges, "edges_foldAngle")
     if sheet.folded_xyz is not None:
         sheet.notes.append("fold angles measured as the dihedral angles of the folded form")
@@ -1264,7 +1264,7 @@ def _frame_angles(
     for k, (own, frame) in enumerate(zip(raw, frames, strict=True), start=1):
         if frame.get("edges_vertices") != sheet.edges_vertices:
             raise ParameterError(f"frame {k} changes edges_vertices; frames are read as fold angles of the crease "
-                                 "pattern")  # fmt: skip
+                                 "pattern")
         angles_first = "edges_foldAngle" in own or ("vertices_coords" not in own and "edges_foldAngle" in frame)
         if angles_first:
             field = f"frame {k} edges_foldAngle"
@@ -1278,10 +1278,10 @@ def _frame_angles(
             measured += 1
         else:
             raise ParameterError(f"frame {k} has no edges_foldAngle or vertices_coords (own or inherited); "
-                                 "a frame needs one of them to give fold angles")  # fmt: skip
+                                 "a frame needs one of them to give fold angles")
     if measured:
         sheet.notes.append(f"{measured} frame(s) without edges_foldAngle: fold angles measured as the dihedral "
-                           "angles of their vertices_coords")  # fmt: skip
+                           "angles of their vertices_coords")
     return np.stack(rows).reshape(len(rows), len(sheet.pattern.creases)), measured > 0
 
 

@@ -270,13 +270,13 @@ def merge_joins(faces: list[Face], joins: list[tuple[int, tuple[int, int]]]) -> 
             raise ParameterError(f"join edge {k} ({a}-{b}) does not have a face on each side; a join merges two faces")
         if f == g:
             raise ParameterError(f"join edge {k} ({a}-{b}) has the same merged face on both sides; joins must not "
-                                 "close round a loop or end inside a face")  # fmt: skip
+                                 "close round a loop or end inside a face")
         lf, lg = alive[f], alive[g]
         i, j = lf.index(b), lg.index(a)
         merged = lf[i:] + lf[:i] + (lg[j:] + lg[:j])[1:-1]  # b ... a, then a's successors in g up to before b
         if len(set(merged)) != len(merged):
             raise ParameterError(f"joining along edge {k} ({a}-{b}) makes a face that passes a vertex twice; "
-                                 "joins must leave simple polygons")  # fmt: skip
+                                 "joins must leave simple polygons")
         del alive[g]
         alive[f] = merged
         for side in sides(merged):
@@ -578,7 +578,7 @@ class RigidConditions:
 
 
 def _kawasaki_rows(v: NDArray[np.int_], nxt: NDArray[np.int_], prv: NDArray[np.int_], row: NDArray[np.int_],
-                   n_rows: int) -> tuple[NDArray[np.int_], NDArray[np.int_]]:  # fmt: skip
+                   n_rows: int) -> tuple[NDArray[np.int_], NDArray[np.int_]]:
     """For each vertex row with four corners (entries of `v`, `nxt`, `prv` by `row`), a Kawasaki row: (row, corner)
     entries of its first corner and the one opposite it (sharing no edge with it), rows numbered from 0."""
     order = np.argsort(row, kind="stable")
@@ -589,7 +589,7 @@ def _kawasaki_rows(v: NDArray[np.int_], nxt: NDArray[np.int_], prv: NDArray[np.i
     first = quad[:, 0]
     disjoint = np.column_stack([(nxt[quad[:, j]] != nxt[first]) & (nxt[quad[:, j]] != prv[first])
                                 & (prv[quad[:, j]] != nxt[first]) & (prv[quad[:, j]] != prv[first])
-                                for j in (1, 2, 3)])  # fmt: skip
+                                for j in (1, 2, 3)])
     ok = disjoint.sum(axis=1) == 1
     opposite = quad[ok][np.arange(int(ok.sum())), 1 + np.argmax(disjoint[ok], axis=1)]
     rows = np.repeat(np.arange(int(ok.sum())), 2)
@@ -599,7 +599,7 @@ def _kawasaki_rows(v: NDArray[np.int_], nxt: NDArray[np.int_], prv: NDArray[np.i
 def nearest_rigid(
     xyz: NDArray[np.float64], precision: NDArray[np.float64], conditions: Conditions, bounded: int | None = None,
     tol: float | None = None,
-) -> Fit:  # fmt: skip
+) -> Fit:
     """
     The rigid folded form nearest `xyz` (n, 3), or any values (n,), in units of each one's `precision` (same shape
     and unit): least-norm Gauss-Newton in z = (x - xyz) / precision (`precision.nearest_exact`, with the conditions'
@@ -681,7 +681,7 @@ def _least_largest(J: sp.csr_matrix, z: NDArray[np.float64], limit: NDArray[np.b
 
 
 def _minimax(A: sp.csr_matrix, c: NDArray[np.float64], a_eq: sp.csr_matrix | None,
-             b_eq: NDArray[np.float64] | None) -> NDArray[np.float64] | None:  # fmt: skip
+             b_eq: NDArray[np.float64] | None) -> NDArray[np.float64] | None:
     """argmin over y of max |c + A y| (with a_eq y = b_eq, if given) by HiGHS; None when it finds none."""
     k = A.shape[1]
     minus = -np.ones((A.shape[0], 1))
@@ -690,7 +690,7 @@ def _minimax(A: sp.csr_matrix, c: NDArray[np.float64], a_eq: sp.csr_matrix | Non
     cost = np.zeros(k + 1)
     cost[-1] = 1.0
     found = linprog(cost, A_ub=a_ub, b_ub=np.concatenate([-c, c]), A_eq=eq, b_eq=b_eq,
-                    bounds=[(None, None)] * k + [(0, None)], method="highs")  # fmt: skip
+                    bounds=[(None, None)] * k + [(0, None)], method="highs")
     return found.x[:k] if found.success else None
 
 
@@ -746,7 +746,7 @@ class MotionConditions:
     def describe(self) -> str:
         """What is imposed, counted."""
         return (f"{self.base.describe()}, and {self.k} further states of the same faces along one rigid motion "
-                f"({len(self.bars)} face lengths and {self.shape.size} face planarities each)")  # fmt: skip
+                f"({len(self.bars)} face lengths and {self.shape.size} face planarities each)")
 
     def residual(self, x: NDArray[np.float64]) -> NDArray[np.float64]:
         """The residuals (m,) at stacked coordinates x ((K + 1) n, 3), file units."""
@@ -756,7 +756,7 @@ class MotionConditions:
             xk = x[(k + 1) * self.n : (k + 2) * self.n]
             lengths = np.linalg.norm(xk[self.bars[:, 0]] - xk[self.bars[:, 1]], axis=1)
             out += [self.shape.residual(xk), lengths - length0, (xk[self.gauge] - x0[self.gauge]).ravel(),
-                    [np.linalg.norm(xk[self.marker[0]] - xk[self.marker[1]]) - self.reach[k]]]  # fmt: skip
+                    [np.linalg.norm(xk[self.marker[0]] - xk[self.marker[1]]) - self.reach[k]]]
         return np.concatenate(out)
 
     def jacobian(self, x: NDArray[np.float64]) -> sp.csr_matrix:
@@ -764,7 +764,7 @@ class MotionConditions:
         n3, x0 = 3 * self.n, x[: self.n]
         m = 3 * len(self.gauge)
         pick = sp.csr_matrix((np.ones(m), (np.arange(m), (3 * self.gauge[:, None] + np.arange(3)).ravel())),
-                             shape=(m, n3))  # fmt: skip
+                             shape=(m, n3))
         blocks = [[self.base.jacobian(x0)] + [None] * self.k]
         for k in range(self.k):
             xk = x[(k + 1) * self.n : (k + 2) * self.n]
@@ -789,7 +789,7 @@ def _bar_jacobian(x: NDArray[np.float64], bars: NDArray[np.int_], n: int) -> sp.
 def place(
     xy: NDArray[np.float64], faces: list[Face], hinges: list[tuple[int, int, int, int]], rho: NDArray[np.float64],
     root: int,
-) -> NDArray[np.float64]:  # fmt: skip
+) -> NDArray[np.float64]:
     """
     The sheet `xy` (n, 2) folded by fold angles `rho` (per hinge (start, end, left face, right face), rad, as
     `dihedral_angles` measures them), its faces placed breadth-first from `root` (left in the plane): (n, 3), each

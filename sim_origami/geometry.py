@@ -132,7 +132,7 @@ def left_jacobian_inverse(phi: ArrayLike) -> NDArray[np.float64]:
     t = np.linalg.norm(phi, axis=-1)
     zero = np.zeros_like(t)
     P = np.stack([np.stack([zero, -phi[..., 2], phi[..., 1]], -1), np.stack([phi[..., 2], zero, -phi[..., 0]], -1),
-                  np.stack([-phi[..., 1], phi[..., 0], zero], -1)], -2)  # fmt: skip
+                  np.stack([-phi[..., 1], phi[..., 0], zero], -1)], -2)
     small = t < 1e-4
     safe = np.where(small, 1.0, t)
     exact = 1.0 / safe**2 - (1.0 + np.cos(safe)) / (2.0 * safe * np.sin(safe))
@@ -260,7 +260,7 @@ def minimal_rotation(u: ArrayLike, v: ArrayLike) -> NDArray[np.float64]:
     c = np.einsum("...i,...i", np.broadcast_to(u, v.shape), v)
     zero = np.zeros_like(c)
     K = np.stack([np.stack([zero, -w[..., 2], w[..., 1]], -1), np.stack([w[..., 2], zero, -w[..., 0]], -1),
-                  np.stack([-w[..., 1], w[..., 0], zero], -1)], -2)  # fmt: skip
+                  np.stack([-w[..., 1], w[..., 0], zero], -1)], -2)
     return np.eye(3) + K + K @ K / (1.0 + c)[..., None, None]
 
 

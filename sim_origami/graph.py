@@ -31,7 +31,7 @@ class DisjointSets:
 
 
 def spanning_edges(nodes: Iterable[Hashable], edges: Sequence[tuple[Hashable, Hashable]],
-                   prefer: Iterable[int] = (), root: Hashable | None = None) -> list[int]:  # fmt: skip
+                   prefer: Iterable[int] = (), root: Hashable | None = None) -> list[int]:
     """
     Indices of the edges of a spanning forest, Kruskal in edge order with the edges in `prefer` taken first (so
     they are never left out unless they close a cycle among themselves). Sorted by index.

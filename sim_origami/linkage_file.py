@@ -84,7 +84,7 @@ DEPTH_LIMIT = 32
 DOTTED = re.compile(rf"(?<![\w-])(?:[\w-]++\s*+\.\s*+){{{DEPTH_LIMIT},}}")
 
 TOP_FIELDS = {VERSION_KEY, "form", "name", "units", "precision", "joints", "bodies", "ground", "input", "shapes",
-              "contact", "anchor", "sweep_time_scale", "notes"}  # fmt: skip
+              "contact", "anchor", "sweep_time_scale", "notes"}
 DH_FIELDS = {"name", "type", "a", "alpha", "offset", "theta0"}
 AXIS_FIELDS = {"name", "type", "bodies", "point", "direction", "theta0"}
 # The fields that fix a linkage's geometry, whose values the nearest exact linkage may move (docs/linkage_files.md).
@@ -209,7 +209,7 @@ def read_linkage(source: str | Path, values: Mapping[str, float] | None = None) 
         if start_input is not None:
             raise ParameterError("input.start: the start configuration (theta0) already fixes the start input")
     contact = tuple(_pair(p, f"contact[{k}]", {b.name for b in mechanism.bodies if not b.spacer})
-                    for k, p in enumerate(_list(doc.get("contact", []), "contact")))  # fmt: skip
+                    for k, p in enumerate(_list(doc.get("contact", []), "contact")))
     mechanism = _with_solids(mechanism, meshes, {b for pair in contact for b in pair})
     scale = read.positive(doc.get("sweep_time_scale", SWEEP_TIME_SCALE), "sweep_time_scale", length=False)
     if scale > SWEEP_SCALE_LIMIT:
@@ -220,7 +220,7 @@ def read_linkage(source: str | Path, values: Mapping[str, float] | None = None) 
         raise ParameterError(f"name = {_shown(name)}: it must be a non-empty word (no spaces or slashes)")
     geometry = tuple(v for v in read.seen.values() if GEOMETRY.fullmatch(v.field))
     return LinkageSpec(name, form, mechanism, names, mech_input, (span[0], span[1]), start, start_input, contact,
-                       scale, read.length_m, notes, geometry)  # fmt: skip
+                       scale, read.length_m, notes, geometry)
 
 
 def _replaced(doc: dict, values: Mapping[str, float]) -> dict:
@@ -604,7 +604,7 @@ def _axes(doc: dict, joints: list[dict], read: _Reader):
         else:
             # the child's frame turned by -theta0 about the axis: the hinge reads theta0 in the drawn pose
             mech_joints.append(Joint(name, *pairs[k], frames[k], frames[k] @ transform_z(theta0[k]),
-                                     anchors=(-anchor, anchor)))  # fmt: skip
+                                     anchors=(-anchor, anchor)))
             starts[name] = theta0[k]
             inputs[name] = name
     given = _table(doc.get("input"), "input")

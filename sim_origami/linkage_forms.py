@@ -51,11 +51,11 @@ def reduced_form(
     bad = sorted({k for k in spherical if not 1 <= k <= n} | ({input_joint} & set(spherical)))
     if bad or not 1 <= input_joint <= n:
         raise ParameterError(f"spherical joints {sorted(spherical)}, input joint {input_joint}: joints are 1..{n} "
-                             "and the input must stay a hinge")  # fmt: skip
+                             "and the input must stay a hinge")
     if not (width > 0 and anchor > 0):
         raise ParameterError(f"width = {width!r}, anchor = {anchor!r}; both must be positive lengths")
     bodies = [Body(f"link_{k + 1}", bar(np.zeros(3), row.link()[:3, 3], width), None, PALETTE[k % len(PALETTE)])
-              for k, row in enumerate(rows)]  # fmt: skip
+              for k, row in enumerate(rows)]
     joints: list[Joint] = []
     for j in range(1, n + 1):
         parent, child, frame = f"link_{(j - 2) % n + 1}", f"link_{j}", rows[(j - 2) % n].link()
@@ -117,7 +117,7 @@ class FormMotion:
 def rssr_mechanism(rssr: RSSR, *, width: float | None = None) -> Mechanism:
     """The RSSR (balls at C = joint 3 and D = joint 4) on its implied Bennett's rows; bars 5% of a1 wide."""
     return reduced_form(rssr.bennett_rows(), (3, 4), width=0.05 * rssr.a1 if width is None else width,
-                        anchor=0.5 * max(rssr.a1, rssr.a2))  # fmt: skip
+                        anchor=0.5 * max(rssr.a1, rssr.a2))
 
 
 def rssr_motion(rssr: RSSR) -> FormMotion:

@@ -286,7 +286,7 @@ class Mechanism:
     def balls(self) -> dict[str, tuple[int, int, int]]:
         """Each spherical joint's name and the indices of its x, y, z hinges (see `ball_joint`)."""
         return {j.name[:-2]: tuple(self.joint_index(j.name[:-1] + a) for a in "xyz") for j in self.joints
-                if j.ball and j.name.endswith("_x")}  # fmt: skip
+                if j.ball and j.name.endswith("_x")}
 
     @cached_property
     def idle_spins(self) -> int:
@@ -404,7 +404,7 @@ class Mechanism:
                 implied.append(joint.name)
                 continue
             bases = [np.vstack([basis, _orthonormal_rows(r, rtol * scale)])
-                     for basis, (r, scale) in zip(bases, leftovers, strict=True)]  # fmt: skip
+                     for basis, (r, scale) in zip(bases, leftovers, strict=True)]
         return tuple(implied)
 
     def uncoupled(self) -> "Mechanism":

@@ -30,7 +30,7 @@ from .mjcf_tidy import attach_comments, box_of, short, tidy
 ORDER = (
     "compiler", "option", "size", "custom", "visual", "default", "asset", "worldbody",
     "contact", "equality", "actuator", "sensor", "keyframe",
-)  # fmt: skip
+)
 # fast-projected: fast plus a projection onto the closures after each step (`stabilize`), not plain MuJoCo
 PRESETS = ("fast", "stiff", "accurate", "fast-projected")
 # The templates' one-line comments name this package's code or notes; model.xml is read by people without them, so
@@ -43,7 +43,7 @@ OUTSIDER_WORDS = {
 # model.xml: colour names of its materials, by hue (degrees: the upper end of each name's range), for colours with
 # some saturation; the others are white, grey or black by lightness.
 HUES = ((15, "red"), (45, "orange"), (70, "yellow"), (165, "green"), (200, "cyan"), (255, "blue"), (290, "violet"),
-        (335, "magenta"), (360, "red"))  # fmt: skip
+        (335, "magenta"), (360, "red"))
 
 
 @dataclass(frozen=True)
@@ -187,7 +187,7 @@ def _add_meshes(asset: ET.Element, mechanism: Mechanism) -> None:
             ET.SubElement(
                 asset, "mesh", name=f"{body.name}_{suffix}",
                 vertex=_fmt(mesh.vertices), face=" ".join(str(int(i)) for i in np.ravel(mesh.faces)),
-            )  # fmt: skip
+            )
 
 
 def _solid_geom(parent: ET.Element, body: Body) -> None:
@@ -198,7 +198,7 @@ def _solid_geom(parent: ET.Element, body: Body) -> None:
     else:
         centre, quat, half = box
         ET.SubElement(parent, "geom", name=f"{body.name}_solid", type="box", pos=_fmt(centre), quat=_fmt(quat),
-                      size=_fmt(half), rgba=_fmt(body.rgba))  # fmt: skip
+                      size=_fmt(half), rgba=_fmt(body.rgba))
     parent[-1].set("class", "panel")
 
 
@@ -269,7 +269,7 @@ def _add_paper(root: ET.Element, mechanism: Mechanism, elements: dict[str, ET.El
             if len(vertices) < 4:  # MuJoCo needs 4 vertices a mesh: add the centre of a lone triangle, unused
                 vertices = np.vstack([vertices, vertices.mean(axis=0)])
             ET.SubElement(asset, "mesh", name=f"{body.name}_{side}", inertia="shell", vertex=_fmt(vertices),
-                          face=" ".join(str(int(i)) for i in index.ravel()))  # fmt: skip
+                          face=" ".join(str(int(i)) for i in index.ravel()))
             ET.SubElement(elements[body.name], "geom", name=f"{body.name}_{side}", mesh=f"{body.name}_{side}").set(
                 "class", f"paper_{side}"
             )
@@ -285,7 +285,7 @@ def _add_self_contact(root: ET.Element, mechanism: Mechanism, exclude: tuple[tup
     section.append(ET.Comment(" panels that share a vertex touch in every pose: excluded "))
     for a, b in exclude:
         ET.SubElement(section, "exclude", body1="world" if a == mechanism.root else a,
-                      body2="world" if b == mechanism.root else b)  # fmt: skip
+                      body2="world" if b == mechanism.root else b)
 
 
 @dataclass(frozen=True)
@@ -403,14 +403,14 @@ def _note_preset(root: ET.Element, preset: str) -> None:
     option = root.find("option")
     root.insert(list(root).index(option), ET.Comment(
         f" preset {preset}: constraints at MuJoCo's largest impedance (solimp 0.9999); measured in "
-        "docs/performance.md "))  # fmt: skip
+        "docs/performance.md "))
     custom = root.find("custom")
     scale = next(i for i, e in enumerate(custom) if e.get("name") == "regularization_scale")
     custom.insert(scale, ET.Comment(
         " regularization_scale: the validation run multiplied the compiled model's body_invweight0 and dof_invweight0 "
         "by it (as impedance 0.999999: MuJoCo caps solimp at 0.9999, so no attribute states it); do the same to repeat "
         "its numbers, holding and folding do not need it "
-    ))  # fmt: skip
+    ))
 
 
 def _keyframes(mechanism: Mechanism, keyframes: dict[str, np.ndarray], drives: tuple[str, ...] = ()) -> ET.Element:
@@ -459,12 +459,12 @@ def replay_xml(xml: str, mechanism: Mechanism, drives: tuple[str, ...], replay: 
     root.insert(1, ET.Comment(
         " replay: the model the validation run stepped (its options, masses and constraints), with what plain MuJoCo "
         "needs to play it alone under comments starting 'replay'; reset to a keyframe and step: the start pose holds; "
-        "move ctrl to fold "))  # fmt: skip
+        "move ctrl to fold "))
     _name_materials(root)
     _add_servos(root, drives, replay)
     root.append(ET.Comment(
         " replay: the validation runs' start poses (closures closed), ctrl holding the input; the default pose qpos0 "
-        "stays the run's reference, where MuJoCo reads the regulariser's weights "))  # fmt: skip
+        "stays the run's reference, where MuJoCo reads the regulariser's weights "))
     root.append(_keyframes(mechanism, replay.poses, drives))
     ET.indent(root, space="  ")
     return ET.tostring(root, encoding="unicode")
@@ -508,14 +508,14 @@ def _add_servos(root: ET.Element, drives: tuple[str, ...], replay: Replay) -> No
     for element in held:
         element.set("active", "false")
     equality.insert(list(equality).index(held[-1]) + 1, ET.Comment(
-        " replay: the input's equality is off here (active false): the position servo below drives it "))  # fmt: skip
+        " replay: the input's equality is off here (active false): the position servo below drives it "))
     actuator = ET.Element("actuator")
     actuator.append(ET.Comment(
         f" replay: ctrl = the driven joint's angle (rad); critically damped with time constant {replay.timeconst:g} s "
-        "on the mechanism's inertia at that joint in its lightest start pose "))  # fmt: skip
+        "on the mechanism's inertia at that joint in its lightest start pose "))
     for joint, kp, kv, (lo, hi) in zip(drives, replay.kp, replay.kv, replay.ctrlrange, strict=True):
         ET.SubElement(actuator, "position", name=drive_name(joint), joint=joint, kp=f"{kp:.4g}", kv=f"{kv:.4g}",
-                      ctrlrange=f"{short(lo, 0.0)} {short(hi, 0.0)}")  # fmt: skip
+                      ctrlrange=f"{short(lo, 0.0)} {short(hi, 0.0)}")
     root.insert(list(root).index(equality) + 1, actuator)
 
 
@@ -565,10 +565,10 @@ def build_xml(
     equality = _section(root, "equality")
     if mechanism.cut_joints:
         equality.append(ET.Comment(" loops cut at hinges (anchors on the axis, away from shared vertices) or at "
-                                   "spherical joints (one connect at the centre) "))  # fmt: skip
+                                   "spherical joints (one connect at the centre) "))
     if mechanism.implied:
         equality.append(ET.Comment(f" {len(mechanism.implied)} cut hinges closed by the couplings and the other "
-                                   "loops: their sites are measured, not connected "))  # fmt: skip
+                                   "loops: their sites are measured, not connected "))
     for c in closures(mechanism):
         for side, body, pos in (("parent", c.parent, c.on_parent), ("child", c.child, c.on_child)):
             ET.SubElement(elements[body], "site", name=site_name(c.joint, side, c.k), pos=_fmt(pos)).set(
@@ -579,7 +579,7 @@ def build_xml(
         ET.SubElement(
             equality, "connect", name=f"close_{c.joint}_{c.k}", site1=site_name(c.joint, "child", c.k),
             site2=site_name(c.joint, "parent", c.k),
-        ).set("class", "closure")  # fmt: skip
+        ).set("class", "closure")
 
     if mechanism.couplings:
         equality.append(ET.Comment(" couplings q1 = c q2: symmetry the model assumes, or periodic copies of creases "))
@@ -592,11 +592,11 @@ def build_xml(
         ET.SubElement(
             equality, "joint", name=f"couple_{joint}_{other}", joint1=joint, joint2=other,
             polycoef=_fmt([0.0, scale, 0.0, 0.0, 0.0]),
-        ).set("class", "closure")  # fmt: skip
+        ).set("class", "closure")
 
     if options.drive == "equality":
         equality.append(ET.Comment(" input: a joint equality whose target angle (eq_data[0]) the validation run "
-                                   "rewrote every step "))  # fmt: skip
+                                   "rewrote every step "))
         for joint in setup.drives:
             ET.SubElement(equality, "joint", name=drive_name(joint), joint1=joint, polycoef="0 0 0 0 0").set(
                 "class", "drive"

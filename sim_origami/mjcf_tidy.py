@@ -25,7 +25,7 @@ NOISE = 1e-15
 ULPS = 4
 # Attributes whose words are names, not numbers (the rest are parsed as numbers when every word is one).
 _WORDS = {"name", "class", "model", "mesh", "joint", "joint1", "joint2", "site1", "site2", "body1", "body2",
-          "geom1", "geom2", "childclass", "material", "texture"}  # fmt: skip
+          "geom1", "geom2", "childclass", "material", "texture"}
 
 
 def short(value: float, tol: float) -> str:
@@ -103,7 +103,7 @@ def box_of(mesh: trimesh.Trimesh, tol: float = 1e-9) -> tuple[NDArray, NDArray, 
     # the first triple (in combinations order) of long, pairwise orthogonal ones: its three edges
     i, j, k = _TRIPLES.T
     fits = np.flatnonzero((length[_TRIPLES] > tol * scale).all(axis=1) & (cosines[i, j] <= tol) & (cosines[i, k] <= tol)
-                          & (cosines[j, k] <= tol))  # fmt: skip
+                          & (cosines[j, k] <= tol))
     if not len(fits):
         return None
     triple = _TRIPLES[fits[0]]

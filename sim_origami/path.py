@@ -123,7 +123,7 @@ GOLDEN_STOP = 0.05
 
 
 def levenberg_marquardt(residual, jacobian, u: NDArray[np.float64], tol: float, max_iter: int,
-                        damping: float = 1e-6):  # fmt: skip
+                        damping: float = 1e-6):
     """
     Damped Gauss-Newton (Levenberg-Marquardt, tolerant of rank-deficient Jacobians) on residual(u), from u; stops
     below `tol` (largest component), after `max_iter` steps, or when the damping needed exceeds 1e8. `damping` is the
@@ -212,7 +212,7 @@ class BandedNormal:
         gradient = np.bincount(self.column, weights=data * r[self.row], minlength=n)
         out = np.empty(n)
         out[self.order] = solve_banded((band, band), ab.reshape(2 * band + 1, n), -gradient[self.order],
-                                       overwrite_ab=True, overwrite_b=True, check_finite=False)  # fmt: skip
+                                       overwrite_ab=True, overwrite_b=True, check_finite=False)
         return out
 
 
@@ -311,7 +311,7 @@ def padded_svd(M: NDArray) -> tuple[NDArray, NDArray, NDArray]:
 
 
 def sweep(close: Callable[[NDArray[np.float64], int], NDArray[np.float64]], x0: ArrayLike,
-          s: ArrayLike) -> NDArray[np.float64]:  # fmt: skip
+          s: ArrayLike) -> NDArray[np.float64]:
     """
     Natural-parameter continuation at the parameter values s (n,) in turn: at each, the secant through the last
     two solutions predicts (the last solution alone at the first two values and after a repeated value), and
@@ -323,7 +323,7 @@ def sweep(close: Callable[[NDArray[np.float64], int], NDArray[np.float64]], x0: 
     out = np.empty((len(s), len(x)))
     for k in range(len(s)):
         guess = secant(s[k - 2], out[k - 2], s[k - 1], out[k - 1], s[k]) if k >= 2 and s[k - 1] != s[k - 2] \
-            else x.copy()  # fmt: skip
+            else x.copy()
         x = close(guess, k)
         out[k] = x
     return out
@@ -432,7 +432,7 @@ def mobility(loops: ClosureSystem, q: ArrayLike) -> int:
 
 
 def independent_joints(loops: ClosureSystem, q: ArrayLike, k: int | None = None, among: ArrayLike | None = None,
-                       first: tuple[int, ...] = ()) -> tuple[int, ...]:  # fmt: skip
+                       first: tuple[int, ...] = ()) -> tuple[int, ...]:
     """
     Joints that can be driven independently at q: k (default: the mobility) rows of the closure Jacobian's null
     space picked by pivoted elimination (largest remaining row norm first, ties within PIVOT_TIE to the earlier
@@ -465,7 +465,7 @@ def independent_joints(loops: ClosureSystem, q: ArrayLike, k: int | None = None,
 
 
 def correct(loops: ClosureSystem, guess: NDArray[np.float64], fixed: NDArray[np.bool_], tol: float,
-            max_iter: int = CORRECTOR_ITER) -> tuple[NDArray[np.float64], float, bool]:  # fmt: skip
+            max_iter: int = CORRECTOR_ITER) -> tuple[NDArray[np.float64], float, bool]:
     """
     Close the loops from `guess` moving the joints not `fixed`. Returns (q, largest |residual|, stationary): the
     last is True when the result is a least-squares minimum of the residual (its gradient vanishes) that does
@@ -479,7 +479,7 @@ def correct(loops: ClosureSystem, guess: NDArray[np.float64], fixed: NDArray[np.
         return out
 
     u, r = levenberg_marquardt(lambda u: loops.residual(q_of(u)), lambda u: jacobian(loops, q_of(u))[:, free],
-                               guess[free], tol, max_iter)  # fmt: skip
+                               guess[free], tol, max_iter)
     q = q_of(u)
     worst = float(np.max(np.abs(r), initial=0.0))
     if worst <= tol:
@@ -700,7 +700,7 @@ class ChordPolish:
     """
 
     def __init__(self, loops: ClosureSystem, nodes: NDArray[np.float64], fixed: NDArray[np.bool_], *, tol: float,
-                 close_tol: float, floor: bool = False):  # fmt: skip
+                 close_tol: float, floor: bool = False):
         self.loops, self.nodes, self.fixed = loops, nodes, np.asarray(fixed, dtype=bool)
         self.tol, self.close_tol, self.floor = tol, close_tol, floor
         if floor and loops.n_residuals and len(nodes):
@@ -1047,7 +1047,7 @@ def _leave(f: ArcSystem, p: ArcPoint, t_in: NDArray, rate: NDArray, choice: str)
         t /= np.linalg.norm(t)
     else:
         raise AssemblyError(f"cannot switch branch where the mobility jumps to {m} "
-                            f"({len(directions)} real branch directions at second order)")  # fmt: skip
+                            f"({len(directions)} real branch directions at second order)")
     return replace(p, tangent=t), m, len(directions)
 
 
@@ -1060,7 +1060,7 @@ def _is_dip(points: list[ArcPoint], events: list[ArcEvent]) -> bool:
 
 
 def follow_arc(f: ArcSystem, x0: NDArray, ref: NDArray, k: int, target: float, *, step: float | None = None,
-               choice: str = "keep", max_points: int = 20000, unit: float = 1.0) -> ArcPath:  # fmt: skip
+               choice: str = "keep", max_points: int = 20000, unit: float = 1.0) -> ArcPath:
     """
     Follow the one-degree-of-freedom motion of `f` from x0 (chart continued next to `ref`) until chart coordinate
     k reaches `target`: predictor along the mechanism mode (the Jacobian's null vector), corrector `f.correct`,
@@ -1095,7 +1095,7 @@ def follow_arc(f: ArcSystem, x0: NDArray, ref: NDArray, k: int, target: float, *
         if got is None:
             if control.reject():
                 raise ConvergenceError(f"step fell below {MIN_STEP:g} x scale at input "
-                                       f"{points[-1].chart[k] / unit:.6g} rad")  # fmt: skip
+                                       f"{points[-1].chart[k] / unit:.6g} rad")
             continue
         new, iterations = got
         landed = (new.chart[k] - target) * sense >= 0

@@ -29,7 +29,7 @@ DENSE = 400
 NUMERIC_TRACES = ("numeric_pattern", "linkage_path")
 # Event marks on both panels: colour and line style by kind (others grey).
 EVENT_STYLE = {"bifurcation": ("#7b2cbf", "--"), "lock": ("#b3131b", "-."), "blockage": ("#e08000", ":"),
-               "contact": ("#e08000", ":"), "stall": ("#555555", ":")}  # fmt: skip
+               "contact": ("#e08000", ":"), "stall": ("#555555", ":")}
 # Errors are drawn on a log axis; an exact zero sits at this floor.
 FLOOR = 1e-17
 # curves.png's colours: a palette of PNG_COLOURS (Pillow's median cut, no dithering) holds the plot's few colours and
@@ -59,7 +59,7 @@ def _tolerance(report: Report, run) -> float | None:
 def _events(report: Report, run) -> list[dict]:
     """Events on this run's branch (bifurcation, lock, contact, stall...), and the blockage stop on the first."""
     out = [e for e in run.events if run.requested in e.get("branches", [run.requested]) and e.get("input_rad")
-           is not None]  # fmt: skip
+           is not None]
     if report.blockage is not None and run is report.runs[0]:
         out.append({"kind": "blockage", "input_rad": report.blockage.stop_input})
     return out
@@ -74,7 +74,7 @@ def plot_report(report: Report, path: str | Path) -> Path:
     runs = report.runs
     reference = "numeric trace" if type(kin).__module__.rsplit(".", 1)[-1] in NUMERIC_TRACES else "closed form"
     fig, axes = plt.subplots(2, len(runs), figsize=(5.5 * len(runs), 7.5), squeeze=False,
-                             gridspec_kw={"height_ratios": [3, 2]}, constrained_layout=True)  # fmt: skip
+                             gridspec_kw={"height_ratios": [3, 2]}, constrained_layout=True)
     colors = joint_colors(len(kin.joint_names))
     for col, run in enumerate(runs):
         top, bottom = axes[0, col], axes[1, col]
@@ -99,10 +99,10 @@ def plot_report(report: Report, path: str | Path) -> Path:
                 c = colors[k]
                 top.plot(np.rad2deg(dense[valid]), np.rad2deg(values[valid, k]), color=c, lw=1.2, label=name)
                 top.plot(np.rad2deg(sim.input[pick]), np.rad2deg(shown[pick, k]), "o", ms=3.5,
-                         mfc="none", color=c)  # fmt: skip
+                         mfc="none", color=c)
                 if k not in driven:
                     bottom.semilogy(np.rad2deg(sim.input), np.maximum(sim.error[:, k], FLOOR), color=c, lw=1,
-                                    label=name)  # fmt: skip
+                                    label=name)
             top.legend(fontsize=8, ncol=2)
         if report.reference is not None:  # the user's curves: crosses on the curves, their error to the numeric solve
             ref = report.reference
@@ -167,10 +167,10 @@ def _many_joints(top, x_deg, values, sim, shown, pick, colors) -> None:
     """
     k = values.shape[1]
     top.add_collection(LineCollection([np.c_[x_deg, np.rad2deg(values[:, j])] for j in range(k)], colors=colors,
-                                      linewidths=1.2, rasterized=True))  # fmt: skip
+                                      linewidths=1.2, rasterized=True))
     edges = np.repeat(to_rgba_array(colors), len(pick), axis=0)  # joint by joint, as the values below
     top.scatter(np.tile(np.rad2deg(sim.input[pick]), k), np.rad2deg(shown[pick].T).ravel(), s=12,
-                facecolors="none", edgecolors=edges, linewidths=1.0, rasterized=True)  # fmt: skip
+                facecolors="none", edgecolors=edges, linewidths=1.0, rasterized=True)
     top.autoscale_view()
 
 
@@ -181,7 +181,7 @@ def _envelope(bottom, x_deg, error, names: list[str]) -> None:
     if error.shape[1] == 0:
         return
     bottom.fill_between(x_deg, np.nanmin(error, axis=1), np.nanmax(error, axis=1), color="#4c72b0", alpha=0.25,
-                        lw=0, label=f"min-max over {error.shape[1]} joints")  # fmt: skip
+                        lw=0, label=f"min-max over {error.shape[1]} joints")
     bottom.plot(x_deg, np.nanmedian(error, axis=1), color="#4c72b0", lw=1, label="median")
     worst = int(np.nanargmax(np.nanmax(error, axis=0)))
     bottom.plot(x_deg, error[:, worst], color="#c44e52", lw=1, label=f"worst: {names[worst]}")

@@ -81,12 +81,12 @@ class Adjustment:
         """One line: 'beta 48.5904 -> 48.5903779 deg (moved -2.2e-05 deg, 0.44 of its precision 5e-05)'."""
         unit = f" {self.unit}" if self.unit else ""
         return (f"{self.name} {self.given:.10g} -> {self.value:.10g}{unit} (moved {self.moved:.2g}{unit}, "
-                f"{self.ratio:.2g} of its precision {self.precision:.2g})")  # fmt: skip
+                f"{self.ratio:.2g} of its precision {self.precision:.2g})")
 
     def as_dict(self) -> dict[str, float | str]:
         """JSON form: the values in the user's unit, with the move and its ratio to the precision."""
         return {"name": self.name, "given": self.given, "value": self.value, "moved": self.moved,
-                "precision": self.precision, "ratio": self.ratio, "unit": self.unit}  # fmt: skip
+                "precision": self.precision, "ratio": self.ratio, "unit": self.unit}
 
 
 @dataclass(frozen=True)

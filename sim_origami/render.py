@@ -69,7 +69,7 @@ def write_gif(path: Path, images: list[np.ndarray], fps: float) -> None:
     frames = [Image.fromarray(image).quantize(palette=palette, dither=Image.Dither.NONE) for image in images]
     with atomic_path(path) as tmp:
         frames[0].save(tmp, format="GIF", save_all=True, append_images=frames[1:], duration=round(1000 / fps),
-                       loop=0, optimize=True)  # fmt: skip
+                       loop=0, optimize=True)
 
 
 def shrink(image: np.ndarray, k: int) -> np.ndarray:
@@ -97,7 +97,7 @@ def require_rendering() -> None:
     """RenderError naming the packages to install when no GL library loaded (`gl.choose_backend`)."""
     if rendering_disabled():
         raise RenderError(f"rendering needs an OpenGL library and none loads (MUJOCO_GL={os.environ['MUJOCO_GL']}); "
-                          f"install {GL_PACKAGES}")  # fmt: skip
+                          f"install {GL_PACKAGES}")
 
 
 def render_frames(

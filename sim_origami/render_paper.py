@@ -56,7 +56,7 @@ def crease_lines(scene: Scene, radius: float) -> CreaseLines:
         parents.append(joint.parent)
         ends.append([origin + t[near].min() * axis, origin + t[near].max() * axis])
     return CreaseLines(np.array(joints, dtype=int), tuple(parents), np.array(ends).reshape(-1, 2, 3),
-                       max(radius, 2.0 * thickest))  # fmt: skip
+                       max(radius, 2.0 * thickest))
 
 
 def add_crease_lines(scn: mujoco.MjvScene, lines: CreaseLines, poses: dict, q: NDArray[np.float64]) -> None:
@@ -70,7 +70,7 @@ def add_crease_lines(scn: mujoco.MjvScene, lines: CreaseLines, poses: dict, q: N
         rgba = UNFOLDED if abs(rho) < FLAT else VALLEY if rho > 0 else MOUNTAIN
         geom = scn.geoms[scn.ngeom]
         mujoco.mjv_initGeom(geom, mujoco.mjtGeom.mjGEOM_CAPSULE, np.zeros(3), np.zeros(3), np.zeros(9),
-                            np.array(rgba, dtype=np.float32))  # fmt: skip
+                            np.array(rgba, dtype=np.float32))
         mujoco.mjv_connector(geom, mujoco.mjtGeom.mjGEOM_CAPSULE, lines.radius, a, b)
         scn.ngeom += 1
 

@@ -72,7 +72,7 @@ def _num(value: float) -> float | None:
 def verdict_json(v) -> dict:
     """A check as JSON; `compared`: how many values it compared (null where it counts no samples)."""
     return {"name": v.name, "measured": _num(v.measured), "tolerance": v.tolerance, "passed": v.passed,
-            "detail": v.detail, "compared": v.compared}  # fmt: skip
+            "detail": v.detail, "compared": v.compared}
 
 
 @functools.cache
@@ -87,9 +87,9 @@ def git_commit() -> str | None:
         return None
     try:
         head = subprocess.run(["git", "-C", str(root), "rev-parse", "--short", "HEAD"], capture_output=True,
-                              text=True, timeout=5, check=True).stdout.strip()  # fmt: skip
+                              text=True, timeout=5, check=True).stdout.strip()
         dirty = subprocess.run(["git", "-C", str(root), "status", "--porcelain", "--untracked-files=no"],
-                               capture_output=True, text=True, timeout=5, check=True).stdout.strip()  # fmt: skip
+                               capture_output=True, text=True, timeout=5, check=True).stdout.strip()
     except (OSError, subprocess.SubprocessError):
         return None
     return f"{head}+dirty" if dirty else head or None
@@ -177,7 +177,7 @@ def as_dict(report: Report, command: str | None = None) -> dict:
             "drive_saturated": b.drive_saturated,
         }
         out["events"].append({"kind": "blockage", "input_rad": b.stop_input, "branches": [report.runs[0].requested],
-                              "detail": "force-limited drive stopped by contact"})  # fmt: skip
+                              "detail": "force-limited drive stopped by contact"})
     return out
 
 
@@ -321,14 +321,14 @@ def motion_view(report: Report) -> dict:
          "front": list(PAPER_FRONT if b.name in paper else b.rgba[:3]),
          "back": list(PAPER_BACK if b.name in paper else b.rgba[:3])}
         for b in bodies
-    ]  # fmt: skip
+    ]
     creases, crease_joints = [], []
     if scene.pattern is not None:
         for c in scene.pattern.creases:
             segment = _crease_segment(mech, mech.joints[mech.joint_index(c.name)])
             if segment is not None:
                 creases.append({"name": c.name, "body": [b.name for b in bodies].index(segment[0]),
-                                "p": _rounded(segment[1])})  # fmt: skip
+                                "p": _rounded(segment[1])})
                 crease_joints.append(mech.joint_index(c.name))
     branches, corners, frames = [], [], []
     tol = TOLERANCES.angle(report.preset)
@@ -344,7 +344,7 @@ def motion_view(report: Report) -> dict:
         last = q[-1, crease_joints] if crease_joints else np.zeros(0)
         branches.append({"name": run.requested, "followed": run.followed,
                          "input": _rounded(run.dynamic.target[rows]),
-                         "sides": "".join("V" if r > tol else "M" if r < -tol else "F" for r in last)})  # fmt: skip
+                         "sides": "".join("V" if r > tol else "M" if r < -tol else "F" for r in last)})
     corners = np.array(corners)
     lo, hi = corners.min(0), corners.max(0)
     centre = np.array(_rounded((lo + hi) / 2))
@@ -355,7 +355,7 @@ def motion_view(report: Report) -> dict:
         branch["poses"] = _packed(np.concatenate([offset / scale, _quaternions(T[..., :3, :3]) * VIEW_INT], -1))
     view = {"scene": scene.name, "input": scene.kinematics.input_name, "bodies": solids, "creases": creases,
             "branches": branches, "centre": centre.tolist(),
-            "radius": _rounded(np.linalg.norm(hi - lo) / 2)[0]}  # fmt: skip
+            "radius": _rounded(np.linalg.norm(hi - lo) / 2)[0]}
     if scene.pattern is not None:
         view["pattern"] = pattern_drawing(report)
     return view
@@ -371,7 +371,7 @@ def pattern_drawing(report: Report) -> dict:
     pattern = scene.pattern
     crease_edges = {frozenset((c.start, c.end)) for c in pattern.creases}
     border = sorted({tuple(sorted((a, b))) for face in pattern.faces for a, b in zip(face, face[1:] + face[:1],
-                     strict=True) if frozenset((a, b)) not in crease_edges})  # fmt: skip
+                     strict=True) if frozenset((a, b)) not in crease_edges})
     tol = TOLERANCES.angle(report.preset)
     last = run.dynamic.q[-1]
     return {
@@ -381,14 +381,14 @@ def pattern_drawing(report: Report) -> dict:
                      "side": "V" if r > tol else "M" if r < -tol else "F"}
                     for c in pattern.creases for r in [last[scene.mechanism.joint_index(c.name)]]],
         "driven": list(scene.drives),
-    }  # fmt: skip
+    }
 
 
 def model_xml(report: Report) -> str:
     """model.xml of a validation (`replay_model_xml` for its runs' branches and start inputs)."""
     scene = report.scene
     return replay_model_xml(scene, report.preset, {r.requested: start_input(scene, r.requested, report.seed)
-                                                   for r in report.runs})  # fmt: skip
+                                                   for r in report.runs})
 
 
 def replay_model_xml(scene: Scene, preset: str, starts: dict[str, float]) -> str:

@@ -71,7 +71,7 @@ def _verdict_rows(verdicts: list[dict]) -> str:
     for v in verdicts:
         rows.append(f"<tr><td>{_status(v['passed'])}</td><td>{_e(v['name'])}</td>"
                     f"<td class=num>{_num(v['measured'])}</td><td class=num>{_num(v['tolerance'])}</td>"
-                    f"<td>{_e(v.get('detail', ''))}</td></tr>")  # fmt: skip
+                    f"<td>{_e(v.get('detail', ''))}</td></tr>")
     return "\n".join(rows)
 
 
@@ -128,19 +128,19 @@ def _pattern_svg(pattern: dict, events: list[dict]) -> str:
         driven = c["name"] in pattern["driven"]
         title = f"{c['name']}: assigned {c['assignment']}, folded {c['side']}" + (" (driven)" if driven else "")
         attrs = (f'stroke="{SIDE_COLOURS[c["side"]]}" stroke-width="{4 if driven else 1.6}"'
-                 + (' stroke-dasharray="6 4"' if against else "") + f' class="crease {c["side"]}"')  # fmt: skip
+                 + (' stroke-dasharray="6 4"' if against else "") + f' class="crease {c["side"]}"')
         parts.append(f"<g><title>{_e(title)}</title>{line(a, b, attrs)}</g>")
         (x1, y1), (x2, y2) = at(a), at(b)
         if driven:
             parts.append(f'<text x="{(x1 + x2) / 2 + 4:.1f}" y="{(y1 + y2) / 2 - 4:.1f}" font-size="11">'
-                         f"{_e(c['name'])} (driven)</text>")  # fmt: skip
+                         f"{_e(c['name'])} (driven)</text>")
         for e in named.get(c["name"], []):
             parts.append(f'<circle class="event" cx="{(x1 + x2) / 2:.1f}" cy="{(y1 + y2) / 2:.1f}" r="7" '
                          f'fill="none" stroke="#e08000" stroke-width="2.5"><title>{_e(e["kind"])}: '
-                         f"{_e(e['detail'])}</title></circle>")  # fmt: skip
+                         f"{_e(e['detail'])}</title></circle>")
     svg = (f'<svg id="crease-pattern" xmlns="http://www.w3.org/2000/svg" width="{width:.0f}" '
            f'height="{height:.0f}" viewBox="0 0 {width:.1f} {height:.1f}" role="img" aria-label="crease pattern">'
-           f'{"".join(parts)}</svg>')  # fmt: skip
+           f'{"".join(parts)}</svg>')
     return f"""<h2>Crease pattern</h2>
 <p><small>As cut, flat; each crease coloured by the side it folded to in MuJoCo's run of the first branch:
 mountain <span style="color:{SIDE_COLOURS["M"]}">red</span>, valley <span style="color:{SIDE_COLOURS["V"]}">blue</span>,
@@ -160,7 +160,7 @@ def _events(events: list[dict]) -> str:
     if not rows:
         return "<h2>Events on the path</h2>\n<p>None.</p>"
     return ("<h2>Events on the path</h2>\n<table id=\"events\"><tr><th>event</th><th>input (deg)</th>"
-            f"<th>branches</th><th>what</th></tr>{rows}</table>")  # fmt: skip
+            f"<th>branches</th><th>what</th></tr>{rows}</table>")
 
 
 def _view(view: dict | None) -> str:
@@ -205,7 +205,7 @@ def _params(doc: dict) -> str:
         for name, value in api.items()
     )
     return ('<table id="params"><tr><th>parameter</th><th>value</th><th>unit</th><th>API value (rad, m)</th></tr>'
-            f"{rows}</table>")  # fmt: skip
+            f"{rows}</table>")
 
 
 def _typed(value) -> str:
@@ -263,14 +263,14 @@ def page(doc: dict, out: Path, view: dict | None = None, in_index: bool = False)
         figures.append(f'<h2>Curves: the reference against MuJoCo</h2>\n<p><small>Joint angles, then each joint\'s '
                        "error with the check's tolerance (dashed) and the events on the branch marked"
                        f"{vector}.</small></p>\n"
-                       f'<img alt="curves of {_e(scene)}" src="{curves}">')  # fmt: skip
+                       f'<img alt="curves of {_e(scene)}" src="{curves}">')
     if (out / "fold.gif").is_file():  # beside the page: as base64, GIFs were about 21 of the main job's 37 MB of pages
         video = ' (<a href="fold.mp4">fold.mp4</a>: full size)' if (out / "fold.mp4").is_file() else ""
         figures.append(f"<h2>Motion</h2>\n<p><small>MuJoCo's frames, from fold.gif beside this page{video}."
-                       f'</small></p>\n<img id="motion" alt="{_e(scene)} folding" src="fold.gif">')  # fmt: skip
+                       f'</small></p>\n<img id="motion" alt="{_e(scene)} folding" src="fold.gif">')
     curves_file = "curves.csv.gz" if (out / "curves.csv.gz").is_file() else "curves.csv"
     downloads = ['<a href="model.xml" download>model.xml</a> (the MJCF that was stepped)',
-                 '<a href="report.json">report.json</a>', f'<a href="{curves_file}">{curves_file}</a>']  # fmt: skip
+                 '<a href="report.json">report.json</a>', f'<a href="{curves_file}">{curves_file}</a>']
     if (out / "curves.svg").is_file():
         downloads.append('<a href="curves.svg">curves.svg</a>')
     stills = len(list((out / "frames").glob("frame_*.png")))
@@ -349,10 +349,10 @@ def index(docs: list[dict]) -> str:
         name = _e(d["scene"])
         checks = d["verdicts"] + [v for b in d.get("branches", []) for v in b["verdicts"]]
         thumb = (f'<a href="{name}/report.html"><img class="thumb" alt="{name}" src="{name}/{_e(d["thumbnail"])}"></a>'
-                 if d.get("thumbnail") else "")  # fmt: skip
+                 if d.get("thumbnail") else "")
         timings = d.get("timings_s", {})
         per_step = (f"{_num(timings['mujoco_step_cpu_s'] / timings['mujoco_steps'] * 1e3)}"
-                    if timings.get("mujoco_steps") else "-")  # fmt: skip
+                    if timings.get("mujoco_steps") else "-")
         rows.append(
             f'<tr><td>{thumb}</td><td class="scene"><a href="{name}/report.html">{name}</a>'
             f"<br><small>{_e(d.get('summary', ''))}</small></td><td>{_status(d['passed'])}</td>"
@@ -367,11 +367,11 @@ def index(docs: list[dict]) -> str:
         versions = (f'<p id="versions">sim_origami {_e(made["sim_origami"])}{commit}, MuJoCo {_e(made["mujoco"])}, '
                     f"Python {_e(made['python'])}, numpy {_e(made['numpy'])}; {_e(made['machine']['os'])}, "
                     f"{_e(made['machine']['cores'])} cores; {_e(made['date_utc'])}"
-                    + (f"; <code>{_e(made['command'])}</code>" if made["command"] else "") + "</p>")  # fmt: skip
+                    + (f"; <code>{_e(made['command'])}</code>" if made["command"] else "") + "</p>")
     checks = [v for d in docs for v in d["verdicts"] + [v for b in d.get("branches", []) for v in b["verdicts"]]]
     cpu = sum(d.get("timings_s", {}).get("total_cpu_s", 0.0) for d in docs)
     totals = (f'<p id="totals">{passed} of {len(docs)} scenes pass; {sum(v["passed"] for v in checks)} of '
-              f"{len(checks)} checks; {_num(cpu)} s of CPU in the validations.</p>")  # fmt: skip
+              f"{len(checks)} checks; {_num(cpu)} s of CPU in the validations.</p>")
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>sim_origami: {passed} of {len(docs)} scenes pass</title>
 <style>{STYLE} img.thumb {{ width: 160px; height: 120px; object-fit: contain; max-width: none; }}</style></head>

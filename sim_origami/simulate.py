@@ -179,7 +179,7 @@ class Bindings:
         self.drive_qpos = model.jnt_qposadr[model.joint(scene.drive_joint).id]
         self.drives_qpos = np.array([model.jnt_qposadr[model.joint(n).id] for n in scene.drives], dtype=int)
         pairs = [(model.site(site_name(c.joint, "parent", c.k)).id, model.site(site_name(c.joint, "child", c.k)).id)
-                 for c in closures(mech)]  # fmt: skip
+                 for c in closures(mech)]
         self.site_pairs = np.array(pairs, dtype=int).reshape(-1, 2)
 
     def set_pose(self, data: mujoco.MjData, q: NDArray[np.float64]) -> None:
@@ -220,7 +220,7 @@ def _first_bad(qpos_log: NDArray, x: NDArray) -> str:
     step before (a divergence, or MuJoCo's reset after one), with its input (rad); '' when there is none."""
     finite = np.all(np.isfinite(qpos_log), axis=1)
     jump = np.r_[False, np.max(np.abs(np.diff(np.where(np.isfinite(qpos_log), qpos_log, 0.0), axis=0)), axis=1,
-                               initial=0.0) > JUMP_RAD]  # fmt: skip
+                               initial=0.0) > JUMP_RAD]
     bad = np.flatnonzero(~finite | jump)
     return f"; first went wrong at step {bad[0] + 1} of {len(x)} (input {x[bad[0]]:.6g} rad)" if len(bad) else ""
 
@@ -421,7 +421,7 @@ def simulate(
         scene=scene.name, branch=branch, mode=f"dynamic/{drive}", preset=preset, time=t, target=x,
         q=binds.angles(scene, qpos_log), residual_index=index, closure_residual=residual,
         cpu_time_s=cpu, steps=n, contacts=contacts, drive_force=force, sweep_time_s=T,
-    )  # fmt: skip
+    )
 
 
 def sparse_constraint_jacobian(model: mujoco.MjModel, data: mujoco.MjData) -> sp.csr_matrix:
@@ -536,7 +536,7 @@ def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: s
         scene=scene.name, branch=branch, mode="projection", preset=preset, time=np.arange(len(inputs), dtype=float),
         target=inputs, q=binds.angles(scene, qpos_log), residual_index=index, closure_residual=residual,
         cpu_time_s=cpu, steps=len(inputs),
-    )  # fmt: skip
+    )
 
 
 def contact_distance(scene: Scene, branch: str, inputs: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -94,7 +94,7 @@ def mujoco_mesh_problem(mesh: trimesh.Trimesh) -> str | None:
     vertex = " ".join(f"{v:.17g}" for v in np.ravel(mesh.vertices))
     face = " ".join(str(int(i)) for i in np.ravel(mesh.faces))
     xml = (f'<mujoco><asset><mesh name="m" vertex="{vertex}" face="{face}"/></asset><worldbody><body>'
-           '<freejoint/><geom type="mesh" mesh="m"/></body></worldbody></mujoco>')  # fmt: skip
+           '<freejoint/><geom type="mesh" mesh="m"/></body></worldbody></mujoco>')
     try:
         mujoco.MjModel.from_xml_string(xml)
     except ValueError as err:

@@ -109,7 +109,7 @@ def _sparse_jacobian(model: mujoco.MjModel, data: mujoco.MjData) -> np.ndarray:
 
 
 def step_function(model: mujoco.MjModel, data: mujoco.MjData, mode: str, skip: tuple[int, ...] = (),
-                  frozen: tuple[int, ...] = (), iterations: int = 1) -> StepFunction:  # fmt: skip
+                  frozen: tuple[int, ...] = (), iterations: int = 1) -> StepFunction:
     """
     A replacement for `mujoco.mj_step` on this model: mj_step, then `iterations` Gauss-Newton steps of qpos onto the
     equality rows (all but the equalities `skip`) over every dof not in `frozen` (e.g. the driven joint), then for

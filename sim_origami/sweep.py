@@ -42,7 +42,7 @@ WORKERS_MAX = 1024
 SCHEDULER_TIMEOUT_S = 5.0
 
 METRICS = ("passed", "angle_error_max_rad", "closure_residual_max_m", "closed_form_residual_max",
-           "branches_followed", "cpu_s", "error")  # fmt: skip
+           "branches_followed", "cpu_s", "error")
 
 
 @dataclass(frozen=True)
@@ -84,7 +84,7 @@ def check_grid(scene_name: str, axes: list[Axis]) -> None:
     for axis in axes:
         if axis.name not in known:
             raise ParameterError(f"unknown parameter {axis.name!r} for scene {scene_name!r}; parameters are "
-                                 f"{', '.join(sorted(known))}")  # fmt: skip
+                                 f"{', '.join(sorted(known))}")
         if axis.name in seen:
             raise ParameterError(f"grid axis {axis.name!r} is given twice; give each parameter one --grid")
         seen.add(axis.name)
@@ -147,14 +147,14 @@ def run_point(scene_name: str, params: dict[str, float], preset: str | None = No
         used = preset or scene.preset
         passed = (max(errors) <= TOLERANCES.angle(used) and max(gaps) <= TOLERANCES.residual(used, scene.length_scale)
                   and max(residuals) <= TOLERANCES.loop_residual(scene.length_scale)
-                  and followed == [b.name for b in kin.branches()])  # fmt: skip
+                  and followed == [b.name for b in kin.branches()])
         row |= {"passed": bool(passed), "angle_error_max_rad": max(errors), "closure_residual_max_m": max(gaps),
                 "closed_form_residual_max": max(residuals), "branches_followed": ";".join(followed),
-                "error": ""}  # fmt: skip
+                "error": ""}
     except Exception as exc:  # a failed point is data: record it and go on
         row |= {"passed": False, "angle_error_max_rad": float("nan"), "closure_residual_max_m": float("nan"),
                 "closed_form_residual_max": float("nan"), "branches_followed": "",
-                "error": f"{type(exc).__name__}: {exc}"}  # fmt: skip
+                "error": f"{type(exc).__name__}: {exc}"}
     row["cpu_s"] = time.process_time() - t0
     return row
 

@@ -78,13 +78,13 @@ class Tolerances:
     def energy(self, preset: str) -> float:
         """Energy-drift tolerance (J) of a free run with this preset."""
         return {"fast": self.fast_energy, "stiff": self.stiff_energy, "accurate": self.accurate_energy,
-                "fast-projected": self.projected_energy}[preset]  # fmt: skip
+                "fast-projected": self.projected_energy}[preset]
 
     def angle(self, mode: str) -> float:
         """Path-error tolerance (rad) for a run mode: 'fast' or 'stiff' (held to the same), 'accurate', 'projection',
         'fast-projected'."""
         return {"fast": self.fast_rad, "stiff": self.fast_rad, "accurate": self.accurate_rad,
-                "projection": self.projection_rad, "fast-projected": self.projected_rad}[mode]  # fmt: skip
+                "projection": self.projection_rad, "fast-projected": self.projected_rad}[mode]
 
     def residual(self, mode: str, length_scale: float = 1.0) -> float:
         """

@@ -128,7 +128,7 @@ class Truss:
         keep[list(bars)] = False
         names = tuple(n for n, k in zip(self.bar_body, keep, strict=True) if k)
         return replace(self, bars=self.bars[keep], lengths=self.lengths[keep], joint_bar=self.joint_bar[keep],
-                       bar_body=names)  # fmt: skip
+                       bar_body=names)
 
 
 # -- construction ----------------------------------------------------------------------------------------------
@@ -259,7 +259,7 @@ def _bars(
     for body, idx in body_nodes.items():
         local, pos = body_local[body], {n: k for k, n in enumerate(idx)}
         existing = sorted((pos[p], pos[q]) if pos[p] < pos[q] else (pos[q], pos[p])
-                          for p, q in owner if p in pos and q in pos)  # fmt: skip
+                          for p, q in owner if p in pos and q in pos)
         for p, q in existing + _brace(local, existing):
             key = (min(idx[p], idx[q]), max(idx[p], idx[q]))
             owner.setdefault(key, body)
@@ -288,7 +288,7 @@ def _positions(
     gap = max(float(np.max(np.linalg.norm(np.array(xs) - x, axis=1))) for xs, x in zip(seen, nodes, strict=True))
     if gap > tol:
         raise AssemblyError(f"the loops are not closed at q: a shared node differs by {gap:.3g} between its bodies "
-                            f"(limit {tol:.3g}, CLOSURE_RTOL x the truss size)")  # fmt: skip
+                            f"(limit {tol:.3g}, CLOSURE_RTOL x the truss size)")
     return nodes
 
 
@@ -302,7 +302,7 @@ def truss_of(mechanism: Mechanism, q: ArrayLike, spherical: Sequence[str] = ()) 
     q = np.asarray(q, dtype=float)
     if q.shape != (len(mechanism.joints),) or not np.all(np.isfinite(q)):
         raise ParameterError(f"q has shape {q.shape} with finite={bool(np.all(np.isfinite(q)))}; "
-                             f"it must hold {len(mechanism.joints)} finite joint angles (rad)")  # fmt: skip
+                             f"it must hold {len(mechanism.joints)} finite joint angles (rad)")
     balls = set(spherical)
     for name in balls:
         mechanism.joint_index(name)
@@ -331,7 +331,7 @@ def truss_of(mechanism: Mechanism, q: ArrayLike, spherical: Sequence[str] = ()) 
             raise ParameterError(f"coupling {a} = {c:g} x {b} names a spherical joint; couplings need revolute joints")
         couplings.append((index[a], index[b], float(c)))
     return Truss(tuple(names), nodes, bars, lengths, joint_bar, owner, body_nodes, body_local, tuple(hinges),
-                 tuple(couplings), q.copy(), mechanism.root, scale)  # fmt: skip
+                 tuple(couplings), q.copy(), mechanism.root, scale)
 
 
 # -- matrices and counts ---------------------------------------------------------------------------------------
@@ -342,7 +342,7 @@ def compatibility(truss: Truss, x: ArrayLike | None = None) -> NDArray[np.float6
     x = truss.nodes if x is None else np.asarray(x, dtype=float)
     if x.shape != truss.nodes.shape or not np.all(np.isfinite(x)):
         raise ParameterError(f"node positions of shape {x.shape} (finite: {bool(np.all(np.isfinite(x)))}); "
-                             f"they must be {truss.nodes.shape} and finite")  # fmt: skip
+                             f"they must be {truss.nodes.shape} and finite")
     p, q = truss.bars[:, 0], truss.bars[:, 1]
     u = x[p] - x[q]
     length = np.linalg.norm(u, axis=1, keepdims=True)
@@ -496,7 +496,7 @@ def removable_bars(truss: Truss) -> tuple[int, ...]:
         if len(mine) - len(kept) == s:
             return tuple(k for i, k in enumerate(mine) if i not in kept)
     raise AssemblyError(f"no single body carries all {s} redundant bars; removing bars of several links changes "
-                        "the topology (Yang 2017, ch. 3)")  # fmt: skip
+                        "the topology (Yang 2017, ch. 3)")
 
 
 # -- poses and joint angles from node positions ----------------------------------------------------------------
@@ -588,7 +588,7 @@ class _Follower(ArcSystem):
         grounded[truss.body_nodes[truss.ground]] = True
         self.free = np.repeat(~grounded, 3)
         self.rows = np.concatenate([~(grounded[truss.bars[:, 0]] & grounded[truss.bars[:, 1]]),
-                                    np.ones(len(truss.couplings), dtype=bool)])  # fmt: skip
+                                    np.ones(len(truss.couplings), dtype=bool)])
         self.revolute = [i for i, h in enumerate(truss.hinges) if h.revolute]
         super().__init__(int(self.free.sum()), int(self.rows.sum()), truss.scale, CORRECTOR_TOL * truss.scale, rtol)
 
@@ -648,12 +648,12 @@ def follow(
         raise ParameterError(f"drive joint {drive!r} is not a revolute joint of the truss; they are {list(names)}")
     f, k = _Follower(truss, rtol), names.index(drive)
     run = follow_arc(f, truss.nodes, truss.angles0[f.revolute], k, stop * drive_scale, step=step, choice=choice,
-                     max_points=max_points, unit=drive_scale)  # fmt: skip
+                     max_points=max_points, unit=drive_scale)
     angles = np.array([p.chart for p in run.points])
     events = tuple(Bifurcation(e.index, float(e.point.chart[k] / drive_scale), e.point.sigma2, e.mobility,
-                               e.directions, choice) for e in run.events)  # fmt: skip
+                               e.directions, choice) for e in run.events)
     return TrussPath(np.array([p.x for p in run.points]), angles, names, angles[:, k] / drive_scale,
-                     np.array([p.sigma2 for p in run.points]), events, run.reached)  # fmt: skip
+                     np.array([p.sigma2 for p in run.points]), events, run.reached)
 
 
 # -- scenes ----------------------------------------------------------------------------------------------------
@@ -674,7 +674,7 @@ class ScenePath:
 
 
 def follow_scene(scene: "Scene", branch: str, start: float, stop: float, *, choice: str = "keep",
-                 step: float | None = None) -> ScenePath:  # fmt: skip
+                 step: float | None = None) -> ScenePath:
     """Follow `scene` with the truss method from its closed-form pose on `branch` at input `start` to `stop` (rad)."""
     truss = truss_of(scene.mechanism, scene.pose(branch, start))
     path = follow(truss, scene.drive_joint, stop, drive_scale=scene.drive_scale, step=step, choice=choice)

@@ -127,7 +127,7 @@ def closed_form_verdicts(scene: Scene, branch: str, x: np.ndarray) -> tuple[Verd
         # the input is not bad (a triangulated grid folded along one line and driven by fewer inputs than its
         # motion's freedoms, as --input may ask: 10 x 10, 37 of 109, 2.7e-12 where 1e-12 is asked)
         return residual, Verdict(name, float("inf"), TOLERANCES.closed_form_rad, f"damped-Newton continuation over "
-                                 f"the same inputs did not reach the reference's states: {err}", len(x))  # fmt: skip
+                                 f"the same inputs did not reach the reference's states: {err}", len(x))
     error, tol, where = floor_verdict_values(scene, PathComparison(x, kin.observe(numeric), values),
                                              TOLERANCES.closed_form_rad, TOLERANCES.closed_form_cond_factor)
     return (
@@ -151,12 +151,12 @@ def path_events(
     for e in scene.kinematics.events():
         if e.kind in REFERENCE_EVENTS and branch in e.branches:
             out.append({"kind": e.kind, "input_rad": e.input, "branches": list(e.branches), "detail": e.detail,
-                        "branch_after": ""})  # fmt: skip
+                        "branch_after": ""})
         elif branch in e.branches and lo - 1e-9 <= e.input <= hi + 1e-9:
             past = [lab for xi, lab in zip(x, labels, strict=True) if lab and abs(xi - e.input) > 1e-6]
             after = max(set(past), key=past.count) if past else ""  # the branch held after it
             out.append({"kind": e.kind, "input_rad": e.input, "branches": list(e.branches), "detail": e.detail,
-                        "branch_after": after})  # fmt: skip
+                        "branch_after": after})
     return tuple(out)
 
 
@@ -177,11 +177,11 @@ def mobility_report(scene: Scene, branch: str, start: float) -> dict:
         q = scene.loop_to_mechanism(q_loop)[0]
         truss = truss_mobility(scene, q, stresses=False)  # counts only: the sparse Gram matrix ranks big trusses
         return {"input_rad": x, "numeric": loops.mobility(q_loop[0]) - idle, "mujoco": mujoco_mobility(scene, q) - idle,
-                "truss": truss.mobility, "truss_self_stress": truss.self_stress}  # fmt: skip
+                "truss": truss.mobility, "truss_self_stress": truss.self_stress}
 
     points = [e.input for e in kin.events() if e.kind == "bifurcation" and branch in e.branches]
     out = {"gruebler": kin.gruebler(), "idle_spins": idle, "inputs": len(scene.drives), "start": at(start),
-           "bifurcations": [at(x) for x in points]}  # fmt: skip
+           "bifurcations": [at(x) for x in points]}
     along = _along_path(kin)
     if along is not None:
         out["along_path"] = along
@@ -224,7 +224,7 @@ def bifurcation_study(scene: Scene, preset: str) -> list[dict]:
             for d in SEED_OFFSETS:
                 start = xb + sign * d
                 run = simulate(scene, branch, preset=preset, start=start, stop=start + sign * STUDY_SPAN,
-                               duration=duration)  # fmt: skip
+                               duration=duration)
                 if _followed(scene, branch, run) == branch:
                     seeded[branch] = d
                     break
@@ -251,7 +251,7 @@ def _point_verdicts(scene: Scene, branch: str, preset: str, q: np.ndarray, x: np
         return ()
     error = float(np.max(np.linalg.norm(kin.observe_points(scene.mechanism_to_loop(q)) - analytic, axis=-1)))
     return (Verdict(f"{branch}: MuJoCo {preset} vertex position error (edge lengths)", error,
-                    TOLERANCES.angle(preset), "max over samples and vertices, unit edges", len(x)),)  # fmt: skip
+                    TOLERANCES.angle(preset), "max over samples and vertices, unit edges", len(x)),)
 
 
 def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
@@ -266,7 +266,7 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
     proj_error, proj_tol, proj_where = floor_verdict_values(
         scene, proj, TOLERANCES.projection_rad, TOLERANCES.projection_cond_factor,
         other_condition=lambda k: projection_conditions(scene, proj_traj.q[k]),
-    )  # fmt: skip
+    )
     mobility = mobility_report(scene, branch, start)
     disagree = sum(
         len({p["numeric"], p["mujoco"], p["truss"]}) > 1 for p in [mobility["start"], *mobility["bifurcations"]]
@@ -296,13 +296,13 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
                 + (f" (+{mobility['idle_spins']} idle spin, taken off every count)" if mobility["idle_spins"] else "")
                 + f", instantaneous {mobility['start']['numeric']} at the start", 1 + len(mobility["bifurcations"])),
         *_input_count_verdict(scene, branch, mobility),
-    )  # fmt: skip
+    )
     return BranchRun(
         requested=branch, followed=labels.followed, flips=labels.flips, dynamic=dynamic, dynamic_path=dyn,
         projection_path=proj, projection_residual_m=float(np.max(proj_traj.closure_residual)),
         events=path_events(scene, branch, dyn.input, labels.labels, from_flat=seed == "flat"), mobility=mobility,
         verdicts=verdicts,
-    )  # fmt: skip
+    )
 
 
 def _singular_crossings(scene: Scene, branch: str, x: np.ndarray, error: np.ndarray, mobility: dict) -> str:
@@ -314,7 +314,7 @@ def _singular_crossings(scene: Scene, branch: str, x: np.ndarray, error: np.ndar
     """
     lo, hi = float(np.min(x)), float(np.max(x))
     crossed = [e for e in scene.kinematics.events() if e.kind == "bifurcation" and branch in e.branches
-               and lo < e.input < hi]  # fmt: skip
+               and lo < e.input < hi]
     if not crossed:
         return ""
     error = np.where(np.isnan(error), np.inf, error).reshape(len(x), -1).max(axis=1)
@@ -362,7 +362,7 @@ def _input_count_verdict(scene: Scene, branch: str, mobility: dict) -> tuple[Ver
         far = [d["distance_rad"] for d in kin.frame_distances]
         worst = float("inf") if any(d is None for d in far) else max(far)
         frames += (Verdict(f"{branch}: frames' distance from the rigid motion (rad)", worst, tolerance,
-                           f"{len(far)} frames; beyond the traced motion counts as infinite"),)  # fmt: skip
+                           f"{len(far)} frames; beyond the traced motion counts as infinite"),)
     target = kin.target_check() if hasattr(kin, "target_check") else None  # a FOLD file's folded state, reached?
     if target is not None:
         frames += (Verdict(f"{branch}: folded state's distance from the rigid motion (rad)", *target),)
@@ -373,12 +373,12 @@ def _input_count_verdict(scene: Scene, branch: str, mobility: dict) -> tuple[Ver
     if unfolded is not None:
         frames += (Verdict(f"{branch}: M/V creases the motion leaves flat", float(len(unfolded)), 0.0,
                            f"{', '.join(unfolded[:8])}{' ...' if len(unfolded) > 8 else ''}: the letters do not fold "
-                           "rigidly with them folded" if unfolded else "every M/V crease folds"),)  # fmt: skip
+                           "rigidly with them folded" if unfolded else "every M/V crease folds"),)
     return (*frames, Verdict(f"{branch}: freedoms not driven (mobility along the path - inputs)",
                     float(max(along["typical"] - mobility["inputs"], 0)), 0.0,
                     f"mobility {along['typical']} along the traced path (min {along['min']}, max {along['max']}), "
                     f"{mobility['inputs']} input(s) "
-                    f"{', '.join(scene.drives)}"),)  # fmt: skip
+                    f"{', '.join(scene.drives)}"),)
 
 
 def _own_step_verdicts(scene: Scene, branch: str, preset: str, own: list[np.ndarray]) -> tuple[Verdict, ...]:
@@ -393,7 +393,7 @@ def _own_step_verdicts(scene: Scene, branch: str, preset: str, own: list[np.ndar
     path = compare(scene, branch, Bindings(scene, model).angles(scene, np.array(own)))
     return (Verdict(f"{branch}: MuJoCo {preset} path error before projection (rad)", path.max_error(),
                     TOLERANCES.angle("fast"), "MuJoCo's own step from each projected state, before its projection: "
-                    "max over steps and joints of |sim - closed form at the simulated input|", len(own)),)  # fmt: skip
+                    "max over steps and joints of |sim - closed form at the simulated input|", len(own)),)
 
 
 def run_blockage(scene: Scene, branch: str) -> tuple[Blockage, float]:
@@ -420,7 +420,7 @@ def run_free(scene: Scene, preset: str) -> tuple[dict, list[Verdict]]:
     doc = {"duration_s": FREE_DURATION, "steps": run.steps, "step_cpu_time_s": run.cpu_time_s,
            "energy_initial_J": float(run.energy[0]), "energy_drift_max_J": drift,
            "angle_error_max_rad": path.max_error(), "closure_residual_max_m": float(np.max(run.closure_residual)),
-           "input_range_rad": [float(np.min(path.input)), float(np.max(path.input))]}  # fmt: skip
+           "input_range_rad": [float(np.min(path.input)), float(np.max(path.input))]}
     peer = ""
     if scene.free_run_peer is not None:
         tool, seconds = scene.free_run_peer
@@ -437,7 +437,7 @@ def run_free(scene: Scene, preset: str) -> tuple[dict, list[Verdict]]:
         Verdict("free run: path error against the closed form" + (" after projection" if own else "") + " (rad)",
                 path.max_error(), TOLERANCES.angle(preset),
                 "unforced motion stays on the closed-form branch"),
-    ]  # fmt: skip
+    ]
     return doc, verdicts
 
 
@@ -492,7 +492,7 @@ def validate(
             # may diverge doing it on a start that does not close; the trace's stop is the cause. A sweep frozen
             # otherwise fails its swept range.
             known = _input_count_verdict(scene, name, {"along_path": _along_path(scene.kinematics),
-                                                       "inputs": len(scene.drives)})  # fmt: skip
+                                                       "inputs": len(scene.drives)})
             events = path_events(scene, name, np.array([start]), ("",))
             raise ZeroSweepError(f"no MuJoCo run: the drive of {name} sweeps {abs(stop - start):.3g} rad ({start:.6g} "
                                  f"-> {stop:.6g} rad)",
@@ -501,7 +501,7 @@ def validate(
             runs.append(run_branch(scene, name, preset, seed))
         except SimulationError as err:  # the report keeps what is known without MuJoCo: often the first cause
             known = _input_count_verdict(scene, name, {"along_path": _along_path(scene.kinematics),
-                                                       "inputs": len(scene.drives)})  # fmt: skip
+                                                       "inputs": len(scene.drives)})
             err.verdicts = (*verdicts, *known)
             raise
     timings["mujoco_step_cpu_s"] = sum(r.dynamic.cpu_time_s for r in runs)

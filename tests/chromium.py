@@ -17,7 +17,7 @@ from pathlib import Path
 INSTALL = "headless Chromium is missing: apt-get update && apt-get install -y chromium"
 # Flags for a root user in a container with no GPU, no network use and a fresh profile.
 FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-         "--disable-background-networking", "--disable-component-update", "--disable-sync")  # fmt: skip
+         "--disable-background-networking", "--disable-component-update", "--disable-sync")
 
 
 def executable() -> str | None:
@@ -52,7 +52,7 @@ class Chromium:
              f"--window-size={width},{height}", "about:blank"],
             pass_fds=(3, 4), stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
             preexec_fn=lambda: (os.dup2(to_browser, 3), os.dup2(from_browser, 4)),
-        )  # fmt: skip
+        )
         os.close(to_browser)
         os.close(from_browser)
         self._buffer = b""

@@ -29,7 +29,7 @@ def miura_letters_only(rows: int, cols: int, dx: float = 1.0, dy: float = 1.0, z
             edges.append([vid(i, j), vid(i, j + 1)])
             assign.append("b" if i in (0, cols) else ("v" if (i + j) % 2 else "m"))
     return {"file_spec": 1.1, "file_creator": "Rabbit Ear", "vertices_coords": verts, "edges_vertices": edges,
-            "edges_assignment": assign}  # fmt: skip
+            "edges_assignment": assign}
 
 
 def write(tmp_path: Path, name: str, doc: dict) -> Path:
@@ -53,7 +53,7 @@ def degree4_letters() -> dict:
             "vertices_coords": [[0.0, 0.0], [1.0, 0.0], [0.2, 1.0], [-1.0, -0.1], [0.1, -1.0]],
             "edges_vertices": [[0, 1], [0, 2], [0, 3], [0, 4], [1, 2], [2, 3], [3, 4], [4, 1]],
             "edges_assignment": ["M", "V", "V", "V", "B", "B", "B", "B"],
-            "faces_vertices": [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 1]]}  # fmt: skip
+            "faces_vertices": [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 1]]}
 
 
 def folded_xyz(doc: dict, crease: str, fraction: float) -> np.ndarray:
@@ -77,7 +77,7 @@ def folded_form(doc: dict, xyz: np.ndarray, decimals: int | None = None) -> dict
     coords = xyz if decimals is None else np.round(xyz, decimals)
     faces = doc.get("faces_vertices") or [list(f) for f in read_fold(doc).pattern.faces]
     return doc | {"frame_classes": ["foldedForm"], "frame_attributes": ["3D"], "vertices_coords": coords.tolist(),
-                  "faces_vertices": faces}  # fmt: skip
+                  "faces_vertices": faces}
 
 
 # Bases as crease-pattern editors write them (issue 27) ------------------------------------------------------------
@@ -114,7 +114,7 @@ def _crease_pattern(creator: str, coords: list, edges: list, letters: list, spec
     faces = ccw_faces(coords, edges)
     return {"file_spec": spec, "file_creator": creator, "file_classes": ["singleModel"],
             "frame_classes": ["creasePattern"], "frame_attributes": ["2D"], "vertices_coords": coords,
-            "edges_vertices": edges, "edges_assignment": letters, "faces_vertices": faces}  # fmt: skip
+            "edges_vertices": edges, "edges_assignment": letters, "faces_vertices": faces}
 
 
 def waterbomb_base() -> dict:
@@ -224,7 +224,7 @@ def slit_crane(doubled: bool = False) -> dict:
             if 0 in face and (12 in face or 7 in face):
                 face[face.index(0)] = copy
         doc["edges_vertices"] = [[copy if v == 0 else v for v in e] if sorted(e) in ([0, 12], [0, 7]) else e
-                                 for e in doc["edges_vertices"]]  # fmt: skip
+                                 for e in doc["edges_vertices"]]
         doc["edges_vertices"].append([13, copy])
         doc["edges_assignment"].append("C")
     doc["faces_vertices"] = faces

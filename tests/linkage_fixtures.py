@@ -10,4 +10,4 @@ BENNETT = {
     "joints": [{"name": f"theta{k + 1}", "a": a, "alpha": alpha}
                for k, (a, alpha) in enumerate([(1.0, 30.0), (1.5, 48.590377890729144)] * 2)],
     "input": {"joint": "theta1", "range": [20.0, 140.0]},
-}  # fmt: skip
+}

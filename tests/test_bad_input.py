@@ -81,7 +81,7 @@ def test_out_whose_folder_cannot_be_made_is_refused(capsys):
 def test_sweep_out_checked_before_the_grid_runs(capsys, tmp_path):
     (tmp_path / "f").write_text("x")
     refused(capsys, "sweep", "vertex4", "--grid", "alpha1=55:60:5", "--workers", "1", "--out", str(tmp_path / "f"),
-            naming="is a file")  # fmt: skip
+            naming="is a file")
 
 
 # Item 2 and 3: non-finite, overflowing or degenerate values are refused naming the parameter.
@@ -99,7 +99,7 @@ def test_sweep_out_checked_before_the_grid_runs(capsys, tmp_path):
         ("miura", "thickness=-0.01"), ("vertex4", "length=-1"), ("bennett", "alpha=180"), ("bricard-threefold",
         "alpha=360"), ("kokotsakis", "case=2.5"),
     ],
-)  # fmt: skip
+)
 def test_bad_values_are_refused_naming_the_parameter(capsys, scene, param):
     name = param.split("=")[0]
     refused(capsys, "analytic", scene, "-p", param, "--input=10", "--json", naming=name)
@@ -157,7 +157,7 @@ def test_bricard_plane_outside_its_domain_is_null(capsys):
 
 
 @pytest.mark.parametrize("scene, params", [("thick-vertex4", {"alpha2": 46.0, "b": 0.025}),
-                                           ("kokotsakis", {"case": 2.0})])  # fmt: skip
+                                           ("kokotsakis", {"case": 2.0})])
 def test_domain_ends_are_valid_and_close_the_loop(scene, params):
     kin = scenes.get(scene).build_from_user(params).kinematics
     loops = kin.loop_system()
@@ -193,10 +193,10 @@ def test_length_scale_is_the_largest_body_dimension():
 @pytest.mark.slow
 def test_validate_a_1500_m_bennett_passes_like_a_1_m_one(capsys, tmp_path):
     code, out, _ = cli(capsys, "validate", "bennett", "-p", "a=1000", "-p", "b=1500", "--preset", "fast",
-                         "--out", str(tmp_path / "big"), "--json")  # fmt: skip
+                         "--out", str(tmp_path / "big"), "--json")
     doc = json.loads(out)
     assert code == 0, [v for v in doc["verdicts"] + [v for b in doc["branches"] for v in b["verdicts"]]
-                       if not v["passed"]]  # fmt: skip
+                       if not v["passed"]]
 
 
 # Item 8: sweep grids refused in one line before any work.
@@ -219,7 +219,7 @@ def _closed_port() -> int:
         (["--grid", "alpha1=170:200:10"], "alpha1"),
         (["--grid", "alpha1=1:100:1", "--grid", "alpha2=1:100:1", "--grid", "alpha3=1:10:1"], "at most 10000"),
     ],
-)  # fmt: skip
+)
 def test_bad_sweep_grids_are_refused_before_any_work(capsys, tmp_path, extra, naming):
     refused(capsys, "sweep", "vertex4", *extra, "--out", str(tmp_path / "s"), naming=naming)
     assert not (tmp_path / "s" / "sweep.csv").exists()
@@ -228,7 +228,7 @@ def test_bad_sweep_grids_are_refused_before_any_work(capsys, tmp_path, extra, na
 def test_unreachable_scheduler_is_refused_in_one_line(capsys, tmp_path):
     address = f"tcp://127.0.0.1:{_closed_port()}"
     refused(capsys, "sweep", "vertex4", "--grid", "alpha1=50:60:5", "--scheduler", address,
-            "--out", str(tmp_path / "s"), naming=address)  # fmt: skip
+            "--out", str(tmp_path / "s"), naming=address)
 
 
 # Item 9: the largest sizes are stated and enforced up front.
@@ -238,7 +238,7 @@ def test_unreachable_scheduler_is_refused_in_one_line(capsys, tmp_path):
     "scene, param, limit",
     [("waterbomb-sheet", "rows=720", "16"), ("waterbomb-tube", "n=1e308", "24"), ("miura-sheet", "cols=33", "32"),
      ("corrugated-sheet", "rows=17", "16")],
-)  # fmt: skip
+)
 def test_sizes_beyond_the_stated_limit_are_refused(capsys, scene, param, limit):
     line = refused(capsys, "analytic", scene, "-p", param, "--input=10", naming=param.split("=")[0])
     assert f"to {limit}" in line and "at most" in line
@@ -295,7 +295,7 @@ def test_validate_refuses_a_folder_it_did_not_write(capsys, tmp_path):
 def _render_run(tmp_path: Path, sig: int) -> tuple[subprocess.CompletedProcess, Path]:
     out = tmp_path / "render"
     argv = [str(Path(sys.executable).parent / "sim-origami"), "validate", "vertex4", "--branch", "odd2", "--render",
-            "--out", str(out)]  # fmt: skip
+            "--out", str(out)]
     proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path)
     frames = out / STAGING / "frames"
     for _ in range(6000):  # wait (up to 10 min, never asserted) until frames are being written
@@ -352,4 +352,4 @@ def test_only_plain_decimal_numbers(capsys, text):
 def test_a_refusal_carries_no_warning_lines(capsys):
     # Sector angles that sum to 360 only after rounding: numpy warns deep inside before the refusal.
     refused(capsys, "analytic", "vertex4", "-p", "alpha1=179.9999999", "-p", "alpha2=0.0000001", "--input=10",
-            naming="alpha")  # fmt: skip
+            naming="alpha")

@@ -424,7 +424,7 @@ def test_mujoco_validation_passes(case, capsys):
             fast, projection = run.dynamic_path.max_error(), run.projection_path.max_error()
             closure = np.max(run.dynamic.closure_residual)
             print(f"\ncase {case} {run.requested}: fast {fast:.2e} rad, projection {projection:.2e} rad, "
-                  f"closure {closure:.2e} m (projection {run.projection_residual_m:.2e} m)")  # fmt: skip
+                  f"closure {closure:.2e} m (projection {run.projection_residual_m:.2e} m)")
     failed = [v for v in [*report.verdicts, *(v for r in report.runs for v in r.verdicts)] if not v.passed]
     assert report.passed, failed
     assert {r.followed for r in report.runs} == {b.name for b in report.scene.kinematics.branches()}

@@ -85,7 +85,7 @@ SAMPLED_PATH = [
     (2552, -179.89, 179.97, ALONG),  # bundle again, back onto the first branch
     (2750, -124.97, 164.99, ALONG), (3000, -54.41, 142.85, ALONG), (3250, 11.09, 114.21, ALONG),
     (3500, 63.54, 77.23, ALONG), (3750, 103.53, 29.19, ALONG),
-]  # fmt: skip
+]
 
 
 @pytest.mark.parametrize(("step", "theta", "phi", "branch"), SAMPLED_PATH)

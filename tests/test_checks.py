@@ -41,7 +41,7 @@ def symmetric_inputs(scene) -> np.ndarray:
     ("measured", "tolerance", "passed"),
     [(0.5, 1.0, True), (1.0, 1.0, True), (1.0 + 1e-12, 1.0, False), (0.0, 0.0, True), (np.nan, 1.0, False),
      (np.inf, 1.0, False), (-np.inf, 0.0, True)],
-)  # fmt: skip
+)
 def test_verdict_passes_exactly_when_measured_is_at_most_tolerance(measured, tolerance, passed):
     verdict = Verdict("check", measured, tolerance)
     assert verdict.passed is passed

@@ -71,7 +71,7 @@ def test_validate_writes_report_and_passes(capsys, tmp_path):
     assert code == 0
     doc = json.loads(out)
     for key in ("scene", "params", "preset", "branches", "events", "timings_s", "passed",
-                "angle_error_max_rad", "closure_residual_max_m"):  # fmt: skip
+                "angle_error_max_rad", "closure_residual_max_m"):
         assert key in doc
     assert doc["branches"][0]["branch_requested"] == doc["branches"][0]["branch_followed"] == "odd2"
     saved = json.loads((tmp_path / "v" / "report.json").read_text())
@@ -84,7 +84,7 @@ def test_validate_writes_report_and_passes(capsys, tmp_path):
 
 def test_validate_reports_blockage_event_for_thick_miura(capsys, tmp_path):
     code, out, _ = run(capsys, "validate", "miura", "-p", "thickness=0.02", "--branch", "miura",
-                       "--out", str(tmp_path / "m"), "--json")  # fmt: skip
+                       "--out", str(tmp_path / "m"), "--json")
     assert code == 0
     doc = json.loads(out)
     block = doc["blockage"]
@@ -157,7 +157,7 @@ def test_a_closed_pipe_ends_quietly():
     os.close(read)
     try:
         done = subprocess.run([str(Path(sys.executable).parent / "sim-origami"), "list"], stdout=write,
-                              stderr=subprocess.PIPE, text=True, timeout=120)  # fmt: skip
+                              stderr=subprocess.PIPE, text=True, timeout=120)
     finally:
         os.close(write)
     assert done.stderr == "" and done.returncode == 141  # 128 + SIGPIPE, as shell tools end

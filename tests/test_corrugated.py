@@ -41,12 +41,12 @@ P_TABLE = {
     "SCCS": "MMVM MMMV VVVM MMVM", "SCSC": "MMVM MMMV VVMV VVVM", "SCSS": "MMVM MMMV VVMV MMVM",
     "SSCC": "MMVM VVMV VVVM VVVM", "SSCS": "MMVM VVMV VVVM MMVM", "SSSC": "MMVM VVMV VVMV VVVM",
     "SSSS": "MMVM VVMV VVMV MMVM",
-}  # fmt: skip
+}
 Q_TABLE = {
     "CCCC": "MMMV MMMV MMMV MMMV", "CCSS": "MMMV MMMV MMVM VVMV", "CSCS": "MMMV MMVM VVVM VVMV",
     "CSSC": "MMMV MMVM VVMV MMMV", "SCCS": "MMVM VVVM VVVM VVMV", "SCSC": "MMVM VVVM VVMV MMMV",
     "SSCC": "MMVM VVMV MMMV MMMV", "SSSS": "MMVM VVMV MMVM VVMV",
-}  # fmt: skip
+}
 # Worked values of that enumeration, unit P at theta_1a = 1.0, per vertex (A, B, C, D) creases 1..4; 6 decimals.
 P_ORACLES = {
     "SCSC": ((1, 1.454216, -1, 1.454216), (1.454216, 1, 1.454216, -1), (-1, -1.454216, 1, -1.454216),
@@ -57,7 +57,7 @@ P_ORACLES = {
              (-2.77589, -1.454216, -2.77589, 1.454216), (-1.454216, -1, -1.454216, 1)),
     "SCCS": ((1, 1.454216, -1, 1.454216), (1.454216, 1, 1.454216, -1), (-1, -0.179279, -1, 0.179279),
              (0.179279, 1, -0.179279, 1)),
-}  # fmt: skip
+}
 
 
 @pytest.fixture(scope="module")
@@ -117,7 +117,7 @@ def test_assignments_and_modes_match_the_enumerated_strings(unit, table):
 
 def test_half_turn_maps_creases_as_peng2018_does():
     for unit, pairs in (("P", (("a3", "c3"), ("AB", "CD"), ("AD", "BC"), ("b1", "d1"))),
-                        ("Q", (("a1", "e1"), ("AB", "EF"), ("AF", "BE"), ("b4", "f4")))):  # fmt: skip
+                        ("Q", (("a1", "e1"), ("AB", "EF"), ("AF", "BE"), ("b4", "f4")))):
         model = UnitModel(unit, FIG_3_2)
         for a, b in pairs:
             assert model.crease_names[model.rotation[model.index[a]]] == b

@@ -39,7 +39,7 @@ def test_one_unit_sheet_is_the_corrugated_unit(unit):
     assert max(np.min(np.linalg.norm(q.vertices - v, axis=1)) for v in p.vertices) <= 1e-14  # measured 4.0e-16 m
     mid = np.array([(q.vertices[c.start] + q.vertices[c.end]) / 2 for c in q.creases])
     match = [int(np.argmin(np.linalg.norm(mid - (p.vertices[c.start] + p.vertices[c.end]) / 2, axis=1)))
-             for c in p.creases]  # fmt: skip
+             for c in p.creases]
     assert sorted(match) == list(range(12))
     assert q.creases[match[sheet.input]].name == model.input_name.removeprefix("rho")  # AD (P), AF (Q)
     assert tuple(sheet.ratios) == tuple(model.ratios)

@@ -31,7 +31,7 @@ def interior_vertex_sums(doc: dict) -> dict[int, tuple[float, int]]:
     """For each interior vertex (on no B or C edge): |alternate sector angle sum - pi| (Kawasaki) and |#M - #V|
     (Maekawa) over its M and V creases."""
     border = {v for e, letter in zip(doc["edges_vertices"], doc["edges_assignment"], strict=True) if letter in "BC"
-              for v in e}  # fmt: skip
+              for v in e}
     out = {}
     for v in sorted(set(range(len(doc["vertices_coords"]))) - border):
         turn = creases_round(doc, v)
@@ -62,7 +62,7 @@ def test_the_frog_bases_square_crossings_fold_one_line_at_a_time():
     doc = frog_base()
     xy = np.asarray(doc["vertices_coords"])
     hubs = [v for v in range(len(xy)) if np.isclose(np.linalg.norm(xy[v] - 0.5), np.sqrt(2) / 4)
-            and np.isclose(np.min(np.abs(xy[v] - 0.5)), 0.0)]  # fmt: skip
+            and np.isclose(np.min(np.abs(xy[v] - 0.5)), 0.0)]
     assert len(hubs) == 4
     for v in hubs:  # four right angles; the line through the centre (vertex 0) M then V, the other M, M
         turn = creases_round(doc, v)

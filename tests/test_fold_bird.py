@@ -28,7 +28,7 @@ MIDWAY_DEG = [0.0] * 8 + [
     94.9124, 64.7044, 94.9124, 122.2349, 122.2349, 94.9124, 94.9124, 123.686, -6.5569, 86.5587, -30.1323, 90.5798,
     -30.1323, 90.5798, -26.9809, 94.9124, -65.106, -77.0517, 0.0, 0.0, -55.6635, -55.6635, -0.0, 0.0, -50.1183,
     -50.1183,
-]  # fmt: skip
+]
 
 
 def bird(letters: str = RABBIT_EAR, fold_angles_deg: list[float] | None = None) -> dict:
@@ -46,7 +46,7 @@ def bird(letters: str = RABBIT_EAR, fold_angles_deg: list[float] | None = None) 
                            [1, 9], [9, 8], [3, 10], [10, 8], [5, 11], [11, 8], [7, 12], [12, 8], [2, 8], [6, 8],
                            [0, 13], [13, 8], [13, 9], [13, 12], [4, 14], [14, 8], [14, 10], [14, 11]],
         "edges_assignment": list(letters),
-    }  # fmt: skip
+    }
     if fold_angles_deg is not None:
         doc["edges_foldAngle"] = fold_angles_deg
     return doc
@@ -98,7 +98,7 @@ def test_the_bird_bases_inputs_and_motion_do_not_depend_on_rounding(tmp_path, mo
     for seed in range(4):
         rng = np.random.default_rng(seed)
         monkeypatch.setattr(LoopSystem, "residual", lambda self, q, rng=rng: exact(self, q) * (
-            1.0 + np.finfo(float).eps * rng.standard_normal(self.n_residuals)))  # fmt: skip
+            1.0 + np.finfo(float).eps * rng.standard_normal(self.n_residuals)))
         scene = fold_scene(path)
         assert scene.drives == ("e24", "e22", "e12"), seed
         assert scene.kinematics.stops[-1].kind == "bound" and scene.kinematics.s_nodes[-1] > 5.6, seed

@@ -91,7 +91,7 @@ def test_flat_folding_stops_at_the_lock_not_at_a_contact():
 
 
 @pytest.mark.parametrize(("name", "values"), [("miura-sheet", {"rows": 2, "cols": 2}), ("square-twist", {}),
-                                              ("corrugated-unit", {})])  # fmt: skip
+                                              ("corrugated-unit", {})])
 def test_no_false_contact_on_built_in_motions_up_to_their_ends(name, values):
     """Every branch from flat to 1e-3 rad short of +-pi (the faces end stacked on each other, never crossing)."""
     scene = scenes.get(name).build(**values)
@@ -153,7 +153,7 @@ def cut_square() -> CreasePattern:
     doc = {"vertices_coords": [[1, 1], [0, 0], [2, 0], [2, 2], [0, 2]],
            "edges_vertices": [[0, 1], [0, 2], [0, 3], [0, 4], [1, 2], [2, 3], [3, 4], [4, 1]],
            "edges_assignment": ["C", "V", "V", "V", "B", "B", "B", "B"],
-           "faces_vertices": [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 1]]}  # fmt: skip
+           "faces_vertices": [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 1]]}
     return read_fold(doc).pattern
 
 

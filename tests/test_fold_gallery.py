@@ -27,7 +27,7 @@ DEG = np.pi / 180
 
 def _doc(verts, edges, assign, creator="Rabbit Ear", **extra) -> dict:
     doc = {"file_spec": 1.1, "file_creator": creator, "vertices_coords": [list(map(float, v)) for v in verts],
-           "edges_vertices": [list(e) for e in edges], "edges_assignment": list(assign)}  # fmt: skip
+           "edges_vertices": [list(e) for e in edges], "edges_assignment": list(assign)}
     doc.update(extra)
     return doc
 
@@ -49,7 +49,7 @@ def miura(widths, heights, slope=0.3, lower=True, turn_deg=0.0) -> dict:
     cols, rows = len(widths), len(heights)
     c, s = np.cos(turn_deg * DEG), np.sin(turn_deg * DEG)
     pts = {(i, j): (c * xs[i] - s * (ys[j] + zig[i]), s * xs[i] + c * (ys[j] + zig[i]))
-           for j in range(rows + 1) for i in range(cols + 1)}  # fmt: skip
+           for j in range(rows + 1) for i in range(cols + 1)}
     pairs = [((i, j), (i + 1, j)) for j in range(rows + 1) for i in range(cols)]
     pairs += [((i, j), (i, j + 1)) for j in range(rows) for i in range(cols + 1)]
 
@@ -257,11 +257,11 @@ def strip_frames(n=3, angles_deg=(0.0, 30.0, 60.0, 90.0)) -> dict:
         # y up: the sheet's height is -z, the panels' rise y
         frames.append({"frame_classes": ["foldedForm"], "frame_attributes": ["3D"], "frame_unit": "cm",
                        "frame_inherit": True, "fold_percent_os": a / 180,
-                       "vertices_coords": [[x, y, -z] for x, y, z in xyz]})  # fmt: skip
+                       "vertices_coords": [[x, y, -z] for x, y, z in xyz]})
     return {"file_spec": 1.1, "file_creator": "Origami Simulator: http://git.amandaghassaei.com/OrigamiSimulator/",
             "file_classes": ["singleModel"], "file_frames": frames, "edges_vertices": edges,
             "edges_assignment": assign,
-            "faces_vertices": [[i, i + 1, k + i + 1, k + i] for i in range(n + 1)]}  # fmt: skip
+            "faces_vertices": [[i, i + 1, k + i + 1, k + i] for i in range(n + 1)]}
 
 
 def strip_degrees(n=4, deg=90.0) -> dict:
@@ -360,7 +360,7 @@ def test_paper_cut_into_separate_pieces_is_refused_before_the_trace(tmp_path, ca
     the faces cut off (it was 'bodies ['f2', 'f3'] are not connected to root', after the trace)."""
     doc = _doc([[x, y] for y in (0, 1) for x in range(5)],
                [[0, 1], [1, 2], [2, 3], [3, 4], [5, 6], [6, 7], [7, 8], [8, 9], [0, 5], [1, 6], [2, 7], [3, 8], [4, 9]],
-               list("BBBBBBBBBVCMB"), creator="hand", edges_foldAngle=[0] * 9 + [60, 0, -60, 0])  # fmt: skip
+               list("BBBBBBBBBVCMB"), creator="hand", edges_foldAngle=[0] * 9 + [60, 0, -60, 0])
     code = main(["validate", "--fold", str(write(tmp_path, "pieces", doc)), "--out", str(tmp_path / "out")])
     err = capsys.readouterr().err
     assert code == 2 and len(err.strip().splitlines()) == 1

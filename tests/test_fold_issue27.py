@@ -148,7 +148,7 @@ def alternating_degree8() -> dict:
     return {"file_spec": 1.1, "file_creator": "A CP editor", "vertices_coords": [[0, 0], *ring],
             "edges_vertices": [[0, i] for i in range(1, 9)] + [[i, i % 8 + 1] for i in range(1, 9)],
             "edges_assignment": ["M", "V"] * 4 + ["B"] * 8,
-            "faces_vertices": [[0, i, i % 8 + 1] for i in range(1, 9)]}  # fmt: skip
+            "faces_vertices": [[0, i, i % 8 + 1] for i in range(1, 9)]}
 
 
 def test_a_flat_vertex_with_spare_freedoms_folds_along_its_letters_not_into_a_false_lock():

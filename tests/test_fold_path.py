@@ -115,7 +115,7 @@ def test_a_frozen_sweep_fails_the_swept_range_verdict(tmp_path):
     [(strip(1, "V"), [100.0], 1), (strip(3), [-60.0, 90.0, -120.0], 3), (fan([40.0, 50.0, 60.0, 30.0], "MVM"),
       [-50.0, 80.0, -40.0], 3), (cube_net(), [90.0] * 5, 5)],
     ids=["single-crease", "strip-3", "fan-to-border", "cube-net"],
-)  # fmt: skip
+)
 def test_open_chains_validate_three_ways_with_every_freedom_driven(tmp_path, pattern, angles_deg, inputs):
     scene = fold_scene(write_fold(tmp_path / "p.fold", pattern, fold_angles=np.deg2rad(angles_deg)))
     assert len(scene.drives) == inputs and scene.kinematics.open_chain

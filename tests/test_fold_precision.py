@@ -80,7 +80,7 @@ def test_rounded_forms_of_patterns_rigid_only_by_their_geometry_fold(tmp_path, w
     verdict = state_verdict(report)
     # measured: 0.239 of 5e-5 (Miura), 0.405 of 5e-7 (square twist)
     assert 0.1 < verdict["measured"] < 0.5 and "4 further states of the same faces along one rigid motion" in \
-        verdict["detail"] and "the rigid motion passes through it" in verdict["detail"]  # fmt: skip
+        verdict["detail"] and "the rigid motion passes through it" in verdict["detail"]
     swept = next(v for b in report["branches"] for v in b["verdicts"] if "swept range" in v["name"])
     assert swept["measured"] < 0.01  # the motion sweeps over 0.1 rad
 
@@ -92,10 +92,10 @@ def origami_simulator_strained(fractions: list[float], strain: float) -> dict:
     frames = [{"frame_classes": ["foldedForm"], "frame_attributes": ["3D"], "frame_inherit": True,
                "vertices_coords": (strained(folded_xyz(doc, "e1", f), strain) if f else np.column_stack(
                    [doc["vertices_coords"], np.zeros(5)]))[:, [0, 2, 1]].tolist()}
-              for f in fractions]  # fmt: skip
+              for f in fractions]
     return {"file_spec": 1.1, "file_creator": "Origami Simulator", "file_frames": frames,
             "edges_vertices": doc["edges_vertices"], "edges_assignment": doc["edges_assignment"],
-            "faces_vertices": doc["faces_vertices"]}  # fmt: skip
+            "faces_vertices": doc["faces_vertices"]}
 
 
 @pytest.mark.slow
@@ -186,7 +186,7 @@ def test_a_cone_far_from_any_developable_state_is_a_verdict(tmp_path):
     doc = {"vertices_coords": [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]],
            "edges_vertices": [[0, 1], [0, 2], [0, 3], [0, 4], [1, 2], [2, 3], [3, 4], [4, 1]],
            "edges_assignment": ["M"] * 4 + ["B"] * 4,
-           "faces_vertices": [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 1]]}  # fmt: skip
+           "faces_vertices": [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 1]]}
     code, report = validated(tmp_path, "pyramid", doc)
     verdict = state_verdict(report)
     assert code == 1 and not verdict["passed"] and verdict["measured"] == pytest.approx(16.0, rel=1e-3)

@@ -384,7 +384,7 @@ def test_flat_folded_form_needs_its_crease_pattern():
     assert "the crease pattern is vertices_flatUnfoldCoords" in got.notes[0]
     doc = diagonal_folded()
     doc["file_frames"] = [{"frame_classes": ["creasePattern"], "frame_inherit": True,
-                           "vertices_coords": [[0, 0], [1, 0], [1, 1], [0, 1]]}]  # fmt: skip
+                           "vertices_coords": [[0, 0], [1, 0], [1, 1], [0, 1]]}]
     got = read_fold(doc)
     np.testing.assert_array_equal(got.fold_angles, [np.pi])
     np.testing.assert_array_equal(got.frames, [[0.0]])
@@ -511,9 +511,9 @@ JSON = st.recursive(
     lambda inner: st.lists(inner, max_size=9) | st.dictionaries(st.sampled_from(["frame_inherit", "frame_parent",
                                                                                   "vertices_coords"]), inner),
     max_leaves=30,
-)  # fmt: skip
+)
 FIELDS = ["vertices_coords", "edges_vertices", "edges_assignment", "faces_vertices", "faces_edges",
-          "edges_foldAngle", "file_frames", "frame_unit", "frame_classes", "edges_sim_origami:hingeHeight"]  # fmt: skip
+          "edges_foldAngle", "file_frames", "frame_unit", "frame_classes", "edges_sim_origami:hingeHeight"]
 
 
 BASES = {
@@ -549,7 +549,7 @@ def test_long_inheritance_chain_and_collapsed_frames():
     np.testing.assert_allclose(got.frames[-1], np.deg2rad([-30.0, 45.0, -30.0, 0.0]))
     doc = degree4()
     doc["file_frames"] = [{"frame_inherit": True, "vertices_coords": [[0, 0, 0], [0, 0, 0], [0.2, 1, 0], [-1, 0, 0],
-                                                                      [0, -1, 0]]}]  # fmt: skip
+                                                                      [0, -1, 0]]}]
     with pytest.raises(ParameterError, match="frame 1 vertices_coords: face 0 has no area in 3-D"):
         read_fold(doc)
 

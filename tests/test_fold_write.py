@@ -126,7 +126,7 @@ def test_full_fold_is_plus_180_and_beyond_is_refused():
 def reports() -> dict[str, Report]:
     """A real MuJoCo run of each MOTIONS scene's branch."""
     out = {key: validate(scenes.get(name).build(**params), branch=branch) for key, (name, params, branch) in
-           (MOTIONS | THICK).items()}  # fmt: skip
+           (MOTIONS | THICK).items()}
     assert all(report.passed for report in out.values())
     return out
 
@@ -176,7 +176,7 @@ def failures(report: Report) -> list[str]:
 # rounding floor leaves 1.01e-12 / 1.17e-13 rad, held to the conditioning-scaled tolerances (docs/fold_motion.md).
 @pytest.mark.slow
 @pytest.mark.parametrize("key", ["waterbomb-vertex", "square-twist", "corrugated-unit", "miura-sheet-2x2",
-                                 "waterbomb-thick"])  # fmt: skip
+                                 "waterbomb-thick"])
 def test_motion_validates_when_read_back(motions, key):
     report = validate(fold_scene(motions[key]))
     assert report.passed, failures(report)

@@ -35,7 +35,7 @@ class Raw:
 
 JUNK = (Raw("1" + "0" * 330), Raw("-" + "9" * 5000), Raw("NaN"), Raw("Infinity"), Raw("-Infinity"), Raw("1e400"),
         Raw("[" * 5000 + "]" * 5000), "90", "", "M", True, False, None, [], [[]], [[[1.0]]], [None], {}, {"a": 1},
-        1e308, -1e308, 0, -1, 7, 2**70, 0.5, 180.0, -181.0)  # fmt: skip
+        1e308, -1e308, 0, -1, 7, 2**70, 0.5, 180.0, -181.0)
 BASES = {
     "degree4-letters": degree4_letters(),
     "degree4-state": degree4_letters() | {"edges_foldAngle": [-70.0, 60.0, 60.0, 60.0, 0, 0, 0, 0]},
@@ -43,7 +43,7 @@ BASES = {
     "simple-folded": simple_fold(),
 }
 FIELDS = ("vertices_coords", "edges_vertices", "edges_assignment", "faces_vertices", "edges_foldAngle", "frame_unit",
-          "file_frames", "frame_classes", "edges_sim_origami:hingeHeight", "frame_sim_origami:precision")  # fmt: skip
+          "file_frames", "frame_classes", "edges_sim_origami:hingeHeight", "frame_sim_origami:precision")
 
 
 def text(doc: dict) -> str:
@@ -91,7 +91,7 @@ def test_fuzz_fold_files(tmp_path_factory):
     folder = tmp_path_factory.mktemp("fuzz")
 
     @settings(derandomize=True, deadline=None, database=None, max_examples=EXAMPLES, print_blob=False,
-              suppress_health_check=list(HealthCheck))  # fmt: skip
+              suppress_health_check=list(HealthCheck))
     @given(mutated())
     def one(doc: dict) -> None:
         path = folder / "mutated.fold"

@@ -59,7 +59,7 @@ JUNK = (None, True, False, "", "x", "\x00", "a\x00b", "two\nlines", "\ud800", "x
         Raw("1" + "0" * 400), Raw("-1" + "0" * 400), Raw("1" + "0" * 5000), Raw("1e400"), Raw("-1e400"),
         Raw("[" * 3000 + "]" * 3000), Raw("[" * 40 + "]" * 40), [], [[1]], [1, 2, 3, 4], [0.0, 0.0, 0.0],
         [1e308, 1e308, 1e308], [1e-300, 0, 0], {}, {"a": 1}, [["a"], "b"], ["link_1", "link_1"], [-1e-300, 1e-300],
-        "revolute", "spherical", "rad", "deg", "mm", "nm", "km")  # fmt: skip
+        "revolute", "spherical", "rad", "deg", "mm", "nm", "km")
 
 
 def _json(value: Any) -> str:
@@ -137,7 +137,7 @@ def mutant(draw, name: str) -> tuple[str, str]:
             rows += [copy.deepcopy(row) for _ in range(draw(st.sampled_from((1, 4, 40))))]
         elif kind == "field" and isinstance(parent, dict):
             parent[draw(st.sampled_from(("bogus", "anchor", "notes", "shapes", "precision", "contact")))] = \
-                _junk(draw)  # fmt: skip
+                _junk(draw)
     if draw(st.booleans()):
         return ".json", _json(doc)
     return ".toml", "\n".join(f"{json.dumps(str(k))} = {_toml(v)}" for k, v in doc.items()) + "\n"
@@ -165,7 +165,7 @@ def test_fuzz_linkage_file(tmp_path, name):
             (tmp_path / other.name).write_bytes(other.read_bytes())
 
     @settings(derandomize=True, deadline=None, database=None, max_examples=EXAMPLES, print_blob=False,
-              suppress_health_check=list(HealthCheck))  # fmt: skip
+              suppress_health_check=list(HealthCheck))
     @given(mutant(name))
     def one(mutated: tuple[str, str]) -> None:
         suffix, text = mutated
@@ -202,7 +202,7 @@ def _report() -> None:
     if COUNTS:
         print(f"\nlinkage fuzz counts ({'big' if BIG else 'ci'}): examples {COUNTS['examples']}, read "
               f"{COUNTS['reads']}, refused on reading {COUNTS['read refusals']}, scenes built {COUNTS['scenes']}, "
-              f"refused by the scene {COUNTS['scene refusals']}")  # fmt: skip
+              f"refused by the scene {COUNTS['scene refusals']}")
 
 
 atexit.register(_report)

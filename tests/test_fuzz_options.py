@@ -63,7 +63,7 @@ def contents(folder: Path) -> dict[str, str]:
     if not folder.is_dir():
         return {}
     return {p.relative_to(folder).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
-            for p in sorted(folder.rglob("*")) if p.is_file()}  # fmt: skip
+            for p in sorted(folder.rglob("*")) if p.is_file()}
 
 
 @pytest.fixture(scope="module")
@@ -111,7 +111,7 @@ def _alarm(signum, frame):
 
 
 @settings(max_examples=EXAMPLES, derandomize=True, deadline=None, database=None, print_blob=False,
-          suppress_health_check=list(HealthCheck))  # fmt: skip
+          suppress_health_check=list(HealthCheck))
 @given(case=command_lines())
 def test_option_combinations_into_any_folder_state_keep_the_contract(tmp_path_factory, finished_run, case):
     argv, state = case

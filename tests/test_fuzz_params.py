@@ -36,10 +36,10 @@ BIG = os.environ.get("SIM_ORIGAMI_FUZZ") == "big"
 MEASURE = os.environ.get("SIM_ORIGAMI_FUZZ_MEASURE") == "1"
 # Scenes whose build takes seconds (traced paths, large meshes): fewer examples keep the CI run near a minute.
 SLOW_SCENES = {"truncated-octahedron", "truncated-tetrahedron-i", "truncated-tetrahedron-ii", "waterbomb-tube",
-               "waterbomb-twist"}  # fmt: skip
+               "waterbomb-twist"}
 EXAMPLES = 10 if BIG else 1
 settings.register_profile("fuzz", derandomize=True, deadline=None, database=None, print_blob=False,
-                          suppress_health_check=list(HealthCheck))  # fmt: skip
+                          suppress_health_check=list(HealthCheck))
 
 COUNTS: Counter = Counter()
 PROBLEMS: list[str] = []
@@ -47,7 +47,7 @@ PROBLEMS: list[str] = []
 # Values at and beyond the edges, as typed on the command line.
 EDGE_TEXT = ("0", "-0", "-1", "1", "2", "3", "90", "180", "-180", "360", "720", "1e308", "1e400", "-1e400", "1e-300",
              "1e-9", "-1e-9", "nan", "NaN", "inf", "-inf", "Infinity", "abc", "", "1_0", "0x10", "4.5", "1e10",
-             "89.999", "90.001", "45", "30", "60", "135")  # fmt: skip
+             "89.999", "90.001", "45", "30", "60", "135")
 
 
 def _count_examples(scene: str) -> int:
@@ -79,7 +79,7 @@ def _problem(kind: str, where: str, detail: str) -> None:
 def _run_cli(argv: list[str]) -> tuple[int, str, str, list]:
     out, err = io.StringIO(), io.StringIO()
     with warnings.catch_warnings(record=True) as caught, contextlib.redirect_stdout(out), \
-            contextlib.redirect_stderr(err):  # fmt: skip
+            contextlib.redirect_stderr(err):
         warnings.simplefilter("always")
         try:
             code = main(argv)
@@ -230,7 +230,7 @@ def _fuzz_checks(scene: str, given: dict[str, str]) -> None:
         kin = scenes.get(scene).build_from_user({k: float(v) for k, v in given.items()}).kinematics
         degrees = [v for b in kin.branches() for v in np.rad2deg(b.domain)] + [0.0, -1e6]
         _check_cli(["analytic", scene, *_argv_params(given), "--input=" + ",".join(f"{d:.6f}" for d in degrees),
-                    "--json"], given)  # fmt: skip
+                    "--json"], given)
     _check_api(scene, given)
 
 
@@ -251,7 +251,7 @@ def _report() -> None:
         print(f"\nfuzz counts: examples {COUNTS['examples']}, CLI runs {COUNTS['cli_runs']} "
               f"(refusals {COUNTS['cli_refusals']}), API builds {COUNTS['api_builds']} "
               f"(refusals {COUNTS['api_refusals']}), evaluations {COUNTS['api_evaluations']}, "
-              f"failures {COUNTS['failures']} {kinds}")  # fmt: skip
+              f"failures {COUNTS['failures']} {kinds}")
         path = os.environ.get("SIM_ORIGAMI_FUZZ_PROBLEMS")
         if path:
             with open(path, "w") as fh:

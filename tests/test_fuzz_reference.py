@@ -22,7 +22,7 @@ EXAMPLES = 600 if os.environ.get("SIM_ORIGAMI_FUZZ") == "big" else 60
 HEADER = ["theta[deg]", "phi[deg]", "psi[deg]", "rho_c[deg]"]
 CELLS = ("0", "-0", "1e308", "1e+308", "1e400", "-1e400", "0e400", "1e-400", "nan", "inf", "-inf", "", " ", "abc",
          "1_0", "0x10", "1" * 400, "9e" + "9" * 400, '"12"', "12,5", "\x00", "١٢", "1e", ".", "-", "+1.5E-3",
-         "180", "-180", "720")  # fmt: skip
+         "180", "-180", "720")
 HEADS = ("theta", "theta[rad]", "theta[deg", "[deg]", "phi[furlong]", "phi[deg]", "rho_a[deg]", "x[deg]", "", "\x00")
 
 
@@ -32,7 +32,7 @@ def _rows() -> list[list[str]]:
     values = np.rad2deg(kin.joint_angles("miura", np.deg2rad(theta)))
     names = list(kin.joint_names)
     return [[f"{t:.6f}"] + [f"{values[i, names.index(j)]:.6f}" for j in ("phi", "psi", "rho_c")]
-            for i, t in enumerate(theta)]  # fmt: skip
+            for i, t in enumerate(theta)]
 
 
 @st.composite
@@ -64,7 +64,7 @@ def test_fuzz_reference_csv(tmp_path_factory, miura):
     folder = tmp_path_factory.mktemp("fuzz")
 
     @settings(derandomize=True, deadline=None, database=None, max_examples=EXAMPLES,
-              suppress_health_check=list(HealthCheck))  # fmt: skip
+              suppress_health_check=list(HealthCheck))
     @given(mutated())
     def one(text: str) -> None:
         path = folder / "ref.csv"

@@ -9,7 +9,7 @@ from sim_origami.errors import DomainError
 
 # Kinematics families whose scenes build in about a second with their defaults.
 CHEAP = ("vertex4", "miura", "bennett", "myard", "bricard-threefold", "bricard-plane", "thick-vertex4",
-         "waterbomb-vertex", "waterbomb-sheet", "square-twist")  # fmt: skip
+         "waterbomb-vertex", "waterbomb-sheet", "square-twist")
 # Their closed forms take a few seconds to build.
 SLOW = ("waterbomb-tube", "kokotsakis")
 

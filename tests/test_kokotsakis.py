@@ -150,7 +150,7 @@ def test_two_fold_case_closes_on_six_combinations():
     mesh = Kokotsakis(example(3))
     names = [b.name for b in mesh.branches()]
     assert names == ["odd2", "odd2-odd2-odd3-odd3", "odd2-odd3-odd3-odd2", "odd3", "odd3-odd2-odd2-odd3",
-                     "odd3-odd3-odd2-odd2"]  # fmt: skip
+                     "odd3-odd3-odd2-odd2"]
     # mixed pairs end early: creases c4, d4 fold flat at |rho_AB| = 0.423290
     assert mesh.branch("odd2-odd2-odd3-odd3").domain[1] == pytest.approx(0.423290, abs=PRINTED)
     folds = mesh.vertex_folds("odd2", np.linspace(-1.1, 1.1, 51))
@@ -224,7 +224,7 @@ def test_validate_closed_form_numeric_and_mujoco(case):
     scene = scenes.get("kokotsakis").build(case=float(case))
     report = validate(scene)
     measured = {v.name: v.measured for v in report.verdicts} | {v.name: v.measured for r in report.runs
-                                                                 for v in r.verdicts}  # fmt: skip
+                                                                 for v in r.verdicts}
     for run in report.runs:
         b = run.requested
         # closed form vs numeric: measured <= 3.0e-14 (case 1), 5.5e-14 (2, S from 0.5 rad), 2.9e-14 (3), 1.2e-14 (4)
@@ -270,7 +270,7 @@ def test_bad_geometry_is_refused(vertices, match):
 def test_a_mesh_whose_loop_never_closes_is_rigid():
     # developable and planar (90 + 70 + 80 + 120 deg) but generic: smallest mismatch measured 0.138 rad
     rigid = (vertex(GENERIC, 1), vertex((80, 70, 100, 110), 2), vertex((100, 110, 80, 70), 3),
-             vertex((100, 80, 60, 120), 4))  # fmt: skip
+             vertex((100, 80, 60, 120), 4))
     with pytest.raises(AssemblyError, match=re.escape("smallest loop mismatch 0.138 rad")):
         Kokotsakis(rigid)
 

@@ -45,7 +45,7 @@ COUNTS = {
     ("collinear 1-3", "rotation"): {"meshes": 256, "planar": 64, "closing": 16, "case 1 type": 4, "new": 12},
     ("collinear 2-4", "rotation"): {"meshes": 256, "planar": 64, "closing": 16, "case 1 type": 4, "new": 12,
                                     "straight only": 48},
-}  # fmt: skip
+}
 
 
 def vertices_of(base: str, transmission: str, codes: tuple[str, ...]):
@@ -85,7 +85,7 @@ def test_example2_is_found_and_closes_on_s_and_c_only():
     rows = kv.census("example 2", kv.BASES["example 2"], "rotation")
     found = [r for r in rows if r.label == "example 2"]
     assert [r.codes for r in found] == [("aaaa", "pppp", "aaaa", "pppp"), ("apap", "papa", "apap", "papa"),
-                                        ("papa", "apap", "papa", "apap"), ("pppp", "aaaa", "pppp", "aaaa")]  # fmt: skip
+                                        ("papa", "apap", "papa", "apap"), ("pppp", "aaaa", "pppp", "aaaa")]
     assert {r.closing for r in found} == {("C", "S")}
     assert len({r.signature for r in found}) == 1 and found[0].signature == kv.signature(example(2))
     # all 16 'new' closing meshes of this base are flat-foldable like Example 2 but not congruent to it: the thesis's
@@ -98,7 +98,7 @@ def test_example2_is_found_and_closes_on_s_and_c_only():
 @pytest.mark.slow
 def test_census_agrees_with_the_kokotsakis_class():
     for base, transmission, codes in (("example 2", "rotation", ("aaaa", "pppp", "aaaa", "pppp")),
-                                      ("generic 2-34", "two-fold", ("aaaa", "pppp", "aaaa", "pppp"))):  # fmt: skip
+                                      ("generic 2-34", "two-fold", ("aaaa", "pppp", "aaaa", "pppp"))):
         v = vertices_of(base, transmission, codes)
         assert kv.closing(branch_mismatches(v)) == tuple(b.name for b in Kokotsakis(v).branches())
     rigid = vertices_of("example 2", "rotation", ("aaaa", "aaaa", "apap", "aaaa"))
@@ -130,7 +130,7 @@ def test_new_two_fold_mesh_of_the_generic_vertex_is_rigid_origami():
     v = vertices_of("generic 2-34", "two-fold", ("aaaa", "pppp", "aaaa", "pppp"))
     mesh = Kokotsakis(v)
     names = ("odd2-odd1-odd3-odd4 odd2-odd4-odd2-odd4 odd2-odd4-odd3-odd1 odd3-odd1-odd2-odd4 odd3-odd1-odd3-odd1 "
-             "odd3-odd4-odd2-odd1")  # fmt: skip
+             "odd3-odd4-odd2-odd1")
     assert [b.name for b in mesh.branches()] == names.split()
     assert not kv.mirror_symmetric(v) and kv.signature(v) not in kv.known(kv.BASES["generic 2-34"])
     pattern, loops = mesh.pattern, mesh.loop_system()
@@ -154,10 +154,10 @@ def test_new_plane_symmetric_layout_mesh_in_mujoco():
     assert not kv.mirror_symmetric(v)
     mesh = Kokotsakis(v)
     scene = pattern_scene("kokotsakis_variant", {}, mesh, mesh.pattern, drive=INPUT, path=(0.3, 1.1), root="central",
-                          sweep_time_scale=4.0)  # fmt: skip
+                          sweep_time_scale=4.0)
     report = validate(scene)
     measured = {x.name: x.measured for x in report.verdicts} | {x.name: x.measured for r in report.runs
-                                                                 for x in r.verdicts}  # fmt: skip
+                                                                 for x in r.verdicts}
     names = "odd2-odd2-odd4-odd4 odd2-odd3-odd1-odd4 odd3-odd2-odd4-odd1 odd3-odd3-odd1-odd1"
     assert [r.requested for r in report.runs] == names.split()
     for run in report.runs:
@@ -179,7 +179,7 @@ def test_a4_rows_need_a_sector_pair_summing_to_pi():
         ("alpha12 + alpha23 = pi", "alpha12 + alpha34 = pi", "alpha12 + alpha41 = pi"), False
     )
     for base, key in (("collinear 1-3", "alpha12 + alpha23 = pi"), ("example 2", "alpha12 + alpha34 = pi"),
-                      ("collinear 2-4", "alpha12 + alpha41 = pi")):  # fmt: skip
+                      ("collinear 2-4", "alpha12 + alpha41 = pi")):
         assert [k for k, ok in kv.variant_conditions(kv.BASES[base]).items() if ok] == [key]
     a = np.array(kv.BASES["generic 2-34"]) * DEG
     appa = (a[0], np.pi - a[1], np.pi - a[2], a[3])  # the rotation example's A (eqn 2-30b), class R3

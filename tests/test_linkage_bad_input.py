@@ -63,7 +63,7 @@ def test_integers_beyond_a_float_are_refused_in_json_and_toml(capsys, tmp_path, 
     big = "1" + "0" * digits
     text = json.dumps(bennett()).replace('"a": 1.0', f'"a": {big}', 1)
     needle = "joints[0].a = <an integer of 401 digits>: it must be a finite number" if digits == 400 else \
-        "an integer of over 4300 digits"  # fmt: skip
+        "an integer of over 4300 digits"
     refused(capsys, tmp_path, write(tmp_path, text), needle)
     refused(capsys, tmp_path, write(tmp_path, TOML.format(extra="", a=big), "linkage.toml"), needle)
 
@@ -75,7 +75,7 @@ def test_integers_beyond_a_float_are_refused_in_json_and_toml(capsys, tmp_path, 
      ("linkage.toml", TOML.format(extra="notes = " + "{a = " * 3000 + "1" + "}" * 3000, a=1.0)),
      ("linkage.toml", TOML.format(extra="notes." + "a." * 3000 + "b = 1", a=1.0)),
      ("linkage.json", json.dumps(bennett())[:-1] + ', "notes": ' + "[" * 40 + "]" * 40 + "}")],
-)  # fmt: skip
+)
 def test_documents_nested_thousands_deep_are_refused(capsys, tmp_path, name, text):
     refused(capsys, tmp_path, write(tmp_path, text, name), "lists or tables nested more than 32 deep")
 
@@ -103,7 +103,7 @@ INF_VERTEX = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 inf\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf
      ({}, {"width": 1e6}, "shapes.width = 1000000.0: it must lie within"),
      ({"t.stl": ONE_TRIANGLE}, {"meshes": {"link_1": "t.stl"}}, "'t.stl' is no solid MuJoCo can simulate"),
      ({"i.obj": INF_VERTEX}, {"meshes": {"link_2": "i.obj"}}, "shapes.meshes.link_2: 'i.obj'")],
-)  # fmt: skip
+)
 def test_solids_mujoco_cannot_compile_are_refused_as_the_file_is_read(tmp_path, files, shapes, needle):
     for name, text in files.items():
         (tmp_path / name).write_text(text)
@@ -120,7 +120,7 @@ def test_solids_mujoco_cannot_compile_are_refused_as_the_file_is_read(tmp_path, 
      ({"notes": "a\0b"}, r"notes = 'a\x00b': it holds the control character '\x00'"),
      ({"notes": "two\nlines"}, r"notes = 'two\nlines': it holds the control character '\n'"),
      ({"notes": "\ud800"}, r"notes = '\ud800': it holds the control character")],
-)  # fmt: skip
+)
 def test_control_characters_in_names_and_notes_are_refused(capsys, tmp_path, changes, needle):
     refused(capsys, tmp_path, write(tmp_path, json.dumps(bennett(**changes))), needle)
 
@@ -168,7 +168,7 @@ def test_a_goldberg_linkage_with_every_axis_parallel_is_refused_quickly(capsys, 
      ((EXAMPLES / "bennett.toml", {"joints[9].a": 1.0}), "joints[9].a: the file has no such number"),
      ((EXAMPLES / "bennett.toml", {"joints[0].a": "x"}), "values['joints[0].a'] = 'x': it must be a number"),
      ((EXAMPLES / "bennett.toml", {3: 1.0}), "3: not a geometry field")],
-)  # fmt: skip
+)
 def test_read_linkage_refuses_wrong_types_with_a_parameter_error(args, needle):
     with pytest.raises(ParameterError) as err:
         read_linkage(*args)
@@ -190,12 +190,12 @@ def test_linkage_scene_refuses_a_path_of_the_wrong_type():
      ({"input_range": (0.0, float("nan"))}, "input_range = (0.0, nan)"),
      ({"start": [0.0, 1.0]}, "start: it must hold 4 finite joint angles (rad), not shape (2,)"),
      ({"start": "abc"}, "start: it must be an array of joint angles")],
-)  # fmt: skip
+)
 def test_linkage_path_refuses_wrong_types_and_shapes(change, needle):
     spec = read_linkage(EXAMPLES / "bennett.toml")
     args = {"loops": spec.mechanism.loop_system(), "joint_names": spec.joint_names, "input_joint": 0,
-            "input_range": (0.4, 2.0), "start": None} | change  # fmt: skip
+            "input_range": (0.4, 2.0), "start": None} | change
     with pytest.raises(ParameterError) as err:
         LinkagePath(args.pop("loops"), args.pop("joint_names"), args.pop("input_joint"), args.pop("input_range"),
-                    args.pop("start"))  # fmt: skip
+                    args.pop("start"))
     assert needle in str(err.value)

@@ -42,7 +42,7 @@ def numeric_path(scene, branch: str, x: np.ndarray) -> np.ndarray:
     ("builtin", "file"),
     [("bennett", "bennett.toml"), ("myard", "myard.toml"), ("bricard-plane", "bricard-plane.json"),
      ("bricard-threefold", "bricard-threefold.json")],
-)  # fmt: skip
+)
 def test_builtin_linkage_files_give_the_builtin_numeric_paths(builtin, file):
     """Each built-in branch is one file branch, to 1e-12 rad at the built-in sweep's inputs; the others are far."""
     scene, linkage = scenes.get(builtin).build(), linkage_scene(EXAMPLES / file)
@@ -51,7 +51,7 @@ def test_builtin_linkage_files_give_the_builtin_numeric_paths(builtin, file):
         x = np.linspace(*scene.branch_path(branch.name), 40)
         truth = numeric_path(scene, branch.name, x)
         errors = sorted(float(np.max(np.abs(wrap(linkage.kinematics.evaluate(b.name, x)[0] - truth))))
-                        for b in linkage.kinematics.branches())  # fmt: skip
+                        for b in linkage.kinematics.branches())
         assert errors[0] < 1e-12
         assert all(e > 0.1 for e in errors[1:])
 
@@ -78,9 +78,9 @@ def test_axes_form_gives_the_dh_forms_motion(tmp_path):
         T = poses[f"link_{k + 1}"][0]
         joints.append({"name": f"theta{k + 1}", "bodies": [f"link_{(k - 1) % 4 + 1}", f"link_{k + 1}"],
                        "point": T[:3, 3].tolist(), "direction": T[:3, 2].tolist(),
-                       "theta0": float(np.rad2deg(q0[k]))})  # fmt: skip
+                       "theta0": float(np.rad2deg(q0[k]))})
     doc = {"sim_origami_linkage": 1, "form": "axes", "ground": "link_4", "joints": joints,
-           "input": {"joint": "theta1", "range": [20.0, 140.0]}, "units": {"angle": "deg"}}  # fmt: skip
+           "input": {"joint": "theta1", "range": [20.0, 140.0]}, "units": {"angle": "deg"}}
     axes = linkage_scene(write(tmp_path, doc, "axes.json"))
     x = np.linspace(0.4, 2.4, 30)
     gap = wrap(axes.kinematics.evaluate("path-1", x)[0] - dh.kinematics.evaluate("path-1", x)[0])
@@ -111,7 +111,7 @@ def test_goldberg_reference_passes_and_a_perturbed_one_fails(tmp_path):
 def test_validate_linkage_with_reference_passes_and_writes_the_report(capsys, tmp_path):
     """The documented example end to end (docs/extending.md, 'A linkage file')."""
     code = main(["validate", "--linkage", str(EXAMPLES / "goldberg-5r.json"), "--reference",
-                 str(EXAMPLES / "goldberg-5r_curves.csv"), "--out", str(tmp_path / "g")])  # fmt: skip
+                 str(EXAMPLES / "goldberg-5r_curves.csv"), "--out", str(tmp_path / "g")])
     out = capsys.readouterr().out
     assert code == 0, out
     doc = json.loads((tmp_path / "g" / "report.json").read_text())
@@ -151,7 +151,7 @@ def _open_axes(doc: dict) -> None:
     doc.update({"sim_origami_linkage": 1, "form": "axes", "ground": "g",
                 "joints": [{"bodies": ["g", "l1"], "point": [0, 0, 0], "direction": [0, 0, 1]},
                            {"bodies": ["l1", "l2"], "point": [1, 0, 0], "direction": [0, 1, 0]}],
-                "input": {"joint": "joint_1", "range": [0, 90]}})  # fmt: skip
+                "input": {"joint": "joint_1", "range": [0, 90]}})
 
 
 @pytest.mark.parametrize(
@@ -196,7 +196,7 @@ def test_branches_meeting_inside_the_range_are_a_bifurcation():
     for branch in event.branches:
         pose = scene.kinematics.evaluate(branch, [event.input])[0][0]
         assert min(float(np.max(np.abs(wrap(pose - builtin.evaluate(b.name, [event.input])[0][0]))))
-                   for b in builtin.branches()) < 1e-9  # fmt: skip
+                   for b in builtin.branches()) < 1e-9
     lo, hi = scene.path
     assert hi < event.input - 0.05 or lo > event.input + 0.05
 
@@ -216,7 +216,7 @@ def test_spherical_joints_read_as_three_hinges_and_a_spinning_link_is_pinned(tmp
     one = read_linkage(write(tmp_path, broken(lambda d: d["joints"][2].update(type="spherical")), "one.json"))
     assert one.joint_names == ("theta1", "theta2", "theta3_x", "theta3_y", "theta3_z", "theta4")
     two = linkage_scene(write(tmp_path, broken(lambda d: [d["joints"][k].update(type="spherical") for k in (2, 3)]),
-                              "two.json"))  # fmt: skip
+                              "two.json"))
     kin = two.kinematics
     assert kin.joint_names == ("theta1", "theta2") and [kin.loop_joint_names[j] for j in kin.gauge] == ["theta4_x"]
     assert kin.gruebler() == 1 and two.mechanism.idle_spins == 1 and "Kutzbach 2 = 1 + 1 idle spin" in two.notes
@@ -251,12 +251,12 @@ def test_rssr_as_axis_lines_gives_the_closed_form(tmp_path):
     for k in range(4):
         T = poses[f"link_{k + 1}"][0]
         joint = {"name": f"theta{k + 1}", "bodies": [f"link_{(k - 1) % 4 + 1}", f"link_{k + 1}"],
-                 "point": T[:3, 3].tolist()}  # fmt: skip
+                 "point": T[:3, 3].tolist()}
         joint |= {"direction": T[:3, 2].tolist(), "theta0": float(np.rad2deg(q0[0, k]))} if k < 2 else \
-            {"type": "spherical"}  # fmt: skip
+            {"type": "spherical"}
         joints.append(joint)
     doc = {"sim_origami_linkage": 1, "form": "axes", "ground": "link_4", "joints": joints,
-           "input": {"joint": "theta1", "range": [25.0, 175.0]}}  # fmt: skip
+           "input": {"joint": "theta1", "range": [25.0, 175.0]}}
     kin = linkage_scene(write(tmp_path, doc, "rssr-axes.json")).kinematics
     assert kin.joint_names == ("theta1", "theta2") and len(kin.gauge) == 1 and kin.gruebler() == 1
     x = np.linspace(0.5, 2.9, 50)
@@ -269,7 +269,7 @@ def test_validate_rssr_file_with_its_closed_form_curves_passes(capsys, tmp_path)
     three-way check of a built-in scene (measured: reference vs numeric 8.5e-13 rad, vs MuJoCo 7.4e-8 rad), both
     roots pass, the idle spin reported and left out of the counts."""
     status = main(["validate", "--linkage", str(EXAMPLES / "rssr.json"), "--reference",
-                   str(EXAMPLES / "rssr_curves.csv"), "--preset", "fast", "--out", str(tmp_path)])  # fmt: skip
+                   str(EXAMPLES / "rssr_curves.csv"), "--preset", "fast", "--out", str(tmp_path)])
     assert status == 0, capsys.readouterr().out
     report = json.loads((tmp_path / "report.json").read_text())
     assert report["reference"]["reference_vs_numeric_max_rad"] < 1e-11
@@ -290,7 +290,7 @@ def test_meshes_and_contact_pairs_become_solids_and_collision_solids(tmp_path):
 
     trimesh.creation.box(extents=(100.0, 10.0, 10.0)).export(tmp_path / "crank.stl")  # millimetres, as the file
     doc = broken(lambda d: d.update(units={"length": "mm"}, shapes={"meshes": {"link_1": "crank.stl"}, "width": 20},
-                                    contact=[["link_1", "link_3"]]))  # fmt: skip
+                                    contact=[["link_1", "link_3"]]))
     for joint in doc["joints"]:
         joint["a"] *= 1000.0
     spec = read_linkage(write(tmp_path, doc))
@@ -317,7 +317,7 @@ def test_two_loops_as_axes_move_as_the_goldberg_5r(tmp_path):
                     "theta0": -start["E"]}  # Bennett 2's angle at D is -E
     joints["D"].update(point=[0.0, 0.0, 0.0], direction=[0.0, 0.0, 1.0], theta0=-start["B"])
     joints["A"] = {"name": "A", "bodies": ["DA", "EB"], "point": [1.5, 0.0, 0.0],
-                   "direction": [0.0, -np.sin(beta), np.cos(beta)], "theta0": -start["C"]}  # fmt: skip
+                   "direction": [0.0, -np.sin(beta), np.cos(beta)], "theta0": -start["C"]}
     doc = goldberg | {"name": "two-bennett", "ground": "DA", "joints": list(joints.values())}
     scene = linkage_scene(write(tmp_path, doc))
     assert len(scene.kinematics.loop_system().loops) == 2 and scene.kinematics.gruebler() == -5
@@ -370,7 +370,7 @@ def test_any_field_replaced_by_junk_reads_or_is_refused_in_one_line(tmp_path, so
      (lambda d: d.update(sweep_time_scale=1e-4), "sweep_time_scale = 0.0001: it must be at least 0.008"),
      (lambda d: d["joints"][0].update(a=1e308), "joints[0].a = 1e+308: lengths beyond 1e+09 m are not simulated"),
      (lambda d: d.update(units={"length": "um"}), "units.length: the linkage is 1.5e-06 m across")],
-)  # fmt: skip
+)
 def test_values_that_would_run_forever_or_overflow_are_refused(tmp_path, change, needle):
     with pytest.raises(ParameterError) as err:
         linkage_scene(write(tmp_path, broken(change)))
@@ -430,8 +430,8 @@ def test_a_sweep_through_the_rsrrr_singular_pose_fails_naming_it():
     failed = {v.name.split(": ")[1]: v for v in run.verdicts if not v.passed}
     error = failed["MuJoCo fast path error (rad)"]
     assert error.measured > 1e-4 and set(failed) <= {"MuJoCo fast path error (rad)", "MuJoCo fast closure residual (m)",
-                                                     "MuJoCo projection path error (rad)"}  # fmt: skip
+                                                     "MuJoCo projection path error (rad)"}
     for verdict in [v for name, v in failed.items() if "path error" in name]:  # the path checks say why they failed
         assert "the sweep crosses a singular pose: the bifurcation at 1.5708 rad (branches path-1 and path-2 meet; " \
-               "mobility 2 there by the closure rank, 2 by MuJoCo's)" in verdict.detail  # fmt: skip
+               "mobility 2 there by the closure rank, 2 by MuJoCo's)" in verdict.detail
     assert float(error.detail.split("the largest error lies ")[1].split(" rad")[0]) < 0.02

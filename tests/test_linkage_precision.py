@@ -22,13 +22,13 @@ EXAMPLES = Path(__file__).resolve().parents[1] / "docs" / "examples" / "linkages
 
 SPHERICAL = {"sim_origami_linkage": 1, "form": "dh", "name": "spherical-4r",
              "joints": [{"a": 0.0, "alpha": alpha} for alpha in (70.0, 90.0, 80.0, 100.0)],
-             "input": {"joint": "theta1", "range": [10.0, 60.0]}}  # fmt: skip
+             "input": {"joint": "theta1", "range": [10.0, 60.0]}}
 
 
 def bennett_text(beta: str = "48.5904", a: str = "1.0000", b: str = "1.5000", alpha: str = "30.0000") -> str:
     """The Bennett example as TOML with its numbers printed as given."""
     rows = "".join(f'[[joints]]\nname = "theta{k + 1}"\na = {length}\nalpha = {twist}\n\n'
-                   for k, (length, twist) in enumerate([(a, alpha), (b, beta)] * 2))  # fmt: skip
+                   for k, (length, twist) in enumerate([(a, alpha), (b, beta)] * 2))
     return (f'sim_origami_linkage = 1\nform = "dh"\nname = "bennett4"\n\n{rows}'
             '[input]\njoint = "theta1"\nrange = [-150.0, 150.0]\n')
 
@@ -55,7 +55,7 @@ def test_numbers_carry_their_printed_precision(tmp_path):
     assert given["joints[0].offset"].precision == 0.0
     doc = {"sim_origami_linkage": 1, "form": "dh", "units": {"length": "mm"},
            "joints": [{"a": 10.25, "alpha": 30.0}, {"a": 15, "alpha": 4.859e1}] * 2,
-           "input": {"joint": "theta1", "range": [20, 140]}}  # fmt: skip
+           "input": {"joint": "theta1", "range": [20, 140]}}
     path = tmp_path / "b.json"
     path.write_text(json.dumps(doc))
     given = {v.field: v for v in read_linkage(path).values}
@@ -72,7 +72,7 @@ def test_numbers_carry_their_printed_precision(tmp_path):
 
 
 @pytest.mark.parametrize("junk", [None, "1e-4", [], {"length": None}, {"angle": True}, {"angle": -1.0},
-                                  {"length": float("nan")}, {"lenght": 1e-4}])  # fmt: skip
+                                  {"length": float("nan")}, {"lenght": 1e-4}])
 def test_a_precision_table_that_is_no_table_of_positive_numbers_is_refused_in_one_line(tmp_path, junk):
     doc = {**SPHERICAL, "precision": junk}
     path = tmp_path / "p.json"
@@ -98,7 +98,7 @@ def test_bennett_with_every_number_to_4_decimals_validates_the_nearest_bennett(t
     assert abs(math.sin(t1) / a1 - math.sin(t2) / a2) < 1e-12
     assert "nearest mobile linkage" in scene.notes
     assert [b.domain for b in scene.kinematics.branches()] == [pytest.approx((-150 * math.pi / 180,
-                                                                              150 * math.pi / 180))]  # fmt: skip
+                                                                              150 * math.pi / 180))]
     code, out = validate(tmp_path, path, capsys)
     assert code == 0, out
 
@@ -170,7 +170,7 @@ def test_a_spherical_4r_as_dh_rows_validates(tmp_path, capsys, example):
 
 
 def placed(tmp_path: Path, rows, q0, rotation: np.ndarray, offset: np.ndarray, name: str, span=(10.0, 60.0),
-           decimals: int | None = None) -> Path:  # fmt: skip
+           decimals: int | None = None) -> Path:
     """A 4R drawn as axis lines at pose q0, turned and moved (each point one unit out along its axis), its numbers
     rounded to `decimals` if given."""
     poses = chain_poses(rows, q0)
@@ -183,9 +183,9 @@ def placed(tmp_path: Path, rows, q0, rotation: np.ndarray, offset: np.ndarray, n
         T = poses[f"link_{k + 1}"][0]
         joints.append({"name": f"theta{k + 1}", "bodies": [f"link_{(k - 1) % 4 + 1}", f"link_{k + 1}"],
                        "point": printed(rotation @ (T[:3, 3] + T[:3, 2]) + offset),
-                       "direction": printed(rotation @ T[:3, 2]), "theta0": printed(np.rad2deg(q0[k]))[0]})  # fmt: skip
+                       "direction": printed(rotation @ T[:3, 2]), "theta0": printed(np.rad2deg(q0[k]))[0]})
     doc = {"sim_origami_linkage": 1, "form": "axes", "ground": "link_4", "name": name, "joints": joints,
-           "input": {"joint": "theta1", "range": list(span)}}  # fmt: skip
+           "input": {"joint": "theta1", "range": list(span)}}
     path = tmp_path / f"{name}.json"
     path.write_text(json.dumps(doc))
     return path

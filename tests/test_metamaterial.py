@@ -116,7 +116,7 @@ def test_printed_3_26_is_not_the_sheet():
     ("element", "branch"),
     [(1, "CSCS"), (1, "SCCS"), (1, "SSCC"), (2, "CCSS"), (2, "CSCS"), (2, "CSSC"), (2, "SCSC"), (2, "SSCC"),
      (3, "CSCS"), (3, "CSSC"), (3, "SCCS"), (3, "SCSC"), (3, "SSCC")],
-)  # fmt: skip
+)
 def test_other_mode_strings_are_not_the_element(element, branch):
     """
     The element's vertices on the other rigid strings miss eqns 3-24 to 3-27 (element 1 also holds on CCSS and

@@ -16,7 +16,7 @@ from sim_origami.studies import pareto
 MENAGERIE_ORDER = (
     "compiler", "option", "custom", "visual", "default", "asset", "worldbody",
     "contact", "equality", "actuator", "keyframe",
-)  # fmt: skip
+)
 # MJCF numbers are written with 12 significant digits (mjcf._fmt): |rounding| <= 5e-12 for angles
 # and positions below 10; measured keyframe qpos error 2e-12 rad, closure-site gap 3e-12 m.
 MJCF_DIGITS_ATOL = 1e-11

@@ -48,7 +48,7 @@ def closure_gap(scene, model: mujoco.MjModel, data: mujoco.MjData) -> float:
     """Largest distance (m) between paired closure sites at data's qpos (after mj_kinematics)."""
     mujoco.mj_kinematics(model, data)
     pairs = np.array([(model.site(f"{c.joint}_parent_{c.k}").id, model.site(f"{c.joint}_child_{c.k}").id)
-                      for c in closures(scene.mechanism)]).reshape(-1, 2)  # fmt: skip
+                      for c in closures(scene.mechanism)]).reshape(-1, 2)
     return float(np.max(np.linalg.norm(data.site_xpos[pairs[:, 0]] - data.site_xpos[pairs[:, 1]], axis=1), initial=0))
 
 
@@ -167,7 +167,7 @@ def test_model_xml_comments_need_no_code_of_this_package(preset):
     [("0.93 0.93 0.9 1", "white"), ("0.8 0.8 0.8 1", "grey"), ("0.05 0.05 0.05 1", "black"),
      ("0.85 0.55 0.3 1", "orange"), ("0.2 0.35 0.6 1", "blue"), ("0.35 0.6 0.35 1", "green"),
      ("0.7 0.3 0.35 1", "red"), ("0.55 0.45 0.7 1", "violet")],
-)  # fmt: skip
+)
 def test_materials_are_named_by_colour(rgba, name):
     assert colour_name(rgba) == name
 
@@ -181,9 +181,9 @@ def test_model_file_is_the_run_text_plus_replay_lines(bennett_run):
     removed = [line[2:] for line in diff if line.startswith("- ")]
     added = [line[2:].strip() for line in diff if line.startswith("+ ")]
     assert removed and all(re.search(r'<geom name="\w+_solid" .*rgba=', r) or '<joint name="drive_' in r
-                           for r in removed)  # fmt: skip
+                           for r in removed)
     replay_tags = ("<!-- replay:", "<asset>", "</asset>", "<material ", "<actuator>", "</actuator>", "<position ",
-                   "<keyframe>", "</keyframe>", "<key ")  # fmt: skip
+                   "<keyframe>", "</keyframe>", "<key ")
     changed = [a for a in added if not a.startswith(replay_tags)]
     assert len(changed) == len(removed)
     assert all(re.search(r'<geom name="\w+_solid" .*material=', c) or 'active="false"' in c for c in changed)
@@ -248,7 +248,7 @@ def test_every_scenes_model_xml_holds_every_start_pose_in_plain_mujoco(name):
     ("value", "text"),
     [(0.37499999999999994, "0.375"), (1.2246467991473532e-16, "0"), (-0.0, "0"), (100.0, "100"),
      (1e-5, "1e-5"), (0.7071067811865476, "0.707106781186548"), (-2.5, "-2.5")],
-)  # fmt: skip
+)
 def test_short_numbers_snap_float_noise_only(value, text):
     assert short(value, 1e-15) == text
     assert abs(float(text) - value) <= 1e-15

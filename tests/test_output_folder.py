@@ -39,7 +39,7 @@ def refused_in_one_line(capsys, *argv: str, naming: str) -> str:
 def contents(folder: Path) -> dict[str, str]:
     """Every file under `folder` (hidden ones included) -> the sha256 of its bytes."""
     return {p.relative_to(folder).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
-            for p in sorted(folder.rglob("*")) if p.is_file()}  # fmt: skip
+            for p in sorted(folder.rglob("*")) if p.is_file()}
 
 
 @pytest.fixture(scope="module")
@@ -212,7 +212,7 @@ def test_a_refusal_during_the_run_leaves_no_manifest(capsys, tmp_path):
 
 def test_an_out_name_too_long_for_the_file_system_is_refused(capsys, tmp_path):
     refused_in_one_line(capsys, *RUN, "--out", str(tmp_path / ("x" * (os.pathconf(tmp_path, "PC_NAME_MAX") + 1))),
-                        naming="too long")  # fmt: skip
+                        naming="too long")
 
 
 def test_an_empty_out_is_refused(capsys, tmp_path):

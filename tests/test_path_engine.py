@@ -47,7 +47,7 @@ class Curves(ArcSystem):
 def crossing() -> Curves:
     """x^2 = y^2, z = x y: the branches (t, t, t^2) and (t, -t, -t^2) cross at the origin (mobility 2 there)."""
     return Curves(lambda p: np.array([p[0] ** 2 - p[1] ** 2, p[2] - p[0] * p[1]]),
-                  lambda p: np.array([[2 * p[0], -2 * p[1], 0.0], [-p[1], -p[0], 1.0]]))  # fmt: skip
+                  lambda p: np.array([[2 * p[0], -2 * p[1], 0.0], [-p[1], -p[0], 1.0]]))
 
 
 @pytest.mark.parametrize(("choice", "sign"), [("keep", 1.0), ("switch", -1.0)])
@@ -72,7 +72,7 @@ def test_follow_arc_passes_a_turning_point_of_an_undriven_coordinate():
     # the circle x^2 + y^2 = 1, z = x driven by y from -0.5 rad of arc to y = 0.9: x turns at y = 0, where a
     # natural-parameter continuation in x could not pass
     circle = Curves(lambda p: np.array([p[0] ** 2 + p[1] ** 2 - 1.0, p[2] - p[0]]),
-                    lambda p: np.array([[2 * p[0], 2 * p[1], 0.0], [-1.0, 0.0, 1.0]]))  # fmt: skip
+                    lambda p: np.array([[2 * p[0], 2 * p[1], 0.0], [-1.0, 0.0, 1.0]]))
     start = np.array([np.cos(-0.5), np.sin(-0.5), np.cos(-0.5)])
     run = follow_arc(circle, start, start, 1, 0.9)
     x = np.array([p.x for p in run.points])
@@ -154,7 +154,7 @@ def test_the_toward_step_is_closed_to_first_order_and_leans_every_spare_freedom_
     ring = [[1, 0], [1, 1], [0, 1], [-1, 1], [-1, 0], [-1, -1], [0, -1], [1, -1]]
     pattern = read_fold({"vertices_coords": [[0, 0], *ring], "edges_vertices": [[0, i] for i in range(1, 9)]
                          + [[i, i % 8 + 1] for i in range(1, 9)], "edges_assignment": ["M", "V"] * 4 + ["B"] * 8,
-                         "faces_vertices": [[0, i, i % 8 + 1] for i in range(1, 9)]}).pattern  # fmt: skip
+                         "faces_vertices": [[0, i, i % 8 + 1] for i in range(1, 9)]}).pattern
     loops = replace(pattern.loop_system(lock_flat(pattern)), sparse=sparse)
     toward = np.pi * np.array([-1.0, 1.0] * 4)
     q = np.zeros(8)

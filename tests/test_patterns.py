@@ -152,7 +152,7 @@ def test_miura_sheet_round_trips_through_fold_and_the_numeric_reference_agrees(t
     ("kwargs", "match"),
     [({"rows": 1}, "rows = 1"), ({"cols": 2.5}, "cols = 2.5"), ({"gamma": np.pi / 2}, "gamma = 90"),
      ({"a": 0.0}, "a = 0 m")],
-)  # fmt: skip
+)
 def test_miura_sheet_bad_input(kwargs, match):
     with pytest.raises(ParameterError, match=match):
         scenes.get("miura-sheet").build(**kwargs)

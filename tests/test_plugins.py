@@ -100,7 +100,7 @@ class Broken(Bennett):
     ("rule", "needle"),
     [("names", "names a joint twice"), ("shape", "returned shapes (7, 3)"), ("nan", "not finite inside its domain"),
      ("observe", "observe(loop_angles(v)) differs from v")],
-)  # fmt: skip
+)
 def test_custom_scene_refuses_a_closed_form_that_breaks_the_contract(rule, needle):
     kin = Broken(rule)
     with pytest.raises(ParameterError) as err:
@@ -133,14 +133,14 @@ def test_plugins_load_and_broken_ones_are_left_out_with_one_line(tmp_path, monke
         @register("plugin-buggy", "a builder with a bug", ())
         def buggy():
             return {}["no such key"]
-        """))  # fmt: skip
+        """))
     (mods / "clobber_plugin.py").write_text(
         "from sim_origami.scenes import register\nregister('miura', 'not the Miura vertex', ())(lambda: None)\n"
     )
     (mods / "raising_plugin.py").write_text("raise RuntimeError('boom\\non two lines')\n")
     site = distribution(tmp_path / "site", "plugins_under_test", "\n".join([
         "good = good_plugin", "late = good_plugin:register_late", "clobber = clobber_plugin",
-        "missing = no_such_module_xyz", "raising = raising_plugin"]))  # fmt: skip
+        "missing = no_such_module_xyz", "raising = raising_plugin"]))
     monkeypatch.syspath_prepend(str(mods))
     monkeypatch.syspath_prepend(str(site))
     miura = REGISTRY["miura"]
@@ -155,7 +155,7 @@ def test_plugins_load_and_broken_ones_are_left_out_with_one_line(tmp_path, monke
     scene = scenes.get("plugin-bennett").build_from_user({"a": 2.0})
     assert scene.kinematics.a == 2.0 and scene.drive_joint == "joint_1"
     with pytest.raises(SimOrigamiError, match=r"scene 'plugin-buggy' of plugin 'good' \(good_plugin\) failed to build: "
-                       "KeyError: 'no such key'"):  # fmt: skip
+                       "KeyError: 'no such key'"):
         scenes.get("plugin-buggy").build()
     assert main(["describe", "plugin-buggy"]) == 2 and capsys.readouterr().err.count("\n") == 1
 
@@ -174,7 +174,7 @@ def test_example_package_lists_and_validates_with_its_reference(tmp_path, monkey
     assert main(good) == 0, capsys.readouterr()
     assert "ok   reference curves vs numeric loop closure: samples over tolerance: 0" in capsys.readouterr().out
     bad = ["validate", "four-bar", "--branch", "elbow-cw", "--reference",
-           str(EXAMPLE / "four_bar_curves_misprinted.csv"), "--out", "bad"]  # fmt: skip
+           str(EXAMPLE / "four_bar_curves_misprinted.csv"), "--out", "bad"]
     assert main(bad) == 1
     printed = capsys.readouterr().out
     assert "FAIL reference curves vs numeric loop closure: samples over tolerance: 29" in printed

@@ -51,7 +51,7 @@ def measured(sc, q):
                          (np.pi / 2, 1.500000, 0.750000, 1.299038, -2.000000, -0.500000),
                          (5 * np.pi / 6, 0.750000, 0.642857, 0.556731, -10.500000, -3.095238))),
     ],
-)  # fmt: skip
+)
 def test_closed_form_geometry_reproduces_the_poisson_tables(alpha, rows):
     rows = np.array(rows)
     sc = scene(alpha)

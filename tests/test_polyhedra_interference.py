@@ -92,7 +92,7 @@ def servo_stop(zeta_deg: float) -> tuple[float, float, np.ndarray, int]:
     """Final A1 (rad), first-contact A1 (rad, nan if none), final vertices (24, 3), contacts at the end."""
     scene = octahedron_scene.interference_scene(zeta_deg * DEG)
     run = simulate(scene, scene.kinematics.branches()[0].name, drive="servo", contact=True, start=0.0,
-                   stop=scene.path[1], hold=BLOCKAGE_HOLD, initial=np.zeros(len(scene.mechanism.joints)))  # fmt: skip
+                   stop=scene.path[1], hold=BLOCKAGE_HOLD, initial=np.zeros(len(scene.mechanism.joints)))
     x = run.q[:, scene.mechanism.joint_index("A1")]
     touched = np.flatnonzero(run.contacts > 0)
     P = scene.kinematics.observe_points(scene.mechanism_to_loop(run.q[-1:]))[0]

@@ -39,8 +39,8 @@ def test_a_single_scene_names_its_phases_at_a_terminal(tmp_path):
     code, err = _stderr_at_a_terminal([SIM_ORIGAMI, "validate", "bennett", "--out", str(tmp_path / "b")])
     assert code == 0
     for phase in ("closed form vs numeric loop closure, bennett", "MuJoCo fast and its projection, bennett",
-                  "bifurcation study"):  # fmt: skip
+                  "bifurcation study"):
         assert phase in err, err[-2000:]
     piped = subprocess.run([SIM_ORIGAMI, "validate", "bennett", "--out", str(tmp_path / "p")], capture_output=True,
-                           text=True, timeout=600)  # fmt: skip
+                           text=True, timeout=600)
     assert piped.returncode == 0 and piped.stderr == ""

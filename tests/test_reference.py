@@ -219,11 +219,11 @@ def test_fold_file_scene_takes_a_reference_through_the_same_interface(tmp_path):
     rows = np.column_stack([x, vertex.joint_angles("odd2", x)[:, 1:]])
     header = ",".join(f"{n}[rad]" for n in scene.kinematics.joint_names)
     result = compare_reference(read_reference(write_csv(tmp_path / "ok.csv", rows, header, 12), scene.kinematics),
-                               scene)  # fmt: skip
+                               scene)
     assert all(v.passed for v in result.verdicts) and result.doc["reference_vs_numeric_max_rad"] < 1e-11
     rows[4, 2] += 1e-3
     result = compare_reference(read_reference(write_csv(tmp_path / "bad.csv", rows, header, 12), scene.kinematics),
-                               scene)  # fmt: skip
+                               scene)
     assert not result.verdicts[0].passed and result.doc["worst"]["joint"] == scene.kinematics.joint_names[2]
 
 
@@ -244,7 +244,7 @@ def test_fold_example_with_its_reference_passes(tmp_path, capsys):
     ("script", "outputs"),
     [("reference/make_vertex4_curves.py", ("vertex4_curves.csv",)),
      ("user_package/make_curves.py", ("four_bar_curves.csv", "four_bar_curves_misprinted.csv"))],
-)  # fmt: skip
+)
 def test_example_curves_are_what_their_scripts_write(tmp_path, script, outputs):
     source = EXAMPLES / script
     shutil.copy(source, tmp_path / source.name)

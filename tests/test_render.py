@@ -142,7 +142,7 @@ def test_paper_front_is_coloured_and_the_camera_holds_every_frame(folding_tube):
         r, b = image[..., 0], image[..., 2]
         assert np.sum(r > b + 60) > 0.05 * r.size  # the yellow front of the paper fills a good part of the view
         ring = np.concatenate([image[:3].reshape(-1, 3), image[-3:].reshape(-1, 3), image[:, :3].reshape(-1, 3),
-                               image[:, -3:].reshape(-1, 3)])  # fmt: skip
+                               image[:, -3:].reshape(-1, 3)])
         assert np.all(ring[:, 2] >= ring[:, 0])  # only the bluish sky at the border: nothing cut off
 
 

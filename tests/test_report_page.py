@@ -98,7 +98,7 @@ def fold_run(tmp_path_factory):
     """A FOLD file's degree-4 vertex: a crease pattern, driven at e0, locking where e0 folds flat."""
     out = tmp_path_factory.mktemp("fold") / "vertex4"
     main(["validate", "--fold", str(Path(__file__).parents[1] / "docs/examples/reference/vertex4.fold"), "--out",
-          str(out)])  # fmt: skip
+          str(out)])
     return out
 
 
@@ -155,7 +155,7 @@ def test_index_links_each_scene_page_with_its_verdict(run, browser):
     assert seen["verdict"] == "1 of 2 scenes pass"
     assert seen["links"] == ["bennett/report.html", "bennett-copy/report.html"]
     assert seen["columns"] == ["", "scene", "result", "checks passed", "preset", "max path error (rad)",
-                               "max closure residual (m)", "MuJoCo CPU per step (ms)"]  # fmt: skip
+                               "max closure residual (m)", "MuJoCo CPU per step (ms)"]
     # the rendered run's thumbnail (its middle frame, 200 px wide at most), decoded; none for the copy
     assert seen["thumbs"] == [["bennett/thumb.png", True, 160]]
     assert 0 < iio.imread(out / "bennett" / "thumb.png").shape[1] <= 200
@@ -186,7 +186,7 @@ def test_the_browser_check_sees_errors_and_blank_pages(tmp_path, browser):
     # the checks above can fail: a script error, a console error and a missing file are all reported
     bad = tmp_path / "bad.html"
     bad.write_text('<!DOCTYPE html><p id="verdict">PASS</p><img src="missing.png">'
-                   '<script>console.error("broken"); undefinedFunction();</script>')  # fmt: skip
+                   '<script>console.error("broken"); undefinedFunction();</script>')
     page = browser.load(bad, "document.getElementById('verdict').textContent")
     assert page.value == "PASS"
     assert len(page.errors) == 3 and "broken" in page.errors
@@ -201,7 +201,7 @@ def test_report_says_what_made_the_run(run, browser):
     made = doc["provenance"]
     assert made["command"] == shlex.join(["sim-origami", *COMMAND, str(out / "bennett")])
     assert (made["mujoco"], made["numpy"], made["python"]) == (mujoco.__version__, np.__version__,
-                                                               platform.python_version())  # fmt: skip
+                                                               platform.python_version())
     assert made["sim_origami"] == doc["sim_origami"] and made["preset"] == doc["preset"]
     assert re.fullmatch(r"[0-9a-f]{4,40}(\+dirty)?", made["git_commit"])  # the tests run from the checkout
     assert timedelta(0) <= datetime.now(timezone.utc) - datetime.fromisoformat(made["date_utc"]) < timedelta(hours=1)

@@ -16,7 +16,7 @@ from sim_origami.report import git_commit, provenance
 def test_the_commit_is_this_checkouts_head():
     root = Path(__file__).resolve().parents[1]
     head = subprocess.run(["git", "-C", str(root), "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
-                          check=True).stdout.strip()  # fmt: skip
+                          check=True).stdout.strip()
     assert git_commit() in (head, f"{head}+dirty")
 
 

@@ -66,7 +66,7 @@ def verdict(name: str = "bennett: closed-form closure residual") -> dict:
 def provenance() -> dict:
     return {"sim_origami": "0.1.0", "git_commit": None, "mujoco": "4.0.1", "python": "3.11.7", "numpy": "2.4.6",
             "command": None, "date_utc": "2026-01-02T03:04:05+00:00", "preset": "fast",
-            "machine": {"os": "Linux", "arch": "x86_64", "cores": 2}}  # fmt: skip
+            "machine": {"os": "Linux", "arch": "x86_64", "cores": 2}}
 
 
 def minimal_report() -> dict:
@@ -78,20 +78,20 @@ def minimal_report() -> dict:
               "projection_closure_residual_max_m": None, "sweep_time_s": 4.0, "steps": 500,
               "step_cpu_time_s": 0.02, "events": [],
               "mobility": {"gruebler": -2, "idle_spins": 0, "inputs": 1, "start": point, "bifurcations": []},
-              "verdicts": [verdict("B: MuJoCo fast path error (rad)")]}  # fmt: skip
+              "verdicts": [verdict("B: MuJoCo fast path error (rad)")]}
     return {"sim_origami": "0.1.0", "scene": "bennett", "params": {"a": 1.0}, "adjustments": [], "preset": "fast",
             "stabilize": "none", "seed": "closed", "input": {"name": "theta1", "drive_joint": "theta1"},
             "joints": ["theta1", "theta2"], "angle_error_max_rad": 1e-7, "closure_residual_max_m": 1e-7,
             "branches": [branch], "events": [], "bifurcation_study": [], "free_run": None, "verdicts": [verdict()],
             "timings_s": {"closed_form_and_numeric_cpu_s": 0.4, "mujoco_step_cpu_s": 0.02, "mujoco_steps": 500.0,
                           "bifurcation_study_cpu_s": 0.0, "total_cpu_s": 0.6},
-            "passed": True, "provenance": provenance()}  # fmt: skip
+            "passed": True, "provenance": provenance()}
 
 
 def minimal_failed_report() -> dict:
     """The smallest report of a run that stopped: before MuJoCo (with the trace's events) or as MuJoCo failed."""
     return {"scene": "fold-grid", "params": {"size_m": 1.4}, "preset": "fast", "passed": False, "notes": "",
-            "verdicts": [verdict() | {"passed": False, "measured": None}], "provenance": provenance()}  # fmt: skip
+            "verdicts": [verdict() | {"passed": False, "measured": None}], "provenance": provenance()}
 
 
 # The schema itself, and what it must refuse ---------------------------------------------------------------------
@@ -147,7 +147,7 @@ def broken(change) -> dict:
     ids=["misspelt-required", "unknown-key", "string-number", "fractional-count", "verdict-misspelt", "string-bool",
          "missing-nested", "unknown-timing", "unknown-preset", "string-event-input", "failed-passing",
          "failed-extra-key"],
-)  # fmt: skip
+)
 def test_a_report_off_the_schema_is_refused_naming_where(doc, needle):
     found = problems(doc)
     assert any(needle in p for p in found), found
@@ -187,7 +187,7 @@ def test_a_closed_form_scenes_report_conforms_and_a_spoilt_copy_does_not(tmp_pat
 
 def test_a_fold_files_report_with_reference_curves_conforms(tmp_path):
     code, doc = validated(tmp_path, "--fold", str(EXAMPLES / "reference" / "vertex4.fold"), "--reference",
-                          str(EXAMPLES / "reference" / "vertex4_curves.csv"))  # fmt: skip
+                          str(EXAMPLES / "reference" / "vertex4_curves.csv"))
     assert code == 0 and doc["reference"]["compared_samples"] > 0 and "reference_cpu_s" in doc["timings_s"]
     assert all("along_path" in b["mobility"] for b in doc["branches"]) and "params_user" not in doc
 
@@ -209,7 +209,7 @@ def test_a_run_stopped_before_mujoco_conforms_with_its_events(tmp_path):
 @pytest.mark.slow  # 7.6 s (each time measured alone on this 2-core machine; up to 2x with it shared)
 def test_a_linkage_files_report_with_reference_curves_conforms(tmp_path):
     code, doc = validated(tmp_path, "--linkage", str(EXAMPLES / "linkages" / "rssr.json"), "--reference",
-                          str(EXAMPLES / "linkages" / "rssr_curves.csv"))  # fmt: skip
+                          str(EXAMPLES / "linkages" / "rssr_curves.csv"))
     assert code == 0 and doc["reference"]["branches"] and doc["reference"]["worst"] is not None
 
 

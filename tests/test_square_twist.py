@@ -189,7 +189,7 @@ def height_peak(alpha: float) -> float:
     ("alpha", "theta_sampled", "h_sampled", "theta_ours", "corrected"),
     [(5 * np.pi / 6, 1.2999, 0.9634, 1.299533, True), (3 * np.pi / 4, 1.1437, 1.2872, 1.143718, False),
      (2 * np.pi / 3, 0.9548, 1.4142, np.arccos(1 / np.sqrt(3)), True)],
-)  # fmt: skip
+)
 def test_square_twist_metamaterial_height_peak(alpha, theta_sampled, h_sampled, theta_ours, corrected):
     theta = height_peak(alpha)
     assert theta == pytest.approx(theta_ours, abs=5e-7)

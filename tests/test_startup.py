@@ -26,7 +26,7 @@ def test_ctrl_c_while_starting_is_one_line_and_130():
     outcomes = []
     for delay in (0.5, 0.7, 0.9):
         process = subprocess.Popen([SIM_ORIGAMI, "list"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                                   text=True)  # fmt: skip
+                                   text=True)
         time.sleep(delay)
         process.send_signal(signal.SIGINT)
         _, err = process.communicate(timeout=120)
@@ -42,7 +42,7 @@ def _without_egl(command: str) -> subprocess.CompletedProcess:
     hide = "; ".join(f"mount --bind /dev/null {p}" for p in Path("/usr/lib").rglob("libEGL.so*") if not p.is_symlink())
     env = {k: v for k, v in os.environ.items() if k != "MUJOCO_GL"}  # this process's choice is not the machine's
     return subprocess.run(["unshare", "-m", "bash", "-c", f"{hide}; {command}"], capture_output=True, text=True,
-                          timeout=300, env=env)  # fmt: skip
+                          timeout=300, env=env)
 
 
 def test_without_egl_commands_that_do_not_render_run_and_render_is_refused_in_one_line(tmp_path):

@@ -21,7 +21,7 @@ def thick(alpha1_deg: float, alpha2_deg: float, layout: str) -> ThickVertex4:
 # (Vertex4's roots) missed the loop by 0.027 there and 0.1 within 1e-8 rad of it; 90.001/90: 5.3e-7 at the ends.
 @pytest.mark.parametrize("alpha1, alpha2, layout", [(60, 120, "staircase"), (90.001, 90, "staircase"),
                                                     (45, 90, "staircase"), (100, 80, "staircase"),
-                                                    (60, 60, "zigzag"), (89.9, 90, "zigzag")])  # fmt: skip
+                                                    (60, 60, "zigzag"), (89.9, 90, "zigzag")])
 def test_closed_form_closes_the_lifted_loop_everywhere_ends_included(alpha1, alpha2, layout):
     kin = thick(alpha1, alpha2, layout)
     (branch,) = kin.branches()
@@ -34,7 +34,7 @@ def test_closed_form_closes_the_lifted_loop_everywhere_ends_included(alpha1, alp
 
 
 @pytest.mark.parametrize("alpha1, alpha2, layout", [(60, 90, "staircase"), (60, 120, "staircase"),
-                                                    (45, 90, "zigzag")])  # fmt: skip
+                                                    (45, 90, "zigzag")])
 def test_hinge_angles_are_the_zero_thickness_fold_angles_of_the_mode(alpha1, alpha2, layout):
     kin = thick(alpha1, alpha2, layout)
     x = np.linspace(-3.1, 3.1, 125)
@@ -50,7 +50,7 @@ def test_hinge_angles_are_the_zero_thickness_fold_angles_of_the_mode(alpha1, alp
     ({"alpha1": 60.0, "alpha2": 120.0, "zigzag": 1.0}, r"^alpha1 = 60 deg, alpha2 = 120 deg: zigzag hinges 1 and 3 "
                                                        r"lie on one line .*alpha1 \+ alpha2 must differ from 180 deg$"),
     ({"alpha1": 90.0, "zigzag": 1.0}, "zigzag hinges 1 and 3 lie on one line"),
-])  # fmt: skip
+])
 def test_coaxial_hinges_are_refused(params, match):
     with pytest.raises(ParameterError, match=match):
         scenes.get("thick-vertex4").build_from_user(params)

@@ -18,7 +18,7 @@ from sim_origami.validation import validate
 DEG = np.pi / 180
 # Peng 2018's example of eqn 4-22: alpha = pi/6, a23 = 1 m, a12 = 0.5 m; its fold angles at rho1 = pi/2 (6 decimals).
 [PUBLISHED_Q_ENTRY] = [e for e in checked_by(peng2018.NUMBERS, "test_thick_five_crease_vertex_angles_of_eqn_4_22")
-                       if e.quantity.startswith("fold angles")]  # fmt: skip
+                       if e.quantity.startswith("fold angles")]
 PUBLISHED_Q = PUBLISHED_Q_ENTRY.value
 ALPHAS_DEG = (5.0, 30.0, 45.0, 60.0, 85.0)
 

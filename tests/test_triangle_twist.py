@@ -274,7 +274,7 @@ def test_new_6r_of_eqn_3_40_with_parallel_pleats():
     # epsilon, D-H data (a12, eqn 2-14's sum with R1 = 0), Ka, Ka Kb and theta at theta1 = 0.5 rad
     check_every(feng2018.NUMBERS, "test_new_6r_of_eqn_3_40_with_parallel_pleats")
     np.testing.assert_allclose(model.joint_angles("SSP", -np.pi / 2)[0], np.array([-90, 90, 0, 0, 0, 0]) * DEG,
-                               atol=1e-15)  # fmt: skip
+                               atol=1e-15)
 
 
 @pytest.mark.parametrize("angles", [FIG_3_5, (55, 50, 45, 45), (55, 50, 40, 45), (55, 50, 60, 30), (70, 40, 30, 35)])

@@ -280,7 +280,7 @@ def test_bricard_with_balls_at_g_to_m_has_four_dof(two):
     hinges = [_hinge(name, axes[name]) for name in "ABCDEF"]
     spacers, balls = [], []
     for name, parent, child in [("G", "ABG", "GK"), ("H", "CDH", "HL"), ("J", "EFJ", "JM"),
-                                ("K", "GK", "KLM"), ("L", "HL", "KLM"), ("M", "JM", "KLM")]:  # fmt: skip
+                                ("K", "GK", "KLM"), ("L", "HL", "KLM"), ("M", "JM", "KLM")]:
         frame = np.eye(4)
         frame[:3, 3] = VERTICES[name]
         bodies, joints = ball_joint(name, parent, child, frame, frame)

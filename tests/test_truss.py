@@ -175,7 +175,7 @@ def test_bricard_threefold_closed_path_crosses_the_bundle_twice():
     assert np.abs(run.path.nodes[-1] - run.path.nodes[0]).max() < 1e-12
     kin = scene.kinematics
     error = np.min([np.abs(wrap(scene.outputs(run.q) - kin.evaluate(b.name, wrap(run.input))[0])).max(axis=1)
-                    for b in kin.branches()], axis=0)  # fmt: skip
+                    for b in kin.branches()], axis=0)
     at_events = [e.index for e in events]
     assert np.delete(error, at_events).max() <= PATH_RAD
     assert error[at_events].max() <= LOCATED_RAD

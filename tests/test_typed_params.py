@@ -85,7 +85,7 @@ def test_rounded_bennett_validates_with_the_adjustment_reported(tmp_path):
     report.json, every check passing on the exact linkage (closed-form residual at its rounding floor)."""
     out = tmp_path / "bennett"
     done = subprocess.run([*CLI, "validate", "bennett", "-p", "beta=48.59", "--out", str(out)],
-                          capture_output=True, text=True, timeout=600)  # fmt: skip
+                          capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, done.stdout + done.stderr
     assert re.search(r"adjusted beta 48\.59 -> 48\.59037789 deg \(moved 0\.00038 deg, 0\.076 of its", done.stdout)
     doc = json.loads((out / "report.json").read_text())
@@ -122,6 +122,6 @@ def test_the_readme_tour_runs_as_pasted(tmp_path):
     env = {k: v for k, v in os.environ.items() if k != "VIRTUAL_ENV"}
     for command in _tour()[1:]:
         done = subprocess.run(["bash", "-c", f". .venv/bin/activate && {command}"], cwd=work, env=env,
-                              capture_output=True, text=True, timeout=900)  # fmt: skip
+                              capture_output=True, text=True, timeout=900)
         assert done.returncode == 0, f"{command}: {done.stdout[-2000:]}{done.stderr[-2000:]}"
     assert (work / "runs" / "miura" / "report.html").is_file()

@@ -87,9 +87,9 @@ def test_thick_cell_matches_feng2018_dh_linkages(alpha, beta, mu):
     joint maps: the hinge heights of the cell are an independent, equivalent reconstruction."""
     a, b, ap = alpha * DEG, beta * DEG, 0.03
     A = (DHRow(0, (2 + mu) * ap, 2 * np.pi - a), DHRow(0, 0, np.pi - 2 * a), DHRow(0, (2 + mu) * ap, a),
-         DHRow(0, (2 + mu) * ap, 2 * np.pi - a), DHRow(0, 0, np.pi + 2 * a), DHRow(0, (2 + mu) * ap, a))  # fmt: skip
+         DHRow(0, (2 + mu) * ap, 2 * np.pi - a), DHRow(0, 0, np.pi + 2 * a), DHRow(0, (2 + mu) * ap, a))
     B = (DHRow(0, (1 + mu) * ap, np.pi - a - b), DHRow(0, ap, b), DHRow(0, mu * ap, 2 * np.pi - a),
-         DHRow(0, mu * ap, a), DHRow(0, ap, 2 * np.pi - b), DHRow(0, (1 + mu) * ap, np.pi + a + b))  # fmt: skip
+         DHRow(0, mu * ap, a), DHRow(0, ap, 2 * np.pi - b), DHRow(0, (1 + mu) * ap, np.pi + a + b))
     model = Waterbomb(a, b, 0.5, mu, ap)
     for phi1 in (30, 90, 150):
         fa = dihedrals(model, LINE, phi1, order=("A1", "A2", "A3", "A4", "A5", "A6")) * DEG

@@ -78,7 +78,7 @@ def test_feng2018_m7_tube_states(entry):
 
 
 @pytest.mark.parametrize(("n", "m", "alpha", "beta"), [(6, 3, 40, 35), (6, 4, 45, 40), (5, 2, 40, 40), (7, 1, 40, 40),
-                                                       (8, 5, 45, 40)])  # fmt: skip
+                                                       (8, 5, 45, 40)])
 def test_closed_form_closes_every_vertex_and_the_ring(n, m, alpha, beta):
     layout = tube_layout(n, m, alpha * DEG, beta * DEG, 1.0)
     theta = np.linspace(*motion_range(layout), 41)
@@ -239,7 +239,7 @@ def test_pattern_lengths_and_counts():
     n, m = 6, 5
     layout = tube_layout(n, m, 40 * DEG, 35 * DEG, 1.0)
     assert (len(layout.keys), len(layout.creases), len(layout.pattern.faces)) == (3 * n * m + 2 * n, 9 * n * m - 2 * n,
-                                                                                  6 * n * m)  # fmt: skip
+                                                                                  6 * n * m)
     assert len(layout.seam) == 2 * m - 1
     L = lengths(40 * DEG, 35 * DEG, 1.0)
     # derived here: L_m = a (cot(alpha) - cot(alpha + beta)); the unit of alpha = beta = 45 deg is the 2a x 2a square

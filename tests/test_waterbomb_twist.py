@@ -131,7 +131,7 @@ def test_fig14_no_twist_and_alpha_threshold():
 
 @pytest.mark.slow
 @pytest.mark.parametrize(("n", "m", "alpha", "beta"), [(6, 5, 40, 40), (6, 3, 45, 45), (5, 5, 40, 40),
-                                                       (8, 3, 35, 38), (6, 3, 40, 42.0105)])  # fmt: skip
+                                                       (8, 3, 35, 38), (6, 3, 40, 42.0105)])
 def test_closed_form_closes_the_twisted_tube(n, m, alpha, beta):
     """Every vertex and the ring round the middle row across the seam, every edge rigid, on both twist senses."""
     model = WaterbombTwist(n, m, alpha * DEG, beta * DEG)

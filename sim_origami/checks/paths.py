@@ -78,7 +78,7 @@ def floor_verdict_values(
     only at samples whose error exceeds `base`); the sample with the largest error over tolerance is reported.
     `other_condition` (sample indices -> condition numbers) is the other side's, asked only where a sample exceeds
     the closure's tolerance, and the larger one holds there (MuJoCo's projection: `simulate.projection_conditions`).
-    """  # fmt: skip
+    """
     err = np.max(path.error, axis=1)
     if not np.all(np.isfinite(err)):
         return float("inf"), base, "the input left the branch's domain"
@@ -98,4 +98,4 @@ def floor_verdict_values(
     worst = int(np.argmax(err[above] / tol))
     k = above[worst]
     return (float(err[k]), float(tol[worst]), f"worst against its tolerance at input {path.input[k]:.6g} rad, where "
-            f"{what[worst]} is {cond[worst]:.3g} ({len(above)} samples above {base:g})")  # fmt: skip
+            f"{what[worst]} is {cond[worst]:.3g} ({len(above)} samples above {base:g})")

@@ -40,7 +40,7 @@ from .verdict import Verdict
 
 # Unit names accepted in a header bracket or as `units`, to radians per unit.
 UNITS = {"deg": np.pi / 180.0, "degree": np.pi / 180.0, "degrees": np.pi / 180.0, "rad": 1.0, "radian": 1.0,
-         "radians": 1.0}  # fmt: skip
+         "radians": 1.0}
 # Largest input step (rad) of the numeric continuation between two samples: finer steps are inserted, so a coarse
 # reference cannot make the solver jump to another branch.
 MAX_STEP = 0.02
@@ -95,7 +95,7 @@ class ReferenceCurves:
             return f"{self.tol:.3g} rad for every value (given)"
         return ("half a unit in the last printed digit of each value, plus its slope times half a unit in the "
                 f"input's last printed digit, plus {TOLERANCES.closed_form_rad:g} rad (the numeric solve; "
-                f"{SINGULAR_RAD:g} rad at singular samples)")  # fmt: skip
+                f"{SINGULAR_RAD:g} rad at singular samples)")
 
 
 def _shown(cell: str) -> str:
@@ -119,7 +119,7 @@ def _unit(source: str, column: str, stated: str | None, units: str | None) -> st
         raise ParameterError(f"reference {source}: column {column!r} has unit [{stated}]; units are deg or rad")
     if units is not None and UNITS[stated.lower()] != UNITS[units]:
         raise ParameterError(f"reference {source}: column {column!r} states [{stated}] but the units given are "
-                             f"{units}; drop one of them")  # fmt: skip
+                             f"{units}; drop one of them")
     return stated.lower()
 
 
@@ -131,7 +131,7 @@ def _rows(source: str, text: str) -> list[tuple[int, list[str]]]:
             if len(out) > MAX_SAMPLES:
                 raise ParameterError(f"reference {source}: more than {MAX_SAMPLES} samples (line {number}); the "
                                      f"numeric solve costs about {SAMPLE_CPU_MS:g} ms of CPU a sample: thin the "
-                                     "curve")  # fmt: skip
+                                     "curve")
             try:
                 out.append((number, next(csv.reader([line]))))
             except csv.Error as exc:
@@ -197,11 +197,11 @@ def read_reference(
         names.append(name)
     if kinematics.input_name not in unit_of:
         raise ParameterError(f"reference {source}: no input column {kinematics.input_name!r} in the header "
-                             f"({', '.join(names)})")  # fmt: skip
+                             f"({', '.join(names)})")
     joints = tuple(n for n in kinematics.joint_names if n in unit_of and n != kinematics.input_name)
     if not joints:
         raise ParameterError(f"reference {source}: no joint column besides the input; joints are "
-                             f"{', '.join(kinematics.joint_names)}")  # fmt: skip
+                             f"{', '.join(kinematics.joint_names)}")
     data = rows[1:]
     if len(data) < 2:
         raise ParameterError(f"reference {source}: {len(data)} sample(s); a curve needs at least 2")
@@ -210,16 +210,16 @@ def read_reference(
     for r, (line, fields) in enumerate(data):
         if len(fields) != len(names):
             raise ParameterError(f"reference {source}: line {line} has {len(fields)} values; the header has "
-                                 f"{len(names)} columns")  # fmt: skip
+                                 f"{len(names)} columns")
         for c, cell in enumerate(fields):
             try:
                 value = float(cell)
             except ValueError:
                 raise ParameterError(f"reference {source}: line {line}, column {names[c]}: '{_shown(cell)}' is not "
-                                     "a number") from None  # fmt: skip
+                                     "a number") from None
             if not math.isfinite(value):
                 raise ParameterError(f"reference {source}: line {line}, column {names[c]}: {_shown(cell)} is not a "
-                                     "finite number")  # fmt: skip
+                                     "finite number")
             numbers[r, c] = value * UNITS[unit_of[names[c]]]
             printed[r, c] = min(half_unit(cell) * UNITS[unit_of[names[c]]], PRINTED_MAX_RAD)
     lines = np.array([line for line, _ in data])
@@ -230,10 +230,10 @@ def read_reference(
         if step == 0 or np.sign(x[r] - x[r - 1]) != step:
             raise ParameterError(f"reference {source}: line {lines[r]}: {kinematics.input_name} does not "
                                  f"{'increase' if step >= 0 else 'decrease'} from the previous sample; inputs must "
-                                 "be strictly monotone")  # fmt: skip
+                                 "be strictly monotone")
     cols = [names.index(j) for j in joints]
     return ReferenceCurves(source, kinematics.input_name, joints, {n: unit_of[n] for n in names}, x,
-                           numbers[:, cols], printed[:, cols], printed[:, k], lines, tol)  # fmt: skip
+                           numbers[:, cols], printed[:, cols], printed[:, k], lines, tol)
 
 
 @dataclass
@@ -272,7 +272,7 @@ def _assign(
         previous = nearest
     # Samples before the first one that tells the branches apart (a curve starting at a bifurcation) take its branch.
     clear = [i for i, lab in enumerate(out.labels)
-             if lab and all(dist[b][i] > dist[lab][i] + row_tol[i] for b in dist if b != lab)]  # fmt: skip
+             if lab and all(dist[b][i] > dist[lab][i] + row_tol[i] for b in dist if b != lab)]
     if clear:
         first = out.labels[clear[0]]
         for i in range(clear[0]):
@@ -406,14 +406,14 @@ def compare_reference(
             continue
         xb = assigned.inputs[name][idx]
         segments.append({"branch": str(name), "samples": len(idx), "lines": [int(ref.lines[idx[0]]),
-                         int(ref.lines[idx[-1]])], "input_range_rad": [float(xb[0]), float(xb[-1])]})  # fmt: skip
+                         int(ref.lines[idx[-1]])], "input_range_rad": [float(xb[0]), float(xb[-1])]})
         kinematic[idx] = assigned.values[name][idx][:, cols]
         try:
             values, singular[idx] = _numeric(kin, name, xb)
             numeric[idx] = values[:, cols]
         except ConvergenceError as exc:
             stalls.append({"branch": str(name), "lines": [int(ref.lines[idx[0]]), int(ref.lines[idx[-1]])],
-                           "error": str(exc)})  # fmt: skip
+                           "error": str(exc)})
         if ref.tol is None:
             slope_tol[idx] = _slopes(kin, name, xb, cols) * ref.x_printed[idx, None]
         sim = _mujoco(scene, runs, name, xb)
@@ -461,7 +461,7 @@ def compare_reference(
         "branch_switches": _switches(kin, ref, labels, assigned, cols, row_tol),
     }
     return ReferenceCheck(doc, _verdicts(doc, n), _table(ref, labels, numeric, mujoco, error, tol), ref.joints, ref.x,
-                          tuple(str(lab) for lab in labels), ref.values, error)  # fmt: skip
+                          tuple(str(lab) for lab in labels), ref.values, error)
 
 
 def _switches(kin: Kinematics, ref: ReferenceCurves, labels, assigned: _Branches, cols: list[int], row_tol) -> list:
@@ -475,13 +475,13 @@ def _switches(kin: Kinematics, ref: ReferenceCurves, labels, assigned: _Branches
         a, b = str(labels[i]), str(labels[i + 1])
         lo, hi = sorted((ref.x[i], ref.x[i + 1]))
         bifurcation = any(e.kind == "bifurcation" and {a, b} <= set(e.branches) and lo - ref.x_printed[i] <= e.input
-                          <= hi + ref.x_printed[i + 1] for e in kin.events())  # fmt: skip
+                          <= hi + ref.x_printed[i + 1] for e in kin.events())
         gaps = [float(np.max(np.abs(wrap(assigned.values[a][k, cols] - assigned.values[b][k, cols]))))
-                for k in (i, i + 1)]  # fmt: skip
+                for k in (i, i + 1)]
         meet = bifurcation or any(g <= row_tol[k] for g, k in zip(gaps, (i, i + 1), strict=True))
         out.append({"from": a, "to": b, "lines": [int(ref.lines[i]), int(ref.lines[i + 1])],
                     "input_rad": [float(ref.x[i]), float(ref.x[i + 1])], "branch_gap_rad": min(gaps),
-                    "branches_meet": bool(meet)})  # fmt: skip
+                    "branches_meet": bool(meet)})
     return out
 
 
@@ -503,12 +503,12 @@ def _sample(ref: ReferenceCurves, labels, error, tol, i: int, j: int) -> dict:
     scale = UNITS[ref.units[ref.input_name]]
     return {"line": int(ref.lines[i]), "input_rad": float(ref.x[i]), "input_as_written": float(ref.x[i] / scale),
             "joint": ref.joints[j], "branch": str(labels[i]), "error_rad": float(error[i, j]),
-            "tolerance_rad": float(tol[i, j])}  # fmt: skip
+            "tolerance_rad": float(tol[i, j])}
 
 
 def _where(s: dict, input_name: str, unit: str) -> str:
     return (f"{s['joint']} at {input_name} = {s['input_as_written']:.10g} {unit} (line {s['line']}, branch "
-            f"{s['branch']})")  # fmt: skip
+            f"{s['branch']})")
 
 
 def _verdicts(doc: dict, n: int) -> tuple[Verdict, ...]:
@@ -519,13 +519,13 @@ def _verdicts(doc: dict, n: int) -> tuple[Verdict, ...]:
     else:
         detail = (f"max {w['error_rad']:.3g} rad, {_where(w, doc['input'], unit)}, tolerance there "
                   f"{w['tolerance_rad']:.3g} rad; {doc['over_tolerance']['samples']} of {doc['compared_samples']} "
-                  f"samples over tolerance; tolerance: {doc['tolerance_rule']}")  # fmt: skip
+                  f"samples over tolerance; tolerance: {doc['tolerance_rule']}")
     over = doc["over_tolerance"]["samples"] if doc["compared_samples"] else n
     outside = doc["outside_every_branch"]
     where = ", ".join(f"line {s['line']}" for s in outside[:5]) + (" ..." if len(outside) > 5 else "")
     jumps = [s for s in doc["branch_switches"] if not s["branches_meet"]]
     jumped = "; ".join(f"{s['from']} -> {s['to']} between lines {s['lines'][0]} and {s['lines'][1]} (the branches "
-                       f"{s['branch_gap_rad']:.3g} rad apart)" for s in jumps)  # fmt: skip
+                       f"{s['branch_gap_rad']:.3g} rad apart)" for s in jumps)
     unsimulated = [s for s in doc["branches"] if s.get("mujoco_samples") == 0]
     return (
         Verdict("reference curves vs numeric loop closure: samples over tolerance", float(over), 0.0, detail,
@@ -551,7 +551,7 @@ def summary_lines(doc: dict) -> list[str]:
              f"  reference vs numeric {fmt(doc['reference_vs_numeric_max_rad'])} rad, vs kinematics "
              f"{fmt(doc['reference_vs_kinematics_max_rad'])}, vs MuJoCo {fmt(doc['reference_vs_mujoco_max_rad'])} "
              f"({doc['mujoco_samples']} samples in the simulated range); numeric vs MuJoCo "
-             f"{fmt(doc['numeric_vs_mujoco_max_rad'])}"]  # fmt: skip
+             f"{fmt(doc['numeric_vs_mujoco_max_rad'])}"]
     unit = doc["units"][doc["input"]]
     for s in doc["disagreeing"][:5]:
         lines.append(f"  over: {_where(s, doc['input'], unit)}: {s['error_rad']:.3g} rad > {s['tolerance_rad']:.3g}")

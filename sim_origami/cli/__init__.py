@@ -136,12 +136,12 @@ def main(argv: list[str] | None = None) -> int:
             signum = exc.signum if isinstance(exc, Interrupted) else signal.SIGINT
             name = signal.Signals(signum).name
             return _refuse(f"interrupted by {name}; this run's files removed, the output folder's previous "
-                           "results left as they were", 128 + signum)  # fmt: skip
+                           "results left as they were", 128 + signum)
         except Exception as exc:
             if args.debug:
                 raise
             return _refuse(f"internal error (a bug, please report it): {type(exc).__name__}: "
-                           f"{' '.join(str(exc).split())[:300]}; --debug shows the traceback", 3)  # fmt: skip
+                           f"{' '.join(str(exc).split())[:300]}; --debug shows the traceback", 3)
     for w in caught:
         warnings.showwarning(w.message, w.category, w.filename, w.lineno)
     return code

@@ -32,7 +32,7 @@ def run(args: argparse.Namespace) -> int:
         branches.append({"name": b.name, "domain": list(b.domain), "joints": joints})
     if args.json:
         doc = {"scene": scene.name, "params": scene.params,
-               "input": {"joint": kin.input_name, "values": x.tolist()}, "branches": branches}  # fmt: skip
+               "input": {"joint": kin.input_name, "values": x.tolist()}, "branches": branches}
         print(json.dumps(doc))
         return 0
     for b in branches:

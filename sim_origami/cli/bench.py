@@ -92,7 +92,7 @@ def pareto_table(name: str, points: list[pareto.Point], harness: float) -> str:
     lines = [f"{name}: MuJoCo defaults {default.error:.2e} rad in {default.cpu * 1e3:.1f} ms of CPU; the harness's "
              f"loop costs {harness:.2f}x a bare mj_step loop", "",
              "| setting | max error (rad) | CPU (ms) | more accurate than the defaults | CPU vs the defaults |",
-             "|---|---|---|---|---|"]  # fmt: skip
+             "|---|---|---|---|---|"]
     seen = set()
     for p in shown:
         if p.setting.label in seen:
@@ -100,7 +100,7 @@ def pareto_table(name: str, points: list[pareto.Point], harness: float) -> str:
         seen.add(p.setting.label)
         front = " (front)" if p in pareto.front(points) else ""
         lines.append(f"| {p.setting.label}{front} | {p.error:.2e} | {p.cpu * 1e3:.1f} | {default.error / p.error:.3g}x "
-                     f"| {p.cpu / default.cpu:.2f}x |")  # fmt: skip
+                     f"| {p.cpu / default.cpu:.2f}x |")
     return "\n".join(lines)
 
 
@@ -116,7 +116,7 @@ def run_scene(args: argparse.Namespace) -> int:
             for p in points
         ]
         write_text(stage / "pareto.csv", "scene,setting,integrator,h_s,tau_s,solimp,closure,drive,error_rad,cpu_s\n"
-                   + "\n".join(rows) + "\n")  # fmt: skip
+                   + "\n".join(rows) + "\n")
         plot_pareto({scene.name: points}, stage / "pareto.png")
     if args.json:
         print(json.dumps([{"setting": p.setting.label, "error_rad": p.error, "cpu_s": p.cpu} for p in points]))
@@ -143,5 +143,5 @@ def run(args: argparse.Namespace) -> int:
               f"| {r['fast_error_rad']:.1e} | {r['fast_step_cpu_s'] * 1e3:.1f} ms | {r['harness_loop_over_bare']:.2f} "
               f"| {r['fast_call_cpu_s'] * 1e3:.1f} ms | {r['accurate_error_rad']:.1e} "
               f"| {r['accurate_step_cpu_s']:.2f} s | {r['projection_error_rad']:.1e} "
-              f"| {r['analytic_values_per_s']:.2e} |")  # fmt: skip
+              f"| {r['analytic_values_per_s']:.2e} |")
     return 0

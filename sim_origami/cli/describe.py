@@ -49,7 +49,7 @@ def run(args: argparse.Namespace) -> int:
     cut = {mech.joints[i].ball or mech.joints[i].name for i in mech.cut_joints}
     spherical = f", {len(mech.balls)} spherical" if mech.balls else ""
     print(f"mechanism: {len(reduced.bodies)} bodies, {len(reduced.joints) - len(mech.balls)} hinges{spherical}, "
-          f"root {mech.root}, loops cut at {', '.join(sorted(cut)) or 'none'}")  # fmt: skip
+          f"root {mech.root}, loops cut at {', '.join(sorted(cut)) or 'none'}")
     scaled = f"; fast at {scene.fast_step_scale:g}x its step and time constant" if scene.fast_step_scale != 1 else ""
     if scene.fast_timeconst_scale != 1:
         scaled += f"; fast's time constant {scene.fast_timeconst_scale:g}x its own"

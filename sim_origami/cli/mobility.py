@@ -59,10 +59,10 @@ def run(args: argparse.Namespace) -> int:
     if idle:
         print(f"  {idle} idle spin(s) of links held by two spherical joints taken off the numeric and MuJoCo counts")
     print(f"  {'pose':12s} {'input deg':>10s} {'j':>4s} {'b':>4s} {'c':>3s} {'r':>4s} {'truss m':>7s} {'s':>3s} "
-          f"{'Maxwell':>7s} {'numeric m':>9s} {'MuJoCo m':>8s}")  # fmt: skip
+          f"{'Maxwell':>7s} {'numeric m':>9s} {'MuJoCo m':>8s}")
     for label, x, t, numeric, mujoco in rows:
         print(f"  {label:12s} {rad_to_deg(x):10.4f} {t.nodes:4d} {t.bars:4d} {t.couplings:3d} {t.rank:4d} "
-              f"{t.mobility:7d} {t.self_stress:3d} {t.maxwell:7d} {numeric:9d} {mujoco:8d}")  # fmt: skip
+              f"{t.mobility:7d} {t.self_stress:3d} {t.maxwell:7d} {numeric:9d} {mujoco:8d}")
     for label, x, redundant in stresses:
         names = ", ".join(redundant) or "none"
         print(f"redundant bars at {label} {rad_to_deg(x):.4f} deg ({len(redundant)}): {names}")

@@ -14,7 +14,7 @@ from ..precision import Typed
 def add_params(parser: argparse.ArgumentParser) -> None:
     """-p/--param NAME=VALUE, repeatable (degrees for angles, metres for lengths)."""
     parser.add_argument("-p", "--param", action="append", default=[], metavar="NAME=VALUE",
-                        help="scene parameter in degrees or metres (see describe)")  # fmt: skip
+                        help="scene parameter in degrees or metres (see describe)")
 
 
 # A plain decimal number as people type it: sign, digits with an optional point, an optional exponent. Python's
@@ -69,7 +69,7 @@ def number_at_least(option: str, low: float, *, open_low: bool = False):
             raise argparse.ArgumentTypeError(str(err)) from None
         if value < low or (open_low and value == low):
             raise argparse.ArgumentTypeError(f"{option} = {text.strip()}; it must be {'>' if open_low else '>='} "
-                                             f"{low:g}")  # fmt: skip
+                                             f"{low:g}")
         return value
 
     return parse

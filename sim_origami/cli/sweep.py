@@ -25,7 +25,7 @@ HELP = "cross-check a scene over a parameter grid in parallel (local processes o
 def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("scene", help="scene name (see list)")
     parser.add_argument("--grid", action="append", required=True, metavar="NAME=START:STOP:STEP",
-                        help="a swept parameter in degrees or metres (repeat for a product grid)")  # fmt: skip
+                        help="a swept parameter in degrees or metres (repeat for a product grid)")
     parser.add_argument("--preset", choices=PRESETS, help="default: the scene's own")
     parser.add_argument("--workers", type=int, help="local processes (default: every core)")
     parser.add_argument("--scheduler", help="Dask distributed scheduler address, e.g. tcp://10.0.0.5:8786")
@@ -51,13 +51,13 @@ def run(args: argparse.Namespace) -> int:
         check_scheduler(args.scheduler)
     with claimed_folder(out, force=args.force) as stage:  # the previous sweep's files stay until this one finishes
         rows = sweep(args.scene, axes, preset=args.preset, workers=args.workers, scheduler=args.scheduler,
-                     progress=_bar)  # fmt: skip
+                     progress=_bar)
         paths = {kind: out / path.name for kind, path in write_tables(rows, stage).items()}
         plot_sweep(rows, [a.name for a in axes], stage / "sweep.png")
     failed = [r for r in rows if not r["passed"]]
     parquet = paths.get("parquet", "no sweep.parquet (pip install -e '.[cluster]' for pyarrow)")
     print(f"{len(rows)} points, {len(rows) - len(failed)} passed, {len(failed)} failed; "
-          f"{paths['csv']}, {parquet}, {out / 'sweep.png'}")  # fmt: skip
+          f"{paths['csv']}, {parquet}, {out / 'sweep.png'}")
     for r in failed[:5]:
         where = ", ".join(f"{a.name}={r[a.name]:g}" for a in axes)
         print(f"  failed at {where}: {r['error'] or format(r['angle_error_max_rad'], '.3g') + ' rad off'}")

@@ -59,7 +59,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--force", action="store_true", help="write into a folder holding files this tool did not")
     parser.add_argument("--render", action="store_true", help="also write frames/, fold.gif and fold.mp4")
     parser.add_argument("--size", type=frame_size, metavar="WxH",
-                        help="frame size in pixels with --render (default 640x480)")  # fmt: skip
+                        help="frame size in pixels with --render (default 640x480)")
     parser.add_argument("--json", action="store_true", help="print report.json to stdout")
     parser.add_argument("--full-curves", action="store_true",
                         help="curves.csv with every MuJoCo step (default: 400 samples a run and each joint's worst)")
@@ -101,7 +101,7 @@ def registered(scene, args: argparse.Namespace) -> dict:
             # 12 digits: 30 deg comes back from radians as 29.999999999999996
             "params_user": {name: ({"value": float(f"{declared[name].to_user(v):.12g}"), "unit": declared[name].unit}
                                    if name in declared else {"value": v, "unit": ""})
-                            for name, v in scene.params.items()}}  # fmt: skip
+                            for name, v in scene.params.items()}}
 
 
 def run_one(scene, args, out: Path, reference=None) -> dict:
@@ -117,7 +117,7 @@ def run_one(scene, args, out: Path, reference=None) -> dict:
             bar.set_postfix_str(phase)
 
         report = validate(scene, preset=args.preset, branch=args.branch, seed=args.seed, reference=reference,
-                          progress=progress)  # fmt: skip
+                          progress=progress)
     doc = as_dict(report, command=getattr(args, "command_line", None)) | registered(scene, args)
     write(report, out, full_curves=args.full_curves, doc=doc)
     plot_report(report, out / "curves.png")
@@ -127,9 +127,9 @@ def run_one(scene, args, out: Path, reference=None) -> dict:
         q = report.runs[0].dynamic.q
         width, height = args.size or DEFAULT_SIZE
         frames = render_frames(scene, q[np.linspace(0, len(q) - 1, FRAMES).astype(int)], out, width=width,
-                               height=height)  # fmt: skip
+                               height=height)
         doc["render"] = {"gl_renderer": frames.gl_renderer, "seconds_per_frame": frames.seconds_per_frame,
-                         "frames": frames.count, "stills": len(frames.pngs)}  # fmt: skip
+                         "frames": frames.count, "stills": len(frames.pngs)}
     if args.all and (thumb := write_thumbnail(out)) is not None:  # index.html shows it
         doc["thumbnail"] = thumb.name
     if args.render or "thumbnail" in doc:
@@ -156,7 +156,7 @@ def failed_run(scene, args, out: Path, err: SimulationError) -> dict:
     ran = not isinstance(err, ZeroSweepError)
     doc = {"scene": scene.name, "params": scene.params, "preset": preset, "passed": False,
            "notes": scene.notes, "verdicts": [*map(verdict_json, err.verdicts), *([stopped] if ran else [])],
-           "provenance": provenance(preset, getattr(args, "command_line", None))}  # fmt: skip
+           "provenance": provenance(preset, getattr(args, "command_line", None))}
     if not ran:
         doc["events"] = list(err.events)
     write_text(out / "report.json", json_text(doc))
@@ -176,11 +176,11 @@ def summary_line(doc: dict) -> str:
     return (f"| {doc['scene']} | {status} | {doc['preset']} | "
             f"{', '.join(b['branch_followed'] or '-' for b in doc['branches'])} | "
             f"{number(doc['angle_error_max_rad'], '.2e')} | {number(doc['closure_residual_max_m'], '.2e')} | "
-            f"{doc['timings_s']['mujoco_step_cpu_s'] * 1e3:.1f} |")  # fmt: skip
+            f"{doc['timings_s']['mujoco_step_cpu_s'] * 1e3:.1f} |")
 
 
 HEADER = ("| scene | result | preset | branches followed | max angle error (rad) | max closure residual (m) "
-          "| MuJoCo step CPU (ms) |\n|---|---|---|---|---|---|---|")  # fmt: skip
+          "| MuJoCo step CPU (ms) |\n|---|---|---|---|---|---|---|")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -210,7 +210,7 @@ def run(args: argparse.Namespace) -> int:
         with contextlib.ExitStack() as claims:
             stage = claims.enter_context(claimed_folder(out, force=args.force))
             stages = {name: claims.enter_context(claimed_folder(out / name, force=args.force))
-                      for name in scenes.names()}  # fmt: skip
+                      for name in scenes.names()}
             scenes_bar = tqdm(stages, desc="validate --all", unit="scene", file=sys.stderr)
             for name in scenes_bar:
                 scenes_bar.set_postfix_str(name)

@@ -228,5 +228,5 @@ def bricard_axis(bricard: BricardThreefold, theta: NDArray[np.float64]) -> tuple
     k = 0.5 / np.sqrt(3.0)
     p = (0.5 * (t[0] - along * u[0]) + k * (u[1] * t[2] - u[2] * t[1]),
          0.5 * (t[1] - along * u[1]) + k * (u[2] * t[0] - u[0] * t[2]),
-         0.5 * (t[2] - along * u[2]) + k * (u[0] * t[1] - u[1] * t[0]))  # fmt: skip
+         0.5 * (t[2] - along * u[2]) + k * (u[0] * t[1] - u[1] * t[0]))
     return u, p, cp, sp

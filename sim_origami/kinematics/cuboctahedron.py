@@ -51,7 +51,7 @@ VERTICES: dict[str, NDArray[np.float64]] = {
         "E": (HALF, -HALF, 0), "F": (-HALF, -HALF, 0), "G": (-HALF, HALF, 0), "H": (HALF, HALF, 0),
         "I": (HALF, 0, HALF), "J": (0, -HALF, HALF), "K": (-HALF, 0, HALF), "L": (0, HALF, HALF),
     }.items()
-}  # fmt: skip
+}
 NAMES: tuple[str, ...] = tuple(VERTICES)
 # (4-2): the octahedron (same frame); merged vertices share a corner.
 OCTAHEDRON: dict[str, NDArray[np.float64]] = {
@@ -61,7 +61,7 @@ OCTAHEDRON: dict[str, NDArray[np.float64]] = {
         "EF": (0, -HALF, 0), "GH": (0, HALF, 0), "JL": (0, 0, HALF),
     }.items()
     for name in pair
-}  # fmt: skip
+}
 # (4-8, 4-9): the printed (not unit) R-joint axes, oriented as printed.
 AXES: dict[str, NDArray[np.float64]] = {
     name: np.array(xyz, dtype=float) / 3
@@ -69,7 +69,7 @@ AXES: dict[str, NDArray[np.float64]] = {
         "A": (-2, 0, 4), "B": (0, 4, 2), "C": (2, 0, 4), "D": (0, -4, 2),
         "I": (-2, 0, -4), "J": (0, 4, -2), "K": (2, 0, -4), "L": (0, -4, -2),
     }.items()
-}  # fmt: skip
+}
 BOTTOM = ("ABE", "BCF", "CDG", "DAH")  # link k of Bennett 1 joins joint k to joint k + 1 (loop A B C D)
 TOP = ("IJE", "JKF", "KLG", "LIH")  # mirror images of BOTTOM (z -> -z), link k of Bennett 2 (loop I J K L)
 TRIANGLES = BOTTOM + TOP
@@ -80,7 +80,7 @@ HINGES: dict[str, tuple[str, str]] = {
 }
 # S joints: (vertex, parent = bottom triangle, child = top triangle).
 SPHERICAL: tuple[tuple[str, str, str], ...] = (("E", "ABE", "IJE"), ("F", "BCF", "JKF"), ("G", "CDG", "KLG"),
-                                               ("H", "DAH", "LIH"))  # fmt: skip
+                                               ("H", "DAH", "LIH"))
 # The 6 hollow squares, outward (counter-clockwise seen from outside); used for the enclosed volume only.
 SQUARES = ("ABCD", "ILKJ", "AHIE", "BEJF", "CFKG", "DGLH")
 MIRROR_Z = np.diag([1.0, 1.0, -1.0, 1.0])
@@ -183,7 +183,7 @@ class CuboctahedronOctahedron:
         t = self._check(theta)
         bottom = self._bottom(t)
         P = {v: np.einsum("nij,j->ni", bottom[:, k], np.append(VERTICES[v], 1.0))[:, :3]
-             for k, face in enumerate(BOTTOM) for v in face}  # fmt: skip
+             for k, face in enumerate(BOTTOM) for v in face}
         normal = unit(np.cross(P["A"] - P["C"], P["H"] - P["E"]))
         mirror = _reflection(P["E"], normal)
         out = {face: bottom[:, k] for k, face in enumerate(BOTTOM)}
@@ -242,4 +242,4 @@ class CuboctahedronOctahedron:
             Event("bifurcation", THETA_F, name, "octahedron: instantaneous mobility 2; the second branch turns the top "
                   "pyramid about the line E (= F) G (= H) with every hinge frozen (`swing_poses`), its faces cutting "
                   "the bottom ones at once"),
-        )  # fmt: skip
+        )

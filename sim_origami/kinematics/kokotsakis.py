@@ -144,7 +144,7 @@ def example(case: int) -> tuple[MeshVertex, MeshVertex, MeshVertex, MeshVertex]:
         return (MeshVertex(ac, 1), MeshVertex(bd, 2), MeshVertex(ac, 3), MeshVertex(bd, 4))
     if case == 3:
         return (MeshVertex(generic, 1), MeshVertex(generic, 2, True), MeshVertex(generic, 1),
-                MeshVertex(generic, 2, True))  # fmt: skip
+                MeshVertex(generic, 2, True))
     if case == 4:
         plane = tuple(np.array([2, 7, 4, 5]) * np.pi / 9)  # (40, 140, 80, 100) deg: alpha_12 + alpha_23 = 180 deg
         return (MeshVertex(plane, 1), MeshVertex(plane, 2), MeshVertex(plane, 3, True), MeshVertex(plane, 2, True))
@@ -461,7 +461,7 @@ class Kokotsakis(JointSpaceKinematics):
         lines = straight_lines(self.pattern)
         if lines:
             detail += (f"; so does the {len(lines)}-DOF family folding the straight crease lines "
-                       f"{', '.join('-'.join(line) for line in lines)} alone (rho_{INPUT} = 0 on it)")  # fmt: skip
+                       f"{', '.join('-'.join(line) for line in lines)} alone (rho_{INPUT} = 0 on it)")
         out = [Event("bifurcation", 0.0, names, detail)]
         for b in self._branches:
             for end in b.domain:

@@ -97,7 +97,7 @@ def _check_arguments(loops: LoopSystem, joint_names: Sequence[str], input_joint:
         raise ParameterError(f"input_joint = {input_joint!r}: it must be a joint index from 0 to {n - 1}")
     span = np.asarray(input_range, dtype=object)
     if span.shape != (2,) or not all(isinstance(v, (int, float, np.number)) and not isinstance(v, bool)
-                                     and np.isfinite(v) for v in span):  # fmt: skip
+                                     and np.isfinite(v) for v in span):
         raise ParameterError(f"input_range = {input_range!r}: give (lo, hi), two finite angles (rad)")
     if start is not None:
         try:
@@ -180,7 +180,7 @@ class LinkagePath(Kinematics):
             if not self.lo <= x0 <= self.hi:
                 raise ParameterError(f"joints[].theta0: the start angle of the input {self.input_name}, "
                                      f"{np.rad2deg(x0):.6g} deg, lies outside input.range [{np.rad2deg(self.lo):.6g}, "
-                                     f"{np.rad2deg(self.hi):.6g}] deg")  # fmt: skip
+                                     f"{np.rad2deg(self.hi):.6g}] deg")
             q, residual, _ = correct(loops, given, fixed, CLOSE_TOL, max_iter=200)
             # an idle spin's angles may move to its pinned value: the start is judged by the outputs
             gap = float(np.max(np.abs(q - given)[self.observed], initial=0.0))
@@ -369,7 +369,7 @@ class LinkagePath(Kinematics):
                                                                     "given" in self.assembly else
                                                                     f"assembly {k + 1} at the start input"),
                             (float(s[0]), float(s[-1])))
-                     for k, (name, (s, _, _)) in enumerate(self.nodes.items()))  # fmt: skip
+                     for k, (name, (s, _, _)) in enumerate(self.nodes.items()))
 
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
         values, valid = self._full(branch, x)
@@ -405,7 +405,7 @@ class LinkagePath(Kinematics):
             # the placed model's rounding floor: what its trace's nodes reached (their median), FLOOR_SHARE over
             floor = FLOOR_SHARE * float(np.median(self._loops.residual_size(self._loops.residual(nodes))))
             self._polishers[branch] = ChordPolish(self._loops, nodes, fixed, tol=max(POLISH_TOL, floor),
-                                                  close_tol=CLOSE_TOL)  # fmt: skip
+                                                  close_tol=CLOSE_TOL)
         guess = self._interp(branch, x[valid])
         guess[:, self.input_index] = x[valid]
         values[valid] = self._polishers[branch].polish(guess, nearest_nodes(self.nodes[branch][0], x[valid]))

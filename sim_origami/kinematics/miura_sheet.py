@@ -51,7 +51,7 @@ def miura_pattern(
     for i in range(cols):
         for j in range(rows):
             v = [vertex_index(i, j, rows), vertex_index(i + 1, j, rows), vertex_index(i + 1, j + 1, rows),
-                 vertex_index(i, j + 1, rows)]  # fmt: skip
+                 vertex_index(i, j + 1, rows)]
             faces.append(tuple(v))
             names.append(f"p{i}_{j}")
     creases = []

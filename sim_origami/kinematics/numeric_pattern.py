@@ -198,7 +198,7 @@ class PatternPath(JointSpaceKinematics):
         span = abs(path.s[-1] - path.s[0])
         return trace(self._loops, q0, self.driven, path, lower=self.lower, upper=self.upper, first_step=first,
                      max_step=MAX_STEP, min_step=STALL_STEP * span, tol=CLOSE_TOL,
-                     names=tuple(c.name for c in self.pattern.creases), stop_when=self._contact)  # fmt: skip
+                     names=tuple(c.name for c in self.pattern.creases), stop_when=self._contact)
 
     def _trace_anchored(self, q_target: NDArray) -> None:
         x = self.target_input = float(q_target[self.input_index])
@@ -223,7 +223,7 @@ class PatternPath(JointSpaceKinematics):
         if not np.all(np.isfinite(knots)):
             bad = [self.inputs[j] for j in np.flatnonzero(~np.all(np.isfinite(knots), axis=0))]
             raise ParameterError(f"input crease(s) {bad} have no angle (null) in the file's folded state: drive "
-                                 "creases whose angles are given (--input)")  # fmt: skip
+                                 "creases whose angles are given (--input)")
         knots = knots[np.r_[True, np.any(np.diff(knots, axis=0) != 0, axis=1)]]  # repeated frames add nothing
         if np.any(knots[0] != 0):
             knots = np.vstack([np.zeros(len(self.driven)), knots])
@@ -257,7 +257,7 @@ class PatternPath(JointSpaceKinematics):
         if self.letters_only and np.all(lettered) and n <= SPARSE_FROM:
             x = float(path.at(s1)[0])
             q, _ = self._loops.solve_signed(np.where(self.signs == 0, 1.0, self.signs), self.input_index, x,
-                                            tol=CLOSE_TOL)  # fmt: skip
+                                            tol=CLOSE_TOL)
             q[self.signs == 0] = 0.0
             return q
         states = self.frames if self.frames is not None else self.target[None]
@@ -290,13 +290,13 @@ class PatternPath(JointSpaceKinematics):
                            upper=self.upper, first_step=FIRST_STEP * span, max_step=MAX_STEP,
                            min_step=STALL_STEP * span, tol=CLOSE_TOL, names=names,
                            previous=(path.s[0], np.zeros(len(self.joint_names))), stop_when=self._contact,
-                           toward=self.target if self.letters_only else None)]  # fmt: skip
+                           toward=self.target if self.letters_only else None)]
         else:  # from the first frame back to near flat, and on through the others
             s_frame, q_frame = anchor
             parts = [trace(self._loops, q_frame, self.driven, path, s0=s_frame, s_end=s_end, lower=self.lower,
                            upper=self.upper, first_step=FIRST_STEP * span, max_step=MAX_STEP,
                            min_step=STALL_STEP * span, tol=CLOSE_TOL, names=names, stop_when=self._contact)
-                     for s_end in (s1, path.s[-1])]  # fmt: skip
+                     for s_end in (s1, path.s[-1])]
         traced = parts[-1]
         self.path = path
         self.stops = [p.stop for p in parts]
@@ -338,7 +338,7 @@ class PatternPath(JointSpaceKinematics):
         fixed[self.driven] = True
         q, r, _ = correct(self._loops, folded[0].copy(), fixed, CLOSE_TOL, max_iter=200)
         if r > 100 * CLOSE_TOL or np.max(np.abs(q - folded[0])) > TARGET_TOL or np.any(q < self.lower) \
-                or np.any(q > self.upper):  # fmt: skip
+                or np.any(q > self.upper):
             return None
         return float(path.parameter_of(q[self.driven][None])[0]), q
 
@@ -351,7 +351,7 @@ class PatternPath(JointSpaceKinematics):
         lo, hi = self.s_nodes[0], self.s_nodes[-1]
         for f, frame in enumerate(self.frames):
             s = float(self.path.parameter_of(frame[self.driven][None])[0]) if np.all(np.isfinite(frame[self.driven])) \
-                else np.nan  # fmt: skip
+                else np.nan
             entry = {"frame": f, "input": s, "closure_residual": None, "distance_rad": None}
             if np.isfinite(s) and lo - 1e-12 <= s <= hi + 1e-12 and len(knots):
                 closed = self.evaluate(BRANCH, [min(max(s, lo), hi)])[0][0]
@@ -374,7 +374,7 @@ class PatternPath(JointSpaceKinematics):
         names = [c.name for c in self.pattern.creases]
         lo, hi = float(np.min(self.mobility)), float(np.max(self.mobility))
         parts = [f"{len(self.driven)} input(s) {', '.join(names[k] for k in self.driven)}, mobility "
-                 f"{lo:g}" + (f"-{hi:g}" if hi != lo else "") + " along the traced path"]  # fmt: skip
+                 f"{lo:g}" + (f"-{hi:g}" if hi != lo else "") + " along the traced path"]
         if self.open_chain:
             parts.append("an open chain: no closed loop, the closure check is empty")
         for e in self.events():
@@ -399,14 +399,14 @@ class PatternPath(JointSpaceKinematics):
         elif self.frame_distances:
             far = [d["distance_rad"] for d in self.frame_distances]
             reach = "the rigid motion ends before the last frame" if any(d is None for d in far) else \
-                f"the rigid motion through the frames' inputs passes {max(far):.3g} rad from them at most"  # fmt: skip
+                f"the rigid motion through the frames' inputs passes {max(far):.3g} rad from them at most"
         elif np.isfinite(self.target_gap):
             verb = "reaches" if self.target_gap <= TARGET_TOL else "ends"
             reach = f"the rigid motion {verb} {self.target_gap:.3g} rad from it at the inputs' end"
         else:
             stop = next((p for p in self.stops if p.kind != "end"), None)
             reach = "the rigid motion does not reach it" + (f": it stops at {stop.s:.6g} rad ({stop.kind})" if stop
-                                                            else "")  # fmt: skip
+                                                            else "")
         return fit.ratio, 1.0, f"{fit.text()}; {reach}", fit.values
 
     def start_check(self) -> tuple[float, float, str] | None:
@@ -421,10 +421,10 @@ class PatternPath(JointSpaceKinematics):
             return None
         stop = next((e for e in self.events() if e.kind in ("stall", "lock", "contact")), None)
         why = f"{stop.kind} at {stop.input:.6g} rad: {stop.detail}" if stop is not None else \
-            f"no node beyond {self.s_nodes[0]:.6g} rad"  # fmt: skip
+            f"no node beyond {self.s_nodes[0]:.6g} rad"
         moved = f" after {span:.3g} rad" if span > 0 else ""
         return 1.0, 0.0, (f"{why}{moved}; the pattern does not fold rigidly from there, so there is no motion to "
-                          "simulate")  # fmt: skip
+                          "simulate")
 
     def target_check(self) -> tuple[float, float, str, int] | None:
         """
@@ -441,10 +441,10 @@ class PatternPath(JointSpaceKinematics):
         known = np.flatnonzero(np.isfinite(self.target))
         worst = int(known[np.argmax(np.abs(self.target_state[known] - self.target[known]))]) if known.size else 0
         at = f"the inputs' end {self.target_end:.6g} rad" if self.target_input is None else \
-            f"its input {self.target_input:.6g} rad (traced from it)"  # fmt: skip
+            f"its input {self.target_input:.6g} rad (traced from it)"
         detail = (f"the file's folded state is {self.target_gap:.3g} rad ({np.rad2deg(self.target_gap):.3g} deg) from "
                   f"the rigid motion's state at {at}, largest at crease {names[worst]}; {len(known)} given "
-                  f"angles of {len(names)} creases compared")  # fmt: skip
+                  f"angles of {len(names)} creases compared")
         if self.target_gap > TARGET_TOL:
             detail += ": the pattern does not fold rigidly to it"
         return self.target_gap, TARGET_TOL, detail, len(known)
@@ -474,7 +474,7 @@ class PatternPath(JointSpaceKinematics):
     def branches(self) -> tuple[Branch, ...]:
         lo, hi = float(self.s_nodes[0]), float(self.s_nodes[-1])
         return (Branch(BRANCH, "the branch through (or towards) the given folded state, traced by continuation",
-                       (lo, hi)),)  # fmt: skip
+                       (lo, hi)),)
 
     def evaluate(self, branch: str, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
         return self.evaluate_held(branch, x, self.driven_values(x))
@@ -512,7 +512,7 @@ class PatternPath(JointSpaceKinematics):
             guesses = self._polisher.hermite(self.s_nodes, x[valid])
         else:
             guesses = np.stack([np.interp(x[valid], self.s_nodes, self.nodes[:, j])
-                                for j in range(self.nodes.shape[1])], axis=-1)  # fmt: skip
+                                for j in range(self.nodes.shape[1])], axis=-1)
         guesses[:, self.driven] = held[valid]
         if not self._loops.n_residuals:
             values[valid] = guesses
@@ -543,11 +543,11 @@ class PatternPath(JointSpaceKinematics):
                 detail = (f"frame {d['frame']}: {d['distance_rad']:.3g} rad from the rigid motion, closure residual "
                           f"{d['closure_residual']:.3g}")
             out.append(Event("frame", float(d["input"]) if np.isfinite(d["input"]) else float("nan"), (BRANCH,),
-                             detail))  # fmt: skip
+                             detail))
         if self.target_gap > TARGET_TOL:
             out.append(Event("off-target", self.target_end, (BRANCH,),
                              f"the target state is off the rigid motion: at the inputs' end the traced state differs "
-                             f"from it by {self.target_gap:.3g} rad"))  # fmt: skip
+                             f"from it by {self.target_gap:.3g} rad"))
         if self.open_chain:
             out.append(Event("open-chain", float(self.s_nodes[0]), (BRANCH,),
                              "no closed loop: every crease is free but the inputs; the closure check is empty"))

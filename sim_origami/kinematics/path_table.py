@@ -35,7 +35,7 @@ def polish(y: NDArray[np.float64], residual: Callable, correction: Callable, wha
     if open_rows.size:
         k = int(open_rows[0])
         raise ConvergenceError(f"the closure of {what} did not converge at {y[rows[k]]} (residual "
-                               f"{_largest(r)[k]:.3g} m^2)")  # fmt: skip
+                               f"{_largest(r)[k]:.3g} m^2)")
     return y
 
 

@@ -122,7 +122,7 @@ class SelfContact:
         self.flat = np.c_[v[self.corner_vertex] / self.size, np.zeros(len(self.corner_vertex))]
         starts = np.cumsum([0] + [len(f) for f in pattern.faces])
         tris = [tuple(starts[f] + t for t in tri) for f, face in enumerate(pattern.faces)
-                for tri in triangulate(v[list(face)])]  # fmt: skip
+                for tri in triangulate(v[list(face)])]
         self.triangles = np.array(tris, dtype=int).reshape(-1, 3)
         self.tri_face = self.corner_face[self.triangles[:, 0]]
         self.corner_start = starts[:-1]
@@ -164,7 +164,7 @@ class SelfContact:
         xyz = self.corners(q)
         # broad phase: faces' boxes, then the boxes of their triangles
         fi, fj = _box_pairs(np.minimum.reduceat(xyz, self.corner_start) - BOX_MARGIN,
-                            np.maximum.reduceat(xyz, self.corner_start) + BOX_MARGIN)  # fmt: skip
+                            np.maximum.reduceat(xyz, self.corner_start) + BOX_MARGIN)
         keep = self.allowed[fi, fj]
         fi, fj = fi[keep], fj[keep]
         ca, cb = self.tri_count[fi], self.tri_count[fj]
@@ -220,7 +220,7 @@ class SelfContact:
         crease = self.pattern.creases[k]
         more = f" (and {len(pairs) - 1} more pair(s))" if len(pairs) > 1 else ""
         return (f"faces {names[a]} and {names[b]} touch{more}; crease {crease.name} at {float(q[k]):.6g} rad, the "
-                "most folded crease between them")  # fmt: skip
+                "most folded crease between them")
 
     def folding_crease(self, a: int, b: int, q: ArrayLike) -> int:
         """The most folded crease (largest |rho|) on a shortest path of creases from face a to face b."""

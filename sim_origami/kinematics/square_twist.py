@@ -216,7 +216,7 @@ def verdict_table(alpha: float, side: float = 1.0, pleat: float = 1.0) -> tuple[
         gain = loop_gain(alpha, modes)
         rigid, residual = foldable_with_signs(loops, np.sign(tan_ratios(alpha, modes)), CREASES.index(INPUT))
         out.append(AssignmentVerdict(name, members, assignment(alpha, modes), gain, abs(gain - 1.0) <= GAIN_TOL,
-                                     rigid, residual))  # fmt: skip
+                                     rigid, residual))
     return tuple(out)
 
 
@@ -247,7 +247,7 @@ class SquareTwist(FixedModeKinematics):
             c, s = ([v for v, m in zip(VERTICES, modes, strict=True) if m == mode] for mode in "CS")
             mv = assignment(self.alpha, modes)
             text = (f"vertices {', '.join(c)} in mode C (rho3 = rho1), {', '.join(s)} in mode S (rho3 = -rho1): "
-                    f"class {CLASS_OF[modes]}; M/V at rhoAB > 0 in joint order: {mv}")  # fmt: skip
+                    f"class {CLASS_OF[modes]}; M/V at rhoAB > 0 in joint order: {mv}")
             out.append(Branch(modes, text, (-np.pi, np.pi)))
         return tuple(out)
 

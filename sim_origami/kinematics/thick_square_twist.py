@@ -170,7 +170,7 @@ class ThickSquareTwist(SquareTwist):
         zero = next(br for br in self._branches if br.name == modes)
         kinds = ", ".join(f"{v} {LAYOUT[m]}" for v, m in zip(VERTICES, modes, strict=True))
         text = (f"thick Bennett vertices ({kinds}) follow the zero-thickness branch {modes} only (class "
-                f"{CLASS_OF[modes]}): {zero.description}")  # fmt: skip
+                f"{CLASS_OF[modes]}): {zero.description}")
         self._branches = (Branch(modes, text, zero.domain),)
 
     def events(self) -> tuple[Event, ...]:

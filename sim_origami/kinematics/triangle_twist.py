@@ -302,7 +302,7 @@ def crease_pattern(angles: TwistAngles, d: float = 1.0, pleat: float = 0.5, type
     A, B, C, A2, A3, B2, B3, C2, C3 = range(9)
     faces = ((A, B, C), (A, A3, B2, B), (B, B3, C2, C), (C, C3, A2, A), (A, A2, A3), (B, B2, B3), (C, C2, C3))
     ends = {"AB": (A, B), "BC": (B, C), "CA": (C, A), "A2": (A, A2), "A3": (A, A3), "B2": (B, B2),
-            "B3": (B, B3), "C2": (C, C2), "C3": (C, C3)}  # fmt: skip
+            "B3": (B, B3), "C2": (C, C2), "C3": (C, C3)}
     points = _points(angles, d, pleat)
     creases = tuple(Crease(n, *ends[n], m) for n, m in zip(CREASES, letters, strict=True))
     return CreasePattern(points, faces, creases, FACES)
@@ -364,7 +364,7 @@ def scheme_verdict(scheme: str, d: float = 1.0, pleat: float = 0.5) -> SchemeVer
     rigid, residual = foldable_with_signs(loops, np.sign(tan_ratios(angles, types)), CREASES.index(INPUT))
     mus = tuple(mu(t, c, p) for t, (c, p) in zip(types, angles.corners_and_pleats(), strict=True))
     return SchemeVerdict(scheme, types, angles, assignment(angles, types), mus, loop_gain(angles, types), rigid,
-                         residual)  # fmt: skip
+                         residual)
 
 
 def verdict_table(d: float = 1.0, pleat: float = 0.5) -> tuple[SchemeVerdict, ...]:
@@ -406,7 +406,7 @@ class TriangleTwist(FixedModeKinematics):
     def _describe(self, types: str) -> Branch:
         modes = modes_of(self.angles, types)
         text = (f"scheme {types} (class {scheme_class(types)}): vertices A, B, C in modes {', '.join(modes)}; "
-                f"M/V at rhoAB > 0 in joint order: {assignment(self.angles, types)}")  # fmt: skip
+                f"M/V at rhoAB > 0 in joint order: {assignment(self.angles, types)}")
         return Branch(types, text, (-np.pi, np.pi))
 
     def branches(self) -> tuple[Branch, ...]:

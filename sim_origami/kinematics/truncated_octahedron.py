@@ -74,7 +74,7 @@ VERTICES: dict[str, NDArray[np.float64]] = {
         "E1": (-HALF, -SQ2, 0), "E2": (0, -SQ2, -HALF), "E3": (HALF, -SQ2, 0), "E4": (0, -SQ2, HALF),
         "F1": (0, -HALF, -SQ2), "F2": (-HALF, 0, -SQ2), "F3": (0, HALF, -SQ2), "F4": (HALF, 0, -SQ2),
     }.items()
-}  # fmt: skip
+}
 NAMES: tuple[str, ...] = tuple(VERTICES)
 # (5-2): the cube (edge 1) each vertex reaches; merged vertices share a corner.
 CUBE: dict[str, NDArray[np.float64]] = {
@@ -85,7 +85,7 @@ CUBE: dict[str, NDArray[np.float64]] = {
         ("D1", "E1", "F1"): (-1, -1, -1), ("A3", "E2", "F4"): (1, -1, -1),
     }.items()
     for name in corner
-}  # fmt: skip
+}
 SQUARES = tuple(tuple(f"{s}{k}" for k in range(1, 5)) for s in "ABCDEF")
 BRICARD_BARS = (("A2", "C1"), ("C2", "B1"), ("B2", "A1"), ("D2", "E1"), ("E2", "F1"), ("F2", "D1"))
 RS_BARS = (("A3", "E3"), ("B3", "F3"), ("C3", "D3"))  # R joint at the first vertex, S at the second
@@ -406,7 +406,7 @@ class TruncatedOctahedronCube:
     def events(self) -> tuple[Event, ...]:
         """The cube (theta_f, rad): Bricard 1 folds, A1 = B1 = C1 and the squares meet (a lock)."""
         return (Event("lock", self.theta_f, ("transformation",), "the cube: A1 = B1 = C1, the squares meet; beyond "
-                      "it they pass through each other (Yang 2017, §5.4)"),)  # fmt: skip
+                      "it they pass through each other (Yang 2017, §5.4)"),)
 
     def state(self, theta: ArrayLike) -> NDArray[np.float64]:
         """
@@ -557,7 +557,7 @@ class TruncatedOctahedronCube:
         for k, step in enumerate(np.eye(2) * 1e-7):
             up, down = path + step, path - step
             J[:, :, k] = (self._closure(one, self._cylinder(up[:, 0]), up[:, 1])
-                          - self._closure(one, self._cylinder(down[:, 0]), down[:, 1])) / 2e-7  # fmt: skip
+                          - self._closure(one, self._cylinder(down[:, 0]), down[:, 1])) / 2e-7
         return np.column_stack([path, np.linalg.inv(J).reshape(-1, 4)])
 
     def _solve(self, theta: NDArray[np.float64], table: PathTable) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -599,7 +599,7 @@ class TruncatedOctahedronCube:
             tip = poses[vertex[0]][:, :3, :3] @ axis + at[vertex]
             ends = [bar[:2], bar[2:]]
             poses.setdefault(bar, rigid_fit([VERTICES[v] for v in ends] + [VERTICES[vertex] + axis],
-                                            np.stack([at[v] for v in ends] + [tip], 1)))  # fmt: skip
+                                            np.stack([at[v] for v in ends] + [tip], 1)))
         for a, b in SS_BARS:
             T = np.zeros((len(P), 4, 4))
             T[:, :3, :3] = minimal_rotation(unit(VERTICES[b] - VERTICES[a]), unit(at[b] - at[a]))

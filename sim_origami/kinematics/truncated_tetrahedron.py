@@ -80,7 +80,7 @@ VERTICES: dict[str, NDArray[np.float64]] = {
         "J": (1, -R3 / 3, R6 / 3), "K": (0, R3 / 3, 2 * R6 / 3), "L": (-0.5, -R3 / 6, 2 * R6 / 3),
         "M": (0.5, -R3 / 6, 2 * R6 / 3),
     }.items()
-}  # fmt: skip
+}
 NAMES: tuple[str, ...] = tuple(VERTICES)
 # (6-3): the tetrahedron (edge 1) each vertex reaches; merged vertices share a corner.
 TETRAHEDRON: dict[str, NDArray[np.float64]] = {
@@ -89,7 +89,7 @@ TETRAHEDRON: dict[str, NDArray[np.float64]] = {
         "ACE": (0, 0, 0), "BHK": (-R3 / 6, 0.5, R6 / 3), "DJL": (-R3 / 6, -0.5, R6 / 3), "FGM": (R3 / 3, 0, R6 / 3)
     }.items()
     for name in corner
-}  # fmt: skip
+}
 Q = np.array([0.0, 0.0, R6 / 4])  # body centre (6-2)
 TRIANGLES = ("ABG", "CDH", "EFJ", "KLM")
 BARS = ("BC", "DE", "FA", "GK", "HL", "JM")
@@ -101,7 +101,7 @@ REVOLUTE_I = ("A", "B", "C", "D", "E", "F", "G", "H", "J")
 REVOLUTE_II = ("A", "B", "C", "D", "E", "F", "K", "L", "M")
 PARENTS = {"A": ("FA", "ABG"), "B": ("ABG", "BC"), "C": ("BC", "CDH"), "D": ("CDH", "DE"), "E": ("DE", "EFJ"),
            "F": ("EFJ", "FA"), "G": ("ABG", "GK"), "H": ("CDH", "HL"), "J": ("EFJ", "JM"),
-           "K": ("GK", "KLM"), "L": ("HL", "KLM"), "M": ("JM", "KLM")}  # fmt: skip
+           "K": ("GK", "KLM"), "L": ("HL", "KLM"), "M": ("JM", "KLM")}
 # Rounding floor (m^2) of the squared radii (<= 4/3 m^2) in `Transformation._solve`'s residual: the residuals of
 # Newton's method stall at 1.9e-15 (measured on 1e6 inputs, either scheme).
 RESIDUAL_FLOOR = 4e-15

@@ -74,9 +74,9 @@ def dh_rows(angles: TwistAngles, d: float) -> tuple[DHRow, ...]:
         first = (DHRow(0.0, d * np.sin(dl), 0.0), DHRow(-d * np.cos(dl), 0.0, np.pi - b))
     else:
         first = (DHRow(d * np.sin(dl) / np.sin(g - dl), 0.0, 2 * np.pi - g + dl),
-                 DHRow(-d * np.sin(g) / np.sin(g - dl), 0.0, np.pi - b))  # fmt: skip
+                 DHRow(-d * np.sin(g) / np.sin(g - dl), 0.0, np.pi - b))
     rest = (DHRow(R3, 0.0, 2 * np.pi - dl + e), DHRow(R4, 0.0, a + b), DHRow(R5, 0.0, g - e),
-            DHRow(R6, 0.0, np.pi - a))  # fmt: skip
+            DHRow(R6, 0.0, np.pi - a))
     return first + rest
 
 

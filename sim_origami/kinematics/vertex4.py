@@ -306,7 +306,7 @@ class Vertex4(JointSpaceKinematics):
         folded = (
             np.all(np.abs(rho) > np.pi - FOLDED_FLAT, axis=-1) if self.flat_foldable and branch in ("S", "C")
             else np.zeros(codes.shape, dtype=bool)
-        )  # fmt: skip
+        )
         for k in (1, 0):
             hit = real & ((codes[k] == NAMES.index(branch)) | folded[k])
             values[hit] = rho[k, hit]

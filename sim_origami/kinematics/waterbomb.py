@@ -89,10 +89,10 @@ def unit_cell(alpha: float, beta: float, t: float, mu: float | None = None, a: f
     v = np.array([
         (0.0, 0.0), (0.0, hc), (t, t * cot), (t, -t * cot), (0.0, -hc), (-t, -t * cot), (-t, t * cot),
         (t, t * cot + hc), (2 * t, 0.0), (2 * t, hc),
-    ])  # fmt: skip
+    ])
     A, C, B, Cr, Bb, Cl, Bl, Aup, Ar, Crt = range(10)
     faces = ((A, B, C), (A, C, Bl), (A, Bl, Cl), (A, Cl, Bb), (A, Bb, Cr), (A, Cr, B),
-             (B, Aup, C), (B, Cr, Ar), (B, Ar, Crt), (B, Crt, Aup))  # fmt: skip
+             (B, Aup, C), (B, Cr, Ar), (B, Ar, Crt), (B, Crt, Aup))
     s, m = ((2 + mu) * a, (1 + mu) * a) if mu is not None else (0.0, 0.0)
     low = 2 * a if mu is not None else 0.0
     creases = (
@@ -100,7 +100,7 @@ def unit_cell(alpha: float, beta: float, t: float, mu: float | None = None, a: f
         Crease("A4", A, Bb, "M", 0.0), Crease("A5", A, Cl, "V", s), Crease("A6", A, Bl, "V", s),
         Crease("B1", B, Aup, "M", 0.0), Crease("B2", B, C, "M", m), Crease("B4", B, Cr, "M", low),
         Crease("B5", B, Ar, "V", s), Crease("B6", B, Crt, "M", m),
-    )  # fmt: skip
+    )
     lattice = (v[Ar] - v[A], v[Aup] - v[A])  # the next base to the right, the next row's base
     return CreasePattern(v, faces, creases, FACES, periodic_heights(v, faces, creases, lattice))
 
@@ -124,10 +124,10 @@ def periodic_heights(
                 continue
             edge = vertices[[a, b]]
             copies = [c.height for c in creases for d in shifts for ends in ([c.start, c.end], [c.end, c.start])
-                      if np.allclose(vertices[ends] + d, edge, atol=1e-9)]  # fmt: skip
+                      if np.allclose(vertices[ends] + d, edge, atol=1e-9)]
             if len(set(copies)) != 1:
                 raise ParameterError(f"border edge {a}-{b} of the periodic cell copies {len(copies)} creases "
-                                     f"(heights {sorted(set(copies))}); it must copy exactly one height")  # fmt: skip
+                                     f"(heights {sorted(set(copies))}); it must copy exactly one height")
             out.append((a, b, copies[0]))
     return tuple(out)
 
@@ -223,7 +223,7 @@ class Waterbomb(JointSpaceKinematics):
         plane = Branch(PLANE, "path II (eqn 5-7): B only plane-symmetric, rho_B4 != rho_B1", (-np.pi, np.pi))
         if not self.thick:
             degree4 = Branch(DEGREE4, "A folds about its line A1-A4 only; B a degree-4 vertex, rho_B4 = -rho_B1",
-                             (-np.pi, np.pi))  # fmt: skip
+                             (-np.pi, np.pi))
             straight = Branch(STRAIGHT, "folds about the straight lines A1-A4 and B1-B4 only", (-np.pi, np.pi))
             return (line, plane, degree4, straight)
         if abs(self.alpha - self.beta) < EQUAL_TOL and abs(self.mu - 1.0) < EQUAL_TOL:

@@ -21,10 +21,10 @@ from .waterbomb import CREASES, Waterbomb
 
 # Cell crease whose fold angle each tessellation crease type takes (B6 folds as B2).
 TYPE_OF = {"A1": "A1", "A2": "A2", "A3": "A3", "A4": "A4", "A5": "A5", "A6": "A6", "B2": "B2", "B6": "B2",
-           "B4": "B4"}  # fmt: skip
+           "B4": "B4"}
 # Creases that the symmetric folding makes equal (the cell's A3 = A5 = A6 = A2 and B6 = B2).
 SYMMETRY_CLASS = {"A1": "A1", "A2": "A2", "A3": "A2", "A4": "A4", "A5": "A2", "A6": "A2", "B2": "B2", "B6": "B2",
-                  "B4": "B4"}  # fmt: skip
+                  "B4": "B4"}
 ASSIGNMENT = {"A1": "M", "A2": "V", "A3": "V", "A4": "M", "A5": "V", "A6": "V", "B2": "M", "B6": "M", "B4": "M"}
 
 
@@ -53,7 +53,7 @@ def tessellation(alpha: float, beta: float, t: float, rows: int, cols: int) -> t
                 faces.append(tri)
                 names.append(f"f{k}_{i}_{j}")
             for kind, a, b in (("A1", A, C), ("A2", A, Bp), ("A3", A, Cbp), ("A4", A, Bb), ("A5", A, Cbm),
-                               ("A6", A, Bm), ("B2", Bp, C), ("B6", Bm, C), ("B4", Bp, Cbp)):  # fmt: skip
+                               ("A6", A, Bm), ("B2", Bp, C), ("B6", Bm, C), ("B4", Bp, Cbp)):
                 edges.setdefault(frozenset((a, b)), (f"{kind}_{i}_{j}", kind, a, b))
     directed = {(a, b) for f in faces for a, b in zip(f, f[1:] + f[:1], strict=True)}
     creases, kinds = [], []

@@ -136,9 +136,9 @@ def _unit(i: int, p0: int) -> tuple[dict[str, tuple[Key, ...]], list[tuple[str, 
     A, C, Bb = ("A", i, p0), ("C", i, p0), ("B", i - 1, p0)
     Bp, Bm, Cp, Cm = ("B", i, p0 + 1), ("B", i, p0 - 1), ("C", i - 1, p0 + 1), ("C", i - 1, p0 - 1)
     faces = {"12": (A, Bp, C), "61": (A, C, Bm), "56": (A, Bm, Cm), "45": (A, Cm, Bb), "34": (A, Bb, Cp),
-             "23": (A, Cp, Bp)}  # fmt: skip
+             "23": (A, Cp, Bp)}
     creases = [("1", A, C, "M"), ("2", A, Bp, "V"), ("3", A, Cp, "V"), ("4", A, Bb, "M"), ("5", A, Cm, "V"),
-               ("6", A, Bm, "V"), ("V", Cp, Bp, "M"), ("r", C, Bp, "M"), ("l", C, Bm, "M")]  # fmt: skip
+               ("6", A, Bm, "V"), ("V", Cp, Bp, "M"), ("r", C, Bp, "M"), ("l", C, Bm, "M")]
     return faces, creases
 
 
@@ -275,7 +275,7 @@ def tube_layout(n: int, m: int, alpha: float, beta: float, a: float) -> TubeLayo
         tuple((name, key_index[s], key_index[e], mv) for name, s, e, mv, _, _ in ordered),
         tuple(c[4] for c in ordered), tuple(c[5] for c in ordered), third_left, third_right,
         pattern, tuple(seam), np.array([key_index[tube_key(v)] for v in strip]),
-    )  # fmt: skip
+    )
 
 
 def meet(p: tuple, d1: float, q: tuple, d2: float, n: int) -> tuple[NDArray, NDArray]:
@@ -347,7 +347,7 @@ def vertices(layout: TubeLayout, theta: ArrayLike) -> NDArray[np.float64]:
 def _cross(u: NDArray, v: NDArray) -> NDArray:
     """Cross products of (..., 3) arrays (componentwise: np.cross is slow on many small vectors)."""
     return np.stack([u[..., 1] * v[..., 2] - u[..., 2] * v[..., 1], u[..., 2] * v[..., 0] - u[..., 0] * v[..., 2],
-                     u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]], -1)  # fmt: skip
+                     u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]], -1)
 
 
 def fold_angles(layout: TubeLayout, X: NDArray[np.float64], creases: ArrayLike | None = None) -> NDArray[np.float64]:
@@ -797,7 +797,7 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
         return (
             Branch(BRANCH, f"units plane-symmetric and alike round each row, {symmetry}: the tube contracts "
                    "radially (Feng, Ma and Chen 2020, §2)", self.domain),
-        )  # fmt: skip
+        )
 
     @cached_property
     def plan(self) -> FoldPlan:
@@ -824,21 +824,21 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
             if self.m % 2:
                 detail = ("the equatorial row's vertical edges fold flat (kappa_B0,4 = 0), its A's meet on the axis "
                           "(Feng, Ma and Chen 2020, eqn 13; Feng 2018, eqn 6-14): the twist of Feng 2018, §6.4 "
-                          "branches off")  # fmt: skip
+                          "branches off")
             else:
                 detail = ("rows 0 and 1: vertical edges fold flat, r_A0 = r_A1 = 0 (Feng 2018, §6.2.3); even m has no "
-                          "rigid twist")  # fmt: skip
+                          "rigid twist")
             if np.max(np.abs(radii)) < 1e-9 * self.a:
                 detail += ("; every row is fully folded, the equal-diameter cylinder of beta = beta_max (Feng, Ma "
                            "and Chen 2020, eqn 40): a bifurcation where the twist may start in any row "
-                           "(Fig. 16)")  # fmt: skip
+                           "(Fig. 16)")
             return Event("lock", inside, (BRANCH,), detail)
         rows = self.rows(np.array([outside]))
         missing = next(((kind, i) for (kind, i), (r, _) in rows.items() if not np.isfinite(r[0])), None)
         if missing is not None:
             detail = (f"no assembly beyond: vertex {missing[0]}{missing[1]} loses its place (two circles part); "
                       "where it is the top C, the top row's up midlines are flat (Feng, Ma and Chen 2020, "
-                      "eqn 14)")  # fmt: skip
+                      "eqn 14)")
             return Event("turning_point", inside, (BRANCH,), detail)
         if outside >= 0.0:
             return Event("lock", inside, (BRANCH,), "the input crease is flat (theta = 180 deg)")
@@ -860,7 +860,7 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
             names = ", ".join(f"{i - bottom} (the sources' row {i})" for i in rows)
             detail = (f"rows {names}: r_A = 0, the vertical edges fold flat onto each other (kappa_Bi,4 = 0, Feng, Ma "
                       "and Chen 2020, eqn 15); where r_A < 0 the rigid tube penetrates itself: the "
-                      "mechanism-structure-mechanism transition (Feng 2018, §6.2.2)")  # fmt: skip
+                      "mechanism-structure-mechanism transition (Feng 2018, §6.2.2)")
             out.append(Event("lock", x, (BRANCH,), detail))
         first = 0 if self.m % 2 else 1
         if top > first:
@@ -870,7 +870,7 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
                 r = self.radii(np.array([x]))[0]
                 if np.ptp(r) < 1e-9 * self.a:
                     detail = (f"uniform radius r_A = {r[0]:.6g} m: every row alike (Feng 2018, eqn 6-22); the radius "
-                              "profile changes sign here, and a truncated tube may switch motion (§6.3)")  # fmt: skip
+                              "profile changes sign here, and a truncated tube may switch motion (§6.3)")
                     out.append(Event("uniform_radius", x, (BRANCH,), detail))
         return tuple(sorted(out, key=lambda e: e.input))
 
@@ -895,5 +895,5 @@ class WaterbombTube(TubeLoops, JointSpaceKinematics):
         if dof != 1:
             theta = np.rad2deg(np.pi + lo + 0.5 * (hi - lo))
             raise AssemblyError(f"the symmetry couplings leave {dof} degrees of freedom at theta = {theta:.6g} deg; "
-                                "the contraction needs 1")  # fmt: skip
+                                "the contraction needs 1")
         return tuple(out)

@@ -514,7 +514,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
                        "below: x rises, its eta02 falls to 0 or the domain's end", (self.start, hi)),
                 Branch(CW, f"row {self.row} twists, the rows above it turn clockwise: x falls, its eta02 rises "
                        "and eta03 = eta06 falls to 0 or the domain's end", (lo, self.start)),
-            )  # fmt: skip
+            )
         c_lo = float(self.contraction_input(np.pi + self.tube.domain[1]))
         return (
             Branch(CCW, "middle row twists, upper half turns counter-clockwise about +z against the lower half "
@@ -524,7 +524,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
                    "= eta06 falls to 0 or the domain's end", (lo, self.start)),
             Branch(CONTRACTION, "the radial contraction (waterbomb_tube) seen from eta02, from its upper end down to "
                    "the fully folded middle row, where it meets the twist", (c_lo, self.start)),
-        )  # fmt: skip
+        )
 
     @cached_property
     def plans(self) -> dict[str, FoldPlan]:
@@ -571,7 +571,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         if not checks["placed"]:
             outer = "top row's up" if not self.row else "outermost row's outer"
             detail = (f"no assembly beyond ({where}): a vertex loses its place, the {outer} midlines flat "
-                      "(Feng, Ma and Chen 2020, eqn 14, limit (c))")  # fmt: skip
+                      "(Feng, Ma and Chen 2020, eqn 14, limit (c))")
             return Event("turning_point", x, (branch,), detail)
         if not checks["diagonals"]:
             crease = "eta02" if branch == CCW else "eta03 = eta06"
@@ -579,7 +579,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
             detail = (f"{crease} = 0 ({where}): the big and small triangles of the {units} coincide (Feng, Ma "
                       "and Chen 2020, Fig 13, limits (a)/(b); the double root of eqn 41 with W5 corrected here: the "
                       "c(2 pi/n) coefficient of W5 gains 2 sin^2(alpha), and the printed W5 puts the limit at "
-                      "64.975 deg, not 100.800 deg, for n6 alpha40)")  # fmt: skip
+                      "64.975 deg, not 100.800 deg, for n6 alpha40)")
         else:
             detail = f"a crease folds flat and would reverse ({where}; strict criterion)"
         return Event("lock", x, (branch,), detail)
@@ -615,7 +615,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         for zeta, rows in crossings.items():
             names = ", ".join(f"{i - bottom} (row {i})" for i in rows)
             detail = (f"rows {names}: r_A = 0, the vertical edges fold flat onto each other (kappa_Bi,4 = 0, Feng, Ma "
-                      "and Chen 2020, limit (d), eqn 15); where r_A < 0 the rigid tube penetrates itself")  # fmt: skip
+                      "and Chen 2020, limit (d), eqn 15); where r_A < 0 the rigid tube penetrates itself")
             x = float(self.input_of(np.array([zeta]))[0])
             out.append(Event("lock", x, (CCW if zeta < np.pi / 2 else CW,), detail))
         return out
@@ -624,13 +624,13 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         lo, hi = self.tilts
         meet_detail = ("the fully folded middle row (eta01 = 2 pi/n, kappa_B0,4 = 0, every A_0 on the axis, Feng, Ma "
                        "and Chen 2020, eqn 13): the radial contraction ends and the twist branches off (eqn 39a); the "
-                       "coupled closure's mobility is 2 here")  # fmt: skip
+                       "coupled closure's mobility is 2 here")
         if self.row:
             return self._row_events()
         through = np.flatnonzero(self._tilt_radii(np.array([np.pi / 2]))[0] < 0)
         if len(through):
             meet_detail += (f"; rows {', '.join(str(r) for r in through)} are through the axis here (beta > beta_max "
-                            f"= {np.rad2deg(beta_max(self.alpha, self.n)):.6g} deg, eqn 40: interference)")  # fmt: skip
+                            f"= {np.rad2deg(beta_max(self.alpha, self.n)):.6g} deg, eqn 40: interference)")
         out = [
             Event("bifurcation", self.start, (CW, CONTRACTION), meet_detail + "; the clockwise twist and the "
                   "contraction leave it on the same side of the input"),
@@ -639,7 +639,7 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
             self._twist_end(CCW, lo, lo - BEYOND),
             self._twist_end(CW, hi, hi + BEYOND),
             *self._crossings(),
-        ]  # fmt: skip
+        ]
         for e in self.tube.events():
             if e.input > self.tube.domain[0] + 1e-9:  # the contraction's lower end is the bifurcation above
                 out.append(Event(e.kind, float(self.contraction_input(np.pi + e.input)), (CONTRACTION,), e.detail))
@@ -651,14 +651,14 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         meet_detail = (f"the fully folded equal-diameter cylinder (configuration iii, beta = beta_max, eqn 40): every "
                        f"row's A's on the axis; row {self.row}'s twist (Fig 16 path "
                        f"{'I' if self.row > 0 else 'III'}) branches off where the radial contraction and the other "
-                       "rows' twists end or start; the coupled closure's mobility is 2 here")  # fmt: skip
+                       "rows' twists end or start; the coupled closure's mobility is 2 here")
         out = [
             Event("bifurcation", self.start, (CW,), meet_detail + "; the clockwise twist leaves it to smaller x"),
             Event("bifurcation", self.start, (CCW,), meet_detail + "; the counter-clockwise twist to larger x"),
             self._twist_end(CCW, lo, lo - BEYOND),
             self._twist_end(CW, hi, hi + BEYOND),
             *self._crossings(),
-        ]  # fmt: skip
+        ]
         return tuple(sorted(out, key=lambda e: e.input))
 
     @cached_property
@@ -678,5 +678,5 @@ class WaterbombTwist(TubeLoops, JointSpaceKinematics):
         out, dof = self.symmetry_classes(q)
         if dof != 1:
             raise AssemblyError(f"the twist's couplings leave {dof} degrees of freedom at zeta = "
-                                f"{np.rad2deg(lo + 0.3 * (hi - lo)):.6g} deg; the twist needs 1")  # fmt: skip
+                                f"{np.rad2deg(lo + 0.3 * (hi - lo)):.6g} deg; the twist needs 1")
         return tuple(out)

@@ -68,4 +68,4 @@ def names() -> tuple[str, ...]:
 
 
 __all__ = ["REGISTRY", "Param", "Scene", "SceneType", "custom_scene", "get", "load_builtins", "load_plugins", "names",
-           "register"]  # fmt: skip
+           "register"]

@@ -236,7 +236,7 @@ class Scene:
             self_contact_exclude=self.pattern.touching_faces() if self.self_contact else None,
             gravity=self.gravity, creases=self.crease_hinges, fast_step_scale=self.fast_step_scale,
             fast_timeconst_scale=self.fast_timeconst_scale, fast_regularization_scale=self.fast_regularization_scale,
-        )  # fmt: skip
+        )
 
     def loop_to_mechanism(self, q_loop: ArrayLike) -> NDArray[np.float64]:
         """Mechanism joint angles (n, n_joints) from loop joint angles (n, n_loop)."""

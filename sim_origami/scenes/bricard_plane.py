@@ -118,7 +118,7 @@ def build(
     if not kinematics.branches():
         raise AssemblyError(structure_message(kinematics, number))
     params = {"a": g.a, "b": g.b, "c": g.c, "alpha": g.alpha, "beta": g.beta, "gamma": g.gamma, "R2": g.R2,
-              "R3": g.R3, "case": float(number)}  # fmt: skip
+              "R3": g.R3, "case": float(number)}
     return Scene(
         name="bricard-plane",
         params=params,

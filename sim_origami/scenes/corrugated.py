@@ -37,7 +37,7 @@ def unit_name(unit: float) -> str:
 
 
 @register("corrugated-unit", "double-corrugated unit P or Q (Peng 2018, §3.2.2), 3 x 3 mesh of 4 flat-foldable "
-          "vertices; branches = the six rigid vertex-mode combinations", PARAMS)  # fmt: skip
+          "vertices; branches = the six rigid vertex-mode combinations", PARAMS)
 def build(unit: float, alpha: float, beta: float, gamma: float, delta: float, L1: float, L2: float, L3: float) -> Scene:
     name = unit_name(unit)
     kinematics = CorrugatedUnit(name, (alpha, beta, gamma, delta), (L1, L2, L3))

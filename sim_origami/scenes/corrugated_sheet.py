@@ -35,7 +35,7 @@ INSET = 0.05
 
 
 @register("corrugated-sheet", "double-corrugated tessellation of rows x cols units P or Q (Peng 2018, §3.2.2), every "
-          "vertex in the mode of its unit vertex; branches = the unit's six rigid mode strings", PARAMS)  # fmt: skip
+          "vertex in the mode of its unit vertex; branches = the unit's six rigid mode strings", PARAMS)
 def build(
     unit: float,
     rows: float,
@@ -51,7 +51,7 @@ def build(
     name = unit_name(unit)
     kinematics = CorrugatedSheet(name, (alpha, beta, gamma, delta), (L1, L2, L3), rows, cols)
     params = {"unit": unit, "rows": rows, "cols": cols, "alpha": alpha, "beta": beta, "gamma": gamma,
-              "delta": delta, "L1": L1, "L2": L2, "L3": L3}  # fmt: skip
+              "delta": delta, "L1": L1, "L2": L2, "L3": L3}
     return pattern_scene(
         "corrugated-sheet",
         params,

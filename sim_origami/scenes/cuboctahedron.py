@@ -112,7 +112,7 @@ def build() -> Scene:
         branch=("cuboctahedron-to-octahedron", "cuboctahedron (A = 0) to octahedron (A = theta_f - theta_d < 0)"),
         vertex_bodies={v: next(t for t in TRIANGLES if v in t) for v in VERTICES},
         reference_points=list(VERTICES.values()), gruebler=kutzbach(mechanism),
-    )  # fmt: skip
+    )
     lo, _ = kinematics.branch("cuboctahedron-to-octahedron").domain
     return Scene(
         name="cuboctahedron",

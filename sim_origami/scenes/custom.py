@@ -52,7 +52,7 @@ def check_kinematics(kinematics: Kinematics) -> None:
     joint, scale = kinematics.loop_input()
     if not (0 <= joint < loops.n_joints and math.isfinite(scale) and scale != 0):
         raise ParameterError(f"{kind}.loop_input() = ({joint}, {scale}); it must be (a loop joint index in "
-                             f"0..{loops.n_joints - 1}, a finite nonzero scale)")  # fmt: skip
+                             f"0..{loops.n_joints - 1}, a finite nonzero scale)")
     for b in branches:
         lo, hi = b.domain
         if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
@@ -63,21 +63,21 @@ def check_kinematics(kinematics: Kinematics) -> None:
         if values.shape != (len(x), len(joints)) or valid.shape != (len(x),) or valid.dtype != bool:
             raise ParameterError(f"{kind}.evaluate({b.name!r}, {len(x)} inputs) returned shapes {values.shape} and "
                                  f"{valid.shape} ({valid.dtype}); they must be ({len(x)}, {len(joints)}) float and "
-                                 f"({len(x)},) bool")  # fmt: skip
+                                 f"({len(x)},) bool")
         if not valid.all():
             bad = float(x[~valid][0])
             raise ParameterError(f"{kind}.evaluate({b.name!r}) marks {name} = {bad:.6g} rad invalid inside the "
-                                 f"branch's own domain [{lo:.6g}, {hi:.6g}] rad")  # fmt: skip
+                                 f"branch's own domain [{lo:.6g}, {hi:.6g}] rad")
         if not np.all(np.isfinite(values)):
             raise ParameterError(f"{kind}.evaluate({b.name!r}) gives a value that is not finite inside its domain")
         q = kinematics.loop_angles(values)
         if np.shape(q) != (len(x), loops.n_joints):
             raise ParameterError(f"{kind}.loop_angles gives shape {np.shape(q)}; the loop system has "
-                                 f"{loops.n_joints} joints, so it must be ({len(x)}, {loops.n_joints})")  # fmt: skip
+                                 f"{loops.n_joints} joints, so it must be ({len(x)}, {loops.n_joints})")
         gap = float(np.max(np.abs(kinematics.observe(q) - values)))
         if not gap <= ROUND_TRIP_RAD:
             raise ParameterError(f"{kind}.observe(loop_angles(v)) differs from v by {gap:.3g} rad on branch "
-                                 f"{b.name!r}; the two maps must be inverse (to {ROUND_TRIP_RAD:g})")  # fmt: skip
+                                 f"{b.name!r}; the two maps must be inverse (to {ROUND_TRIP_RAD:g})")
 
 
 def custom_scene(
@@ -116,7 +116,7 @@ def custom_scene(
     if loop_joints is None:
         if len(names) != n_loop:
             raise ParameterError(f"loop_joints not given and the mechanism has {len(names)} joints where the loop "
-                                 f"system has {n_loop}; name the mechanism joint of each loop joint")  # fmt: skip
+                                 f"system has {n_loop}; name the mechanism joint of each loop joint")
         loop_joints = names
     loop_joints = tuple(loop_joints)
     if len(loop_joints) != n_loop:
@@ -136,4 +136,4 @@ def custom_scene(
         raise ParameterError(f"path = {path!r} rad; it must be two different finite inputs (start, stop)")
     return Scene(name=name, params=dict(params or {}), kinematics=kinematics, mechanism=mechanism,
                  loop_joints=loop_joints, drive_joint=drive_joint, drive_scale=drive_scale,
-                 path=(float(path[0]), float(path[1])), **options)  # fmt: skip
+                 path=(float(path[0]), float(path[1])), **options)

@@ -91,13 +91,13 @@ def parse_inputs(text: str | None, pattern: CreasePattern) -> tuple[str, ...] | 
         return None
     if not isinstance(text, str):
         raise ParameterError(f"input crease {text!r} is a {type(text).__name__}; name creases as text, e<FOLD edge "
-                             "index>[,e<FOLD edge index>...]")  # fmt: skip
+                             "index>[,e<FOLD edge index>...]")
     names = tuple(t.strip() for t in text.split(",") if t.strip())
     known = {c.name for c in pattern.creases}
     for name in names:
         if name not in known:
             raise ParameterError(f"input crease {name!r} is not a crease of the pattern; creases are e<FOLD edge "
-                                 f"index>, e.g. {', '.join(sorted(known)[:5])}")  # fmt: skip
+                                 f"index>, e.g. {', '.join(sorted(known)[:5])}")
     if not names:
         raise ParameterError(f"--input {text!r} names no crease; give e<edge index>[,e<edge index>...]")
     return names
@@ -178,7 +178,7 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     kinematics.state_fit = fold.fit
     from_coords = getattr(fold, "frames_from_coords", False)
     kinematics.frames_tolerance = frames_tolerance if frames_tolerance is not None else None if from_coords \
-        else FRAMES_TOL  # fmt: skip
+        else FRAMES_TOL
     # MuJoCo locks the F creases of a spanning forest of them: one closing a cycle of F creases (four round a
     # vertex, as the bird base's diagonal marks) is held flat by the others, and a cut joint cannot be coupled
     flat = tuple(names[c.joint] for c in lock_flat(pattern))
@@ -188,7 +188,7 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
     # Miura sheet (depth 31 from the input crease's face, Kruskal in crease order; 16 from the centre) MuJoCo's run
     # took 3.85 -> 2.01 s and the gap halved, the angle error the same (docs/performance.md, "FOLD files").
     mechanism = pattern_mechanism(pattern, root=central_node(pattern.face_names, edges), keep=inputs,
-                                  couplings=tuple((n, n, 0.0) for n in held), breadth_first=True)  # fmt: skip
+                                  couplings=tuple((n, n, 0.0) for n in held), breadth_first=True)
     # frames: the motion they describe, from the first to the last (the trace from flat to the first only finds it)
     if several is not None:
         sweep = (kinematics.frame_distances[0]["input"], kinematics.frame_distances[-1]["input"])
@@ -196,7 +196,7 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
         sweep = (SWEEP_FROM * motion_end(kinematics), motion_end(kinematics))
     multi = not kinematics.path_is_input
     source = "frames" if several is not None else "+-180 deg fold angles, as M/V sides" if fully else \
-        "M/V letters" if letters_only else "folded state"  # fmt: skip
+        "M/V letters" if letters_only else "folded state"
     large = len(pattern.creases) > SPARSE_FROM
     extent = fold_mesh.size(pattern.vertices)  # units of the longest edge (`unit_size`)
     return Scene(
@@ -209,7 +209,7 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
         f"{', '.join(inputs)}; {kinematics.summary()}",
         pattern=pattern, drive_joints=tuple(inputs) if multi else (), drive_path=kinematics.path if multi else None,
         adjustments=fold.fit.adjustments if fold.fit is not None else (),
-    )  # fmt: skip
+    )
 
 
 def motion_end(kinematics: PatternPath) -> float:
@@ -261,7 +261,7 @@ def _by_rank(kinematics: PatternPath, allowed: np.ndarray, first: tuple[str, ...
     if m <= len(first):
         return first
     picked = independent_joints(kinematics.loop_system(), kinematics.nodes[middle], m, among=allowed,
-                                first=tuple(names.index(n) for n in first))  # fmt: skip
+                                first=tuple(names.index(n) for n in first))
     return tuple(names[k] for k in picked)
 
 

@@ -43,7 +43,7 @@ def _case(value: float) -> int:
 
 
 @register("kokotsakis", "3x3 Kokotsakis mesh of four degree-4 vertices (Peng 2018, §2.5), case 1-4, input rho_AB",
-          PARAMS)  # fmt: skip
+          PARAMS)
 def build(case: float, outer: float) -> Scene:
     number = _case(case)
     kinematics = Kokotsakis(example(number), outer=outer)
@@ -52,4 +52,4 @@ def build(case: float, outer: float) -> Scene:
         path=PATHS[number], root="central",
         notes="hinge qpos = fold angle rho (> 0 valley seen from +z); central panel fixed; one connect pair per "
               "vertex loop on a cut outer crease",
-    )  # fmt: skip
+    )

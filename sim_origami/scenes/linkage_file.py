@@ -92,12 +92,12 @@ def linkage_scene(path: str | Path) -> Scene:
     least = max(2 * preset_timestep(p) / preset_duration(p) for p in PRESETS)  # before the trace, not at simulate
     if spec.sweep_time_scale < least:
         raise ParameterError(f"sweep_time_scale = {spec.sweep_time_scale:g}: it must be at least {least:g} (a sweep "
-                             "of two time steps of every preset)")  # fmt: skip
+                             "of two time steps of every preset)")
     mechanism = spec.mechanism
     size = mechanism.length_scale
     if not LENGTH_RANGE[0] <= size <= LENGTH_RANGE[1]:
         raise ParameterError(f"units.length: the linkage is {size:.3g} m across; sim_origami simulates "
-                             f"{LENGTH_RANGE[0]:g} .. {LENGTH_RANGE[1]:g} m (give the right unit)")  # fmt: skip
+                             f"{LENGTH_RANGE[0]:g} .. {LENGTH_RANGE[1]:g} m (give the right unit)")
     names = tuple(j.name for j in mechanism.joints)
     gauge, spinning = idle_spin_gauge(mechanism)
     try:
@@ -129,7 +129,7 @@ def linkage_scene(path: str | Path) -> Scene:
         mechanism=mechanism, loop_joints=names, drive_joint=spec.input_joint, drive_scale=1.0, path=(lo, hi),
         contact_pairs=spec.contact_pairs, sweep_time_scale=spec.sweep_time_scale,
         notes=f"{spec.notes}; {notes}" if spec.notes else notes, adjustments=adjustments,
-    )  # fmt: skip
+    )
 
 
 def _closed_to(kinematics: LinkagePath) -> float:
@@ -146,7 +146,7 @@ def _kinematics(spec: LinkageSpec, gauge: tuple[int, ...], spinning: NDArray[np.
     return LinkagePath(mechanism.loop_system(), spec.joint_names, names.index(spec.input_joint), spec.input_range,
                        spec.start, start_input=spec.start_input,
                        ball_middles=[iy for _, iy, _ in mechanism.balls.values()],
-                       compared=[not j.ball for j in mechanism.joints], gauge=gauge, observed=~spinning)  # fmt: skip
+                       compared=[not j.ball for j in mechanism.joints], gauge=gauge, observed=~spinning)
 
 
 def nearest_mobile(
@@ -234,7 +234,7 @@ def nearest_mobile(
             step[i] = VALUE_STEP * max(abs(given[i] + z[i] * scale[i]), 1.0)
             # central differences, one-sided where a side is out of what a file may hold (a length a below 0)
             ends = [(h, e.residual(poses) * weights) for h in (1.0, -1.0)
-                    if (e := system(given + z * scale + h * step)) is not None]  # fmt: skip
+                    if (e := system(given + z * scale + h * step)) is not None]
             if len(ends) == 1:
                 ends.append((0.0, r.reshape(len(poses), -1)))
             (h1, r1), (h0, r0) = ends
@@ -266,7 +266,7 @@ def nearest_mobile(
                              f"{size:.3g} left at {SAMPLES} inputs, the numbers moved as far as {far})") from None
     exact = read_linkage(path, {v.field: float(x) for v, x in zip(values, moved, strict=True)})
     adjustments = tuple(Adjustment(v.field, v.given, float(x), v.precision, v.unit)
-                        for v, x in zip(values, moved, strict=True) if x != v.given)  # fmt: skip
+                        for v, x in zip(values, moved, strict=True) if x != v.given)
     return exact, adjustments
 
 
@@ -304,7 +304,7 @@ def _near_poses(
     probe = q0.copy()
     probe[input_index] += SAMPLE_STEP if hi - x0 > x0 - lo else -SAMPLE_STEP
     limit = max(SAMPLE_GROWTH * max(min(sizes), CLOSE_TOL),
-                reach(correct(loops, probe, fixed, CLOSE_TOL, max_iter=MISS_ITER)[0]))  # fmt: skip
+                reach(correct(loops, probe, fixed, CLOSE_TOL, max_iter=MISS_ITER)[0]))
     nodes = [(x0, q0)]
     for end in (lo, hi):
         behind, (x, q) = None, (x0, q0)

@@ -32,7 +32,7 @@ INSET = 0.05
 
 
 @register("miura-sheet", "Miura-ori sheet of rows x cols panels (flat-foldable vertices in mode S), input one "
-          "vertical crease", PARAMS)  # fmt: skip
+          "vertical crease", PARAMS)
 def build(rows: float, cols: float, a: float, b: float, gamma: float) -> Scene:
     kinematics = MiuraSheet(rows, cols, a, b, gamma)
     params = {"rows": rows, "cols": cols, "a": a, "b": b, "gamma": gamma}

@@ -34,10 +34,10 @@ def pattern_scene(
     mechanism = pattern_mechanism(
         pattern, root=root, keep=(drive,), couplings=couplings, collision_inset=collision_inset,
         breadth_first=breadth_first,
-    )  # fmt: skip
+    )
     return Scene(
         name=name, params=params, kinematics=kinematics, mechanism=mechanism,
         loop_joints=tuple(c.name for c in pattern.creases), drive_joint=drive, drive_scale=1.0, path=path,
         sweep_time_scale=sweep_time_scale, preset=preset, notes=notes, pattern=pattern, self_contact=self_contact,
         contact_pairs=contact_pairs, fast_step_scale=fast_step_scale,
-    )  # fmt: skip
+    )

@@ -73,7 +73,7 @@ def _guarded(ep: EntryPoint, name: str, build: Callable[..., Scene]) -> Callable
             raise
         except Exception as exc:
             raise SimOrigamiError(f"scene {name!r} of plugin {ep.name!r} ({ep.value}) failed to build: "
-                                  f"{type(exc).__name__}: {' '.join(str(exc).split())}") from exc  # fmt: skip
+                                  f"{type(exc).__name__}: {' '.join(str(exc).split())}") from exc
         if not isinstance(scene, Scene):
             raise SimOrigamiError(
                 f"scene {name!r} of plugin {ep.name!r} ({ep.value}): its builder returned a {type(scene).__name__}, "

@@ -23,7 +23,7 @@ PARAMS = (
 
 
 @register("rssr", "RSSR linkage, the Bennett linkage's non-overconstrained form (Yang 2017, §3.3), input theta1",
-          PARAMS)  # fmt: skip
+          PARAMS)
 def build(a1: float, a2: float, alpha: float) -> Scene:
     rssr = RSSR(a1, a2, alpha)
     mechanism = rssr_mechanism(rssr)
@@ -32,10 +32,10 @@ def build(a1: float, a2: float, alpha: float) -> Scene:
         branch=("bennett", "the RSSR's Bennett branch (3-5): tan(theta1/2) tan(theta2/2) = K"),
         vertex_bodies={v: f"link_{k + 1}" for k, v in enumerate("ABCD")}, reference_points=np.zeros((4, 3)),
         gruebler=kutzbach(mechanism),
-    )  # fmt: skip
+    )
     return Scene(
         name="rssr", params={"a1": a1, "a2": a2, "alpha": alpha}, kinematics=kinematics, mechanism=mechanism,
         loop_joints=tuple(j.name for j in mechanism.joints), drive_joint="joint_1", drive_scale=1.0,
         path=(0.5, 2.9),
         notes="hinge qpos = D-H joint angle; balls at C (in the tree) and D (one connect); idle spin of CD",
-    )  # fmt: skip
+    )

@@ -42,17 +42,17 @@ def _scene(
 ) -> Scene:
     params = {"alpha": kinematics.alpha, "side": kinematics.side, "pleat": kinematics.pleat}
     return pattern_scene(name, params, kinematics, pattern, drive=INPUT, path=PATH, root=ROOT, couplings=couplings,
-                         notes=notes)  # fmt: skip
+                         notes=notes)
 
 
 @register("square-twist", "square twist, zero thickness: four flat-foldable vertices round a square "
-          "(Peng 2018, §3.3), input rho_AB", PARAMS)  # fmt: skip
+          "(Peng 2018, §3.3), input rho_AB", PARAMS)
 def build(alpha: float, side: float, pleat: float) -> Scene:
     kinematics = SquareTwist(alpha, side, pleat)
     return _scene(
         "square-twist", kinematics, kinematics.pattern, (),
         "no M/V imposed: six rigid mode strings leave the flat state; hinge qpos = fold angle rho",
-    )  # fmt: skip
+    )
 
 
 def assigned(modes: str, alpha: float, side: float = 1.0, pleat: float = 1.0) -> Scene:
@@ -69,4 +69,4 @@ def assigned(modes: str, alpha: float, side: float = 1.0, pleat: float = 1.0) ->
     return _scene(
         f"square-twist-{modes}", SquareTwist(alpha, side, pleat), crease_pattern(alpha, side, pleat, modes), couplings,
         f"vertex modes {modes} imposed by couplings rho_4 = -rho_2 (C) / rho_2 (S); hinge qpos = fold angle rho",
-    )  # fmt: skip
+    )

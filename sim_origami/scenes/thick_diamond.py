@@ -40,7 +40,7 @@ ANCHORS = (0.0, 1.0)  # fractions of the crease length
 
 
 @register("thick-diamond", "thick-panel six-crease diamond vertex = Bricard linkage (Peng 2018, §4.4.1), input rho1",
-          PARAMS)  # fmt: skip
+          PARAMS)
 def build(alpha: float, p: float, q: float, r: float, length: float) -> Scene:
     kinematics = ThickDiamond(alpha, p, q, r)
     keep = tuple(k for k in range(1, 7) if k != CUT)

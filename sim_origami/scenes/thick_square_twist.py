@@ -42,7 +42,7 @@ ROOT = "square"
 
 
 @register("thick-square-twist", "square twist with thick panels: four Bennett vertices (Peng 2018, Fig 4-4), one rigid "
-          "mode string selected by the hinge heights, input rho_AB", PARAMS)  # fmt: skip
+          "mode string selected by the hinge heights, input rho_AB", PARAMS)
 def build(alpha: float, b: float, modes: float, side: float, pleat: float) -> Scene:
     kinematics = ThickSquareTwist(alpha, b, choice("modes", modes, RIGID), side, pleat)
     pattern = kinematics.pattern
@@ -54,4 +54,4 @@ def build(alpha: float, b: float, modes: float, side: float, pleat: float) -> Sc
         "are hinge hulls, faces sharing no vertex collide",
         collision_inset=RELIEF * b,
         contact_pairs=tuple(p for p in itertools.combinations(pattern.face_names, 2) if p not in touching),
-    )  # fmt: skip
+    )

@@ -28,7 +28,7 @@ PARAMS = (
 
 
 @register("thick-vertex4", "thick-panel four-crease vertex = Bennett linkage (Peng 2018, §4.2), input rho1",
-          PARAMS)  # fmt: skip
+          PARAMS)
 def build(alpha1: float, alpha2: float, b: float, length: float, zigzag: float) -> Scene:
     if zigzag not in (0.0, 1.0):
         raise ParameterError(f"zigzag = {zigzag:g}; use 0 (staircase) or 1 (zigzag)")

@@ -41,11 +41,11 @@ ROOT = "T"
 
 def _scene(name: str, kinematics: TriangleTwist, params: dict, couplings: tuple, notes: str) -> Scene:
     return pattern_scene(name, params, kinematics, kinematics.pattern, drive=INPUT, path=PATH, root=ROOT,
-                         couplings=couplings, notes=notes)  # fmt: skip
+                         couplings=couplings, notes=notes)
 
 
 @register("triangle-twist", "generalised triangle twist, zero thickness: three flat-foldable vertices round a "
-          "triangle (Feng 2018, §3.2-3.3), one rigid M-V scheme per `scheme`, input rho_AB", PARAMS)  # fmt: skip
+          "triangle (Feng 2018, §3.2-3.3), one rigid M-V scheme per `scheme`, input rho_AB", PARAMS)
 def build(scheme: float, d: float, pleat: float) -> Scene:
     name = choice("scheme", scheme, RIGID_SCHEMES)
     types, angles = example_angles(name)
@@ -53,7 +53,7 @@ def build(scheme: float, d: float, pleat: float) -> Scene:
     return _scene(
         "triangle-twist", kinematics, {"scheme": scheme, "d": d, "pleat": pleat}, (),
         f"scheme class {name} realised as {types}; no M/V imposed; hinge qpos = fold angle rho",
-    )  # fmt: skip
+    )
 
 
 def assigned(types: str, angles: TwistAngles, d: float = 1.0, pleat: float = 0.5) -> Scene:
@@ -67,4 +67,4 @@ def assigned(types: str, angles: TwistAngles, d: float = 1.0, pleat: float = 0.5
     return _scene(
         f"triangle-twist-{types}", kinematics, {"d": d, "pleat": pleat}, couplings,
         f"scheme {types} imposed by couplings rho_z3 = rho_z1 (mode C) / -rho_z1 (mode S); hinge qpos = rho",
-    )  # fmt: skip
+    )

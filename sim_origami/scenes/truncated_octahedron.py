@@ -57,7 +57,7 @@ def _hinge(name: str, parent: str, child: str, vertex: str, axis: np.ndarray) ->
 def _revolute(zeta: float) -> list[Joint]:
     """The 15 R joints, each from the bar at its vertex (parent) to the square of its letter (child)."""
     return [_hinge(vertex, next(a + b for a, b in BARS if vertex in (a, b)), vertex[0], vertex, axis)
-            for vertex, axis in revolute_axes(zeta).items()]  # fmt: skip
+            for vertex, axis in revolute_axes(zeta).items()]
 
 
 def _spherical() -> tuple[list[Body], list[Joint]]:
@@ -144,7 +144,7 @@ def interference_scene(
         branch=("octahedron-to-cube", "truncated octahedron (A1 = 0) to cube (A1 = theta_f - theta_d)"),
         vertex_bodies={v: v[0] for v in NAMES}, reference_points=[VERTICES[v] for v in NAMES],
         gruebler=kutzbach(mechanism),
-    )  # fmt: skip
+    )
     return Scene(
         name="truncated-octahedron",
         params={"zeta": zeta},

@@ -145,7 +145,7 @@ def _scene(scheme: str, delta: float) -> Scene:
         input_joint=INPUT_JOINT[scheme], branch=(f"deployed-to-{end}", f"truncated tetrahedron to the {end}"),
         vertex_bodies={v: next(t for t in TRIANGLES if v in t) for v in NAMES},
         reference_points=[VERTICES[v] for v in NAMES], gruebler=kutzbach(mechanism),
-    )  # fmt: skip
+    )
     far = hi if abs(hi - closed_form.reference) > abs(lo - closed_form.reference) else lo
     return Scene(
         name=name,

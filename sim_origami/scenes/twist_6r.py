@@ -23,7 +23,7 @@ PATH = (0.5, 2.4)
 
 
 @register("triangle-twist-6r", "6R linkage of the triangle-twist kirigami (Feng 2018, §3.4): octahedral Bricard "
-          "(gamma != delta) or the thesis's 'new' 6R (gamma = delta), input theta1", PARAMS)  # fmt: skip
+          "(gamma != delta) or the thesis's 'new' 6R (gamma = delta), input theta1", PARAMS)
 def build(alpha: float, beta: float, gamma: float, delta: float, d: float) -> Scene:
     kinematics = TwistSixR(compatible_angles(alpha, beta, gamma, delta), d)
     start, stop = np.array(PATH) + kinematics.flat_input

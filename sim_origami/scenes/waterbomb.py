@@ -72,16 +72,16 @@ def _scene(name: str, kinematics: Waterbomb, params: dict[str, float], notes: st
 
 
 @register("waterbomb-vertex", "symmetric waterbomb cell, zero thickness: two spherical 6R vertices (Feng 2018, §5.3), "
-          "input rho_A4", ANGLES)  # fmt: skip
+          "input rho_A4", ANGLES)
 def build_vertex(alpha: float, beta: float, t: float) -> Scene:
     return _scene(
         "waterbomb-vertex", Waterbomb(alpha, beta, t), {"alpha": alpha, "beta": beta, "t": t},
         "couplings: periodic B1 = A4, B5 = A6; symmetry A3 = A5 = A6 = A2, B6 = B2 (eqns 5-3 to 5-5)",
-    )  # fmt: skip
+    )
 
 
 @register("waterbomb-thick", "symmetric waterbomb cell with thick panels: two plane-symmetric Bricard linkages "
-          "(Feng 2018, §5.4), input rho_A4", ANGLES + THICK)  # fmt: skip
+          "(Feng 2018, §5.4), input rho_A4", ANGLES + THICK)
 def build_thick(alpha: float, beta: float, t: float, mu: float, a: float) -> Scene:
     kinematics = Waterbomb(alpha, beta, t, mu, a)
     touching = set(kinematics.pattern.touching_faces())
@@ -92,7 +92,7 @@ def build_thick(alpha: float, beta: float, t: float, mu: float, a: float) -> Sce
         "collide",
         collision_inset=RELIEF * a,
         contact_pairs=tuple(p for p in itertools.combinations(FACES, 2) if p not in touching),
-    )  # fmt: skip
+    )
 
 
 # The 2 x 2 sheet's 18 couplings (soft joint equalities) lag up to 5.3x more than `sweep_rate.LAG_S2` allows for its
@@ -110,7 +110,7 @@ SHEET = (
 
 
 @register("waterbomb-sheet", "zero-thickness waterbomb tessellation of rows x cols bases in the symmetric "
-          "folding of Feng 2018, §5.3, input one A4 crease", ANGLES + SHEET)  # fmt: skip
+          "folding of Feng 2018, §5.3, input one A4 crease", ANGLES + SHEET)
 def build_sheet(alpha: float, beta: float, t: float, rows: float, cols: float) -> Scene:
     kinematics = WaterbombSheet(alpha, beta, t, rows, cols)
     pattern, drive = kinematics.pattern, kinematics.input_crease

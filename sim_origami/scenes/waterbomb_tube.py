@@ -110,7 +110,7 @@ def seam_joints(pattern: CreasePattern, kinematics: WaterbombTube) -> tuple[Join
         frames = [pattern.hinge_frame(Crease(seam.name, *ends)) for ends in (seam.right_ends, seam.left_ends)]
         span = pattern.length(Crease(seam.name, *seam.left_ends))
         out.append(Joint(seam.name, seam.right_face, seam.left_face, frames[0], frames[1],
-                         tuple(f * span for f in ANCHORS)))  # fmt: skip
+                         tuple(f * span for f in ANCHORS)))
     return tuple(out)
 
 
@@ -135,7 +135,7 @@ def default_path(kinematics: WaterbombTube) -> tuple[float, float]:
 
 @register("waterbomb-tube", "generalized waterbomb tube, n units x m rows, radial contraction under the "
           "sources' symmetry (Feng, Ma and Chen 2020, §2; Feng 2018, §6.1-6.2), input rho of the equatorial top "
-          "midline", PARAMS)  # fmt: skip
+          "midline", PARAMS)
 def build(n: float, m: float, alpha: float, beta: float, a: float) -> Scene:
     check_size(n, m)
     kinematics = WaterbombTube(n, m, alpha, beta, a)
@@ -147,4 +147,4 @@ def build(n: float, m: float, alpha: float, beta: float, a: float) -> Scene:
         pattern=tube_pattern(kinematics), self_contact=True,
         notes=f"{int(n)} x {int(m)} tube; {len(kinematics.couplings)} symmetry couplings; "
         f"{len(kinematics.layout.seam)} seam creases closed by connects",
-    )  # fmt: skip
+    )

@@ -60,7 +60,7 @@ CONDITION = Condition(
 
 @register("waterbomb-twist", "generalized waterbomb tube, n units x m rows (m odd), twist of the fully folded middle "
           "row (any row at beta_max, Fig 16) under the twist's symmetry (Feng, Ma and Chen 2020, §3; Feng 2018, "
-          "§6.4), input rho of the twisting row's upper-right diagonal", PARAMS, CONDITION)  # fmt: skip
+          "§6.4), input rho of the twisting row's upper-right diagonal", PARAMS, CONDITION)
 def build(n: float, m: float, alpha: float, beta: float, a: float, row: float) -> Scene:
     check_size(n, m)
     kinematics = WaterbombTwist(n, m, alpha, beta, a, row)
@@ -73,4 +73,4 @@ def build(n: float, m: float, alpha: float, beta: float, a: float, row: float) -
         notes=f"{int(n)} x {int(m)} tube, row {kinematics.row} twisting; {len(kinematics.couplings)} "
         "twist-symmetry couplings; "
         f"{len(kinematics.layout.seam)} seam creases closed by connects",
-    )  # fmt: skip
+    )

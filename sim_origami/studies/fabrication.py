@@ -62,7 +62,7 @@ class FabricationError:
         """The RSSR as built: alpha + k d_alpha, a1 + k d_l, a2 - k d_l, on the nominal's root (3-44)."""
         k = self.k
         return RSSR(nominal.a1 + k * self.d_length, nominal.a2 - k * self.d_length, nominal.alpha + k * self.d_alpha,
-                    nominal.root)  # fmt: skip
+                    nominal.root)
 
     def increments(self, nominal: RSSR) -> tuple[float, float]:
         """(dx1, dx2) of (3-44): k d_alpha and (a1 + k d_l) / (a2 - k d_l) - a1 / a2."""

@@ -91,7 +91,7 @@ ELEMENTS = {
         {"B1": (2, 1), "B3": (2, 3), "A5": (1, 5), "B5": (2, 5), "C5": (3, 5)},
         ("B1", "B5"), ("A5", "C5"), "B3", ("A5", "B5", "C5"),
     ),
-}  # fmt: skip
+}
 # Complex step for the derivative of the closed forms: truncation h^2 ~ 1e-40, no cancellation.
 COMPLEX_STEP = 1e-20
 
@@ -271,4 +271,4 @@ def check_element(
         measured=dims, samples=k, nu_in=nu_in, nu_out=nu_out, formula_nu_in=f_in, formula_nu_out=f_out,
         dimension_error=dim_err, nu_in_error=float(np.max(np.abs(nu_in - f_in))),
         nu_out_error=float(np.max(np.abs(nu_out - f_out))),
-    )  # fmt: skip
+    )

@@ -31,7 +31,7 @@ from ..simulate import Bindings, drive_targets, scale_regularization, scene_xml,
 from ..stabilize import drive_step, preset_mode
 
 INTEGRATORS = {"RK4": mujoco.mjtIntegrator.mjINT_RK4, "Euler": mujoco.mjtIntegrator.mjINT_EULER,
-               "implicitfast": mujoco.mjtIntegrator.mjINT_IMPLICITFAST}  # fmt: skip
+               "implicitfast": mujoco.mjtIntegrator.mjINT_IMPLICITFAST}
 STEPS_MS = (0.625, 1.25, 2.5, 5.0, 6.5, 8.0)
 TAU_OVER_H = (2, 4, 8)
 HIGH_IMPEDANCE = (0.9999, 0.9999, 0.001, 0.5, 2.0)
@@ -72,7 +72,7 @@ def preset_setting(name: str) -> Setting:
     option, closure = root.find("option"), root.find(".//default[@class='closure']/equality")
     tau, solimp = float(closure.get("solref").split()[0]), tuple(float(v) for v in closure.get("solimp").split())
     return Setting(f"preset {name}", option.get("integrator"), preset_timestep(name), tau, solimp,
-                   regularization=preset_number(name, "regularization_scale"), stabilize=preset_mode(name))  # fmt: skip
+                   regularization=preset_number(name, "regularization_scale"), stabilize=preset_mode(name))
 
 
 PRESETS = {name: preset_setting(name) for name in ("fast", "stiff")}
@@ -91,7 +91,7 @@ def scene_presets(scene: Scene) -> dict[str, Setting]:
 
 def settings(closures: tuple[str, ...] = ("connect2", "connect1", "independent"),
              drives: tuple[str, ...] = ("equality", "servo"), quick: bool = False,
-             presets: dict[str, Setting] = PRESETS) -> Iterator[Setting]:  # fmt: skip
+             presets: dict[str, Setting] = PRESETS) -> Iterator[Setting]:
     """
     MuJoCo's defaults, the presets (as a scene runs them: `scene_presets`), fast-projected, then every integrator x
     step x tau (solimp 0.9999, the presets' regulariser scale) with the default closure and drive, then each other
@@ -105,7 +105,7 @@ def settings(closures: tuple[str, ...] = ("connect2", "connect1", "independent")
     steps = (1.25, 2.5, 5.0) if quick else STEPS_MS
     for name, h_ms, k in itertools.product(integrators, steps, TAU_OVER_H):
         yield Setting(f"{name} h={h_ms:g}ms tau={k}h", name, h_ms / 1000, k * h_ms / 1000, HIGH_IMPEDANCE,
-                      regularization=PRESETS["fast"].regularization)  # fmt: skip
+                      regularization=PRESETS["fast"].regularization)
     for preset, base in presets.items():
         yield dataclasses.replace(base, label=f"{preset}, MuJoCo's regulariser", regularization=1.0)
         for closure in closures[1:]:
@@ -124,7 +124,7 @@ def _scene_for(scene: Scene, closure: str) -> Scene:
     mech = scene.mechanism
     cut = set(mech.cut_joints)
     joints = tuple(dataclasses.replace(j, anchors=j.anchors[-1:]) if i in cut and not j.ball else j
-                   for i, j in enumerate(mech.joints))  # fmt: skip
+                   for i, j in enumerate(mech.joints))
     return dataclasses.replace(scene, mechanism=dataclasses.replace(mech, joints=joints))
 
 
@@ -202,7 +202,7 @@ def front(points: list[Point]) -> list[Point]:
     """The points no other point beats in both error and CPU time, by CPU time."""
     return sorted((p for p in points if not any(q.error <= p.error and q.cpu <= p.cpu and q is not p
                                                  and (q.error, q.cpu) != (p.error, p.cpu) for q in points)),
-                  key=lambda p: p.cpu)  # fmt: skip
+                  key=lambda p: p.cpu)
 
 
 def bare_loop_cpu(scene: Scene, branch: str, target: NDArray, repeats: int = 3) -> float:

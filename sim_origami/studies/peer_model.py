@@ -80,7 +80,7 @@ def rigid_model(scene: Scene, q: NDArray[np.float64], couplings: bool = False) -
         principal[:3, :3] = quaternion_matrix(model.body_iquat[i])
         principal[:3, 3] = model.body_ipos[i]
         bodies.append(RigidBody(body.name, float(model.body_mass[i]), model.body_inertia[i].copy(),
-                                poses[body.name] @ principal, principal))  # fmt: skip
+                                poses[body.name] @ principal, principal))
     hinges = tuple(
         Hinge(j.name, j.parent, j.child, poses[j.parent] @ j.frame_parent, k in cut, j.name == scene.drive_joint)
         for k, j in enumerate(mech.joints)
@@ -101,7 +101,7 @@ def kinetic_energy(rigid: RigidModel, velocity: dict[str, NDArray], omega_local:
     """Kinetic energy (n,) (J) from centre-of-mass velocities (n, 3) and angular velocities in the principal
     frames (n, 3) of every body."""
     return sum(0.5 * b.mass * np.sum(velocity[b.name] ** 2, axis=1) + 0.5 * omega_local[b.name] ** 2 @ b.inertia
-               for b in rigid.bodies)  # fmt: skip
+               for b in rigid.bodies)
 
 
 def potential_energy(rigid: RigidModel, position: dict[str, NDArray]) -> NDArray:
@@ -177,7 +177,7 @@ def tree_model(scene: Scene, q: NDArray[np.float64]) -> TreeModel:
         base = np.eye(4) if parent < 0 else frames[parent]
         link_of_body[edge.child] = len(links)
         links.append(TreeLink(parent, edge.joint, sign, invert(base) @ frame, edge.child,
-                              invert(frame) @ bodies[edge.child].pose))  # fmt: skip
+                              invert(frame) @ bodies[edge.child].pose))
         frames.append(frame)
     return TreeModel(rigid, tuple(links), np.array(frames), q0, link_of_body)
 

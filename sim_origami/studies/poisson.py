@@ -162,4 +162,4 @@ def check_square_twist(
         dimension_error=dim_err, phi_error=float(np.max(np.abs(dims.phi - unit.phi))),
         nu_sl_error=float(np.max(np.abs(nu_sl - unit.nu_sl[k]))),
         nu_hl_error=float(np.max(np.abs(nu_hl - unit.nu_hl[k]))),
-    )  # fmt: skip
+    )

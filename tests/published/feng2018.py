@@ -142,7 +142,7 @@ BRICARD = (
            lambda: np.rad2deg(_bricard(9).branches()[0].domain[0]), 1e-4,
            "test_bricard_plane.py::test_case_9_theta2_covers_only_part_of_the_circle_and_turns_back", unit="deg",
            in_text=False),
-)  # fmt: skip
+)
 
 
 def textbook_configurations(g: Geometry, theta2: np.ndarray, printed_c: bool) -> np.ndarray:
@@ -261,7 +261,7 @@ TRIANGLE_TWIST = (
         unit=""),
     _tt(_NEW_6R, "theta1..theta6 at theta1 = 0.5 rad", "28.648, -60.977, -138.111, 118.648, -150.977, 138.111",
         lambda: np.rad2deg(twist_6r(55, 50, 45, 45).joint_angles("SSP", 0.5)[0]), 5e-4, _DASHED),
-)  # fmt: skip
+)
 
 
 def eqn_3_39_residuals() -> tuple[float, float]:
@@ -291,7 +291,7 @@ CORRECTIONS_3 = (
                "the closed form of kinematics/twist_6r.py (theta4 = theta1, theta6 = -theta3)",
                "loop closure residual (m and rad), Fig 3-5 6R, theta1 from -3 to 3 rad", eqn_3_39_residuals,
                _TT + _SOLID, 1e-12, 1.0),
-)  # fmt: skip
+)
 
 
 # --- chapter 5: the symmetric waterbomb cell -------------------------------------------------------------------
@@ -362,7 +362,7 @@ WATERBOMB = (
     _wb("§5.4, eqn 5-12", "thick vertex B's D-H angles omega1..omega6 (35/45, mu = 0.5, t = 0.05, phi1 = 90 deg)",
         "-90, 160.2978, 78.6454, -90, 78.6454, 160.2978", thick_vertex_b_omega, WATERBOMB_DEG,
         "test_thick_waterbomb_vertex_b_dh_angles_of_eqn_5_12", angle=True),
-)  # fmt: skip
+)
 
 
 # --- chapter 6: the generalized waterbomb tube ------------------------------------------------------------------
@@ -412,7 +412,7 @@ TUBE = (
     Number("ch. 6, n6 m7 45/45", "top row's r_A at theta = 100 deg", "-0.05363",
            lambda: tube(6, 7, 45, 45).radii(100 * DEG - np.pi)[0, -1], 5e-6, _TUBE + _M_7_EVENTS, unit="m",
            in_text=False),
-)  # fmt: skip
+)
 
 
 def _square_twist_end(names: list[str]) -> np.ndarray:
@@ -436,7 +436,7 @@ SQUARE_TWIST = (
     Number("ch. 6, n6 m3 45/45", "eta01, eta02, eta03 where the side edge tilts to zeta = 80 deg (3 decimals)",
            "60.993, 30.510, 58.514", lambda: _square_twist_at_tilt(80, ["A1_0_1", "A1_0_2", "A1_0_3"]), 5e-4, _TW,
            unit="deg", in_text=False),
-)  # fmt: skip
+)
 
 
 NUMBERS: tuple[Number, ...] = (*BRICARD, *TRIANGLE_TWIST, *WATERBOMB, *TUBE, *SQUARE_TWIST)
@@ -446,4 +446,4 @@ CORRECTIONS: tuple[Correction, ...] = (
                "(R2 = 0.3, R3 = -0.5), theta2 from -120 to -30 deg", eqn_4_6c_residuals,
                "test_bricard_plane.py::test_corrected_c_closes_with_offsets_and_the_printed_c_does_not", 1e-12, 0.01),
     *CORRECTIONS_3,
-)  # fmt: skip
+)

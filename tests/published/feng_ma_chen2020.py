@@ -142,7 +142,7 @@ TUBES = (
       for a, printed in ((40, "42.01"), (45, "45.59"), (50, "49.17"))),
     Number("eqn 38", "alpha limit of the twist, n = 6 (1 decimal)", "49.1", lambda: alpha_limit(6) / DEG, 0.05,
            _TUBE + "test_twist_limits_and_thresholds_closed_forms", unit="deg"),
-)  # fmt: skip
+)
 
 NUMBERS: tuple[Number, ...] = TUBES
 CORRECTIONS: tuple[Correction, ...] = ()
@@ -226,7 +226,7 @@ TWISTS = (
        lambda: sorted(twist(6, 5, 40, 40).contraction_theta(
            np.array([e.input for e in twist(6, 5, 40, 40).events() if e.kind == "uniform_radius"])) / DEG),
        TUBE_DEG, "test_events", test_file=_TWIST),
-)  # fmt: skip
+)
 
 NUMBERS: tuple[Number, ...] = (*TUBES, *TWISTS)
 CORRECTIONS: tuple[Correction, ...] = ()
@@ -238,4 +238,4 @@ CHECKED_ELSEWHERE = (
      _TWIST + "test_fig14_twist_ranges_where_the_top_row_deploys"),
     ("Fig 14", "no twist for m = 13 or n = 4; the n6 m5 beta = 40 tube twists from alpha = 26.85 deg (worked)",
      _TWIST + "test_fig14_no_twist_and_alpha_threshold"),
-)  # fmt: skip
+)

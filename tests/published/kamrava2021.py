@@ -46,7 +46,7 @@ def _worked(where, quantity, printed, ours, tol, test, **kw) -> Number:
 
 SWEEP_THETA = [10, 20, 30, 40, 45, 50, 54]
 _LOCKS = (((30, 60), "54.7356"), ((60, 30), "54.7356"), ((20, 70), "48.8063"), ((40, 50), "67.3780"),
-          ((50, 80), "51.0652"), ((70, 80), "59.4884"), ((45, 45), "90.0"), ((60, 60), "90.0"))  # fmt: skip
+          ((50, 80), "51.0652"), ((70, 80), "59.4884"), ((45, 45), "90.0"), ((60, 60), "90.0"))
 _FOLDS = ((10, "-20, 34.4709, 20, 19.6999"), (30, "-60, 100.3889, 60, 52.6590"), (50, "-100, 164.0130, 100, 69.7434"))
 
 NUMBERS: tuple[Number, ...] = (
@@ -82,7 +82,7 @@ NUMBERS: tuple[Number, ...] = (
     _worked("sectors 50/80", "phi, psi at theta = 45 deg (psi past 90 deg: atan2)", "100.4486, 105.7768",
             lambda: deg_outputs(miura(50, 80), "miura", [45])[0, [PHI, PSI]], FOUR_DECIMALS_DEG,
             "test_psi_uses_atan2_past_ninety_degrees"),
-)  # fmt: skip
+)
 
 
 def eqn_24_unit_residuals() -> tuple[float, float]:
@@ -117,9 +117,9 @@ CORRECTIONS: tuple[Correction, ...] = (
     Correction("eqn 39", "psi = arctan(a_y / a_x)", "psi = atan2(a_y, a_x)",
                "angle (rad) between psi's direction and crease a projected on XY, sectors 50/80, theta = 45 deg",
                eqn_39_psi_residuals, _TEST + "test_corrections_of_printed_equations", 1e-12, 3.0),
-)  # fmt: skip
+)
 
 CHECKED_ELSEWHERE = (
     ("sectors 50/80", "a_x of the spinal crease changes sign at theta = 33.6005 deg (a bracket)",
      _TEST + "test_spinal_crease_x_changes_sign_at_published_angle"),
-)  # fmt: skip
+)

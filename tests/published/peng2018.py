@@ -60,7 +60,7 @@ VERTEX4 = (
                                ("I", "C", "0.164525, 6.078116, -0.164525, -6.078116"),
                                ("II", "S", "6.078116, -0.164525, -6.078116, 0.164525"),
                                ("II", "C", "0.614014, 1.628626, -0.614014, -1.628626"))),
-)  # fmt: skip
+)
 
 
 # --- chapter 4: thick panels -------------------------------------------------------------------------------------
@@ -118,7 +118,7 @@ THICK = (
     _w("r = 0.7 m (r != p + q)", "phi2, phi3, phi4 at phi1 = pi/2 on the curve next to 'diamond'",
        "1.257179, 1.047198, 1.010984", diamond_r07_dihedrals, SIX_DECIMALS,
        _TD + "test_thick_diamond_r_0_7_is_refused_and_moves_along_another_curve"),
-)  # fmt: skip
+)
 
 
 def _tan_halves(alpha: float) -> tuple:
@@ -162,7 +162,7 @@ CORRECTIONS_4 = (
                "largest residual of the corrected form, smallest of the printed, rho1 from 0.2 to 3 rad, alpha = 30, "
                "50, 70 deg", eqn_4_23c_residuals, _T5 + "test_corrected_4_23c_and_4_28c_hold_and_printed_sign_fails",
                1e-12, 0.5),
-)  # fmt: skip
+)
 
 # --- chapter 3: square twist and double-corrugated metamaterials ------------------------------------------------
 
@@ -220,7 +220,7 @@ CHAPTER_3 = (
     *(_w(f"eqns 3-24 to 3-28, element {e}", f"W, H, L at phi = {p} deg (sectors 135/60 deg)", printed,
          lambda e=e, p=p: element_row(e, p), SIX_DECIMALS,
          "test_metamaterial.py::test_formulas_reproduce_the_element_table", unit="m") for e, p, printed in _ELEMENTS),
-)  # fmt: skip
+)
 
 NUMBERS: tuple[Number, ...] = (*VERTEX4, *THICK, *CHAPTER_3)
 CORRECTIONS: tuple[Correction, ...] = CORRECTIONS_4
@@ -231,4 +231,4 @@ CHECKED_ELSEWHERE = (
      "test_poisson.py::test_closed_form_geometry_reproduces_the_poisson_tables"),
     ("eqn 3-26", "element 3's theta as printed (-0.189408, -0.326128, -0.555214) and the gain 0.614014 of the reading "
      "with gamma for alpha", "test_metamaterial.py::test_element_3_theta_is_the_printed_3_26_with_gamma_for_alpha"),
-)  # fmt: skip
+)

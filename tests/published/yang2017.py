@@ -109,7 +109,7 @@ THREEFOLD = (
              "test_myard.py::test_yang2017_example_theta3_40_deg", unit="deg", angle=True, in_text=False)
       for a, printed in ((50.0, "100, 90, 40, 220, 270"), (30.0, "100, 64.4559, 40, 220, 295.5441"),
                          (70.0, "100, 128.3039, 40, 220, 231.6961"))),
-)  # fmt: skip
+)
 
 
 # --- chapter 4: the cuboctahedron -------------------------------------------------------------------------------
@@ -211,7 +211,7 @@ CUBOCTAHEDRON = (
     *(Number(_PT, f"BD where {key} is largest (2 decimals)", at, lambda key=key: path_maximum(key)[1],
              0.01, _CO + "test_path_maxima", unit="m", in_text=False)
       for key, _, at in _MAXIMA),
-)  # fmt: skip
+)
 
 
 # --- chapter 3: fabrication errors of the RSSR -------------------------------------------------------------------
@@ -279,7 +279,7 @@ FABRICATION = (
              _FAB + "test_waggle_corrected_3_50", unit="deg", in_text=False)
       for name, err, printed, thesis in (("d_alpha = -1 deg", FabricationError(-D_ALPHA, 0.0, 1), "0.581", "0.58"),
                                          ("d_l = 1.5 mm, k = -1", FabricationError(0.0, D_L, -1), "1.224", "1.22"))),
-)  # fmt: skip
+)
 
 
 def eqn_3_49_residuals() -> tuple[float, float]:
@@ -299,7 +299,7 @@ CORRECTIONS_3 = (
     Correction("eqns 3-49, 3-50", "|CD| = a2R (the waggle normalised by a2R: 0.821 / 1.669 deg)",
                "|CD| = a1R (0.581 / 1.224 deg)", "largest | abs(CD) - L | (mm) over theta1, RSSR built with "
                "d_l = 1.5 mm, k = -1", eqn_3_49_residuals, _FAB + "test_waggle_corrected_3_50", 1e-11, 1.0),
-)  # fmt: skip
+)
 
 # --- chapter 5: the truncated octahedron -------------------------------------------------------------------------
 
@@ -368,7 +368,7 @@ TRUNCATED_OCTAHEDRON = (
              f"rho1, rho2, delta_A, delta_D, Bricard 1 and 2's odd joint angles where rho1 = {row.split(',')[0]}",
              row, lambda row=row: octahedron_path_row(float(row.split(",")[0])), 0.1,
              _TO + "test_path_matches_the_worked_table", unit="deg", in_text=False) for row in _TO_PATH),
-)  # fmt: skip
+)
 
 # --- chapter 6: the truncated tetrahedron ------------------------------------------------------------------------
 
@@ -468,7 +468,7 @@ TRUNCATED_TETRAHEDRON = (
              f"KLM height, |BK| where rho = {rho} deg (tolerance 3e-4)", lengths,
              lambda rho=rho: _monitors("I-5", float(rho), ("height", "BK")), 3e-4, _PATH_I, unit="m", in_text=False)
       for rho, _, lengths in _TABLE_I),
-)  # fmt: skip
+)
 
 
 def eqn_6_17_residuals() -> tuple[float, float]:
@@ -485,7 +485,7 @@ CORRECTIONS_6 = (
     Correction("eqn 6-17", "s_G along OG, (0, sqrt 6/3, sqrt 3/3)", "s_G = unit(G - Q) = (0, 4 sqrt 66/33, sqrt 33/33)",
                "| (B - G) . s_G - (K - G) . s_G | (m): s_G bisects angle BGK", eqn_6_17_residuals,
                _TT + "test_corrected_axes", 1e-15, 0.1),
-)  # fmt: skip
+)
 
 NUMBERS: tuple[Number, ...] = (*THREEFOLD, *CUBOCTAHEDRON, *FABRICATION, *TRUNCATED_OCTAHEDRON, *TRUNCATED_TETRAHEDRON)
 CORRECTIONS: tuple[Correction, ...] = (*CORRECTIONS_3, *CORRECTIONS_6)
@@ -499,4 +499,4 @@ CHECKED_ELSEWHERE = (
                          ("Myard linkage and its non-overconstrained forms",
                           "test_yang2017_myard_counts_and_non_overconstrained_forms"),
                          ("threefold-symmetric Bricard linkage", "test_yang2017_threefold_bricard_counts"))),
-)  # fmt: skip
+)

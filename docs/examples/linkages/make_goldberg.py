@@ -69,7 +69,7 @@ def axes(c_input: float) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     ae = link(B, BETA) @ rz(p2)  # Bennett 2 from DA: A, then E and F
     ef = ae @ link(C, GAMMA) @ rz(-p1)
     frames = {"B": ab @ link(A, ALPHA), "C": bc @ link(B, BETA), "D": cd @ link(A, ALPHA),
-              "E": ae @ link(C, GAMMA), "F": ef @ link(B, BETA)}  # fmt: skip
+              "E": ae @ link(C, GAMMA), "F": ef @ link(B, BETA)}
     assert np.allclose(frames["F"] @ rz(-p2) @ link(C, GAMMA) @ rz(p1), np.eye(4), atol=1e-12)  # Bennett 2 closes
     return {name: (T[:3, 3], T[:3, 2]) for name, T in frames.items()}
 
@@ -90,14 +90,14 @@ def main() -> None:
                     "direction": [round(float(v), 15) for v in lines[n][1]], "theta0": round(start[n], 12)}
                    for n in ("B", "C", "D", "F", "E")],
         "input": {"joint": "C", "range": list(RANGE)},
-    }  # fmt: skip
+    }
     text = json.dumps(doc, indent=2)
     # short lists (bodies, points, directions, the range) on one line each
     text = re.sub(r"\[\s+([^\[\]{}]*?)\s+\]", lambda m: "[" + ", ".join(v.strip() for v in m[1].split(",")) + "]", text)
     (HERE / "goldberg-5r.json").write_text(text + "\n")
     values = joints(np.deg2rad(SAMPLES))
     rows = ["# Goldberg 5R (goldberg-5r.json): joints from the two Bennett closed forms, make_goldberg.py",
-            "C[deg],B[deg],D[deg],F[deg],E[deg]"]  # fmt: skip
+            "C[deg],B[deg],D[deg],F[deg],E[deg]"]
     for k, x in enumerate(SAMPLES):
         rows.append(",".join(f"{v:.10f}" for v in [x, *(np.rad2deg(values[n][k]) for n in "BDFE")]))
     (HERE / "goldberg-5r_curves.csv").write_text("\n".join(rows) + "\n")

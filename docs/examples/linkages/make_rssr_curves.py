@@ -34,7 +34,7 @@ def main() -> None:
     assert np.max(np.abs(closure)) < 1e-12, closure  # eqn 3-3 holds
     rows = "".join(f"{a:.10f},{b:.10f}\n" for a, b in zip(SAMPLES, np.rad2deg(t2), strict=True))
     (HERE / "rssr_curves.csv").write_text("# RSSR (rssr.json): theta2 from Yang 2017, eqn 3-5, make_rssr_curves.py\n"
-                                          "theta1[deg],theta2[deg]\n" + rows)  # fmt: skip
+                                          "theta1[deg],theta2[deg]\n" + rows)
 
 
 if __name__ == "__main__":
