@@ -327,6 +327,7 @@ def test_negative_input_after_a_space_is_a_value(capsys):
     assert no_nonfinite_json(out)["input"]["values"] == pytest.approx(np.deg2rad([-30, 10]).tolist())
 
 
+@pytest.mark.slow
 def test_negative_values_work_for_other_options(capsys):
     code, out, _ = cli(capsys, "describe", "truncated-tetrahedron-i", "-p", "delta=-2")
     assert code == 0 and "delta      = -2" in out

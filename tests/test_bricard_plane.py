@@ -344,6 +344,7 @@ def test_evaluate_contract_nan_outside_the_domain_and_unknown_branch():
 CLEAR = 0.25
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", [5, 6, 9, 10])
 def test_closed_form_matches_numeric_continuation_on_every_branch(case):
     scene = scenes.get("bricard-plane").build(case=float(case))

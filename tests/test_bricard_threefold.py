@@ -386,6 +386,7 @@ def test_scene_defaults():
     assert np.max(scene.kinematics.loop_system().residual_norm(scene.mechanism_to_loop(q))) < 1e-14
 
 
+@pytest.mark.slow
 def test_validate_default_scene_passes():
     report = validate(scenes.get("bricard-threefold").build())
     failed = [v for v in list(report.verdicts) + [v for r in report.runs for v in r.verdicts] if not v.passed]

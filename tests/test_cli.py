@@ -66,6 +66,7 @@ def test_bad_input_exits_2_with_one_line(capsys, argv, needle):
     assert needle in err
 
 
+@pytest.mark.slow
 def test_validate_writes_report_and_passes(capsys, tmp_path):
     code, out, _ = run(capsys, "validate", "vertex4", "--branch", "odd2", "--out", str(tmp_path / "v"), "--json")
     assert code == 0
@@ -82,6 +83,7 @@ def test_validate_writes_report_and_passes(capsys, tmp_path):
     assert [p.name for p in (tmp_path / "v").glob(".*")] == [".sim_origami-run.json"], "no temporary files may remain"
 
 
+@pytest.mark.slow
 def test_validate_reports_blockage_event_for_thick_miura(capsys, tmp_path):
     code, out, _ = run(capsys, "validate", "miura", "-p", "thickness=0.02", "--branch", "miura",
                        "--out", str(tmp_path / "m"), "--json")
@@ -102,6 +104,7 @@ def test_installed_script_runs():
     assert "sim_origami" in result.stdout and "MuJoCo" in result.stdout
 
 
+@pytest.mark.slow
 def test_validate_exits_1_when_the_engine_takes_another_branch(capsys, tmp_path):
     # Seeded 1e-4 rad from flat towards S, the soft fast preset still takes C (measured here: with MuJoCo's
     # default solref no bias up to 1e-2 rad selects the steeper branch):
@@ -116,6 +119,7 @@ def test_validate_exits_1_when_the_engine_takes_another_branch(capsys, tmp_path)
     assert bifurcation["input_rad"] == 0.0 and bifurcation["branch_after"] == "C"
 
 
+@pytest.mark.slow
 def test_report_booleans_are_json_booleans(capsys, tmp_path):
     code, out, _ = run(capsys, "validate", "thick-vertex4", "--out", str(tmp_path / "t"), "--json")
     assert code == 0
@@ -123,6 +127,7 @@ def test_report_booleans_are_json_booleans(capsys, tmp_path):
     assert block["stopped"] is True and block["drive_saturated"] is True
 
 
+@pytest.mark.slow
 def test_bench_scene_sweeps_settings_and_writes_the_front(capsys, tmp_path):
     code, out, _ = run(capsys, "bench", "vertex4", "--quick", "--repeats", "1", "--json", "--out", str(tmp_path))
     assert code == 0
@@ -145,6 +150,7 @@ def test_bench_refuses_an_unusable_out_before_sweeping(capsys, tmp_path):
     assert code == 2 and err.count("\n") == 1 and "it is a file, not a folder" in err and out == ""
 
 
+@pytest.mark.slow
 def test_a_closed_pipe_ends_quietly():
     """`sim-origami list | head -1`: the reader leaving is not a bug; no traceback, no 'internal error' line. The
     pipe's read end is closed before the command starts, so its first write meets the closed pipe every time."""

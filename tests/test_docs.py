@@ -32,6 +32,7 @@ def test_scenes_page_lists_every_registered_scene():
     assert not missing
 
 
+@pytest.mark.slow
 def test_layers_import_one_way_and_the_architecture_page_is_current():
     """No module imports from a higher layer (scripts/import_graph.py LAYERS), and docs/architecture.md shows it."""
     import_graph = load_script("import_graph")
@@ -109,6 +110,7 @@ def _project_text_files() -> list[Path]:
     return files
 
 
+@pytest.mark.slow
 def test_no_citation_of_internal_notes():
     """Every citation names a source the reader can find ('Peng 2018, §3.3'), none our internal notes."""
     found = []

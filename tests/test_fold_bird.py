@@ -58,6 +58,7 @@ def write(tmp_path, doc: dict):
     return path
 
 
+@pytest.mark.slow
 def test_with_its_marks_flat_the_bird_base_folds_rigidly_with_its_letters_to_a_lock(tmp_path):
     """Marks F (locked flat): 3 freedoms; three inputs by rank, the steadiest first, driven along the motion of the
     first with every spare freedom folding towards its letter (`path.toward_step`): every crease keeps its letter's

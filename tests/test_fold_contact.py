@@ -130,6 +130,7 @@ def test_placement_closes_every_crease_and_triangulates_non_convex_faces():
     assert len(tris) == 4 and area == pytest.approx(3.0)
 
 
+@pytest.mark.slow
 def test_contact_is_reported_and_validated_three_ways_up_to_it(tmp_path, capsys):
     """The FOLD file's target (150 deg each) lies beyond the contact: the report names it, the sweep ends there and
     MuJoCo agrees with the numeric trace up to it."""

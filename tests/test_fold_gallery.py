@@ -479,6 +479,7 @@ def test_a_trace_stopped_at_its_first_node_evaluates_there(tmp_path):
     np.testing.assert_allclose(values, np.broadcast_to(k.nodes[0], values.shape), atol=1e-12)
 
 
+@pytest.mark.slow
 def test_letters_whose_motion_leaves_some_flat_do_not_fold_rigidly(tmp_path):
     """The diamond Yoshimura's only motion from flat with its letters folds one family of its crossing lines and
     leaves the other flat (16 of 32 M creases at 0): that is not its letters folding. It used to pass."""
@@ -541,6 +542,7 @@ def test_too_few_inputs_fail_their_check_rather_than_the_reference(tmp_path, cap
     assert "FAIL through-target: freedoms not driven (mobility along the path - inputs): 37" in printed
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("letters", "folds"), [("MVMVVV", True), ("MMVVVV", False)])
 def test_a_degree_6_vertex_folds_from_flat_exactly_when_its_letters_allow_it_to_first_order(tmp_path, letters, folds):
     """Leaving flat, the creases' small fold angles rho_i must close the vertex to first order: sum rho_i e_i = 0 over

@@ -88,6 +88,7 @@ def test_an_open_chain_traces_with_every_joint_free_and_an_empty_closure():
     np.testing.assert_allclose(traced.q[-1], [1.0, 0.0, -1.0])
 
 
+@pytest.mark.slow
 def test_a_180_deg_target_is_a_direction_not_a_vacuous_pass(tmp_path, capsys):
     """Before: input range [pi, pi], error 0, passed. Now the sweep reaches 0.95 of the lock at |rho| = pi."""
     pattern = vertex([60.0, 100.0, 90.0, 110.0], "MVMV")

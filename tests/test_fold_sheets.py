@@ -23,6 +23,7 @@ SHEETS = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", list(SHEETS))
 def test_letters_only_sheet_folds_to_its_lock_and_validates(tmp_path, capsys, name):
     code, report = validated(tmp_path, name, miura_letters_only(*SHEETS[name]))
@@ -33,6 +34,7 @@ def test_letters_only_sheet_folds_to_its_lock_and_validates(tmp_path, capsys, na
     assert report["passed"] is True
 
 
+@pytest.mark.slow
 def test_a_thin_panelled_sheets_projection_is_held_to_mujocos_own_floor(tmp_path):
     """MuJoCo rounds site positions to eps times their coordinates (the sheet is 4 units long), and its closure rows
     resolve the hinges only to their smallest singular value (the panels are 0.04 wide): the projection's floor is
@@ -48,6 +50,7 @@ def test_a_thin_panelled_sheets_projection_is_held_to_mujocos_own_floor(tmp_path
     assert np.max(path_error.error) <= 40 * np.finfo(float).eps * np.max(ours)
 
 
+@pytest.mark.slow
 def test_a_thin_panelled_sheet_far_from_the_origin_validates(tmp_path, capsys):
     """Coordinates near (700, -300) with panels 0.067 wide: the file's own rounding (1.1e-13 at 700) leaves the vertex
     loops a closure floor of 1.1e-13, and the dense polish to 1e-15 raised ConvergenceError (exit 2, as bad input).

@@ -110,6 +110,7 @@ def _alarm(signum, frame):
     raise HangError
 
 
+@pytest.mark.slow
 @settings(max_examples=EXAMPLES, derandomize=True, deadline=None, database=None, print_blob=False,
           suppress_health_check=list(HealthCheck))
 @given(case=command_lines())

@@ -108,6 +108,7 @@ def test_goldberg_reference_passes_and_a_perturbed_one_fails(tmp_path):
     assert check.doc["over_tolerance"]["samples"] == 1
 
 
+@pytest.mark.slow
 def test_validate_linkage_with_reference_passes_and_writes_the_report(capsys, tmp_path):
     """The documented example end to end (docs/extending.md, 'A linkage file')."""
     code = main(["validate", "--linkage", str(EXAMPLES / "goldberg-5r.json"), "--reference",
@@ -120,6 +121,7 @@ def test_validate_linkage_with_reference_passes_and_writes_the_report(capsys, tm
     assert (tmp_path / "g" / "curves.png").exists()
 
 
+@pytest.mark.slow
 def test_a_drive_too_fast_for_the_model_fails_with_a_report(capsys, tmp_path):
     """A user's sweep_time_scale of 0.01 drives the Bennett linkage 100x faster than its path's rates ask (0.08 s,
     10 steps): the loop tears apart in MuJoCo (closure gap 3.8e-2 m measured) and the angle error is not finite. That
@@ -170,6 +172,7 @@ def _open_axes(doc: dict) -> None:
         (_open_axes, "joints: the axes form no closed loop"),
     ],
 )
+@pytest.mark.slow
 def test_bad_linkage_files_exit_2_naming_the_field(capsys, tmp_path, change, needle):
     path = write(tmp_path, broken(change))
     code = main(["validate", "--linkage", str(path), "--out", str(tmp_path / "out")])
@@ -186,6 +189,7 @@ def test_a_start_that_does_not_close_is_refused_with_its_residual(tmp_path):
         linkage_scene(write(tmp_path, doc))
 
 
+@pytest.mark.slow
 def test_branches_meeting_inside_the_range_are_a_bifurcation():
     """The plane-symmetric Bricard over theta2 = -60 .. 60 deg: its two motions cross at 0 (Feng 2018, Table 4-1
     case 10); the file's two paths meet there, the poses there match both closed forms, the sweep stays clear."""

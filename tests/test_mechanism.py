@@ -40,6 +40,7 @@ def panel_density() -> float:
     raise AssertionError("defaults.xml has no panel class")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("name", "branch"), SCENE_BRANCHES)
 def test_mechanism_loop_system_closes_on_closed_form_angles(name, branch):
     scene, q = closed_form_mechanism_angles(name, branch)

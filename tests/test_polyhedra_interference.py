@@ -104,6 +104,7 @@ def rho(P: np.ndarray, a: str, at: str, b: str) -> float:
     return float(np.arctan2(np.linalg.norm(np.cross(u, w)), u @ w))
 
 
+@pytest.mark.slow
 def test_feasible_design_closes_into_the_cube_and_stops_on_contact():
     cube = TruncatedOctahedronCube().theta_f - TruncatedOctahedronCube().theta_d
     stop, touch, P, _ = servo_stop(0.0)
@@ -112,6 +113,7 @@ def test_feasible_design_closes_into_the_cube_and_stops_on_contact():
     assert np.linalg.norm(P[INDEX["A1"]] - P[INDEX["B1"]]) < 0.02  # measured 0.0115 m: the corner closes
 
 
+@pytest.mark.slow
 def test_zeta_30_stops_with_bricard_2_open():
     stop, touch, P, _ = servo_stop(30.0)
     assert abs(stop - touch) < 1e-4  # stopped by contact (measured 6.7e-5 rad short of the first touch)
@@ -119,6 +121,7 @@ def test_zeta_30_stops_with_bricard_2_open():
     assert abs(rho(P, "D1", "F2", "F1") / DEG - 51.2) < 1.0  # Bricard 2 far from it (measured 51.18 deg)
 
 
+@pytest.mark.slow
 def test_zeta_minus_70_jams_mid_path_where_fold_angles_see_nothing():
     # Bricard 2 runs backwards (theta_D falls to -97.8 deg) and its squares D, E, F hit each other at rho2 =
     # 116.87 deg: signed rho2 stays positive, so the thesis's fold-angle criterion misses this interference.
@@ -127,6 +130,7 @@ def test_zeta_minus_70_jams_mid_path_where_fold_angles_see_nothing():
     assert abs(rho(P, "D1", "F2", "F1") / DEG - 116.87) < 0.05  # closed form at that theta: 116.866 deg
 
 
+@pytest.mark.slow
 def test_zeta_40_stalls_at_the_turning_point_without_contact():
     stop, touch, P, _ = servo_stop(40.0)
     assert np.isnan(touch)

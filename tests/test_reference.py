@@ -182,6 +182,7 @@ def test_cli_bad_reference_exits_2_before_simulating(tmp_path, capsys):
     assert main(["validate", "--all", "--reference", str(path)]) == 2
 
 
+@pytest.mark.slow
 def test_cli_reference_verdicts_in_report_and_printout(tmp_path, capsys):
     good = write_csv(tmp_path / "good.csv", kamrava(THETA))
     rows = kamrava(THETA)

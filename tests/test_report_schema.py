@@ -166,6 +166,7 @@ def test_non_finite_numbers_are_refused_as_json(tmp_path):
 # stopped before MuJoCo; 0.5 - 2.6 s each measured alone); the rest are marked slow.
 
 
+@pytest.mark.slow
 def test_a_closed_form_scenes_report_conforms_and_a_spoilt_copy_does_not(tmp_path):
     code, doc = validated(tmp_path, "bennett")
     assert code == 0 and doc["passed"] and "summary" in doc and "params_user" in doc
@@ -185,6 +186,7 @@ def test_a_closed_form_scenes_report_conforms_and_a_spoilt_copy_does_not(tmp_pat
         exec(code.replace('"runs/bennett/report.json"', repr(str(tmp_path / "spoilt.json"))), {})
 
 
+@pytest.mark.slow
 def test_a_fold_files_report_with_reference_curves_conforms(tmp_path):
     code, doc = validated(tmp_path, "--fold", str(EXAMPLES / "reference" / "vertex4.fold"), "--reference",
                           str(EXAMPLES / "reference" / "vertex4_curves.csv"))
@@ -192,6 +194,7 @@ def test_a_fold_files_report_with_reference_curves_conforms(tmp_path):
     assert all("along_path" in b["mobility"] for b in doc["branches"]) and "params_user" not in doc
 
 
+@pytest.mark.slow
 def test_a_linkage_files_report_conforms(tmp_path):
     code, doc = validated(tmp_path, "--linkage", str(EXAMPLES / "linkages" / "bennett.toml"))
     assert code == 0 and doc["passed"] and doc["adjustments"] == []

@@ -31,6 +31,7 @@ def test_registry_lists_the_shipped_scenes_sorted():
     assert {"vertex4", "miura"} <= set(scenes.names())
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", scenes.names())
 def test_scene_builds_with_defaults_compiles_and_steps_without_mujoco_warnings(name):
     scene = scenes.get(name).build()

@@ -13,11 +13,13 @@ import pytest
 SIM_ORIGAMI = str(Path(sys.executable).parent / "sim-origami")
 
 
+@pytest.mark.slow
 def test_python_dash_m_runs_the_command():
     done = subprocess.run([sys.executable, "-m", "sim_origami", "list"], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0 and "bennett" in done.stdout, done.stderr
 
 
+@pytest.mark.slow
 def test_ctrl_c_while_starting_is_one_line_and_130():
     """SIGINT 0.5-0.9 s after start lands while MuJoCo and the command's modules import (about 1 s here, more on a
     busy machine): one line, status 130. A machine that imports faster finishes `list` first (status 0), which is no
@@ -45,6 +47,7 @@ def _without_egl(command: str) -> subprocess.CompletedProcess:
                           timeout=300, env=env)
 
 
+@pytest.mark.slow
 def test_without_egl_commands_that_do_not_render_run_and_render_is_refused_in_one_line(tmp_path):
     probe = _without_egl("true")
     if probe.returncode != 0 or not list(Path("/usr/lib").rglob("libEGL.so*")):

@@ -89,6 +89,7 @@ def test_volume_ratio(model):
 @pytest.mark.parametrize(
     "entry", checked_by(yang2017.NUMBERS, "test_truncated_octahedron.py::test_path_matches_the_worked_table"), ids=str
 )
+@pytest.mark.slow
 def test_path_matches_the_worked_table(entry):
     # measured agreement 0.02 deg or better
     entry.check()
@@ -97,6 +98,7 @@ def test_path_matches_the_worked_table(entry):
 # --- closure: closed form and the numeric loop system --------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_closed_form_closes_every_loop(model):
     theta = np.linspace(*model.domain, 25)
     P = model.vertices(theta)

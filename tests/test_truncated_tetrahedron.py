@@ -137,6 +137,7 @@ def test_scheme_ii_reaches_the_tetrahedron(two):
     assert (m["rotation"][1] - m["rotation"][0]) / DEG == pytest.approx(30.0, abs=1e-9)
 
 
+@pytest.mark.slow
 def test_scheme_i_misses_the_tetrahedron(one):
     """Scheme I (derived here): with s_G ∥ QG (Sec. 6.3.2 says it reaches 0) the path ends at the Bricard fold with
     theta_G = 3.708 deg, |BK| = 0.0585, KLM height 0.0586 m, KLM rotation 29.66 deg; theta_G starts at the printed
@@ -179,6 +180,7 @@ def test_scheme_ii_negative_delta_over_opens():
         _ = kinematics.domain
 
 
+@pytest.mark.slow
 def test_a_path_toward_the_other_fold_is_refused():
     """delta2 = -40 deg: the direction d psi > 0 runs theta down to the fold B = D = F (-106.0 deg), where the trace
     stalled (ConvergenceError at residual 3.2e-14 m); it is a ParameterError naming delta2 and its measured limits."""
@@ -334,6 +336,7 @@ def test_mujoco_follows_the_transformation(name):
     assert (start["numeric"], start["mujoco"], start["truss"]) == (1, 1, 1)
 
 
+@pytest.mark.slow
 def test_a_path_error_near_the_critical_delta_names_the_ill_conditioned_pose():
     """0.02 deg inside the refused limit the path passes near the Bricard's other fold: fast misses by 1.2e-5 rad over
     the 130 s its path's rates ask for (4.7e-4 at the former 16 s; measured), and the failing check says where and how

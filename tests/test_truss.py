@@ -191,6 +191,7 @@ def test_bricard_threefold_closed_path_crosses_the_bundle_twice():
         ("thick-diamond", "diamond", 0.3, -0.3, "diamond", "counter23"),
     ],
 )
+@pytest.mark.slow
 def test_branch_choice_at_a_bifurcation(name, branch, start, stop, kept, switched):
     scene = scenes.get(name).build()
     kin = scene.kinematics

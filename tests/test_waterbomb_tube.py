@@ -227,6 +227,7 @@ def test_equal_diameter_bifurcation_at_beta_max(alpha):
     assert above["A", 1][0][0] < -1e-3  # measured -1.4e-2, -1.1e-2, -8.2e-3 (alpha 40, 45, 50)
 
 
+@pytest.mark.slow
 def test_feng2018_m7_events_against_the_thesis():
     """Feng 2018, §6.2 (n6 m7 alpha = beta = 45): its values are multiples of 0.06-0.12 deg (a sampling grid), so
     they agree to one step: uniform radius 65.88 (ours 65.937), interference 90.72-128.52 (90.751-128.475),

@@ -144,6 +144,7 @@ def test_contact_onset_is_the_published_middle_row_interference():
     assert not any(contacts.at(t) for t in np.linspace(lo + 0.1, hi - 1e-7, 41))
 
 
+@pytest.mark.slow
 def test_contact_part_of_the_range_at_alpha_56_matches_the_crossing_test():
     """alpha = 56 deg: contact from the bottom of the range (first test 88.79 deg) to 95.130 deg (first test 95.04)."""
     scene = interfering_scene(56.0)
