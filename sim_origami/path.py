@@ -625,17 +625,28 @@ def toward_step(loops: ClosureSystem, q: NDArray[np.float64], driven: NDArray[np
     lam = float(d[driven] @ dx) / share if share > 0 else 0.0
     if lam <= 0:
         return None
-    free = np.ones(len(q), dtype=bool)
-    free[driven] = False
     dq = lam * d
     dq[driven] = dx
+    return first_order_closed(loops, q, dq, driven, PREDICTOR_TOL)
+
+
+def first_order_closed(loops: ClosureSystem, q: NDArray[np.float64], dq: NDArray[np.float64], driven: NDArray[np.int64],
+                       tol: float) -> NDArray[np.float64]:
+    """
+    `dq` with its free joints (all but `driven`) changed by the least-norm amount that closes it to first order at q
+    (J(q) dq = 0): the part of a wished step that would open the loops, removed. Sparse systems by lsqr to `tol`,
+    dense ones by lstsq.
+    """
+    free = np.ones(len(q), dtype=bool)
+    free[driven] = False
     J = jacobian(loops, q)
-    rhs = J @ dq  # the part of the wish that opens the loops, removed by the least-norm change of the free joints
+    rhs = J @ dq
+    out = np.array(dq, dtype=float)
     if sp.issparse(J):
-        dq[free] -= sp.linalg.lsqr(J[:, free], rhs, atol=PREDICTOR_TOL, btol=PREDICTOR_TOL, iter_lim=20 * len(q))[0]
+        out[free] -= sp.linalg.lsqr(J[:, free], rhs, atol=tol, btol=tol, iter_lim=20 * len(q))[0]
     else:
-        dq[free] -= np.linalg.lstsq(J[:, free], rhs, rcond=None)[0]
-    return dq
+        out[free] -= np.linalg.lstsq(J[:, free], rhs, rcond=None)[0]
+    return out
 
 
 def _first(

@@ -30,13 +30,12 @@ from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.sparse.linalg import lsqr
 
 from ..closure import Coupling, LoopSystem
 from ..conventions import MIN_SWEEP_RAD
 from ..creases import CreasePattern
 from ..errors import ParameterError
-from ..path import ChordPolish, PathStop, Polyline, TracedPath, correct, nearest_nodes, trace
+from ..path import ChordPolish, PathStop, Polyline, TracedPath, correct, first_order_closed, nearest_nodes, trace
 from .base import Branch, Event, JointSpaceKinematics
 from .self_contact import SelfContact
 
@@ -55,6 +54,8 @@ MAX_STEP = 0.05
 STALL_STEP = 1e-6
 # A crease held to the sign of its M/V letter may cross zero by this much (rad) before it counts as flipping.
 SIGN_SLACK = 1e-9
+# A directed trace's start guess is put on the first-order closure plane at flat to this relative residual.
+START_TOL = 1e-15
 # `evaluate` keeps the values of this many input arrays (a validation asks for about four different ones).
 EVALUATE_MEMO = 8
 # Residual (rad, m) to which the target and the trace's nodes are closed, and to which `evaluate` polishes
@@ -267,14 +268,8 @@ class PatternPath(JointSpaceKinematics):
         q[self.driven] = path.at(s1)
         # nearest to that guess of the states that close to first order at flat (J0 q = 0, inputs held): from a
         # guess off that plane the corrector can stall at flat's saddle (a degree-5 vertex did at 4.6e-5)
-        free = np.ones(n, dtype=bool)
-        free[self.driven] = False
-        if self._loops.n_residuals and self._loops.sparse:
-            J0 = self._loops.jacobian_sparse(np.zeros(n))
-            q[free] -= lsqr(J0[:, free], J0 @ q, atol=1e-15, btol=1e-15, iter_lim=20 * n)[0]
-        elif self._loops.n_residuals:
-            J0 = self._loops.jacobian(np.zeros(n))
-            q[free] -= np.linalg.lstsq(J0[:, free], J0 @ q, rcond=None)[0]
+        if self._loops.n_residuals:
+            q = first_order_closed(self._loops, np.zeros(n), q, self.driven, START_TOL)
         return q
 
     def _trace_directed(self) -> None:
