@@ -201,9 +201,7 @@ def constraint_jacobian(model: mujoco.MjModel, data: mujoco.MjData) -> NDArray[n
     """efc_J as a dense (nefc, nv) array, whether MuJoCo stored it dense or sparse (jacobian auto: nv >= 60)."""
     if not mujoco.mj_isSparse(model):
         return data.efc_J[: data.nefc * model.nv].reshape(data.nefc, model.nv)
-    dense = np.zeros((data.nefc, model.nv))
-    mujoco.mju_sparse2dense(dense, data.efc_J, data.efc_J_rownnz, data.efc_J_rowadr, data.efc_J_colind)
-    return dense
+    return sparse_constraint_jacobian(model, data).toarray()
 
 
 def _check(data: mujoco.MjData, messages: list[str], context: str) -> None:
