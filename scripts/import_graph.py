@@ -27,7 +27,7 @@ LAYERS = (
      ("kinematics", "closure", "path", "creases", "fold", "fold_mesh")),
     ("mechanism", "bodies, joints, spanning trees, panel and link solids, linkage files",
      ("mechanism", "origami", "linkage", "linkage_forms", "linkage_file", "solids")),
-    ("mjcf", "MJCF text from a mechanism and options", ("mjcf", "mjcf_tidy")),
+    ("mjcf", "MJCF text from a mechanism and options; the MuJoCo presets", ("mjcf", "mjcf_tidy", "presets")),
     ("scenes", "a kinematics model wired to a mechanism and a drive; the registry", ("scenes",)),
     ("simulation", "MuJoCo runs, their stabilised steps and sweep times; the truss method",
      ("stabilize", "sweep_rate", "simulate", "truss")),

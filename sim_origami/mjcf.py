@@ -22,17 +22,15 @@ import numpy as np
 from numpy.typing import NDArray
 
 from . import __version__
-from .errors import ParameterError
 from .geometry import invert, quaternion, quaternion_matrix, xyz_angles, xyz_rotation
 from .mechanism import Body, Mechanism
 from .mjcf_tidy import attach_comments, box_of, short, tidy
+from .presets import FAST, Preset
 
 ORDER = (
     "compiler", "option", "size", "custom", "visual", "default", "asset", "worldbody",
     "contact", "equality", "actuator", "sensor", "keyframe",
 )
-# fast-projected: fast plus a projection onto the closures after each step (`stabilize`), not plain MuJoCo
-PRESETS = ("fast", "stiff", "accurate", "fast-projected")
 # The templates' one-line comments name this package's code or notes; model.xml is read by people without them, so
 # those words are replaced as the comments enter a model (better reworded in mjcf_templates/ itself).
 OUTSIDER_WORDS = {
@@ -50,7 +48,7 @@ HUES = ((15, "red"), (45, "orange"), (70, "yellow"), (165, "green"), (200, "cyan
 class ModelOptions:
     """What one compiled model needs: preset, drive kind, contact, render assets, keyframes."""
 
-    preset: str = "fast"
+    preset: Preset = FAST
     drive: str = "equality"  # "equality": kinematic tracking; "servo": force-limited actuator; "none"
     contact: bool = False
     render: bool = False
@@ -111,24 +109,6 @@ def template(name: str) -> ET.Element:
     text = resources.files("sim_origami.mjcf_templates").joinpath(name).read_text()
     parser = ET.XMLParser(target=ET.TreeBuilder(insert_comments=True))
     return ET.fromstring(text, parser=parser)
-
-
-def preset_number(preset: str, name: str) -> float:
-    """A number (custom numeric `name`) stated by a preset template."""
-    for numeric in template(f"options/{preset}.xml").iter("numeric"):
-        if numeric.get("name") == name:
-            return float(numeric.get("data"))
-    raise KeyError(f"preset {preset} has no {name}")
-
-
-def preset_duration(preset: str) -> float:
-    """Sweep duration (s) stated by a preset template."""
-    return preset_number(preset, "sweep_duration")
-
-
-def preset_timestep(preset: str) -> float:
-    """Time step (s) of a preset template."""
-    return float(template(f"options/{preset}.xml").find("option").get("timestep"))
 
 
 def _fmt(values) -> str:
@@ -398,11 +378,11 @@ def model_size(mechanism: Mechanism) -> float:
     return float(max(extents, default=1.0))
 
 
-def _note_preset(root: ET.Element, preset: str) -> None:
+def _note_preset(root: ET.Element, preset: Preset) -> None:
     """One-line comments on the preset's option and the regulariser scale a plain MuJoCo load must apply."""
     option = root.find("option")
     root.insert(list(root).index(option), ET.Comment(
-        f" preset {preset}: constraints at MuJoCo's largest impedance (solimp 0.9999); measured in "
+        f" preset {preset.name}: constraints at MuJoCo's largest impedance (solimp 0.9999); measured in "
         "docs/performance.md "))
     custom = root.find("custom")
     scale = next(i for i, e in enumerate(custom) if e.get("name") == "regularization_scale")
@@ -534,19 +514,17 @@ def build_xml(
     keyframes : {name: (n_joints,) float}, optional
       Mechanism joint angles stored as keyframes `start_<name>`.
     """
-    if options.preset not in PRESETS:
-        raise ParameterError(f"unknown preset {options.preset!r}; presets are {', '.join(PRESETS)}")
     contact = options.contact and setup.has_contact
     root = ET.Element("mujoco", model=setup.name)
     root.append(ET.Comment(f" sim_origami {__version__}, {setup.name}; {setup.notes} "))
-    fragments = ["base.xml", f"options/{options.preset}.xml", "defaults.xml"]
+    fragments = ["base.xml", options.preset.template, "defaults.xml"]
     if options.render:
         fragments += ["visual.xml", "render_scene.xml"]
     for name in fragments:
         _merge(root, template(name))
-    if options.preset == "fast" and (setup.fast_step_scale, setup.fast_timeconst_scale) != (1.0, 1.0):
+    if options.preset == FAST and (setup.fast_step_scale, setup.fast_timeconst_scale) != (1.0, 1.0):
         _scale_step(root, setup.fast_step_scale, setup.fast_timeconst_scale)
-    if options.preset == "fast" and setup.fast_regularization_scale != 1.0:
+    if options.preset == FAST and setup.fast_regularization_scale != 1.0:
         numeric = root.find("custom/numeric[@name='regularization_scale']")
         numeric.set("data", _fmt(float(numeric.get("data")) * setup.fast_regularization_scale))
     if contact:

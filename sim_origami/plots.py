@@ -52,7 +52,8 @@ def _tolerance(report: Report, run) -> float | None:
     The path-error tolerance the run's verdict used: its 'MuJoCo <preset> path error (rad)' check, '... after
     projection (rad)' under a projected preset (the path drawn), not the one 'before projection'.
     """
-    names = (f"MuJoCo {report.preset} path error (rad)", f"MuJoCo {report.preset} path error after projection (rad)")
+    preset = report.preset.name
+    names = (f"MuJoCo {preset} path error (rad)", f"MuJoCo {preset} path error after projection (rad)")
     return next((v.tolerance for v in run.verdicts if v.name.endswith(names)), None)
 
 
@@ -128,7 +129,7 @@ def plot_report(report: Report, path: str | Path) -> Path:
         top.set_ylabel("joint angle (deg)")
         top.grid(alpha=0.3)
         bottom.set_xlabel(f"{kin.input_name} (deg)")
-        bottom.set_ylabel(f"|MuJoCo {report.preset} - {reference}| (rad)")
+        bottom.set_ylabel(f"|MuJoCo {report.preset.name} - {reference}| (rad)")
         bottom.grid(alpha=0.3, which="both")
         if driven:
             names = ", ".join(kin.joint_names[k] for k in driven[:3]) + (", ..." if len(driven) > 3 else "")

@@ -22,9 +22,8 @@ from . import __version__
 from .files import atomic_path, write_text
 from .fold import write_fold
 from .mjcf import ModelOptions, Replay, replay_xml
+from .presets import Preset
 from .simulate import Bindings, Scene, closure_model, constraint_jacobian, scene_xml, start_input
-from .stabilize import preset_mode
-from .tolerances import TOLERANCES
 from .validation import Report
 
 # Frames of each branch's motion in report.html's 3-D view, and the significant digits of its solids' vertices and
@@ -95,7 +94,7 @@ def git_commit() -> str | None:
     return f"{head}+dirty" if dirty else head or None
 
 
-def provenance(preset: str, command: str | None = None) -> dict:
+def provenance(preset: Preset, command: str | None = None) -> dict:
     """What made this run: versions, commit, the command as typed (None from the API), UTC date and the machine."""
     import mujoco
 
@@ -107,7 +106,7 @@ def provenance(preset: str, command: str | None = None) -> dict:
         "numpy": np.__version__,
         "command": command,
         "date_utc": datetime.now(timezone.utc).isoformat(timespec="seconds"),
-        "preset": preset,
+        "preset": preset.name,
         "machine": {"os": platform.platform(), "arch": platform.machine(), "cores": os.cpu_count()},
     }
 
@@ -148,9 +147,9 @@ def as_dict(report: Report, command: str | None = None) -> dict:
         "params": scene.params,
         # values as typed that the nearest exact model moved, each against its precision (in the unit it was given)
         "adjustments": [a.as_dict() for a in scene.adjustments],
-        "preset": report.preset,
+        "preset": report.preset.name,
         # "none" for plain MuJoCo; "position" when the preset projects qpos onto the closures after each step
-        "stabilize": preset_mode(report.preset),
+        "stabilize": report.preset.stabilize,
         "seed": report.seed,
         "input": {"name": scene.kinematics.input_name, "drive_joint": scene.drive_joint},
         "joints": list(scene.kinematics.joint_names),
@@ -252,7 +251,7 @@ def motion_fold(report: Report, out: Path) -> Path:
     rows = np.unique(np.linspace(0, len(run.dynamic.q) - 1, FOLD_FRAMES).astype(int))
     columns = [scene.mechanism.joint_index(c.name) for c in scene.pattern.creases]
     rho = run.dynamic.q[np.ix_(rows, columns)]
-    tol = TOLERANCES.angle(report.preset)
+    tol = report.preset.angle_rad
     over = np.max(np.abs(rho), axis=0) - np.pi
     side = np.where(np.max(rho, axis=0) > -np.min(rho, axis=0), "+", "-")
     notes = tuple(
@@ -260,7 +259,7 @@ def motion_fold(report: Report, out: Path) -> Path:
         for k, c in enumerate(scene.pattern.creases)
         if over[k] > tol
     )
-    title = f"{scene.name}: MuJoCo {report.preset}, branch {run.requested}"
+    title = f"{scene.name}: MuJoCo {report.preset.name}, branch {run.requested}"
     rho = np.clip(rho, -np.pi, np.pi)
     return write_fold(out, scene.pattern, rho, fold_angles=rho[-1], title=title, flat_tol=tol, notes=notes)
 
@@ -331,7 +330,7 @@ def motion_view(report: Report) -> dict:
                                 "p": _rounded(segment[1])})
                 crease_joints.append(mech.joint_index(c.name))
     branches, corners, frames = [], [], []
-    tol = TOLERANCES.angle(report.preset)
+    tol = report.preset.angle_rad
     for run in report.runs:
         q = run.dynamic.q
         rows = np.unique(np.linspace(0, len(q) - 1, min(VIEW_FRAMES, len(q))).round().astype(int))
@@ -372,7 +371,7 @@ def pattern_drawing(report: Report) -> dict:
     crease_edges = {frozenset((c.start, c.end)) for c in pattern.creases}
     border = sorted({tuple(sorted((a, b))) for face in pattern.faces for a, b in zip(face, face[1:] + face[:1],
                      strict=True) if frozenset((a, b)) not in crease_edges})
-    tol = TOLERANCES.angle(report.preset)
+    tol = report.preset.angle_rad
     last = run.dynamic.q[-1]
     return {
         "vertices": _rounded(pattern.vertices),
@@ -391,7 +390,7 @@ def model_xml(report: Report) -> str:
                                                    for r in report.runs})
 
 
-def replay_model_xml(scene: Scene, preset: str, starts: dict[str, float]) -> str:
+def replay_model_xml(scene: Scene, preset: Preset, starts: dict[str, float]) -> str:
     """
     model.xml for runs from these start inputs (rad) by branch: the MJCF the dynamic runs stepped (preset,
     joint-equality drive, no contact) with what plain MuJoCo needs to play it alone (`mjcf.replay_xml`): keyframes
@@ -408,7 +407,7 @@ def replay_model_xml(scene: Scene, preset: str, starts: dict[str, float]) -> str
 
 
 def servo_gains(
-    scene: Scene, preset: str, poses: dict[str, NDArray[np.float64]]
+    scene: Scene, preset: Preset, poses: dict[str, NDArray[np.float64]]
 ) -> tuple[tuple[float, ...], tuple[float, ...]]:
     """model.xml's servo gains (kp, kv) per driven joint: critically damped with SERVO_TIMECONST on the mechanism's
     inertia at that joint (`drive_inertia`) in the lightest of the start poses."""

@@ -40,6 +40,7 @@ from .mjcf import (
     with_keyframes,
 )
 from .path import rank, rank_of
+from .presets import ACCURATE, Preset
 from .scenes.base import Scene
 from .stabilize import StepFunction, make_constraint, run_step
 from .sweep_rate import ramp, sweep_duration
@@ -83,7 +84,7 @@ class Trajectory:
     scene: str
     branch: str
     mode: str
-    preset: str
+    preset: Preset
     time: NDArray[np.float64]
     target: NDArray[np.float64]
     q: NDArray[np.float64]
@@ -223,10 +224,10 @@ def _first_bad(qpos_log: NDArray, x: NDArray) -> str:
     return f"; first went wrong at step {bad[0] + 1} of {len(x)} (input {x[bad[0]]:.6g} rad)" if len(bad) else ""
 
 
-def _context(scene: Scene, branch: str, preset: str, how: str) -> str:
+def _context(scene: Scene, branch: str, preset: Preset, how: str) -> str:
     """The configuration of a run, for error messages (radians, metres)."""
     params = ", ".join(f"{k}={v:.6g}" for k, v in scene.params.items())
-    return f"scene {scene.name} ({params}), branch {branch}, preset {preset}, {how}"
+    return f"scene {scene.name} ({params}), branch {branch}, preset {preset.name}, {how}"
 
 
 def start_pose(scene: Scene, branch: str, start: float) -> NDArray[np.float64]:
@@ -337,7 +338,7 @@ def simulate(
     scene: Scene,
     branch: str,
     *,
-    preset: str | None = None,
+    preset: Preset | None = None,
     start: float | None = None,
     stop: float | None = None,
     seed: str = "closed",
@@ -355,7 +356,7 @@ def simulate(
     ----------
     branch : str
       Analytic branch to start on (seed 'closed') or to bias towards (seed 'flat').
-    preset : 'fast', 'stiff' or 'accurate'
+    preset : Preset
       Integrator, step, constraint stiffness and sweep duration (mjcf_templates/options/); default the scene's.
     drive : 'equality' or 'servo'
       Kinematic tracking, or a force-limited position servo (blockage runs).
@@ -474,7 +475,7 @@ def _sparse_normal(J: sp.csr_matrix) -> Callable[[NDArray[np.float64]], NDArray[
     return lambda r: lu.solve(transposed @ r)
 
 
-def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: str | None = None) -> Trajectory:
+def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: Preset | None = None) -> Trajectory:
     """
     Kinematic projection: at each input, Gauss-Newton on MuJoCo's equality residuals (efc_pos,
     efc_J rows of the closures) over the free hinges, from a secant prediction along the path; each input keeps the
@@ -672,7 +673,7 @@ def state_energy(model: mujoco.MjModel, qpos: NDArray[np.float64], qvel: NDArray
     return out
 
 
-def simulate_free(scene: Scene, branch: str, start: float, duration: float, *, preset: str = "accurate") -> FreeRun:
+def simulate_free(scene: Scene, branch: str, start: float, duration: float, *, preset: Preset = ACCURATE) -> FreeRun:
     """
     Release the scene at rest from the closed pose on `branch` at input `start`, under its gravity,
     with no drive, and record joint angles and total (kinetic + potential) energy at the trajectory's states

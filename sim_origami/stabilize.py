@@ -7,7 +7,8 @@ which is the whole of the path error on a driven sweep or a free run (the error 
 new qpos; the drive's row left out, so the input stays the dynamics' own) puts qpos back on the manifold to the
 square of the gap; with `velocity` the velocity's component across the manifold is removed as well, so the next step
 starts tangent to it. This changes the physics (energy is not conserved exactly by a projection), so it is a named
-option of a preset (`stabilize` in `mjcf_templates/options/`), never applied to the plain-MuJoCo presets.
+option of a preset (`stabilize` in `mjcf_templates/options/`, `Preset.stabilize`), never applied to the plain-MuJoCo
+presets.
 
 Modes: "none" (plain MuJoCo), "position" (qpos only), "position-velocity" (qpos, then qvel).
 """
@@ -19,11 +20,10 @@ import mujoco
 import numpy as np
 
 from .errors import ParameterError
-from .mjcf import drive_name, preset_number
+from .mjcf import drive_name
+from .presets import STABILIZE_MODES, Preset
 
-MODES = ("none", "position", "position-velocity")
-# The custom numeric a preset states its mode with: 0 none, 1 position, 2 position-velocity.
-PRESET_NUMERIC = "stabilize"
+MODES = STABILIZE_MODES  # "none", "position", "position-velocity": what a preset states (`Preset.stabilize`)
 
 # Weight of the kinetic metric against the rows in `step_function`'s solve: small enough that the step is the
 # least-metric solution (a larger weight leaves the rows that part open), large enough to keep the solve regular
@@ -52,29 +52,15 @@ def before_projection() -> Iterator[list[np.ndarray]]:
         _BEFORE.remove(log)
 
 
-def preset_mode(preset: str) -> str:
-    """The stabilisation a preset states (its custom numeric `stabilize`: 0 none, 1 position, 2 position-velocity);
-    "none" for a preset that states none (the plain-MuJoCo presets)."""
-    try:
-        code = preset_number(preset, PRESET_NUMERIC)
-    except KeyError:
-        return "none"
-    if code not in (0, 1, 2):
-        raise ParameterError(
-            f"preset {preset}: stabilize {code!r} is not 0 (none), 1 (position), 2 (position-velocity)"
-        )
-    return MODES[int(code)]
-
-
 def run_step(
-    model: mujoco.MjModel, data: mujoco.MjData, preset: str, drive_joints: tuple[str, ...] = (), iterations: int = 1
+    model: mujoco.MjModel, data: mujoco.MjData, preset: Preset, drive_joints: tuple[str, ...] = (), iterations: int = 1
 ) -> StepFunction:
     """
     The step function of a run with `preset`: `mujoco.mj_step` itself for a preset without stabilisation, else
     `step_function` (`iterations` projection steps) with the drives' equality rows left out and their joints held
     (the inputs stay the drives' own).
     """
-    return drive_step(model, data, preset_mode(preset), drive_joints, iterations)
+    return drive_step(model, data, preset.stabilize, drive_joints, iterations)
 
 
 def drive_step(

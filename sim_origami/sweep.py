@@ -31,6 +31,7 @@ from .checks.branches import classify
 from .checks.paths import compare
 from .errors import ParameterError
 from .files import atomic_path, write_text
+from .presets import Preset, as_preset
 from .simulate import simulate
 from .tolerances import TOLERANCES
 
@@ -127,8 +128,8 @@ def grid_points(axes: list[Axis]) -> list[dict[str, float]]:
     return [dict(zip(names, combo, strict=True)) for combo in itertools.product(*(a.values for a in axes))]
 
 
-def run_point(scene_name: str, params: dict[str, float], preset: str | None = None) -> dict:
-    """The light cross-check of one grid point (module docstring); never raises."""
+def run_point(scene_name: str, params: dict[str, float], preset: Preset | None = None) -> dict:
+    """The light cross-check of one grid point (module docstring), with `preset` or the scene's; never raises."""
     row: dict = dict(params)
     t0 = time.process_time()
     try:
@@ -145,7 +146,7 @@ def run_point(scene_name: str, params: dict[str, float], preset: str | None = No
             gaps.append(float(np.max(run.closure_residual)))
             followed.append(classify(kin, path.input, path.simulated).followed)
         used = preset or scene.preset
-        passed = (max(errors) <= TOLERANCES.angle(used) and max(gaps) <= TOLERANCES.residual(used, scene.length_scale)
+        passed = (max(errors) <= used.angle_rad and max(gaps) <= used.residual(scene.length_scale)
                   and max(residuals) <= TOLERANCES.loop_residual(scene.length_scale)
                   and followed == [b.name for b in kin.branches()])
         row |= {"passed": bool(passed), "angle_error_max_rad": max(errors), "closure_residual_max_m": max(gaps),
@@ -180,7 +181,7 @@ def sweep(
     scene_name: str,
     axes: list[Axis],
     *,
-    preset: str | None = None,
+    preset: Preset | str | None = None,
     workers: int | None = None,
     scheduler: str | None = None,
     progress: Callable[[Iterator[dict], int], Iterator[dict]] | None = None,
@@ -190,10 +191,12 @@ def sweep(
 
     Parameters
     ----------
+    preset : a `Preset` or its name; default each point's scene's.
     workers : local processes (default: the machine's cores); ignored with `scheduler`.
     scheduler : a Dask distributed scheduler address (e.g. tcp://10.0.0.5:8786), or None for local processes.
     progress : wraps the stream of finished rows (e.g. a tqdm bar), given the number of points.
     """
+    chosen = as_preset(preset) if preset else None
     check_grid(scene_name, axes)
     check_workers(workers)
     if scheduler and importlib.util.find_spec("distributed") is None:
@@ -201,7 +204,7 @@ def sweep(
     if scheduler:
         check_scheduler(scheduler)
     points = grid_points(axes)
-    tasks = [(scene_name, p, preset) for p in points]
+    tasks = [(scene_name, p, chosen) for p in points]
     stream = _dask(tasks, scheduler) if scheduler else _local(tasks, workers or os.cpu_count() or 1)
     rows = list(progress(stream, len(tasks)) if progress else stream)
     order = {tuple(p.values()): k for k, p in enumerate(points)}

@@ -15,9 +15,8 @@ from numpy.typing import NDArray
 
 from .errors import ConvergenceError
 from .geometry import wrap
-from .mjcf import preset_duration
+from .presets import FAST, Preset
 from .scenes.base import Scene
-from .tolerances import TOLERANCES
 
 # Largest path error x T^2 / max A measured under `fast` (RK4 8 ms, closures 20 ms) on every registered scene's
 # branches (s^2): 1.5e-7 to 4.5e-7 where the joints' acceleration sets the error, lower on well-conditioned loops.
@@ -111,15 +110,15 @@ def sweep_scale(scene: Scene, branch: str, start: float, stop: float) -> float:
     closures are softer (`fast_step_scale`, `fast_timeconst_scale`) lags as their time constant squared, so it
     sweeps slower in proportion.
     """
-    base = preset_duration("fast")
-    needed = np.sqrt(LAG_S2 * path_acceleration(scene, branch, start, stop) / (TARGET_FRACTION * TOLERANCES.fast_rad))
+    base = FAST.sweep_duration
+    needed = np.sqrt(LAG_S2 * path_acceleration(scene, branch, start, stop) / (TARGET_FRACTION * FAST.angle_rad))
     soft = scene.fast_step_scale * scene.fast_timeconst_scale
     return float(np.clip(soft * needed / base, 1.0, MAX_SCALE))
 
 
-def sweep_duration(scene: Scene, branch: str, preset: str, start: float, stop: float) -> float:
+def sweep_duration(scene: Scene, branch: str, preset: Preset, start: float, stop: float) -> float:
     """
     Sweep time (s) of a run start -> stop (rad) on `branch` with `preset`: the preset's duration times the path's
     `sweep_scale` times the scene's own `sweep_time_scale`.
     """
-    return preset_duration(preset) * sweep_scale(scene, branch, start, stop) * scene.sweep_time_scale
+    return preset.sweep_duration * sweep_scale(scene, branch, start, stop) * scene.sweep_time_scale

@@ -19,8 +19,9 @@ from .checks.paths import PathComparison, closure_conditions, compare, floor_ver
 from .checks.reference import ReferenceCheck, ReferenceCurves, compare_reference
 from .checks.verdict import Verdict
 from .conventions import MIN_SWEEP_RAD
-from .errors import ConvergenceError, ParameterError, SimulationError
-from .mjcf import PRESETS, ModelOptions, preset_duration
+from .errors import ConvergenceError, SimulationError
+from .mjcf import ModelOptions
+from .presets import FAST, Preset, as_preset
 from .scenes.base import Scene
 from .simulate import (
     Bindings,
@@ -89,7 +90,7 @@ class Report:
     """Everything `report.write` saves: verdicts, runs, events and timings (seconds)."""
 
     scene: Scene
-    preset: str
+    preset: Preset
     seed: str
     runs: tuple[BranchRun, ...]
     verdicts: tuple[Verdict, ...]
@@ -202,7 +203,7 @@ def _followed(scene: Scene, branch: str, run: Trajectory) -> str:
     return classify(scene.kinematics, path.input, path.simulated).followed
 
 
-def bifurcation_study(scene: Scene, preset: str) -> list[dict]:
+def bifurcation_study(scene: Scene, preset: Preset) -> list[dict]:
     """
     At each bifurcation point x_b: for each branch through it, start MuJoCo on that branch (a closed
     pose) at x_b + d for d in SEED_OFFSETS and drive STUDY_SPAN away; record the smallest d at which
@@ -210,7 +211,7 @@ def bifurcation_study(scene: Scene, preset: str) -> list[dict]:
     Each run lasts the preset's sweep time, without the scene's slow-down: telling branches apart needs
     far less accuracy than the path check (at most 1e-5 rad against branches >= 1e-2 apart here).
     """
-    duration = preset_duration(preset)
+    duration = preset.sweep_duration
     out = []
     for event in scene.kinematics.events():
         if event.kind != "bifurcation":
@@ -243,18 +244,18 @@ def bifurcation_study(scene: Scene, preset: str) -> list[dict]:
     return out
 
 
-def _point_verdicts(scene: Scene, branch: str, preset: str, q: np.ndarray, x: np.ndarray) -> tuple[Verdict, ...]:
+def _point_verdicts(scene: Scene, branch: str, preset: Preset, q: np.ndarray, x: np.ndarray) -> tuple[Verdict, ...]:
     """For shape models (polyhedra): the largest distance between simulated and closed-form vertices."""
     kin = scene.kinematics
     analytic = kin.points(branch, x)
     if analytic is None:
         return ()
     error = float(np.max(np.linalg.norm(kin.observe_points(scene.mechanism_to_loop(q)) - analytic, axis=-1)))
-    return (Verdict(f"{branch}: MuJoCo {preset} vertex position error (edge lengths)", error,
-                    TOLERANCES.angle(preset), "max over samples and vertices, unit edges", len(x)),)
+    return (Verdict(f"{branch}: MuJoCo {preset.name} vertex position error (edge lengths)", error,
+                    preset.angle_rad, "max over samples and vertices, unit edges", len(x)),)
 
 
-def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
+def run_branch(scene: Scene, branch: str, preset: Preset, seed: str) -> BranchRun:
     """MuJoCo dynamic run and projection on one branch, compared and classified."""
     with before_projection() as own:
         dynamic = simulate(scene, branch, preset=preset, seed=seed)
@@ -278,13 +279,13 @@ def run_branch(scene: Scene, branch: str, preset: str, seed: str) -> BranchRun:
                 f"the input moved over {swept:.3g} rad; a run that sweeps less than {MIN_SWEEP_RAD:g} rad cannot pass"),
         *_point_verdicts(scene, branch, preset, dynamic.q, dyn.input),
         *_own_step_verdicts(scene, branch, preset, own),
-        Verdict(f"{branch}: MuJoCo {preset} path error" + (" after projection" if own else "") + " (rad)",
-                dyn.max_error(), TOLERANCES.angle(preset),
+        Verdict(f"{branch}: MuJoCo {preset.name} path error" + (" after projection" if own else "") + " (rad)",
+                dyn.max_error(), preset.angle_rad,
                 "max over samples and joints of |sim - closed form at the simulated input|"
                 + _singular_crossings(scene, branch, dyn.input, dyn.error, mobility)
-                + _conditioning(scene, dyn, TOLERANCES.angle(preset)), len(dyn.input)),
-        Verdict(f"{branch}: MuJoCo {preset} closure residual (m)", float(np.max(dynamic.closure_residual)),
-                TOLERANCES.residual(preset, scene.length_scale), "largest gap between paired closure sites",
+                + _conditioning(scene, dyn, preset.angle_rad), len(dyn.input)),
+        Verdict(f"{branch}: MuJoCo {preset.name} closure residual (m)", float(np.max(dynamic.closure_residual)),
+                preset.residual(scene.length_scale), "largest gap between paired closure sites",
                 len(dynamic.closure_residual)),
         Verdict(f"{branch}: MuJoCo projection path error (rad)", proj_error, proj_tol,
                 f"Gauss-Newton on MuJoCo's equality residuals at each input, to the rounding floor; {proj_where}"
@@ -381,7 +382,7 @@ def _input_count_verdict(scene: Scene, branch: str, mobility: dict) -> tuple[Ver
                     f"{', '.join(scene.drives)}"),)
 
 
-def _own_step_verdicts(scene: Scene, branch: str, preset: str, own: list[np.ndarray]) -> tuple[Verdict, ...]:
+def _own_step_verdicts(scene: Scene, branch: str, preset: Preset, own: list[np.ndarray]) -> tuple[Verdict, ...]:
     """
     A projected preset's dynamic check: the path error of MuJoCo's own steps, each from the last projected state and
     read before its projection (`stabilize.before_projection`), held to the plain fast preset's tolerance; () for a
@@ -391,8 +392,8 @@ def _own_step_verdicts(scene: Scene, branch: str, preset: str, own: list[np.ndar
         return ()
     model, _ = compile_model(scene, ModelOptions(preset=preset))
     path = compare(scene, branch, Bindings(scene, model).angles(scene, np.array(own)))
-    return (Verdict(f"{branch}: MuJoCo {preset} path error before projection (rad)", path.max_error(),
-                    TOLERANCES.angle("fast"), "MuJoCo's own step from each projected state, before its projection: "
+    return (Verdict(f"{branch}: MuJoCo {preset.name} path error before projection (rad)", path.max_error(),
+                    FAST.angle_rad, "MuJoCo's own step from each projected state, before its projection: "
                     "max over steps and joints of |sim - closed form at the simulated input|", len(own)),)
 
 
@@ -409,7 +410,7 @@ def run_blockage(scene: Scene, branch: str) -> tuple[Blockage, float]:
     return result, time.thread_time() - t0
 
 
-def run_free(scene: Scene, preset: str) -> tuple[dict, list[Verdict]]:
+def run_free(scene: Scene, preset: Preset) -> tuple[dict, list[Verdict]]:
     """Release the scene at rest under gravity for FREE_DURATION s: energy drift (at the run's states) and path error;
     under a projected preset also the path error of MuJoCo's own steps before their projections (`_own_step_verdicts`:
     after them the run is on the closures whatever the dynamics did)."""
@@ -430,12 +431,12 @@ def run_free(scene: Scene, preset: str) -> tuple[dict, list[Verdict]]:
     if own_step:
         doc["angle_error_before_projection_max_rad"] = own_step[0].measured
     verdicts = [
-        Verdict(f"free run ({FREE_DURATION:g} s under gravity): energy drift (J)", drift, TOLERANCES.energy(preset),
+        Verdict(f"free run ({FREE_DURATION:g} s under gravity): energy drift (J)", drift, preset.energy_j,
                 f"E0 = {run.energy[0]:.6g} J at the release, E at each state after a step; "
                 f"{run.cpu_time_s:.3g} s CPU{peer}"),
         *(dataclasses.replace(v, name=f"free run: {v.name}") for v in own_step),
         Verdict("free run: path error against the closed form" + (" after projection" if own else "") + " (rad)",
-                path.max_error(), TOLERANCES.angle(preset),
+                path.max_error(), preset.angle_rad,
                 "unforced motion stays on the closed-form branch"),
     ]
     return doc, verdicts
@@ -444,7 +445,7 @@ def run_free(scene: Scene, preset: str) -> tuple[dict, list[Verdict]]:
 def validate(
     scene: Scene,
     *,
-    preset: str | None = None,
+    preset: Preset | str | None = None,
     branch: str | None = None,
     seed: str = "closed",
     reference: ReferenceCurves | None = None,
@@ -453,16 +454,14 @@ def validate(
     """
     Cross-check a scene on one branch (or all of them); with `reference` (`checks.reference.read_reference`) also
     the user's own curves against the numeric loop solve, the scene's kinematics and MuJoCo's runs. `progress`
-    (phase, done, total) is called as each phase starts.
+    (phase, done, total) is called as each phase starts. `preset` is a `Preset` or its name; default the scene's.
 
     Raises
     ------
     ParameterError
       For an unknown branch or preset.
     """
-    preset = preset or scene.preset
-    if preset not in PRESETS:
-        raise ParameterError(f"unknown preset {preset!r}; presets are {', '.join(PRESETS)}")
+    preset = as_preset(preset or scene.preset)
     names = [branch] if branch else [b.name for b in scene.kinematics.branches()]
     for name in names:
         scene.kinematics.branch(name)
@@ -484,7 +483,7 @@ def validate(
     timings["closed_form_and_numeric_cpu_s"] = time.thread_time() - t0
     runs = []
     for name in names:
-        phase(f"MuJoCo {preset} and its projection, {name}")
+        phase(f"MuJoCo {preset.name} and its projection, {name}")
         start, stop = scene.branch_path(name)
         stuck = getattr(scene.kinematics, "start_check", None)
         if stuck is not None and stuck() is not None:

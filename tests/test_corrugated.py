@@ -23,6 +23,7 @@ from sim_origami.kinematics.corrugated import (
 )
 from sim_origami.kinematics.numeric_pattern import FOLDABLE_TOL
 from sim_origami.origami import pattern_mechanism
+from sim_origami.presets import FAST
 from sim_origami.simulate import simulate
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
@@ -168,7 +169,7 @@ def test_scene_p_validates_three_ways():
     report = validate(scene)
     assert report.passed
     errors = [r.dynamic_path.max_error() for r in report.runs]
-    assert max(errors) <= TOLERANCES.fast_rad  # measured 4.6e-8 (CSCS), others <= 8.8e-9; 0.18 s CPU each
+    assert max(errors) <= FAST.angle_rad  # measured 4.6e-8 (CSCS), others <= 8.8e-9; 0.18 s CPU each
     assert max(r.projection_path.max_error() for r in report.runs) <= TOLERANCES.projection_rad  # measured 6.7e-15
     assert [r.followed for r in report.runs] == [b.name for b in scene.kinematics.branches()]
     # every rigid mode combination is reached from flat when seeded (measured offsets 1e-4 to 1e-3 rad)
@@ -179,7 +180,7 @@ def test_scene_q_follows_its_worst_branch():
     scene = scenes.get("corrugated-unit").build(unit=1.0)
     run = simulate(scene, "SCSC")
     path = compare(scene, "SCSC", run.q)
-    assert path.max_error() <= TOLERANCES.fast_rad  # measured 4.0e-8
+    assert path.max_error() <= FAST.angle_rad  # measured 4.0e-8
     assert classify(scene.kinematics, path.input, path.simulated).followed == "SCSC"
 
 

@@ -13,6 +13,7 @@ from sim_origami.kinematics.dh import DHRow, dh_from_axes, dh_loop
 from sim_origami.kinematics.myard import BRANCH, Myard
 from sim_origami.linkage import dh_mechanism
 from sim_origami.linkage_forms import chain_poses, reduced_form
+from sim_origami.presets import FAST
 from sim_origami.scenes.base import Scene
 from sim_origami.scenes.polyhedra import kutzbach
 from sim_origami.simulate import mujoco_mobility, simulate
@@ -32,7 +33,6 @@ from sim_origami.studies.fabrication import (
     tilted,
     waggle,
 )
-from sim_origami.tolerances import TOLERANCES
 from sim_origami.truss import analyse, truss_of
 
 NOMINAL_RSSR = RSSR(*NOMINAL)
@@ -229,14 +229,14 @@ def test_mujoco_rssr_follows_the_perturbed_closed_form_and_the_bennett_does_not_
     assert (mech.idle_spins, kutzbach(mech)) == (1, 1)
     assert [mech.joints[i].name for i in mech.cut_joints] == ["ball_4_z"]  # the ball at D is one connect
     assert mujoco_mobility(scene, scene.pose("bennett", 1.0)) == 2  # the motion + the idle spin of CD
-    run = simulate(scene, "bennett", preset="fast")
+    run = simulate(scene, "bennett", preset=FAST)
     i1, i2 = mech.joint_index("joint_1"), mech.joint_index("joint_2")
     theta1 = run.q[:, i1]
     assert theta1.min() < 2.70 < theta1.max()  # the sweep covers the error's peak (154.7 deg)
     error = np.abs(wrap(run.q[:, i2] - built.theta2(theta1)))
     # measured 8.0e-8 rad (fast, the scene's 6x sweep; 3x: 3.3e-7; stiff at 1x: 2.4e-5), closure gap 1.3e-8 m
-    assert error.max() <= TOLERANCES.fast_rad
-    assert run.closure_residual.max() <= TOLERANCES.fast_residual_m
+    assert error.max() <= FAST.angle_rad
+    assert run.closure_residual.max() <= FAST.residual_per_m
     assert np.abs(wrap(run.q[:, i2] - nominal.theta2(theta1))).max() / DEG > 5.0  # the nominal is 5.06 deg off
     # the waggle measured on MuJoCo's bar CD against the nominal z_D (ground frame: z_A at beta_R from z_D)
     poses = mech.body_poses(run.q)
@@ -252,7 +252,7 @@ def test_mujoco_rssr_follows_the_perturbed_closed_form_and_the_bennett_does_not_
                     loop_joints=tuple(j.name for j in mechanism.joints), drive_joint="joint_1", drive_scale=1.0,
                     path=(0.5, 2.9), sweep_time_scale=3.0)
     assert mujoco_mobility(bennett, bennett.pose("bennett", 1.0)) == 0
-    assert simulate(bennett, "bennett", preset="fast").closure_residual.min() > 5e-3
+    assert simulate(bennett, "bennett", preset=FAST).closure_residual.min() > 5e-3
 
 
 # --- bad input -------------------------------------------------------------------------------------------------------

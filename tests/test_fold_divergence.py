@@ -13,6 +13,7 @@ from sim_origami.creases import Crease, CreasePattern
 from sim_origami.fold import write_fold
 from sim_origami.kinematics.miura_sheet import MiuraSheet
 from sim_origami.kinematics.numeric_pattern import BRANCH, SPARSE_FROM
+from sim_origami.presets import FAST
 from sim_origami.scenes.fold_file import fold_scene
 from sim_origami.simulate import project
 
@@ -33,7 +34,7 @@ def test_a_projection_over_repeated_inputs_stays_finite(tmp_path):
     scene = fold_scene(write_fold(tmp_path / "vertex.fold", near_square_vertex()))
     lo, hi = scene.kinematics.branches()[0].domain
     assert lo == hi
-    run = project(scene, scene.kinematics.branches()[0].name, np.full(5, lo), preset="fast")
+    run = project(scene, scene.kinematics.branches()[0].name, np.full(5, lo), preset=FAST)
     assert np.all(np.isfinite(run.q)) and np.max(run.closure_residual) <= 1e-13
 
 

@@ -17,9 +17,9 @@ from sim_origami.kinematics.miura_sheet import MiuraSheet
 from sim_origami.kinematics.numeric_pattern import BRANCH, PatternPath
 from sim_origami.kinematics.vertex4 import Vertex4
 from sim_origami.path import Polyline, independent_joints, trace
+from sim_origami.presets import FAST
 from sim_origami.scenes.fold_file import fold_scene, steadiest
 from sim_origami.simulate import simulate
-from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import MIN_SWEEP_RAD, validate
 
 
@@ -123,7 +123,7 @@ def test_open_chains_validate_three_ways_with_every_freedom_driven(tmp_path, pat
     report = validate(scene)
     assert report.passed, [v for r in report.runs for v in r.verdicts if not v.passed]
     run = report.runs[0]
-    assert run.mobility["along_path"]["typical"] == inputs and run.dynamic_path.max_error() <= TOLERANCES.fast_rad
+    assert run.mobility["along_path"]["typical"] == inputs and run.dynamic_path.max_error() <= FAST.angle_rad
     assert any(e["kind"] == "open-chain" for e in run.events)
 
 
@@ -168,7 +168,7 @@ def test_letters_only_miura_finds_the_rigid_motion(tmp_path):
     assert np.all(np.sign(got[-1]) == [1 if c.assignment == "V" else -1 for c in sheet.pattern.creases])
     assert np.max(kin.loop_system().residual_norm(got)) <= 1e-13 and order.size == closed.shape[0]
     run = simulate(scene, BRANCH)
-    assert compare(scene, BRANCH, run.q).max_error() <= TOLERANCES.fast_rad
+    assert compare(scene, BRANCH, run.q).max_error() <= FAST.angle_rad
 
 
 @pytest.mark.slow

@@ -17,9 +17,9 @@ from sim_origami.geometry import rigid_fit
 from sim_origami.kinematics.numeric_pattern import BRANCH
 from sim_origami.kinematics.waterbomb import LINE, path_folds, unit_cell
 from sim_origami.origami import pattern_mechanism
+from sim_origami.presets import FAST
 from sim_origami.report import motion_fold
 from sim_origami.scenes.fold_file import fold_scene
-from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import Report, validate
 
 JS = Path(__file__).parent / "js"
@@ -193,7 +193,7 @@ def test_several_inputs_are_compared_where_mujoco_holds_them(motions):
     assert report.passed, failures(report)
     q = report.runs[0].dynamic.q
     at_path, _ = scene.kinematics.evaluate(BRANCH, scene.input_of(q))
-    assert np.max(np.abs(scene.outputs(q) - at_path)) > 10 * TOLERANCES.angle("fast")
+    assert np.max(np.abs(scene.outputs(q) - at_path)) > 10 * FAST.angle_rad
 
 
 @pytest.mark.slow
@@ -248,7 +248,7 @@ def shape_distance(ours: np.ndarray, theirs: np.ndarray) -> np.ndarray:
 # The two readers fold the same angles through different spanning trees of faces, so their shapes differ by the
 # written states' loop-closure gaps, which validation holds to the fast preset's closure residual tolerance.
 # Measured: at most 3.0e-8 m (square twist), 8.4e-9 (Miura 2 x 2), 1.1e-9 (waterbomb), 9.2e-10 (corrugated).
-SHAPE_TOL_M = TOLERANCES.residual("fast")
+SHAPE_TOL_M = FAST.residual()
 
 
 @pytest.mark.parametrize("key", list(MOTIONS))

@@ -13,9 +13,9 @@ from sim_origami.checks.paths import compare
 from sim_origami.errors import ParameterError
 from sim_origami.kinematics.waterbomb_tube import BRANCH
 from sim_origami.mjcf import ModelOptions
+from sim_origami.presets import FAST, STIFF
 from sim_origami.scenes.base import without_implied_closures
 from sim_origami.simulate import compile_model, simulate
-from sim_origami.tolerances import TOLERANCES
 
 
 @pytest.mark.slow
@@ -73,10 +73,10 @@ def test_under_stiff_leaving_out_the_implied_loops_changes_nothing():
     full = scenes.get("waterbomb-tube").build(n=6, m=3)
     reduced = without_implied_closures(full)
     implied = reduced.mechanism.implied
-    runs = [simulate(scene, BRANCH, preset="stiff") for scene in (full, reduced)]
+    runs = [simulate(scene, BRANCH, preset=STIFF) for scene in (full, reduced)]
     paths = [compare(scene, BRANCH, run.q).max_error() for scene, run in zip((full, reduced), runs, strict=True)]
     mismatch = [full.mechanism.hinge_mismatch(run.q, implied) for run in runs]
     gaps = [np.max(run.closure_residual) for run in runs]
-    assert paths[1] <= 1.1 * paths[0] and paths[1] <= TOLERANCES.fast_rad
-    assert mismatch[1] <= 1.1 * mismatch[0] and mismatch[1] <= TOLERANCES.fast_residual_m
-    assert gaps[1] <= 1.1 * gaps[0] and gaps[1] <= TOLERANCES.fast_residual_m  # implied loops' sites included
+    assert paths[1] <= 1.1 * paths[0] and paths[1] <= FAST.angle_rad
+    assert mismatch[1] <= 1.1 * mismatch[0] and mismatch[1] <= FAST.residual_per_m
+    assert gaps[1] <= 1.1 * gaps[0] and gaps[1] <= FAST.residual_per_m  # implied loops' sites included

@@ -8,7 +8,9 @@ import numpy as np
 import pytest
 
 from sim_origami import scenes
-from sim_origami.mjcf import ModelOptions, closures, mujoco_joints, preset_duration, qpos_order
+from sim_origami.errors import ParameterError
+from sim_origami.mjcf import ModelOptions, closures, mujoco_joints, qpos_order
+from sim_origami.presets import ACCURATE, FAST, STIFF, as_preset
 from sim_origami.simulate import scene_xml
 from sim_origami.studies import pareto
 
@@ -43,7 +45,7 @@ def all_scenes():
 
 
 @pytest.mark.parametrize("name", scenes.names())
-@pytest.mark.parametrize("preset", ["fast", "stiff", "accurate"])
+@pytest.mark.parametrize("preset", [FAST, STIFF, ACCURATE], ids=lambda p: p.name)
 @pytest.mark.parametrize("drive", ["equality", "servo"])
 @pytest.mark.parametrize("render", [False, True])
 def test_generated_xml_compiles(name, preset, drive, render):
@@ -149,7 +151,7 @@ def test_render_option_adds_light_and_skybox_texture(scene):
 
 
 @pytest.mark.parametrize("scene", [*all_scenes(), thick_miura()], ids=[*scenes.names(), "thick"])
-@pytest.mark.parametrize("preset", ["fast", "stiff", "accurate"])
+@pytest.mark.parametrize("preset", [FAST, STIFF, ACCURATE], ids=lambda p: p.name)
 def test_gravity_is_disabled(scene, preset):
     model, _ = compiled(scene, preset=preset, contact=True)
     assert model.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_GRAVITY
@@ -221,19 +223,19 @@ def test_qpos_order_matches_the_compiled_hinge_addresses(scene):
     assert sum(widths) == model.nq
 
 
-@pytest.mark.parametrize("preset", ["fast", "stiff", "accurate"])
+@pytest.mark.parametrize("preset", [FAST, STIFF, ACCURATE], ids=lambda p: p.name)
 def test_preset_sweep_duration_is_the_compiled_custom_numeric(preset):
     model, _ = compiled(all_scenes()[0], preset=preset)
-    assert model.numeric("sweep_duration").data[0] == preset_duration(preset) > 0
+    assert model.numeric("sweep_duration").data[0] == preset.sweep_duration > 0
 
 
-def test_unknown_preset_raises_naming_it():
-    with pytest.raises(ValueError, match="turbo"):
-        scene_xml(all_scenes()[0], ModelOptions(preset="turbo"))
+def test_unknown_preset_raises_naming_it_and_the_presets():
+    with pytest.raises(ParameterError, match="'turbo'; presets are fast, stiff, accurate, fast-projected"):
+        as_preset("turbo")
 
 
 def test_stiff_preset_is_semi_implicit_euler_with_closures_at_twice_its_step():
-    model, _ = compiled(scenes.get("waterbomb-vertex").build(), preset="stiff")
+    model, _ = compiled(scenes.get("waterbomb-vertex").build(), preset=STIFF)
     assert model.opt.integrator == mujoco.mjtIntegrator.mjINT_EULER and model.opt.timestep == 0.00125
     closures = [i for i in range(model.neq) if model.equality(i).name.startswith(("close_", "couple_"))]
     assert closures and all(model.eq_solref[i, 0] == 2 * model.opt.timestep for i in closures)
@@ -243,13 +245,13 @@ def test_a_scenes_fast_step_scale_lengthens_fast_only_and_keeps_tau_over_h():
     """The twist runs fast at 1.25x its step (10 ms, closures and drive at 25 ms); stiff and other scenes as written."""
     scene = scenes.get("waterbomb-twist").build()
     assert scene.fast_step_scale == 1.25
-    fast, _ = compiled(scene, preset="fast")
-    stiff, _ = compiled(scene, preset="stiff")
-    plain, _ = compiled(scenes.get("waterbomb-vertex").build(), preset="fast")
+    fast, _ = compiled(scene, preset=FAST)
+    stiff, _ = compiled(scene, preset=STIFF)
+    plain, _ = compiled(scenes.get("waterbomb-vertex").build(), preset=FAST)
     assert (fast.opt.timestep, stiff.opt.timestep, plain.opt.timestep) == (0.01, 0.00125, 0.008)
     rows = [i for i in range(fast.neq) if fast.equality(i).name.startswith(("close_", "couple_", "drive_"))]
     assert rows and np.allclose(fast.eq_solref[rows, 0], 0.025, rtol=0, atol=1e-15)
-    assert pareto.scene_presets(scene)["fast"].h == fast.opt.timestep
+    assert pareto.scene_presets(scene)[FAST].h == fast.opt.timestep
 
 
 def test_a_scenes_fast_timeconst_scale_softens_the_closures_and_drive_not_the_step():
@@ -257,14 +259,14 @@ def test_a_scenes_fast_timeconst_scale_softens_the_closures_and_drive_not_the_st
     its regulariser scale reaches model.xml and the pareto study's fast setting."""
     scene = dataclasses.replace(scenes.get("waterbomb-vertex").build(), fast_timeconst_scale=1.2,
                                 fast_regularization_scale=0.01)
-    fast, _ = compiled(scene, preset="fast")
-    stiff, _ = compiled(scene, preset="stiff")
-    plain, _ = compiled(scenes.get("waterbomb-vertex").build(), preset="stiff")
+    fast, _ = compiled(scene, preset=FAST)
+    stiff, _ = compiled(scene, preset=STIFF)
+    plain, _ = compiled(scenes.get("waterbomb-vertex").build(), preset=STIFF)
     assert fast.opt.timestep == 0.008
     rows = [i for i in range(fast.neq) if fast.equality(i).name.startswith(("close_", "couple_", "drive_"))]
     assert rows and np.allclose(fast.eq_solref[rows, 0], 0.024, rtol=0, atol=1e-15)
     assert np.array_equal(stiff.eq_solref, plain.eq_solref)
-    assert pareto.scene_presets(scene)["fast"].tau == pytest.approx(0.024)
+    assert pareto.scene_presets(scene)[FAST].tau == pytest.approx(0.024)
     # the pareto study's "fast as the scene runs it" carries the scene's regulariser, as model.xml does
     regularization = float(fast.numeric("regularization_scale").data[0])
-    assert regularization == pytest.approx(1e-4) == pareto.scene_presets(scene)["fast"].regularization
+    assert regularization == pytest.approx(1e-4) == pareto.scene_presets(scene)[FAST].regularization

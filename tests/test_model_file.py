@@ -11,8 +11,9 @@ import pytest
 
 from sim_origami import scenes
 from sim_origami.checks.paths import compare
-from sim_origami.mjcf import ModelOptions, build_xml, closures, colour_name, preset_duration, with_keyframes
+from sim_origami.mjcf import ModelOptions, build_xml, closures, colour_name, with_keyframes
 from sim_origami.mjcf_tidy import box_of, short
+from sim_origami.presets import ACCURATE, FAST, FAST_PROJECTED, STIFF
 from sim_origami.report import model_xml, replay_model_xml, write
 from sim_origami.simulate import Bindings, drive_targets, scale_regularization, scene_xml, start_input, track
 from sim_origami.validation import validate
@@ -33,7 +34,7 @@ CODE_WORDS = ("simulate.", "sim_origami.", "stabilize", ".py", "harness", "secti
 @pytest.fixture(scope="module")
 def bennett_run(tmp_path_factory):
     scene = scenes.get("bennett").build()
-    report = validate(scene, preset="fast")
+    report = validate(scene, preset=FAST)
     out = tmp_path_factory.mktemp("bennett")
     write(report, out)
     return scene, report, out / "model.xml"
@@ -117,7 +118,7 @@ def test_no_mjcf_attribute_states_the_regulariser_scale():
     weights and the inertia together (the motion is the unscaled model's). Should a MuJoCo lift the clamp, this
     fails: then state the scale in solimp."""
     scene = scenes.get("bennett").build()
-    xml = scene_xml(scene, ModelOptions(preset="fast"))
+    xml = scene_xml(scene, ModelOptions(preset=FAST))
 
     def state(text: str, scaled: bool = False) -> mujoco.MjData:
         model = mujoco.MjModel.from_xml_string(text)
@@ -155,7 +156,7 @@ def test_model_xml_reads_as_a_model_file(bennett_run):
     assert re.findall(r'<geom name="link_\d_solid"[^>]* material="(\w+)"', text) == ["green", "white", "orange", "blue"]
 
 
-@pytest.mark.parametrize("preset", ["fast", "stiff", "accurate", "fast-projected"])
+@pytest.mark.parametrize("preset", [FAST, STIFF, ACCURATE, FAST_PROJECTED], ids=lambda p: p.name)
 def test_model_xml_comments_need_no_code_of_this_package(preset):
     scene = scenes.get("bennett").build()
     comments = re.findall(r"<!--(.*?)-->", replay_model_xml(scene, preset, starts(scene)))
@@ -201,7 +202,7 @@ def test_model_file_is_the_compiled_model_of_the_run(bennett_run):
         assert np.array_equal(getattr(loaded, field), getattr(compiled, field)), field
     drive = loaded.equality(f"drive_{scene.drive_joint}").id
     assert not loaded.eq_active0[drive] and loaded.nu == 1 and compiled.nu == 0
-    assert preset_duration(report.preset) == loaded.numeric("sweep_duration").data[0]
+    assert report.preset.sweep_duration == loaded.numeric("sweep_duration").data[0]
 
 
 def test_validation_writes_the_replay_text_of_its_runs(bennett_run):
@@ -270,7 +271,7 @@ def test_keyframes_added_to_a_built_model_give_the_text_built_with_them(name):
     scene = scenes.get(name).build()
     branches = [b.name for b in scene.kinematics.branches()]
     keys = {b: scene.pose(b, scene.branch_path(b)[0]) for b in branches}
-    for options in (ModelOptions(preset="fast"), ModelOptions(render=True)):
+    for options in (ModelOptions(preset=FAST), ModelOptions(render=True)):
         built = build_xml(scene.mechanism, scene.model_setup(), options, keys)
         assert with_keyframes(build_xml(scene.mechanism, scene.model_setup(), options), scene.mechanism, keys) == built
         assert built.count("<key ") == len(branches)

@@ -15,6 +15,7 @@ from sim_origami.errors import DomainError, ParameterError
 from sim_origami.geometry import wrap
 from sim_origami.kinematics.dh import DHRow, dh_loop
 from sim_origami.kinematics.myard import BRANCH, Myard
+from sim_origami.presets import FAST
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
 
@@ -226,7 +227,7 @@ def test_validate_default_scene_passes_every_verdict():
     measured = {v.name.split(": ", 1)[1]: v.measured for v in (*report.verdicts, *run.verdicts)}
     # Measured: fast path error 3.9e-7 rad (tolerance 2e-6), projection 2.2e-15 rad (1e-13),
     # closure residual 9.0e-16 (1e-12), closed form vs numeric 2.0e-14 rad (1e-12).
-    assert measured["MuJoCo fast path error (rad)"] <= TOLERANCES.fast_rad
+    assert measured["MuJoCo fast path error (rad)"] <= FAST.angle_rad
     assert measured["MuJoCo projection path error (rad)"] <= TOLERANCES.projection_rad
     assert measured["closed-form closure residual"] <= TOLERANCES.closed_form_residual
     assert measured["closed form vs numeric closure (rad)"] <= TOLERANCES.closed_form_rad

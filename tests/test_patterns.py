@@ -15,6 +15,7 @@ from sim_origami.fold import read_fold, write_fold
 from sim_origami.kinematics.miura_sheet import MiuraSheet
 from sim_origami.kinematics.numeric_pattern import BRANCH, PatternPath
 from sim_origami.kinematics.vertex4 import Vertex4
+from sim_origami.presets import FAST
 from sim_origami.scenes.fold_file import fold_scene
 from sim_origami.simulate import project, simulate
 from sim_origami.tolerances import TOLERANCES
@@ -67,12 +68,12 @@ def test_fold_file_scene_validates_against_the_numeric_reference(tmp_path):
     assert scene.drive_joint == "e0"  # the crease folded most in the last frame: crease 1 (1.2 rad) on odd2
     run = simulate(scene, BRANCH)
     measured = compare(scene, BRANCH, run.q)
-    assert measured.max_error() <= TOLERANCES.fast_rad  # measured 9.9e-9
+    assert measured.max_error() <= FAST.angle_rad  # measured 9.9e-9
     # the same run against the closed form of the vertex, through the file's crease order
     x = run.q[:, scene.mechanism.joint_index("e0")]
     closed = vertex.joint_angles("odd2", x)
     got = run.q[:, [scene.mechanism.joint_index(f"e{k}") for k in range(4)]]
-    assert np.max(np.abs(got - closed)) <= TOLERANCES.fast_rad
+    assert np.max(np.abs(got - closed)) <= FAST.angle_rad
 
 
 def test_fold_scene_without_a_folded_state_or_letters_is_refused(tmp_path):
@@ -121,7 +122,7 @@ def test_miura_sheet_numeric_and_mujoco():
     assert np.max(np.abs(numeric - q)) <= TOLERANCES.closed_form_rad  # measured 2.1e-14
     assert kin.loop_system().mobility(q[30]) == 1
     assert compare(scene, "miura", project(scene, "miura", x).q).max_error() <= TOLERANCES.projection_rad
-    assert compare(scene, "miura", simulate(scene, "miura").q).max_error() <= TOLERANCES.fast_rad  # 6.8e-8
+    assert compare(scene, "miura", simulate(scene, "miura").q).max_error() <= FAST.angle_rad  # 6.8e-8
 
 
 @pytest.mark.slow
@@ -135,8 +136,8 @@ def test_16_by_16_miura_sheet_folds_within_1e6_rad_with_contact_on():
         depth[edge.child] = depth[edge.parent] + 1
     assert max(depth.values()) == 16
     run = simulate(scene, "miura", contact=True, duration=4.0)
-    assert compare(scene, "miura", run.q).max_error() <= TOLERANCES.fast_rad
-    assert run.steps == 500 and np.max(run.closure_residual) <= TOLERANCES.fast_residual_m
+    assert compare(scene, "miura", run.q).max_error() <= FAST.angle_rad
+    assert run.steps == 500 and np.max(run.closure_residual) <= FAST.residual_per_m
 
 
 def test_miura_sheet_round_trips_through_fold_and_the_numeric_reference_agrees(tmp_path):

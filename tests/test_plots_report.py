@@ -10,6 +10,7 @@ from PIL import Image
 
 from sim_origami import scenes
 from sim_origami.plots import LEGEND_MAX, PNG_COLOURS, joint_colors, plot_report
+from sim_origami.presets import FAST_PROJECTED
 from sim_origami.validation import validate
 
 SVG = "{http://www.w3.org/2000/svg}"
@@ -61,7 +62,7 @@ def test_many_joints_error_is_an_envelope(tmp_path):
 @pytest.mark.slow
 def test_a_projected_preset_draws_the_tolerance_of_the_path_it_plots(tmp_path):
     # fast-projected checks the path after projection (drawn) and MuJoCo's own steps before it (not drawn)
-    report = validate(scenes.get("bennett").build(), preset="fast-projected")
+    report = validate(scenes.get("bennett").build(), preset=FAST_PROJECTED)
     plot_report(report, tmp_path / "curves.png")
     drawn = next(v for v in report.runs[0].verdicts if v.name.endswith("path error after projection (rad)"))
     texts = svg_text(tmp_path / "curves.svg")

@@ -18,6 +18,7 @@ from scipy.spatial.transform import Rotation
 
 from sim_origami import scenes
 from sim_origami.cli import main
+from sim_origami.presets import FAST
 from sim_origami.report import VIEW_FRAMES, VIEW_INT, as_dict, motion_view, provenance
 from sim_origami.report_page import write_index, write_page, write_thumbnail
 from sim_origami.validation import validate
@@ -206,7 +207,7 @@ def test_report_says_what_made_the_run(run, browser):
     assert re.fullmatch(r"[0-9a-f]{4,40}(\+dirty)?", made["git_commit"])  # the tests run from the checkout
     assert timedelta(0) <= datetime.now(timezone.utc) - datetime.fromisoformat(made["date_utc"]) < timedelta(hours=1)
     assert made["machine"]["cores"] == os.cpu_count() and made["machine"]["arch"] == platform.machine()
-    assert provenance("fast")["command"] is None  # the Python API passes none
+    assert provenance(FAST)["command"] is None  # the Python API passes none
     # the parameters as typed: degrees and metres, beside the radians
     assert doc["params_user"]["alpha"] == {"value": 30.0, "unit": "deg"}
     assert doc["params_user"]["a"] == {"value": 1.0, "unit": "m"} and doc["params"]["alpha"] == pytest.approx(np.pi / 6)

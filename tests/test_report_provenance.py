@@ -10,6 +10,7 @@ import pytest
 from sim_origami import scenes
 from sim_origami.cli.validate import failed_run
 from sim_origami.errors import SimulationError
+from sim_origami.presets import FAST
 from sim_origami.report import git_commit, provenance
 
 
@@ -27,4 +28,4 @@ def test_a_run_mujoco_could_not_finish_still_says_what_made_it(tmp_path):
     failed_run(scene, args, tmp_path, SimulationError("MuJoCo diverged at step 12"))
     doc = json.loads((tmp_path / "report.json").read_text())
     assert not doc["passed"] and doc["provenance"]["command"] == "sim-origami validate bennett"
-    assert doc["provenance"]["preset"] == scene.preset and doc["provenance"].keys() == provenance("fast").keys()
+    assert doc["provenance"]["preset"] == scene.preset.name and doc["provenance"].keys() == provenance(FAST).keys()

@@ -19,7 +19,7 @@ from fold_fixtures import degree4_letters, miura_letters_only, write  # tests/ i
 from sim_origami import scenes
 from sim_origami.cli import main
 from sim_origami.cli import validate as validate_command
-from sim_origami.mjcf import PRESETS
+from sim_origami.presets import PRESET_NAMES
 from sim_origami.scenes.fold_file import fold_scene
 from sim_origami.stabilize import MODES
 
@@ -116,7 +116,7 @@ def test_the_guide_states_the_schemas_place_and_version():
 
 def test_the_schemas_presets_and_modes_are_the_codes():
     """A preset or stabilisation mode added to the code is added to the schema too."""
-    assert SCHEMA["$defs"]["preset"]["enum"] == list(PRESETS)
+    assert SCHEMA["$defs"]["preset"]["enum"] == list(PRESET_NAMES)
     assert SCHEMA["$defs"]["completed_run"]["properties"]["stabilize"]["enum"] == list(MODES)
 
 

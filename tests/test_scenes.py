@@ -8,8 +8,8 @@ from sim_origami import scenes
 from sim_origami.errors import ParameterError
 from sim_origami.geometry import wrap
 from sim_origami.mjcf import ModelOptions
+from sim_origami.presets import FAST
 from sim_origami.simulate import Bindings, compile_model
-from sim_origami.tolerances import TOLERANCES
 
 # Command-line values (degrees, metres) that keep each scene valid but differ from the defaults.
 USER_VALUES = {
@@ -52,7 +52,7 @@ def test_scene_builds_with_defaults_compiles_and_steps_without_mujoco_warnings(n
     # Held at a closed pose, the model stays there (measured drift 2e-13 rad).
     held = binds.angles(scene, data.qpos[None])[0]
     # modulo 2 pi: a crease folded flat (the twist's middle row) sits at -pi in the closed form, +pi - 1e-13 in MuJoCo
-    assert np.max(np.abs(wrap(held - scene.pose(branch, start)))) <= TOLERANCES.fast_rad
+    assert np.max(np.abs(wrap(held - scene.pose(branch, start)))) <= FAST.angle_rad
 
 
 @pytest.mark.parametrize("name", scenes.names())

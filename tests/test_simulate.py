@@ -12,8 +12,9 @@ from sim_origami.checks.branches import classify
 from sim_origami.checks.paths import compare
 from sim_origami.errors import DomainError, ParameterError, SimOrigamiError, SimulationError
 from sim_origami.geometry import rotation
-from sim_origami.mjcf import ModelOptions, preset_number
+from sim_origami.mjcf import ModelOptions
 from sim_origami.origami import crease_directions
+from sim_origami.presets import ACCURATE, FAST, STIFF
 from sim_origami.simulate import (
     Bindings,
     compile_model,
@@ -76,8 +77,8 @@ def world_rotation(model, data, scene, panel: str) -> np.ndarray:
 @pytest.mark.parametrize(("name", "branch"), RUNS, ids=RUN_IDS)
 def test_fast_run_path_error_and_closure_residual_within_fast_tolerances(name, branch):
     run = fast_run(name, branch)
-    assert compare(scene_of(name), branch, run.q).max_error() <= TOLERANCES.fast_rad
-    assert np.max(run.closure_residual) <= TOLERANCES.fast_residual_m
+    assert compare(scene_of(name), branch, run.q).max_error() <= FAST.angle_rad
+    assert np.max(run.closure_residual) <= FAST.residual_per_m
 
 
 @pytest.mark.parametrize(("name", "branch"), RUNS, ids=RUN_IDS)
@@ -102,9 +103,9 @@ def test_projection_path_error_and_residual_within_projection_tolerances(name, b
 @pytest.mark.slow
 def test_accurate_preset_on_vertex4_within_accurate_tolerances():
     scene = scene_of("vertex4")
-    run = simulate(scene, "odd2", preset="accurate")
-    assert compare(scene, "odd2", run.q).max_error() <= TOLERANCES.accurate_rad
-    assert np.max(run.closure_residual) <= TOLERANCES.accurate_residual_m
+    run = simulate(scene, "odd2", preset=ACCURATE)
+    assert compare(scene, "odd2", run.q).max_error() <= ACCURATE.angle_rad
+    assert np.max(run.closure_residual) <= ACCURATE.residual_per_m
 
 
 @pytest.mark.parametrize(("name", "branch"), RUNS, ids=RUN_IDS)
@@ -132,7 +133,7 @@ def test_hinge_qpos_is_the_fold_angle_rotating_the_ccw_panel_about_its_crease(na
         R_cw = world_rotation(model, data, scene, joint.parent)
         R_ccw = world_rotation(model, data, scene, joint.child)
         # Tree joints are exact; the cut joint is closed to the soft closure's residual (1 m creases).
-        atol = TOLERANCES.fast_residual_m if i in mech.cut_joints else MJCF_DIGITS_ATOL
+        atol = FAST.residual_per_m if i in mech.cut_joints else MJCF_DIGITS_ATOL
         np.testing.assert_allclose(R_cw.T @ R_ccw, rotation(d[i], q[i]), atol=atol, rtol=0, err_msg=joint.name)
 
 
@@ -153,7 +154,7 @@ def test_flat_foldable_vertex_has_branches_s_and_c():
 def test_flat_seed_with_tangent_bias_reaches_the_requested_branch(branch):
     scene = flat_foldable_scene()
     # the fast preset cannot steer this bifurcation (soft loops take C, measured here)
-    run = simulate(scene, branch, seed="flat", bias=1e-4, stop=1.0, preset="accurate")
+    run = simulate(scene, branch, seed="flat", bias=1e-4, stop=1.0, preset=ACCURATE)
     assert run.target[0] < 1e-3  # seed 'flat' sweeps from the flat state
     path = compare(scene, branch, run.q)
     labels = classify(scene.kinematics, path.input, path.simulated)
@@ -235,19 +236,19 @@ def test_flat_foldable_vertex_follows_both_branches_within_fast_tolerances(branc
     scene = flat_foldable_scene()
     run = simulate(scene, branch)
     path = compare(scene, branch, run.q)
-    assert path.max_error() <= TOLERANCES.fast_rad
-    assert np.max(run.closure_residual) <= TOLERANCES.fast_residual_m
+    assert path.max_error() <= FAST.angle_rad
+    assert np.max(run.closure_residual) <= FAST.residual_per_m
     labels = classify(scene.kinematics, path.input, path.simulated)
     assert (labels.followed, labels.flips) == (branch, 0)
 
 
-@pytest.mark.parametrize("preset", ["fast", "stiff", "accurate"])
+@pytest.mark.parametrize("preset", [FAST, STIFF, ACCURATE], ids=lambda p: p.name)
 def test_compiled_models_carry_the_presets_regulariser_scale(preset):
     """compile_model scales MuJoCo's inverse weights (hence every row's R) by the preset's stated factor."""
     scene = scenes.get("thick-diamond").build()
     plain = mujoco.MjModel.from_xml_string(scene_xml(scene, ModelOptions(preset=preset)))
     model, _ = compile_model(scene, ModelOptions(preset=preset))
-    scale = preset_number(preset, "regularization_scale")
+    scale = preset.regularization_scale
     assert scale == model.numeric("regularization_scale").data[0] == 0.01
     np.testing.assert_allclose(model.body_invweight0, scale * plain.body_invweight0, rtol=1e-15, atol=0)
     np.testing.assert_allclose(model.dof_invweight0, scale * plain.dof_invweight0, rtol=1e-15, atol=0)
@@ -256,7 +257,7 @@ def test_compiled_models_carry_the_presets_regulariser_scale(preset):
 def test_a_scenes_regulariser_scale_multiplies_the_fast_presets_and_is_written_in_the_model():
     """Scene.fast_regularization_scale reaches the MJCF's numeric (a plain load can repeat the run) under fast only."""
     scene = replace(scenes.get("thick-diamond").build(), fast_regularization_scale=0.01)
-    for preset, expected in (("fast", 1e-4), ("stiff", 0.01)):
+    for preset, expected in ((FAST, 1e-4), (STIFF, 0.01)):
         plain = mujoco.MjModel.from_xml_string(scene_xml(scene, ModelOptions(preset=preset)))
         model, _ = compile_model(scene, ModelOptions(preset=preset))
         assert model.numeric("regularization_scale").data[0] == pytest.approx(expected, rel=1e-15)
@@ -267,8 +268,8 @@ def test_the_scaled_regulariser_is_what_makes_the_thin_loop_accurate():
     """thick-diamond's thin loop, fast on the bench's 2 s sweep: the preset against the same setting with MuJoCo's
     own regulariser (pareto.measure, one run each): measured 1.8e-8 against 1.7e-6 rad (93x)."""
     scene = scenes.get("thick-diamond").build()
-    scaled = pareto.measure(scene, "diamond", pareto.PRESETS["fast"], repeats=1).error
-    plain = pareto.measure(scene, "diamond", replace(pareto.PRESETS["fast"], regularization=1.0), repeats=1).error
+    scaled = pareto.measure(scene, "diamond", pareto.PRESET_SETTINGS[FAST], repeats=1).error
+    plain = pareto.measure(scene, "diamond", replace(pareto.PRESET_SETTINGS[FAST], regularization=1.0), repeats=1).error
     assert plain / scaled > 30, (scaled, plain)
 
 

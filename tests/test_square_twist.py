@@ -29,6 +29,7 @@ from sim_origami.kinematics.square_twist import (
     verdict_table,
 )
 from sim_origami.kinematics.vertex4 import flat_foldable_multipliers
+from sim_origami.presets import FAST
 from sim_origami.report import write
 from sim_origami.scenes.square_twist import assigned
 from sim_origami.simulate import simulate
@@ -228,7 +229,7 @@ def test_rigid_assignment_folds_from_flat_in_mujoco():
         result = assess(x, run.target, run.drive_force, SERVO_LIMIT, float("nan"), 0.0)
         assert not result.stopped and not result.drive_saturated  # force measured <= 0.14 N m
         # from flat, where the free sheet bifurcates: couplings are soft, measured 6.5e-8 (CCSS), 1.6e-7 (CSCS)
-        assert compare(scene, modes, run.q).max_error() <= TOLERANCES.fast_rad
+        assert compare(scene, modes, run.q).max_error() <= FAST.angle_rad
 
 
 @pytest.mark.slow
@@ -246,7 +247,7 @@ def test_validate_square_twist_every_branch():
     (study,) = report.bifurcations
     assert all(d is not None for d in study["seed_offset_followed_rad"].values())
     fold = read_fold(write(report, "out")["fold"])
-    assert fold.pattern.loop_system().residual_norm(fold.frames).max() <= TOLERANCES.fast_residual_m
+    assert fold.pattern.loop_system().residual_norm(fold.frames).max() <= FAST.residual_per_m
 
 
 @pytest.mark.parametrize(

@@ -10,11 +10,11 @@ from sim_origami import scenes
 from sim_origami.checks.paths import compare
 from sim_origami.errors import ParameterError
 from sim_origami.mjcf import ModelOptions
+from sim_origami.presets import ACCURATE, FAST, FAST_PROJECTED, STIFF
 from sim_origami.report import as_dict
 from sim_origami.simulate import Bindings, compile_model, drive_targets, simulate, simulate_free, start_pose
-from sim_origami.stabilize import before_projection, preset_mode, run_step, step_function
+from sim_origami.stabilize import before_projection, run_step, step_function
 from sim_origami.studies.peer_model import body_poses, potential_energy, rigid_model, tree_model
-from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
 
 FREE_S = 10.0
@@ -29,10 +29,10 @@ def scene_of(name: str):
 def test_fast_projected_closes_the_bennett_sweep():
     """Measured 2.2e-15 rad and 2.4e-15 m over a 6 s sweep (fast: 6.7e-8 rad, 1.0e-7 m)."""
     scene = scene_of("bennett")
-    run = simulate(scene, "bennett", preset="fast-projected")
+    run = simulate(scene, "bennett", preset=FAST_PROJECTED)
     assert run.steps == round(run.sweep_time_s / 0.008)  # the fast preset's 8 ms steps over the path's sweep time
-    assert compare(scene, "bennett", run.q).max_error() < TOLERANCES.angle("fast-projected")
-    assert np.max(run.closure_residual) < TOLERANCES.residual("fast-projected")
+    assert compare(scene, "bennett", run.q).max_error() < FAST_PROJECTED.angle_rad
+    assert np.max(run.closure_residual) < FAST_PROJECTED.residual()
     # the drive is left to its equality: the input sweeps the whole path (measured 7.0e-6 rad past its end)
     x = run.q[:, scene.mechanism.joint_index(scene.drive_joint)]
     assert x[0] == pytest.approx(0.6, abs=1e-4) and x[-1] == pytest.approx(2.4, abs=1e-4)
@@ -43,15 +43,15 @@ def test_fast_projected_a04_free_run_keeps_energy():
     """A04, 10 s free: measured 2.7e-15 rad off the closed form and 1.6e-6 J of energy drift at its states (fast:
     4.4e-7 rad, 1.4e-5 J)."""
     scene = scene_of("iftomm-a04")
-    run = simulate_free(scene, scene.free_branch, scene.free_start, FREE_S, preset="fast-projected")
+    run = simulate_free(scene, scene.free_branch, scene.free_start, FREE_S, preset=FAST_PROJECTED)
     path = compare(scene, scene.free_branch, run.q)
     assert run.steps == 1250
-    assert path.max_error() < TOLERANCES.angle("fast-projected")
-    assert np.max(np.abs(run.energy - run.energy[0])) < TOLERANCES.energy("fast-projected")
+    assert path.max_error() < FAST_PROJECTED.angle_rad
+    assert np.max(np.abs(run.energy - run.energy[0])) < FAST_PROJECTED.energy_j
     assert np.ptp(path.input) > 0.5  # it fell: the input swept more than half a radian
 
 
-@pytest.mark.parametrize("preset", ["fast", "stiff"])
+@pytest.mark.parametrize("preset", [FAST, STIFF], ids=lambda p: p.name)
 def test_plain_presets_step_bit_for_bit_as_mj_step(preset):
     """The plain presets run mj_step itself: the harness's Bennett sweep equals a bare mj_step loop bit for bit."""
     scene = scene_of("bennett")
@@ -75,8 +75,8 @@ def test_plain_presets_step_bit_for_bit_as_mj_step(preset):
 def test_plain_free_run_is_mj_step():
     """A04's fast free run equals a bare mj_step loop bit for bit, and differs from fast-projected's."""
     scene = scene_of("iftomm-a04")
-    run = simulate_free(scene, scene.free_branch, scene.free_start, 1.0, preset="fast")
-    model, data = compile_model(scene, ModelOptions(preset="fast", drive="none", gravity=True))
+    run = simulate_free(scene, scene.free_branch, scene.free_start, 1.0, preset=FAST)
+    model, data = compile_model(scene, ModelOptions(preset=FAST, drive="none", gravity=True))
     binds = Bindings(scene, model)
     binds.set_pose(data, start_pose(scene, scene.free_branch, scene.free_start))
     mujoco.mj_forward(model, data)
@@ -85,7 +85,7 @@ def test_plain_free_run_is_mj_step():
         mujoco.mj_step(model, data)
         row[:] = data.qpos
     np.testing.assert_array_equal(binds.angles(scene, log), run.q)
-    projected = simulate_free(scene, scene.free_branch, scene.free_start, 1.0, preset="fast-projected")
+    projected = simulate_free(scene, scene.free_branch, scene.free_start, 1.0, preset=FAST_PROJECTED)
     assert not np.array_equal(projected.q, run.q)
 
 
@@ -94,8 +94,8 @@ def test_free_run_energy_is_read_at_the_states():
     mj_step, which MuJoCo filled at the step's last internal stage: over A04's first second under fast the stage
     reading is off the state's by up to about 1e-5 J (measured), more than the drift the states hold."""
     scene = scene_of("iftomm-a04")
-    run = simulate_free(scene, scene.free_branch, scene.free_start, 1.0, preset="fast")
-    model, data = compile_model(scene, ModelOptions(preset="fast", drive="none", gravity=True))
+    run = simulate_free(scene, scene.free_branch, scene.free_start, 1.0, preset=FAST)
+    model, data = compile_model(scene, ModelOptions(preset=FAST, drive="none", gravity=True))
     assert model.opt.enableflags & mujoco.mjtEnableBit.mjENBL_ENERGY
     Bindings(scene, model).set_pose(data, start_pose(scene, scene.free_branch, scene.free_start))
     mujoco.mj_forward(model, data)
@@ -110,11 +110,11 @@ def test_free_run_energy_is_read_at_the_states():
     assert run.energy[0] == pytest.approx(-29.43, abs=1e-9)
     np.testing.assert_allclose(run.energy[1:], at_states, rtol=0, atol=1e-12)
     assert np.max(np.abs(run.energy[1:] - at_stages)) > 1e-6
-    assert np.max(np.abs(run.energy - run.energy[0])) < TOLERANCES.energy("fast")
+    assert np.max(np.abs(run.energy - run.energy[0])) < FAST.energy_j
 
 
 def test_preset_modes_and_bad_mode():
-    assert [preset_mode(p) for p in ("fast", "stiff", "accurate", "fast-projected")] == ["none"] * 3 + ["position"]
+    assert [p.stabilize for p in (FAST, STIFF, ACCURATE, FAST_PROJECTED)] == ["none"] * 3 + ["position"]
     model, data = compile_model(scene_of("bennett"), ModelOptions())
     with pytest.raises(ParameterError, match="'velocity'"):
         step_function(model, data, "velocity")
@@ -127,15 +127,15 @@ def test_report_states_the_stabilisation():
     gives MuJoCo's own path error before each projection (measured 6.7e-8 rad: the dynamic check, held to fast's
     1e-6) beside the path after it (3.1e-15: the projection's work, held to 1e-11). The plain preset has neither.
     """
-    report = validate(scene_of("bennett"), preset="fast-projected", branch="bennett")
+    report = validate(scene_of("bennett"), preset=FAST_PROJECTED, branch="bennett")
     doc = as_dict(report)
     assert report.passed and doc["preset"] == "fast-projected" and doc["stabilize"] == "position"
     checks = {v["name"]: v for v in doc["branches"][0]["verdicts"]}
     before = checks["bennett: MuJoCo fast-projected path error before projection (rad)"]
     after = checks["bennett: MuJoCo fast-projected path error after projection (rad)"]
-    assert before["tolerance"] == TOLERANCES.angle("fast") and after["tolerance"] == TOLERANCES.angle("fast-projected")
+    assert before["tolerance"] == FAST.angle_rad and after["tolerance"] == FAST_PROJECTED.angle_rad
     assert before["compared"] == after["compared"] == report.runs[0].dynamic.steps
-    assert 1e-9 < before["measured"] < TOLERANCES.angle("fast") and after["measured"] < 1e-13
+    assert 1e-9 < before["measured"] < FAST.angle_rad and after["measured"] < 1e-13
     plain = as_dict(validate(scene_of("bennett"), branch="bennett"))
     assert plain["stabilize"] == "none"
     assert not [v for v in plain["branches"][0]["verdicts"] if "projection (rad)" in v["name"] and "fast" in v["name"]]
@@ -146,16 +146,16 @@ def test_before_projection_records_mujocos_own_steps():
     here up to 4e-9 rad on A04's first second), after which the state is on them (to 1e-14); plain steps log nothing."""
     scene = scene_of("iftomm-a04")
     with before_projection() as own:
-        run = simulate_free(scene, scene.free_branch, scene.free_start, 1.0, preset="fast-projected")
-        simulate_free(scene, scene.free_branch, scene.free_start, 1.0, preset="fast")
+        run = simulate_free(scene, scene.free_branch, scene.free_start, 1.0, preset=FAST_PROJECTED)
+        simulate_free(scene, scene.free_branch, scene.free_start, 1.0, preset=FAST)
     assert len(own) == run.steps == 125
-    model, _ = compile_model(scene, ModelOptions(preset="fast-projected", drive="none", gravity=True))
+    model, _ = compile_model(scene, ModelOptions(preset=FAST_PROJECTED, drive="none", gravity=True))
     raw = compare(scene, scene.free_branch, Bindings(scene, model).angles(scene, np.array(own)))
-    assert 1e-11 < raw.max_error() < TOLERANCES.angle("fast")
+    assert 1e-11 < raw.max_error() < FAST.angle_rad
     assert compare(scene, scene.free_branch, run.q).max_error() < 1e-13
     with before_projection() as outside:
         pass
-    simulate_free(scene, scene.free_branch, scene.free_start, 0.1, preset="fast-projected")
+    simulate_free(scene, scene.free_branch, scene.free_start, 0.1, preset=FAST_PROJECTED)
     assert outside == []
 
 

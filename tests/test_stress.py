@@ -7,8 +7,8 @@ from hypothesis import strategies as st
 
 from sim_origami import scenes
 from sim_origami.checks.paths import compare
+from sim_origami.presets import FAST, STIFF
 from sim_origami.simulate import simulate
-from sim_origami.tolerances import TOLERANCES
 
 
 def error(scene, branch: str, **options) -> float:
@@ -32,10 +32,10 @@ def test_fast_drives_degrade_as_the_square_of_the_sweep_time_and_stay_finite():
 def test_extreme_panel_aspect_ratio_costs_sweep_time_not_stability():
     scene = scenes.get("miura-sheet").build(rows=3, cols=3, a=0.05, b=2.0)  # panels 40 times longer than wide
     quick, slow = error(scene, "miura", duration=16.0), error(scene, "miura", duration=64.0)
-    stiff = error(scene, "miura", preset="stiff", duration=64.0)
+    stiff = error(scene, "miura", preset=STIFF, duration=64.0)
     # measured fast 5.0e-7 (16 s) and 3.8e-8 rad (64 s: 13x for 4x, square law 16x; 3.8e-6 with MuJoCo's own
     # regulariser), stiff 1.4e-8; square panels reach 1.7e-6 in 2 s
-    assert max(slow, stiff) <= TOLERANCES.fast_rad / 10 and 8 < quick / slow < 24
+    assert max(slow, stiff) <= FAST.angle_rad / 10 and 8 < quick / slow < 24
 
 
 @st.composite
@@ -54,4 +54,4 @@ def test_random_developable_vertices_follow_their_closed_form_in_mujoco(sectors)
     names = ("alpha1", "alpha2", "alpha3", "alpha4")
     scene = scenes.get("vertex4").build_from_user(dict(zip(names, sectors, strict=True)))
     for branch in scene.kinematics.branches():
-        assert error(scene, branch.name) <= TOLERANCES.fast_rad
+        assert error(scene, branch.name) <= FAST.angle_rad

@@ -9,10 +9,9 @@ from sim_origami import scenes
 from sim_origami.checks.paths import compare
 from sim_origami.kinematics.base import Branch
 from sim_origami.kinematics.bennett import Bennett
-from sim_origami.mjcf import preset_duration, preset_timestep
+from sim_origami.presets import FAST
 from sim_origami.simulate import simulate
 from sim_origami.sweep_rate import MAX_SCALE, path_acceleration, sweep_duration, sweep_scale
-from sim_origami.tolerances import TOLERANCES
 
 ALPHA = np.pi / 6
 # theta1 across pi, where a Bennett linkage with K = sin((beta + alpha) / 2) / sin((beta - alpha) / 2) turns theta2
@@ -49,9 +48,9 @@ def test_the_sweep_lengthens_with_the_paths_peak_rate():
     for b in (1.5, 1.2, 1.1, 1.05):
         scene = bennett_across_pi(b)
         rates.append(peak_rate(scene))
-        times.append(sweep_duration(scene, "bennett", "fast", *ACROSS_PI))
+        times.append(sweep_duration(scene, "bennett", FAST, *ACROSS_PI))
     assert np.all(np.diff(rates) > 0) and np.all(np.diff(times) > 0)
-    assert rates[-1] > 30 and times[0] >= preset_duration("fast")
+    assert rates[-1] > 30 and times[0] >= FAST.sweep_duration
 
 
 @pytest.mark.slow
@@ -62,10 +61,10 @@ def test_a_bennett_turning_its_output_18_times_as_fast_as_its_input_passes_the_d
     assert peak_rate(scene) >= 10
     run = simulate(scene, "bennett")
     rule = sweep_duration(scene, "bennett", scene.preset, *ACROSS_PI)
-    assert rule <= run.sweep_time_s < rule + preset_timestep(scene.preset)  # whole steps
-    assert run.sweep_time_s > 10 * preset_duration("fast")
-    assert compare(scene, "bennett", run.q).max_error() < 0.5 * TOLERANCES.fast_rad
-    assert np.max(run.closure_residual) < TOLERANCES.residual("fast", scene.length_scale)
+    assert rule <= run.sweep_time_s < rule + scene.preset.timestep  # whole steps
+    assert run.sweep_time_s > 10 * FAST.sweep_duration
+    assert compare(scene, "bennett", run.q).max_error() < 0.5 * FAST.angle_rad
+    assert np.max(run.closure_residual) < FAST.residual(scene.length_scale)
 
 
 def test_a_narrow_fast_span_between_coarse_samples_is_found():

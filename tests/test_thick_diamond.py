@@ -19,6 +19,7 @@ from sim_origami.kinematics.thick_diamond import (
     sectors,
 )
 from sim_origami.kinematics.thick_vertex5 import lifted_loop
+from sim_origami.presets import FAST
 from sim_origami.simulate import contact_distance, contact_input
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
@@ -263,7 +264,7 @@ def test_validate_default_scene_passes_every_verdict(scene):
         measured = {v.name.split(": ", 1)[1]: v.measured for v in run.verdicts}
         # Measured: fast path error 1.7e-6 (diamond) and 4.2e-7 rad (counter23), projection 7.1e-15 and
         # 6.7e-15 rad, fast closure gap 9.8e-8 and 1.9e-8 m.
-        assert measured["MuJoCo fast path error (rad)"] <= TOLERANCES.fast_rad
+        assert measured["MuJoCo fast path error (rad)"] <= FAST.angle_rad
         assert measured["MuJoCo projection path error (rad)"] <= TOLERANCES.projection_rad
         # the bifurcation at flat: mobility 2 there in the numeric loop and in MuJoCo, 1 at the start
         # truss method alike; one state of self-stress (a Bricard 6R) at the start, two at flat

@@ -23,6 +23,7 @@ from sim_origami.kinematics.thick_square_twist import (
 )
 from sim_origami.kinematics.thick_vertex4 import ThickVertex4
 from sim_origami.origami import hinge_gap
+from sim_origami.presets import FAST
 from sim_origami.simulate import contact_distance, contact_input, mujoco_mobility, simulate
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
@@ -129,7 +130,7 @@ def test_mujoco_from_flat_and_from_every_zero_thickness_branch_takes_the_layouts
         labels = classify(zero.kinematics, run.q[:, drive], scene.outputs(run.q))
         assert (labels.followed, labels.flips) == ("CSCS", 0)
         error = compare(scene, "CSCS", run.q).error
-        assert np.max(np.abs(error[len(error) // 2 :])) <= TOLERANCES.fast_rad  # measured 1.3e-8
+        assert np.max(np.abs(error[len(error) // 2 :])) <= FAST.angle_rad  # measured 1.3e-8
 
 
 def test_validate_default_scene_with_blockage_at_panel_contact():
@@ -137,7 +138,7 @@ def test_validate_default_scene_with_blockage_at_panel_contact():
     failed = [v.name for v in report.verdicts + report.runs[0].verdicts if not v.passed]
     assert not failed
     run = report.runs[0]
-    assert run.dynamic_path.max_error() <= TOLERANCES.fast_rad  # measured 3.8e-8 (fast, 4x), 0.03 s CPU
+    assert run.dynamic_path.max_error() <= FAST.angle_rad  # measured 3.8e-8 (fast, 4x), 0.03 s CPU
     assert run.projection_path.max_error() <= TOLERANCES.projection_rad  # measured 2.2e-15
     assert [run.mobility["start"][k] for k in ("numeric", "mujoco", "truss")] == [1, 1, 1]
     # the servo, driven to the zero-thickness lock at pi, stops where the panels touch: 2.884709 vs 2.884709

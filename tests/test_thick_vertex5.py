@@ -11,6 +11,7 @@ from sim_origami.errors import AssemblyError, DomainError, ParameterError
 from sim_origami.geometry import wrap
 from sim_origami.kinematics.dh import DHRow, dh_loop
 from sim_origami.kinematics.thick_vertex5 import BRANCH, ThickVertex5, lifted_loop, plane_symmetric_folds, sectors
+from sim_origami.presets import FAST
 from sim_origami.simulate import contact_distance, contact_input
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
@@ -251,7 +252,7 @@ def test_validate_default_scene_passes_every_verdict(scene):
     measured = {v.name.split(": ", 1)[1]: v.measured for v in (*report.verdicts, *run.verdicts)}
     # Measured: fast path error 3.6e-7 rad, projection 7.5e-15 rad, fast closure gap 2.9e-8 m,
     # closed form vs numeric 2.7e-15 rad; blockage stop -2.099131 vs contact -2.097859 (1.3e-3 rad).
-    assert measured["MuJoCo fast path error (rad)"] <= TOLERANCES.fast_rad
+    assert measured["MuJoCo fast path error (rad)"] <= FAST.angle_rad
     assert measured["MuJoCo projection path error (rad)"] <= TOLERANCES.projection_rad
     assert measured["servo stop vs kinematic contact (rad)"] <= TOLERANCES.blockage_rad
     assert report.blockage.stopped and report.blockage.contact_input == pytest.approx(-2.0978594, abs=1e-6)

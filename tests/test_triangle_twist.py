@@ -39,6 +39,7 @@ from sim_origami.kinematics.triangle_twist import (
     verdict_table,
 )
 from sim_origami.kinematics.twist_6r import TwistSixR, compatible_angles, dh_rows
+from sim_origami.presets import FAST
 from sim_origami.report import write
 from sim_origami.scenes.triangle_twist import assigned  # (also registers `triangle-twist`)
 from sim_origami.simulate import simulate
@@ -221,7 +222,7 @@ def test_validate_every_rigid_scheme():
         assert run.mobility["start"]["numeric"] == run.mobility["start"]["mujoco"] == 1
         if scheme == "PSS":  # Feng 2018's Fig. 3-5: its simulated motion as a FOLD file closes the pattern's loops
             fold = read_fold(write(report, "out")["fold"])
-            assert fold.pattern.loop_system().residual_norm(fold.frames).max() <= TOLERANCES.fast_residual_m  # 1.3e-9
+            assert fold.pattern.loop_system().residual_norm(fold.frames).max() <= FAST.residual_per_m  # 1.3e-9
 
 
 def test_locked_scheme_cannot_leave_flat_in_mujoco_the_rigid_one_can():
@@ -237,7 +238,7 @@ def test_locked_scheme_cannot_leave_flat_in_mujoco_the_rigid_one_can():
             # the soft couplings give way under 20 N m: any hinge measured 3.3e-4 (PPP), 1.3e-3 (PSS) rad
             assert np.max(np.abs(run.q)) <= 1e-2
         else:  # from flat (a singular pose), drive force <= 0.015 N m: measured 6.1e-9
-            assert compare(scene, "SSP", run.q).max_error() <= TOLERANCES.fast_rad
+            assert compare(scene, "SSP", run.q).max_error() <= FAST.angle_rad
 
 
 # --- the derived 6R linkages (Feng 2018, §3.4; eqns 3-38 to 3-40 corrected) ------------------------------------------

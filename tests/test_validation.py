@@ -9,6 +9,7 @@ from sim_origami import scenes
 from sim_origami.checks.paths import compare
 from sim_origami.checks.verdict import Verdict
 from sim_origami.errors import ParameterError
+from sim_origami.presets import FAST, STIFF
 from sim_origami.simulate import simulate
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
@@ -57,8 +58,8 @@ def test_run_of_one_branch_compared_against_the_other_branch_fails_the_tolerance
     report = report_of("vertex4", branch="odd1")
     (run,) = report.runs
     assert run.requested == "odd1"
-    assert run.dynamic_path.max_error() <= TOLERANCES.fast_rad
-    assert compare(report.scene, "odd2", run.dynamic.q).max_error() > TOLERANCES.fast_rad
+    assert run.dynamic_path.max_error() <= FAST.angle_rad
+    assert compare(report.scene, "odd2", run.dynamic.q).max_error() > FAST.angle_rad
 
 
 def test_report_with_one_failing_verdict_does_not_pass():
@@ -82,7 +83,7 @@ def test_validate_rejects_an_unknown_preset_naming_it():
 def test_a_scene_runs_its_own_preset_unless_told_otherwise():
     # every registered scene now runs fast (the truncated octahedron, the last on stiff, switched with the 3 s
     # blockage hold); a scene that picks stiff gets it
-    assert {scenes.get(name).build().preset for name in ("vertex4", "truncated-octahedron")} == {"fast"}
-    scene = dataclasses.replace(scenes.get("vertex4").build(), preset="stiff")
+    assert {scenes.get(name).build().preset for name in ("vertex4", "truncated-octahedron")} == {FAST}
+    scene = dataclasses.replace(scenes.get("vertex4").build(), preset=STIFF)
     run = simulate(scene, "odd1", stop=0.5)
-    assert run.preset == "stiff" and simulate(scene, "odd1", stop=0.5, preset="fast").preset == "fast"
+    assert run.preset == STIFF and simulate(scene, "odd1", stop=0.5, preset=FAST).preset == FAST

@@ -24,6 +24,7 @@ from sim_origami.kinematics.waterbomb import (
 )
 from sim_origami.kinematics.waterbomb_sheet import WaterbombSheet
 from sim_origami.origami import hinge_gap
+from sim_origami.presets import FAST
 from sim_origami.report import FOLD_FRAMES, write
 from sim_origami.simulate import contact_distance, contact_input, simulate
 from sim_origami.studies.poisson import vertex_positions
@@ -140,7 +141,7 @@ def test_thick_mujoco_follows_path_one_from_every_zero_thickness_branch():
         labels = classify(zero.kinematics, run.q[:, drive], thick.outputs(run.q))
         assert (labels.followed, labels.flips) == (LINE, 0)
         path = compare(thick, LINE, run.q)
-        assert np.max(np.abs(path.error[len(path.error) // 2 :])) <= TOLERANCES.fast_rad  # measured 2.4e-8
+        assert np.max(np.abs(path.error[len(path.error) // 2 :])) <= FAST.angle_rad  # measured 2.4e-8
 
 
 def test_zero_thickness_mujoco_follows_each_branch_and_thick_equals_path_one():
@@ -148,11 +149,11 @@ def test_zero_thickness_mujoco_follows_each_branch_and_thick_equals_path_one():
     thick = scenes.get("waterbomb-thick").build()
     for branch in zero.kinematics.branches():
         path = compare(zero, branch.name, simulate(zero, branch.name).q)
-        assert path.max_error() <= TOLERANCES.fast_rad  # measured <= 2.4e-8 (stiff, 16x)
+        assert path.max_error() <= FAST.angle_rad  # measured <= 2.4e-8 (stiff, 16x)
     thick_path = compare(thick, LINE, simulate(thick, LINE).q)
     # the thick run against the ZERO-thickness closed form: kinematic equivalence, measured 2.4e-8
     zero_values = zero.kinematics.joint_angles(LINE, thick_path.input)
-    assert np.max(np.abs(thick_path.simulated - zero_values)) <= TOLERANCES.fast_rad
+    assert np.max(np.abs(thick_path.simulated - zero_values)) <= FAST.angle_rad
 
 
 @pytest.mark.parametrize(
@@ -226,7 +227,7 @@ def test_report_exports_the_simulated_motion_as_a_multi_frame_fold_file():
         return {frozenset((a, b)): h for a, b, h in pattern.border_heights}
 
     assert len(scene.pattern.border_heights) == 8 and borders(fold.pattern) == borders(scene.pattern)
-    assert fold.pattern.loop_system().residual_norm(fold.frames).max() <= TOLERANCES.fast_residual_m
+    assert fold.pattern.loop_system().residual_norm(fold.frames).max() <= FAST.residual_per_m
 
 
 @pytest.mark.parametrize(("rows", "cols"), [(2, 2), (3, 3), (2, 4)])
@@ -247,7 +248,7 @@ def test_tessellation_closes_on_every_cell_branch_including_its_c_vertices(rows,
 def test_waterbomb_sheet_scene_follows_path_one_in_mujoco():
     scene = scenes.get("waterbomb-sheet").build()
     path = compare(scene, LINE, simulate(scene, LINE).q)
-    assert path.max_error() <= TOLERANCES.fast_rad  # measured 4.5e-8 worst branch (stiff, 16x)
+    assert path.max_error() <= FAST.angle_rad  # measured 4.5e-8 worst branch (stiff, 16x)
 
 
 def sheet_triangles_cross(scene, branch: str, x: float) -> bool:

@@ -27,6 +27,7 @@ from sim_origami.kinematics.waterbomb_tube import (
     vertex_loops,
     vertices,
 )
+from sim_origami.presets import FAST
 from sim_origami.scenes.waterbomb_tube import tube_mechanism
 from sim_origami.simulate import project, simulate
 from sim_origami.tolerances import TOLERANCES
@@ -276,10 +277,10 @@ def test_mujoco_follows_the_contraction_crease_by_crease():
     scene = scenes.get("waterbomb-tube").build(n=6, m=3)
     run = simulate(scene, BRANCH)
     path = compare(scene, BRANCH, run.q)
-    assert run.preset == "fast"
+    assert run.preset == FAST
     # measured 1.3e-8 rad (stiff 1.3e-7; fast with MuJoCo's own regulariser 9.3e-7)
-    assert path.max_error() <= TOLERANCES.fast_rad
-    assert np.max(run.closure_residual) <= TOLERANCES.fast_residual_m
+    assert path.max_error() <= FAST.angle_rad
+    assert np.max(run.closure_residual) <= FAST.residual_per_m
     start, stop = scene.branch_path(BRANCH)
     projection = compare(scene, BRANCH, project(scene, BRANCH, np.linspace(start, stop, 3)).q)
     assert projection.max_error() <= TOLERANCES.projection_rad  # measured 6.2e-15

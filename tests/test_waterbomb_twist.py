@@ -25,6 +25,7 @@ from sim_origami.kinematics.waterbomb_twist import (
     twist_folds,
     twist_vertices,
 )
+from sim_origami.presets import FAST
 from sim_origami.scenes.waterbomb_tube import tube_mechanism
 from sim_origami.simulate import simulate
 from sim_origami.tolerances import TOLERANCES
@@ -230,7 +231,7 @@ def test_validate_the_twist_of_a_single_row():
     report = validate(scenes.get("waterbomb-twist").build(m=1), branch=CCW)
     run = report.runs[0]
     assert run.followed == CCW and run.flips == 0
-    assert run.dynamic_path.max_error() <= TOLERANCES.fast_rad  # measured 1.4e-8 rad
+    assert run.dynamic_path.max_error() <= FAST.angle_rad  # measured 1.4e-8 rad
     assert run.projection_path.max_error() <= TOLERANCES.projection_rad  # measured 1.1e-14 rad
     start, meeting = run.mobility["start"], run.mobility["bifurcations"][0]  # rank: closure, MuJoCo efc_J, truss
     assert [start[k] for k in ("numeric", "mujoco", "truss")] == [1, 1, 1]
@@ -247,8 +248,8 @@ def test_mujoco_follows_the_clockwise_twist_not_the_contraction():
     path = compare(scene, CW, run.q)
     labels = classify(scene.kinematics, path.input, path.simulated)
     assert (labels.followed, labels.flips) == (CW, 0)
-    assert path.max_error() <= TOLERANCES.fast_rad  # measured 3.5e-8 rad (6.4 s CPU, 12800 steps)
-    assert np.max(run.closure_residual) <= TOLERANCES.fast_residual_m  # measured 3.4e-8 m
+    assert path.max_error() <= FAST.angle_rad  # measured 3.5e-8 rad (6.4 s CPU, 12800 steps)
+    assert np.max(run.closure_residual) <= FAST.residual_per_m  # measured 3.4e-8 m
 
 
 @pytest.mark.parametrize(

@@ -13,6 +13,7 @@ from sim_origami.errors import ParameterError
 from sim_origami.geometry import wrap
 from sim_origami.kinematics.waterbomb_tube import WaterbombTube, beta_max, tube_layout
 from sim_origami.kinematics.waterbomb_twist import CCW, CW, WaterbombTwist, twist_folds, unwrapped
+from sim_origami.presets import FAST
 from sim_origami.simulate import simulate
 from sim_origami.tolerances import TOLERANCES
 
@@ -148,8 +149,8 @@ def test_mujoco_follows_the_twist_of_an_end_row(row, branch):
     path = compare(scene, branch, run.q)
     labels = classify(scene.kinematics, path.input, path.simulated)
     assert (labels.followed, labels.flips) == (branch, 0)
-    assert path.max_error() <= TOLERANCES.fast_rad  # measured 1.3e-8 (I ccw), 9.7e-9 rad (III cw)
-    assert np.max(run.closure_residual) <= TOLERANCES.fast_residual_m  # measured 2.6e-9, 3.6e-9 m
+    assert path.max_error() <= FAST.angle_rad  # measured 1.3e-8 (I ccw), 9.7e-9 rad (III cw)
+    assert np.max(run.closure_residual) <= FAST.residual_per_m  # measured 2.6e-9, 3.6e-9 m
 
 
 @pytest.mark.parametrize(

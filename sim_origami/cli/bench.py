@@ -22,6 +22,7 @@ from .. import scenes
 from ..checks.paths import compare
 from ..files import claimed_folder, write_text
 from ..plots import plot_pareto
+from ..presets import ACCURATE, FAST
 from ..simulate import project, simulate
 from ..studies import pareto
 from .options import add_params, out_folder, parse_params, whole_number_at_least
@@ -65,14 +66,14 @@ def bench_case(name, params, branch, start, stop, repeats) -> dict:
     start = lo if start is None else start
     stop = hi if stop is None else stop
     row = {"scene": name, "branch": branch, "input_rad": [start, stop]}
-    for preset in ("fast", "accurate"):
+    for preset in (FAST, ACCURATE):
         runs = [simulate(scene, branch, preset=preset, start=start, stop=stop) for _ in range(repeats)]
-        if preset == "fast":
+        if preset == FAST:
             runs_fast = runs
-        row[f"{preset}_error_rad"] = compare(scene, branch, runs[0].q).max_error()
-        row[f"{preset}_step_cpu_s"] = min(r.cpu_time_s for r in runs)
-        row[f"{preset}_steps"] = runs[0].steps
-        if preset == "fast":
+        row[f"{preset.name}_error_rad"] = compare(scene, branch, runs[0].q).max_error()
+        row[f"{preset.name}_step_cpu_s"] = min(r.cpu_time_s for r in runs)
+        row[f"{preset.name}_steps"] = runs[0].steps
+        if preset == FAST:
             row["fast_call_cpu_s"] = _best(lambda: simulate(scene, branch, start=start, stop=stop), repeats)[1]
     row["bare_loop_cpu_s"] = pareto.bare_loop_cpu(scene, branch, runs_fast[0].target, repeats)
     row["harness_loop_over_bare"] = row["fast_step_cpu_s"] / row["bare_loop_cpu_s"]

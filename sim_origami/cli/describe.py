@@ -54,7 +54,7 @@ def run(args: argparse.Namespace) -> int:
     if scene.fast_timeconst_scale != 1:
         scaled += f"; fast's time constant {scene.fast_timeconst_scale:g}x its own"
     slower = f" x {scene.sweep_time_scale:g}" if scene.sweep_time_scale != 1 else ""
-    print(f"preset: {scene.preset}, sweep as long as its path's joint rates ask{slower}{scaled}")
+    print(f"preset: {scene.preset.name}, sweep as long as its path's joint rates ask{slower}{scaled}")
     print("branches:")
     for b in kin.branches():
         lo, hi = b.domain

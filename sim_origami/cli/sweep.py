@@ -14,7 +14,7 @@ from tqdm import tqdm
 
 from ..errors import ParameterError
 from ..files import check_folder, claimed_folder
-from ..mjcf import PRESETS
+from ..presets import PRESET_NAMES, as_preset
 from ..sweep import check_grid, check_scheduler, check_workers, parse_axis, sweep, write_tables
 from .options import out_folder
 
@@ -26,7 +26,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("scene", help="scene name (see list)")
     parser.add_argument("--grid", action="append", required=True, metavar="NAME=START:STOP:STEP",
                         help="a swept parameter in degrees or metres (repeat for a product grid)")
-    parser.add_argument("--preset", choices=PRESETS, help="default: the scene's own")
+    parser.add_argument("--preset", choices=PRESET_NAMES, help="default: the scene's own")
     parser.add_argument("--workers", type=int, help="local processes (default: every core)")
     parser.add_argument("--scheduler", help="Dask distributed scheduler address, e.g. tcp://10.0.0.5:8786")
     parser.add_argument("--out", type=out_folder, help="output folder (default runs/sweep-<scene>)")
@@ -50,8 +50,8 @@ def run(args: argparse.Namespace) -> int:
             raise ParameterError(f"--scheduler {args.scheduler} needs Dask distributed: pip install -e '.[cluster]'")
         check_scheduler(args.scheduler)
     with claimed_folder(out, force=args.force) as stage:  # the previous sweep's files stay until this one finishes
-        rows = sweep(args.scene, axes, preset=args.preset, workers=args.workers, scheduler=args.scheduler,
-                     progress=_bar)
+        preset = as_preset(args.preset) if args.preset else None
+        rows = sweep(args.scene, axes, preset=preset, workers=args.workers, scheduler=args.scheduler, progress=_bar)
         paths = {kind: out / path.name for kind, path in write_tables(rows, stage).items()}
         plot_sweep(rows, [a.name for a in axes], stage / "sweep.png")
     failed = [r for r in rows if not r["passed"]]

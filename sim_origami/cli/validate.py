@@ -13,7 +13,7 @@ from ..checks.reference import read_reference, summary_lines
 from ..conventions import deg_to_rad
 from ..errors import DomainError, ParameterError, SimulationError
 from ..files import check_folder, claimed_folder, write_text
-from ..mjcf import PRESETS
+from ..presets import PRESET_NAMES, Preset, as_preset
 from ..report import as_dict, json_text, motion_view, provenance, verdict_json, write
 from ..report_page import write_index, write_page, write_thumbnail
 from ..scenes.fold_file import fold_scene
@@ -43,7 +43,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     add_params(parser)
     parser.add_argument("--branch", help="one branch (default: every branch)")
     parser.add_argument(
-        "--preset", choices=PRESETS, help="default: the scene's own (describe shows it)"
+        "--preset", choices=PRESET_NAMES, help="default: the scene's own (describe shows it)"
     )
     parser.add_argument(
         "--seed",
@@ -88,6 +88,11 @@ def check_run(scene, args: argparse.Namespace) -> None:
             raise DomainError(f"--seed {args.seed}: {exc}") from None
 
 
+def chosen_preset(scene, args: argparse.Namespace) -> Preset:
+    """The preset --preset names, or the scene's own."""
+    return as_preset(args.preset) if args.preset else scene.preset
+
+
 def registered(scene, args: argparse.Namespace) -> dict:
     """
     For a registered scene (not a --fold or --linkage file's): its one-line summary and its parameters in the units
@@ -116,8 +121,8 @@ def run_one(scene, args, out: Path, reference=None) -> dict:
             bar.n = done
             bar.set_postfix_str(phase)
 
-        report = validate(scene, preset=args.preset, branch=args.branch, seed=args.seed, reference=reference,
-                          progress=progress)
+        report = validate(scene, preset=chosen_preset(scene, args), branch=args.branch, seed=args.seed,
+                          reference=reference, progress=progress)
     doc = as_dict(report, command=getattr(args, "command_line", None)) | registered(scene, args)
     write(report, out, full_curves=args.full_curves, doc=doc)
     plot_report(report, out / "curves.png")
@@ -149,12 +154,12 @@ def validate_in_all(scene, args, out: Path) -> dict:
 
 def failed_run(scene, args, out: Path, err: SimulationError) -> dict:
     """report.json for a run MuJoCo could not finish: the failing check and the configuration where it happened."""
-    preset = args.preset or scene.preset
+    preset = chosen_preset(scene, args)
     stopped = {"name": "MuJoCo run finished without a warning", "measured": 1.0, "tolerance": 0.0, "passed": False,
                "detail": str(err), "compared": None}
     # no run made (a --fold trace stuck at its start): the trace's stop is the failing check, and its events say more
     ran = not isinstance(err, ZeroSweepError)
-    doc = {"scene": scene.name, "params": scene.params, "preset": preset, "passed": False,
+    doc = {"scene": scene.name, "params": scene.params, "preset": preset.name, "passed": False,
            "notes": scene.notes, "verdicts": [*map(verdict_json, err.verdicts), *([stopped] if ran else [])],
            "provenance": provenance(preset, getattr(args, "command_line", None))}
     if not ran:

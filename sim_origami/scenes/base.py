@@ -20,6 +20,7 @@ from ..mechanism import Mechanism
 from ..mjcf import ModelSetup
 from ..path import Polyline
 from ..precision import Adjustment, Typed, nearest_exact
+from ..presets import FAST, Preset
 
 UNITS = {"deg": np.pi / 180.0, "m": 1.0, "": 1.0}
 # Closed-form poses per branch, evenly across its domain with both ends, at which `without_implied_closures` finds
@@ -164,7 +165,7 @@ class Scene:
     sweep_time_scale: float = 1.0
     # The preset runs use unless told otherwise, chosen per scene from `scripts/preset_compare.py` (with the
     # presets' scaled regulariser 'fast' beats 'stiff' on every scene, and every registered scene runs it).
-    preset: str = "fast"
+    preset: Preset = FAST
     # The fast preset's step and closure and drive time constants times this (their ratio kept). Larger models set
     # 1.25: at 8 ms RK4's four force evaluations per step cost what Euler's one per 2 ms does, and MuJoCo's defaults
     # (scripts/fast_vs_defaults.py) matched fast's CPU there; 1.25x costs 1.6x the error at 0.8x the CPU.

@@ -33,7 +33,7 @@ def build(a: float, alpha: float) -> Scene:
         # +/-57 deg, far from the bundle (theta1 = +/-180 deg, where the closure Jacobian's 5th
         # singular value falls to 0; it stays >= 0.87 here on both branches for the default alpha).
         # A wider sweep is as valid but faster in phi: (-2, 2) measured a fast closure gap of
-        # 5.8e-7 m, against 1.4e-7 m here (TOLERANCES.fast_residual_m = 1e-6).
+        # 5.8e-7 m, against 1.4e-7 m here (`presets.FAST.residual_per_m` = 2e-6).
         path=(-1.0, 1.0),
         notes="hinge qpos = D-H joint angle theta; T = Rz(theta) Tz(R) Tx(a) Rx(alpha); "
         "theta1 = theta3 = theta5, theta2 = theta4 = theta6 on the motion",

@@ -34,9 +34,9 @@ from ..kinematics.linkage_path import MISS_ITER, MISS_STARTS, START_SHARE, Assem
 from ..kinematics.numeric_pattern import CLOSE_TOL
 from ..linkage_file import LinkageSpec, read_linkage
 from ..mechanism import Mechanism
-from ..mjcf import PRESETS, preset_duration, preset_timestep
 from ..path import correct, secant
 from ..precision import Adjustment
+from ..presets import PRESETS
 from .base import Scene
 
 # Share of the sweep's stretch kept clear of a bifurcation at each end it meets one. Measured on the plane-symmetric
@@ -89,7 +89,7 @@ def linkage_scene(path: str | Path) -> Scene:
     """
     spec = read_linkage(path)
     adjustments: tuple[Adjustment, ...] = ()
-    least = max(2 * preset_timestep(p) / preset_duration(p) for p in PRESETS)  # before the trace, not at simulate
+    least = max(2 * p.timestep / p.sweep_duration for p in PRESETS)  # before the trace, not at simulate
     if spec.sweep_time_scale < least:
         raise ParameterError(f"sweep_time_scale = {spec.sweep_time_scale:g}: it must be at least {least:g} (a sweep "
                              "of two time steps of every preset)")

@@ -7,6 +7,7 @@ the drive crease stays in the spanning tree, and the fixed body defaults to the 
 from ..creases import CreasePattern
 from ..kinematics.base import Kinematics
 from ..origami import pattern_mechanism
+from ..presets import FAST, Preset
 from .base import Scene
 
 
@@ -21,7 +22,7 @@ def pattern_scene(
     root: str | None = None,
     couplings: tuple[tuple[str, str, float], ...] = (),
     sweep_time_scale: float = 1.0,
-    preset: str = "fast",
+    preset: Preset = FAST,
     notes: str = "",
     collision_inset: float | None = None,
     self_contact: bool = False,

@@ -30,6 +30,7 @@ from ..kinematics.truncated_octahedron import (
 from ..linkage import bar
 from ..mechanism import Body, Joint, Mechanism, ball_joint
 from ..origami import PALETTE
+from ..presets import FAST
 from .base import Param, Scene, register
 from .polyhedra import AssemblyKinematics, collision_plate, kutzbach, plate
 
@@ -161,7 +162,7 @@ def interference_scene(
         # so the scene ran stiff; held 3 s (validation.BLOCKAGE_HOLD) fast 16x stops 9.6e-10 (zeta = 0) and 5.5e-6
         # rad (15 deg) from the contact in 5.1-5.7 s of CPU, stiff 16x 2.0e-11 and 2.4e-5 in 8.5 s; fast 8x 3.5e-4
         # and 1.1e-2 (too short at 15 deg). The path's rates ask for 3.4-3.6x (`sweep_rate`); the blockage, 16x.
-        preset="fast",
+        preset=FAST,
         # A design the closed form cannot follow to the cube has no path rates past its turning point
         # (`sweep_rate` then times the preset's duration alone): it keeps the 16x the blockage needs.
         sweep_time_scale=4.5 if drivable else 16.0,

@@ -34,6 +34,7 @@ from ..kinematics.truncated_tetrahedron import (
 from ..linkage import bar
 from ..mechanism import Body, Joint, Mechanism, ball_joint
 from ..origami import PALETTE
+from ..presets import FAST
 from .base import ANGLE_MARGIN, Param, Scene, register
 from .polyhedra import AssemblyKinematics, collision_plate, kutzbach, plate
 
@@ -158,7 +159,7 @@ def _scene(scheme: str, delta: float) -> Scene:
         path=(0.0, far - closed_form.reference),
         # measured at the preset's 2 s sweep: stiff 1.2e-5 rad (I) and 1.1e-5 (II); fast 9.1e-5 and 3.6e-5 with
         # MuJoCo's regulariser, 2.0e-6 and 1.2e-6 with the presets' (scaled 0.01)
-        preset="fast",
+        preset=FAST,
         fast_step_scale=FAST_STEP_SCALE,
         contact_pairs=TRIANGLE_PAIRS,
         notes=f"input {INPUT_JOINT[scheme]} = {closed_form.input_name} - its deployed value (rad); "

@@ -21,6 +21,7 @@ import itertools
 
 from ..kinematics.waterbomb import FACES, Waterbomb
 from ..kinematics.waterbomb_sheet import WaterbombSheet
+from ..presets import FAST
 from .base import ACUTE, Param, Scene, register
 from .patterns import pattern_scene
 from .thick_vertex4 import RELIEF
@@ -42,7 +43,7 @@ THICK = (
 # (Euler 1.25 ms) beat it (2.4e-8 at 16x). With the presets' regulariser scaled by 0.01 fast measured 1.2e-6 (cell)
 # and 6.2e-7 (thick cell) at 2 s, against stiff's 2.4e-8 at 16x.
 PATH = (-0.5, -1.8)
-PRESET = "fast"
+PRESET = FAST
 # The thick cell's closure is thin in the direction of its hinge offsets: with a = 0.02 m the projection's
 # angle error was 1.9e-13 rad (0.05 m: 2.8e-14) and the fast path error 5.6e-7 (0.05 m: 1.1e-7).
 ROOT, DRIVE = "A12", "A4"

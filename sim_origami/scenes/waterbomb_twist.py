@@ -15,6 +15,7 @@ twist senses only.
 
 from ..kinematics.waterbomb_tube import beta_max_residual
 from ..kinematics.waterbomb_twist import WaterbombTwist
+from ..presets import FAST
 from .base import ACUTE, Condition, Param, Scene, register
 from .waterbomb_tube import TUBE_ROWS, TUBE_UNITS, check_size, tube_mechanism
 
@@ -42,7 +43,7 @@ PARAMS = (
 # 2.6e-8 (ccw), 3.5e-8 rad (cw), 6.4 s; 6 x 1: 1.4e-8 rad, 0.5 s. Those fast figures were with MuJoCo's own
 # regulariser; with the presets' (scaled 0.01) fast 8x on 6 x 3 measured 4.9e-9 rad (ccw) in 3.8 s of CPU against
 # stiff's 2.6e-8 in 7.1 s, so the scene runs fast.
-PRESET = "fast"
+PRESET = FAST
 # fast at 1.25x its step and closure time constant (Scene.fast_step_scale: 10 ms, solref 25 ms). At 8 ms
 # RK4's four force evaluations a step cost what Euler's one per 2 ms does: the 6 x 3 twist measured 1.01-1.02x the
 # CPU of MuJoCo's defaults on their 2 s sweep (68190x more accurate); at 1.25x, 43014x at 0.79-0.85x

@@ -25,10 +25,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..checks.paths import compare
-from ..mjcf import ModelOptions, drive_name, preset_number, preset_timestep, template
+from ..mjcf import ModelOptions, drive_name
+from ..presets import FAST, FAST_PROJECTED, STIFF, Preset
 from ..scenes.base import Scene, without_implied_closures
 from ..simulate import Bindings, drive_targets, scale_regularization, scene_xml, simulate, start_pose, track
-from ..stabilize import drive_step, preset_mode
+from ..stabilize import drive_step
 
 INTEGRATORS = {"RK4": mujoco.mjtIntegrator.mjINT_RK4, "Euler": mujoco.mjtIntegrator.mjINT_EULER,
                "implicitfast": mujoco.mjtIntegrator.mjINT_IMPLICITFAST}
@@ -66,32 +67,31 @@ class Point:
 DEFAULTS = Setting("MuJoCo defaults", "Euler", 0.002, 0.02, MUJOCO_DEFAULT_IMPEDANCE)
 
 
-def preset_setting(name: str) -> Setting:
-    """A preset's integrator, step and closure solref/solimp, read from its template (mjcf_templates/options/)."""
-    root = template(f"options/{name}.xml")
-    option, closure = root.find("option"), root.find(".//default[@class='closure']/equality")
-    tau, solimp = float(closure.get("solref").split()[0]), tuple(float(v) for v in closure.get("solimp").split())
-    return Setting(f"preset {name}", option.get("integrator"), preset_timestep(name), tau, solimp,
-                   regularization=preset_number(name, "regularization_scale"), stabilize=preset_mode(name))
+def preset_setting(preset: Preset) -> Setting:
+    """A preset's integrator, step, closure solref/solimp, regulariser scale and stabilisation."""
+    return Setting(f"preset {preset.name}", preset.integrator, preset.timestep, preset.closure_timeconst,
+                   preset.closure_solimp, regularization=preset.regularization_scale, stabilize=preset.stabilize)
 
 
-PRESETS = {name: preset_setting(name) for name in ("fast", "stiff")}
+# The plain-MuJoCo presets the study varies.
+PRESET_SETTINGS = {preset: preset_setting(preset) for preset in (FAST, STIFF)}
 # Not plain MuJoCo: measured next to the presets, without their closure, drive and regulariser variants.
-PROJECTED = preset_setting("fast-projected")
+PROJECTED = preset_setting(FAST_PROJECTED)
 
 
-def scene_presets(scene: Scene) -> dict[str, Setting]:
+def scene_presets(scene: Scene) -> dict[Preset, Setting]:
     """The presets as `scene` runs them (`mjcf.build_xml`): fast with its step and time constant times
     `Scene.fast_step_scale`, the time constant times `Scene.fast_timeconst_scale` too, its regulariser times
     `Scene.fast_regularization_scale`."""
-    fast, k = PRESETS["fast"], scene.fast_step_scale
-    return PRESETS | {"fast": dataclasses.replace(fast, h=fast.h * k, tau=fast.tau * k * scene.fast_timeconst_scale,
-                                                  regularization=fast.regularization * scene.fast_regularization_scale)}
+    fast, k = PRESET_SETTINGS[FAST], scene.fast_step_scale
+    scaled = dataclasses.replace(fast, h=fast.h * k, tau=fast.tau * k * scene.fast_timeconst_scale,
+                                 regularization=fast.regularization * scene.fast_regularization_scale)
+    return PRESET_SETTINGS | {FAST: scaled}
 
 
 def settings(closures: tuple[str, ...] = ("connect2", "connect1", "independent"),
              drives: tuple[str, ...] = ("equality", "servo"), quick: bool = False,
-             presets: dict[str, Setting] = PRESETS) -> Iterator[Setting]:
+             presets: dict[Preset, Setting] = PRESET_SETTINGS) -> Iterator[Setting]:
     """
     MuJoCo's defaults, the presets (as a scene runs them: `scene_presets`), fast-projected, then every integrator x
     step x tau (solimp 0.9999, the presets' regulariser scale) with the default closure and drive, then each other
@@ -105,13 +105,13 @@ def settings(closures: tuple[str, ...] = ("connect2", "connect1", "independent")
     steps = (1.25, 2.5, 5.0) if quick else STEPS_MS
     for name, h_ms, k in itertools.product(integrators, steps, TAU_OVER_H):
         yield Setting(f"{name} h={h_ms:g}ms tau={k}h", name, h_ms / 1000, k * h_ms / 1000, HIGH_IMPEDANCE,
-                      regularization=PRESETS["fast"].regularization)
+                      regularization=FAST.regularization_scale)
     for preset, base in presets.items():
-        yield dataclasses.replace(base, label=f"{preset}, MuJoCo's regulariser", regularization=1.0)
+        yield dataclasses.replace(base, label=f"{preset.name}, MuJoCo's regulariser", regularization=1.0)
         for closure in closures[1:]:
-            yield dataclasses.replace(base, label=f"{preset}, {closure}", closure=closure)
+            yield dataclasses.replace(base, label=f"{preset.name}, {closure}", closure=closure)
         for drive in drives[1:]:
-            yield dataclasses.replace(base, label=f"{preset}, {drive} drive", drive=drive)
+            yield dataclasses.replace(base, label=f"{preset.name}, {drive} drive", drive=drive)
 
 
 def _scene_for(scene: Scene, closure: str) -> Scene:
@@ -130,7 +130,7 @@ def _scene_for(scene: Scene, closure: str) -> Scene:
 
 def model_for(scene: Scene, setting: Setting) -> mujoco.MjModel:
     """The compiled model of `scene` with `setting` applied on top of the fast preset's MJCF."""
-    model = mujoco.MjModel.from_xml_string(scene_xml(scene, ModelOptions(preset="fast", drive=setting.drive)))
+    model = mujoco.MjModel.from_xml_string(scene_xml(scene, ModelOptions(preset=FAST, drive=setting.drive)))
     model.opt.integrator, model.opt.timestep = INTEGRATORS[setting.integrator], setting.h
     model.eq_solref[:, 0], model.eq_solimp[:] = setting.tau, setting.solimp
     scale_regularization(model, setting.regularization)
@@ -210,7 +210,7 @@ def bare_loop_cpu(scene: Scene, branch: str, target: NDArray, repeats: int = 3) 
     CPU time (s) of the minimal loop driving the same path with the fast preset: one eq_data write and one mj_step
     per step from the same start pose, with no logging, checks or feed-forward bookkeeping.
     """
-    model = model_for(scene, scene_presets(scene)["fast"])
+    model = model_for(scene, scene_presets(scene)[FAST])
     data = mujoco.MjData(model)
     setpoint = model.eq_data[model.equality(drive_name(scene.drive_joint)).id]
     targets, pose = (scene.drive_scale * target).tolist(), start_pose(scene, branch, float(target[0]))
@@ -234,5 +234,5 @@ def sweep(scene: Scene, *, quick: bool = False, repeats: int = 3) -> tuple[str, 
     """
     branch = scene.kinematics.branches()[0].name
     points = measure_all(scene, branch, list(settings(quick=quick, presets=scene_presets(scene))), repeats)
-    run = simulate(scene, branch, preset="fast", duration=SWEEP_S)
+    run = simulate(scene, branch, preset=FAST, duration=SWEEP_S)
     return branch, points, run.cpu_time_s / bare_loop_cpu(scene, branch, run.target, repeats)
