@@ -14,6 +14,7 @@ import dataclasses
 import sys
 
 from sim_origami import scenes
+from sim_origami.presets import FAST
 from sim_origami.studies import pareto
 
 # The small scenes' 2 s sweeps take 3-20 ms of CPU and this machine has slow spells seconds long:
@@ -28,7 +29,7 @@ def main(names: list[str]) -> None:
     for name in names or scenes.names():
         scene = scenes.get(name).build()
         branch = scene.kinematics.branches()[0].name
-        fast = pareto.scene_presets(scene)["fast"]
+        fast = pareto.scene_presets(scene)[FAST]
         plain = dataclasses.replace(fast, label="fast, MuJoCo's regulariser", regularization=1.0)
         settings = [pareto.DEFAULTS, fast, plain, pareto.PROJECTED]
         default, ours, theirs, projected = pareto.measure_all(scene, branch, settings, REPEATS)

@@ -13,10 +13,11 @@ import numpy as np
 
 from sim_origami import scenes
 from sim_origami.mjcf import ModelOptions
+from sim_origami.presets import FAST, Preset, as_preset
 from sim_origami.simulate import Bindings, captured_warnings, compile_model, start_pose
 
 
-def main(steps: int = 1_000_000, preset: str = "fast") -> None:
+def main(steps: int = 1_000_000, preset: Preset = FAST) -> None:
     scene = scenes.get("iftomm-a04").build()
     model, data = compile_model(scene, ModelOptions(preset=preset, drive="none", gravity=True))
     binds = Bindings(scene, model)
@@ -44,4 +45,4 @@ def main(steps: int = 1_000_000, preset: str = "fast") -> None:
 
 
 if __name__ == "__main__":
-    main(*(int(v) if k == 0 else v for k, v in enumerate(sys.argv[1:3])))
+    main(*(int(v) if k == 0 else as_preset(v) for k, v in enumerate(sys.argv[1:3])))

@@ -54,6 +54,7 @@ import numpy as np
 from sim_origami import scenes
 from sim_origami.checks.paths import compare
 from sim_origami.mjcf import ModelOptions
+from sim_origami.presets import ACCURATE, FAST, FAST_PROJECTED, Preset
 from sim_origami.scenes.base import Scene
 from sim_origami.simulate import (
     Bindings,
@@ -126,7 +127,7 @@ class Result:
     failed: str = ""
 
 
-def mujoco_run(case: Case, preset: str, h: float | None = None, iterations: int = 1) -> Callable[[], Run]:
+def mujoco_run(case: Case, preset: Preset, h: float | None = None, iterations: int = 1) -> Callable[[], Run]:
     """
     One MuJoCo setting: the harness's own stepping (`simulate.track` / the free run's loop, the preset's step
     function) on `preset`, with the timestep set to `h` (closure time constants scaled with it) and `iterations`
@@ -419,7 +420,7 @@ def driven_case(scene: Scene, label: str | None = None, branch: str | None = Non
     """A scene's default sweep (first branch) as the fast preset times it."""
     branch = branch or scene.kinematics.branches()[0].name
     start, stop = scene.branch_path(branch)
-    T = sweep_duration(scene, branch, "fast", start, stop)
+    T = sweep_duration(scene, branch, FAST, start, stop)
     return Case(label or f"{scene.name}, {start:.3g} -> {stop:.3g} rad in {T:.3g} s", scene, branch, start, stop, T,
                 False)
 
@@ -427,13 +428,13 @@ def driven_case(scene: Scene, label: str | None = None, branch: str | None = Non
 def free_settings(case: Case) -> list[tuple[str, str, Callable[[], Run]]]:
     """(tool, setting, run) of the free case, the fast preset first (the CPU reference)."""
     out = [
-        ("MuJoCo", "fast (RK4 8 ms, closures 20 ms)", mujoco_run(case, "fast")),
-        ("MuJoCo", "fast at 4 ms (closures 10 ms)", mujoco_run(case, "fast", h=0.004)),
-        ("MuJoCo", "fast at 2 ms (closures 5 ms)", mujoco_run(case, "fast", h=0.002)),
-        ("MuJoCo", "fast at 1 ms (closures 2.5 ms)", mujoco_run(case, "fast", h=0.001)),
-        ("MuJoCo", "fast-projected (RK4 8 ms, closures 64 ms, 1 projection)", mujoco_run(case, "fast-projected")),
-        ("MuJoCo", "fast-projected at 2 ms (closures 16 ms)", mujoco_run(case, "fast-projected", h=0.002)),
-        ("MuJoCo", "accurate (RK4 0.1 ms, closures 0.4 ms)", mujoco_run(case, "accurate")),
+        ("MuJoCo", "fast (RK4 8 ms, closures 20 ms)", mujoco_run(case, FAST)),
+        ("MuJoCo", "fast at 4 ms (closures 10 ms)", mujoco_run(case, FAST, h=0.004)),
+        ("MuJoCo", "fast at 2 ms (closures 5 ms)", mujoco_run(case, FAST, h=0.002)),
+        ("MuJoCo", "fast at 1 ms (closures 2.5 ms)", mujoco_run(case, FAST, h=0.001)),
+        ("MuJoCo", "fast-projected (RK4 8 ms, closures 64 ms, 1 projection)", mujoco_run(case, FAST_PROJECTED)),
+        ("MuJoCo", "fast-projected at 2 ms (closures 16 ms)", mujoco_run(case, FAST_PROJECTED, h=0.002)),
+        ("MuJoCo", "accurate (RK4 0.1 ms, closures 0.4 ms)", mujoco_run(case, ACCURATE)),
     ]
     for h in (0.008, 0.004, 0.002, 0.001):
         for rho in (0.6, 0.9, 1.0):
@@ -449,11 +450,11 @@ def free_settings(case: Case) -> list[tuple[str, str, Callable[[], Run]]]:
 
 def driven_settings(case: Case, exudyn_h: tuple[float, ...] = (0.008,), body: bool = True):
     """(tool, setting, run) of a driven case, the fast preset first."""
-    model, _ = compile_model(case.scene, ModelOptions(preset="fast"))
+    model, _ = compile_model(case.scene, ModelOptions(preset=FAST))
     h0 = model.opt.timestep
     out = [
-        ("MuJoCo", f"fast (RK4 {h0 * 1e3:g} ms)", mujoco_run(case, "fast")),
-        ("MuJoCo", f"fast-projected (RK4 {h0 * 1e3:g} ms, 1 projection)", mujoco_run(case, "fast-projected", h=h0)),
+        ("MuJoCo", f"fast (RK4 {h0 * 1e3:g} ms)", mujoco_run(case, FAST)),
+        ("MuJoCo", f"fast-projected (RK4 {h0 * 1e3:g} ms, 1 projection)", mujoco_run(case, FAST_PROJECTED, h=h0)),
     ]
     for h in exudyn_h or (h0,):
         for name, tol in (("default", DEFAULT), ("tight", TIGHT)):
@@ -496,7 +497,7 @@ def measure(case: Case, runs: list, rounds: int, reference: Run | None = None) -
 
 def reference_run(case: Case, h: float) -> Run:
     """MuJoCo `accurate` (RK4, closures 4 h) at step h."""
-    return mujoco_run(case, "accurate", h=h)()
+    return mujoco_run(case, ACCURATE, h=h)()
 
 
 def print_free(results: list[Result]) -> None:
@@ -574,7 +575,7 @@ def scaling(rounds: int, only: set[str] | None = None) -> None:
         scene = build()
         case = driven_case(scene, name if steps is None else f"FOLD 16 x 16 Miura, first {steps} steps")
         if steps is not None:
-            model, _ = compile_model(scene, ModelOptions(preset="fast"))
+            model, _ = compile_model(scene, ModelOptions(preset=FAST))
             case = dataclasses.replace(case, end=steps * model.opt.timestep)
         table.append((case, driven_settings(case, exudyn_h=(), body=len(scene.mechanism.bodies) < 40)))
     results = [[Result(tool, label) for tool, label, _ in runs] for _, runs in table]
@@ -637,8 +638,8 @@ def main() -> int:
     driven = driven_case(bennett, branch="bennett")
     print(f"\n### {driven.label}\n")
     runs = driven_settings(driven, exudyn_h=(0.008, 0.002, 0.03, 0.12))
-    runs += [("MuJoCo", "fast at 1 ms", mujoco_run(driven, "fast", h=0.001)),
-             ("MuJoCo", "fast-projected at 120 ms, 2 projections", mujoco_run(driven, "fast-projected", 0.12, 2))]
+    runs += [("MuJoCo", "fast at 1 ms", mujoco_run(driven, FAST, h=0.001)),
+             ("MuJoCo", "fast-projected at 120 ms, 2 projections", mujoco_run(driven, FAST_PROJECTED, 0.12, 2))]
     results = measure(driven, runs, args.rounds)
     print("| tool | setting | path error (rad) | CPU vs `fast` |")
     print("|---|---|---|---|")
@@ -657,9 +658,9 @@ def long_run(rounds: int) -> None:
     check = reference_run(case, 2e-4)
     print(f"Reference: MuJoCo accurate at 0.1 ms; at 0.2 ms it differs by "
           f"{np.max(np.abs(on_samples(check, SAMPLE_S) - on_samples(reference, SAMPLE_S))):.2g} rad over 100 s")
-    runs = [("MuJoCo", "fast (RK4 8 ms, closures 20 ms)", mujoco_run(case, "fast")),
-            ("MuJoCo", "fast-projected (RK4 8 ms, closures 64 ms, 1 projection)", mujoco_run(case, "fast-projected")),
-            ("MuJoCo", "fast at 2 ms (closures 5 ms)", mujoco_run(case, "fast", h=0.002)),
+    runs = [("MuJoCo", "fast (RK4 8 ms, closures 20 ms)", mujoco_run(case, FAST)),
+            ("MuJoCo", "fast-projected (RK4 8 ms, closures 64 ms, 1 projection)", mujoco_run(case, FAST_PROJECTED)),
+            ("MuJoCo", "fast at 2 ms (closures 5 ms)", mujoco_run(case, FAST, h=0.002)),
             ("Exudyn tree", "h 8 ms, rho 1, Newton tight 1e-12/1e-14", exudyn_tree_run(case, 0.008, 1.0, TIGHT)),
             ("Exudyn tree", "h 2 ms, rho 1, Newton tight 1e-12/1e-14", exudyn_tree_run(case, 0.002, 1.0, TIGHT)),
             ("Exudyn tree", "h 1 ms, rho 1, Newton tight 1e-12/1e-14", exudyn_tree_run(case, 0.001, 1.0, TIGHT))]

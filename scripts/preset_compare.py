@@ -7,6 +7,7 @@ import sys
 
 from sim_origami import scenes
 from sim_origami.checks.paths import compare
+from sim_origami.presets import FAST, STIFF
 from sim_origami.simulate import simulate
 
 
@@ -16,7 +17,7 @@ def main(names: list[str]) -> None:
         scene = scenes.get(name).build()
         branch = scene.kinematics.branches()[0].name
         row = []
-        for preset in ("fast", "stiff"):
+        for preset in (FAST, STIFF):
             run = simulate(scene, branch, preset=preset)
             row += [compare(scene, branch, run.q).max_error(), run.cpu_time_s]
         print(f"{name:20s} {branch:24s} {row[0]:9.1e} {row[1]:8.3f}s {row[2]:9.1e} {row[3]:8.3f}s")

@@ -18,7 +18,8 @@ import mujoco
 import numpy as np
 
 from sim_origami import scenes
-from sim_origami.mjcf import ModelOptions, preset_duration
+from sim_origami.mjcf import ModelOptions
+from sim_origami.presets import FAST
 from sim_origami.scenes.base import without_implied_closures
 from sim_origami.simulate import Bindings, ramp, scene_xml, start_pose
 
@@ -98,7 +99,7 @@ def main(names: list[str]) -> None:
         scene = scenes.get(name).build()
         branch = scene.kinematics.branches()[0].name
         models = variants(scene)
-        steps = round(preset_duration("fast") / models["as generated"].opt.timestep)
+        steps = round(FAST.sweep_duration / models["as generated"].opt.timestep)
         base = min(stepping_cpu(models["as generated"], scene, branch, steps) for _ in range(REPEATS))
         print(f"\n{name} ({branch}, {steps} fast steps): as generated {base * 1e3:.1f} ms")
         print(f"| {'model':40s} | CPU (ms) | ratio |")

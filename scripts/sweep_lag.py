@@ -11,13 +11,13 @@ import sys
 
 from sim_origami import scenes
 from sim_origami.checks.paths import compare
-from sim_origami.mjcf import preset_duration
+from sim_origami.presets import FAST
 from sim_origami.simulate import simulate
 from sim_origami.sweep_rate import path_acceleration
 
 
 def main(names: list[str]) -> None:
-    base = preset_duration("fast")
+    base = FAST.sweep_duration
     print(f"{'scene':26s} {'branch':26s} {'max A':>7s} {'err 2 s':>9s} {'C (s^2)':>9s} {'rule T':>7s} {'err':>9s} "
           f"{'CPU':>7s}")
     for name in names or scenes.names():
@@ -26,9 +26,9 @@ def main(names: list[str]) -> None:
             start, stop = scene.branch_path(branch)
             accel = path_acceleration(scene, branch, start, stop)
             soft = scene.fast_step_scale * scene.fast_timeconst_scale  # the lag grows as the time constant squared
-            short = simulate(scene, branch, preset="fast", duration=base)
+            short = simulate(scene, branch, preset=FAST, duration=base)
             err = compare(scene, branch, short.q).max_error()
-            run = simulate(scene, branch, preset="fast")
+            run = simulate(scene, branch, preset=FAST)
             rule = compare(scene, branch, run.q).max_error()
             print(f"{name:26s} {branch[:26]:26s} {accel:7.2f} {err:9.2e} {err * base**2 / accel / soft**2:9.2e} "
                   f"{run.sweep_time_s:7.2f} {rule:9.2e} {run.cpu_time_s:7.3f}", flush=True)

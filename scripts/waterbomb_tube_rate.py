@@ -61,13 +61,14 @@ import sim_origami.scenes.waterbomb_tube  # noqa: F401  (registers the scene)
 from sim_origami import scenes
 from sim_origami.checks.paths import compare
 from sim_origami.kinematics.waterbomb_tube import BRANCH
-from sim_origami.mjcf import ModelOptions, preset_duration
+from sim_origami.mjcf import ModelOptions
+from sim_origami.presets import STIFF
 from sim_origami.scenes.base import Scene, without_implied_closures
 from sim_origami.simulate import Bindings, compile_model, drive_targets
 
-ACCURACY = 1e-6  # rad, the path-error tolerance of the stiff and fast presets (tolerances.py)
+ACCURACY = STIFF.angle_rad  # rad, the path-error tolerance of the stiff and fast presets (1e-6)
 # The cheapest step (one force evaluation): the scene itself now runs fast (RK4, four per step, 1.5e-8 rad at 8x).
-PRESET = "stiff"
+PRESET = STIFF
 TARGET = 1000.0  # steps/s
 WINDOW = 1600  # steps of the windowed runs (2 s of the sweep at 1.25 ms)
 SIZES = ((6, 5), (8, 5), (10, 5))
@@ -151,7 +152,7 @@ def sweep(scene: Scene, option: Option, contact: bool, steps: int | None = None)
     start, stop = scene.branch_path(BRANCH)
     binds.set_pose(data, scene.pose(BRANCH, start))
     mujoco.mj_forward(model, data)
-    T = preset_duration(PRESET) * scene.sweep_time_scale
+    T = PRESET.sweep_duration * scene.sweep_time_scale
     h = model.opt.timestep
     _, target = drive_targets(scene, model, "equality", start, stop, T, round(T / h))
     target, t = target[:steps], h * np.arange(1, len(target) + 1)[:steps]

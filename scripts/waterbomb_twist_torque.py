@@ -50,6 +50,7 @@ from sim_origami.geometry import rigid_fit, wrap
 from sim_origami.kinematics.waterbomb_tube import beta_max
 from sim_origami.kinematics.waterbomb_twist import WaterbombTwist
 from sim_origami.mjcf import ModelOptions
+from sim_origami.presets import FAST
 from sim_origami.scenes.base import Scene
 from sim_origami.simulate import Bindings, captured_warnings, compile_model
 
@@ -154,7 +155,7 @@ def run(
             f"theta = {np.rad2deg(x0 + np.pi):.6g} deg is outside the contraction's domain "
             f"[{np.rad2deg(lo + np.pi):.6g}, {np.rad2deg(hi + np.pi):.6g}] deg"
         )
-    model, data = compile_model(scene, ModelOptions(preset="fast"))
+    model, data = compile_model(scene, ModelOptions(preset=FAST))
     model.opt.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
     model.opt.disableflags &= ~int(mujoco.mjtDisableBit.mjDSBL_DAMPER)
     model.dof_damping[:] = damping
