@@ -401,12 +401,16 @@ class Polyline:
 
 @dataclass(frozen=True)
 class PathStop:
-    """Where a trace ended or something happened on it: `kind`, parameter `s`, the joint concerned, why."""
+    """
+    Where a trace ended or something happened on it: `kind`, parameter `s`, the joint concerned, why; for a contact,
+    `hit`: the parameter (beyond `s`, the last configuration clear of it) where the contact was first found.
+    """
 
     kind: str
     s: float
     joint: int | None
     detail: str
+    hit: float | None = None
 
 
 @dataclass(frozen=True)
@@ -591,7 +595,7 @@ def trace(
         why = None if stop_when is None else stop_when(q_new)
         if why is not None:
             s_new, q_new, s_hit, why = _first(loops, stop_when, driven, path, fixed, tol, (s, q), (s_new, q_new, why))
-            stop = PathStop("contact", s_new, None, f"{why} (at s = {s_hit:.10g})")
+            stop = PathStop("contact", s_new, None, why, s_hit)
             if s_new == s:
                 break
         last = abs(end - s_new) <= 1e-15 or stop is not None

@@ -23,7 +23,6 @@ and NaN entries are free.
 Signs and frames are those of `sim_origami.creases` (rho > 0 valley seen from +z, radians).
 """
 
-import re
 from collections.abc import Sequence
 from dataclasses import replace
 from functools import cached_property
@@ -296,8 +295,7 @@ class PatternPath(JointSpaceKinematics):
         self.path = path
         self.stops = [p.stop for p in parts]
         if self._lead_stop is not None and traced.stop.kind == "end":  # the lead's end is where its motion stopped
-            lead = self._lead_stop  # its detail's "(at s = ...)" is in the lead's own parameter, not this path's
-            self.stops[-1] = replace(lead, s=traced.stop.s, detail=re.sub(r" \(at s = [^)]*\)", "", lead.detail))
+            self.stops[-1] = replace(self._lead_stop, s=traced.stop.s, hit=None)  # its hit is in the lead's parameter
         self.rank_events = [e for p in parts for e in p.events]
         s = np.concatenate([parts[0].s, *(p.s[1:] for p in parts[1:])])
         q = np.vstack([parts[0].q, *(p.q[1:] for p in parts[1:])])
@@ -528,6 +526,8 @@ class PatternPath(JointSpaceKinematics):
                 flips = self.signs[j] != 0 and abs(self.nodes[np.argmin(np.abs(self.s_nodes - stop.s)), j]) < 0.5
                 detail = (f"crease {names[j]} would fold against its {self.pattern.creases[j].assignment} letter"
                           if flips else f"crease {names[j]} folds flat (|rho| -> pi)") + f": {stop.detail}"
+            if stop.hit is not None:
+                detail += f" (at s = {stop.hit:.10g})"
             out.append(Event(what, float(stop.s), (BRANCH,), detail))
         for e in self.rank_events:
             out.append(Event("mobility-change", float(e.s), (BRANCH,), e.detail))
