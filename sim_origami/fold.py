@@ -135,6 +135,25 @@ FLAT_TOL = 1e-9
 
 
 @dataclass(frozen=True)
+class FileNumbering:
+    """
+    How a FOLD file numbered and measured what its pattern renumbers and rescales, so that a file written from the
+    pattern (`fold_dict`) can keep them: `unit` its frame_unit, `per_unit` pattern lengths per file unit (the
+    pattern's vertices over the file's), `vertex_of` the file vertex of each pattern vertex (cuts double some),
+    `edges` the file's edges_vertices in its order.
+    """
+
+    unit: str
+    per_unit: float
+    vertex_of: tuple[int, ...]
+    edges: tuple[tuple[int, int], ...]
+
+    def scaled(self, factor: float) -> "FileNumbering":
+        """The same numbering for the pattern's vertices times `factor` (e.g. scaled to a unit size)."""
+        return replace(self, per_unit=self.per_unit * factor)
+
+
+@dataclass(frozen=True)
 class FoldPattern:
     """
     A FOLD file read as a crease pattern. `fold_angles` (n_creases,) rad: the key frame's fold state (its
@@ -142,7 +161,8 @@ class FoldPattern:
     (n_frames, n_creases) rad: one row per `file_frames` entry, or None; both in `pattern.creases` order.
     `edge_of_crease`: the FOLD edge index of each crease. `frames_from_coords`: some frame's angles were
     measured from its 3-D vertices_coords (whose panels may bend). `notes`: one sentence per thing the reader
-    did. `unit_scale`: metres per file unit.
+    did. `unit_scale`: metres per file unit. `numbering`: the file's unit and numbering, for writing files that keep
+    them.
     """
 
     pattern: CreasePattern
@@ -153,6 +173,7 @@ class FoldPattern:
     notes: tuple[str, ...] = ()
     unit_scale: float = 1.0
     fit: "FormFit | AngleFit | None" = None
+    numbering: FileNumbering | None = None
 
 
 @dataclass(frozen=True)
@@ -279,12 +300,15 @@ def read_fold(source: str | os.PathLike | Mapping[str, Any]) -> FoldPattern:
                            f"{agree + disagree} creases: the file's faces run for the other side of the paper, "
                            "so M and V are read swapped")
         fold_angles, rows, from_coords = _angles(key, geometry, raw, frames, sheet)
+    _say_sign_conflicts(sheet, fold_angles, rows)
     fit: FormFit | AngleFit | None = _worst(sheet)
     complete = fold_angles is not None and bool(np.all(np.abs(fold_angles) < np.pi - FOLDED))  # NaN: free
     if fit is None and "edges_foldAngle" in key and complete and np.any(fold_angles != 0):
         fold_angles, fit = _nearest_closed(key, sheet, fold_angles, sheet.notes)
+    numbering = FileNumbering(sheet.unit, sheet.unit_scale, tuple(int(v) for v in sheet.source),
+                              tuple((int(a), int(b)) for a, b in sheet.edges_vertices))
     return FoldPattern(sheet.pattern, fold_angles, sheet.edge_of_crease, rows, from_coords, tuple(sheet.notes),
-                       sheet.unit_scale, fit)
+                       sheet.unit_scale, fit, numbering)
 
 
 def fold_dict(
@@ -296,12 +320,14 @@ def fold_dict(
     creator: str = "sim_origami",
     flat_tol: float = FLAT_TOL,
     notes: tuple[str, ...] = (),
+    numbering: FileNumbering | None = None,
 ) -> dict[str, Any]:
     """
     FOLD 1.2 data of a pattern: edges are its creases (in order, FOLD edge k = crease k) then the
-    boundary. The key frame holds `fold_angles` (n_creases,) rad, or 0; each row of `frames`
-    (n_frames, n_creases) rad becomes a `file_frames` entry inheriting from the key frame. Fold angles
-    are written in degrees, as given (continuous along the frames), and must lie in [-pi, pi].
+    boundary, lengths in metres; with the `numbering` of the file the pattern was read from, in that file's unit
+    and its vertex and edge numbers (`_renumbered`). The key frame holds `fold_angles` (n_creases,) rad, or 0;
+    each row of `frames` (n_frames, n_creases) rad becomes a `file_frames` entry inheriting from the key frame.
+    Fold angles are written in degrees, as given (continuous along the frames), and must lie in [-pi, pi].
 
     Assignments (`assign_creases`): without any fold angle given, each crease keeps the pattern's M/V/U.
     With angles, they come from the motion: `F` (written as 0 deg) for a crease whose |rho| stays within
@@ -348,7 +374,35 @@ def fold_dict(
             if np.any(own != letters[0]):
                 frame["edges_assignment"] = own.tolist() + ["B"] * len(boundary)
             doc["file_frames"].append(frame)
-    return doc
+    return doc if numbering is None else _renumbered(doc, numbering)
+
+
+def _renumbered(doc: dict[str, Any], numbering: FileNumbering) -> dict[str, Any]:
+    """
+    `fold_dict`'s data in the unit and numbering of the file read: coordinates in its frame_unit, and where the
+    pattern kept its vertices (no cut doubled one) and every edge is one of the file's, its edges in the file's
+    order; otherwise `vertices_sim_origami:fileVertex` and `edges_sim_origami:fileEdge` give each written vertex's and
+    edge's number in the file (null: none there).
+    """
+    coords = np.asarray(doc["vertices_coords"]) / numbering.per_unit  # 15 digits: 100 mm, not 100.00000000000001
+    doc = doc | {"frame_unit": numbering.unit, "vertices_coords": [[float(f"{x:.15g}") for x in v] for v in coords]}
+    vertex_of = numbering.vertex_of
+    index = {key(a, b): k for k, (a, b) in enumerate(numbering.edges)}
+    file_edge = [index.get(key(vertex_of[a], vertex_of[b])) for a, b in doc["edges_vertices"]]
+    kept = list(vertex_of) == list(range(len(vertex_of))) and sorted(e for e in file_edge if e is not None) == list(
+        range(len(numbering.edges))) and None not in file_edge
+    if not kept:
+        return doc | {"vertices_sim_origami:fileVertex": list(vertex_of), "edges_sim_origami:fileEdge": file_edge}
+    order = np.argsort(file_edge)
+
+    def reorder(frame: dict[str, Any]) -> dict[str, Any]:
+        return frame | {name: [value[k] for k in order] for name, value in frame.items()
+                        if name.startswith("edges_") and isinstance(value, list)}
+
+    out = reorder(doc)
+    if "file_frames" in doc:
+        out["file_frames"] = [reorder(frame) for frame in doc["file_frames"]]
+    return out
 
 
 def assign_creases(
@@ -396,9 +450,11 @@ def write_fold(
     creator: str = "sim_origami",
     flat_tol: float = FLAT_TOL,
     notes: tuple[str, ...] = (),
+    numbering: FileNumbering | None = None,
 ) -> Path:
     """Write `fold_dict(pattern, fold_angles, frames, ...)` as a .fold JSON file, atomically; returns the path."""
-    doc = fold_dict(pattern, fold_angles, frames, title=title, creator=creator, flat_tol=flat_tol, notes=notes)
+    doc = fold_dict(pattern, fold_angles, frames, title=title, creator=creator, flat_tol=flat_tol, notes=notes,
+                    numbering=numbering)
     return write_text(path, json.dumps(doc, indent=1) + "\n")
 
 
@@ -814,18 +870,21 @@ def _read_sheet(frame: Mapping[str, Any], label: str, prefer_frame: bool) -> _Sh
     if cuts:
         faces, source, new_of = fold_mesh.split_cuts(n, faces, cuts)
         notes.append(f"{len(cuts)} cut edge(s) split the paper: {len(source) - n} vertices doubled along them")
-    fit = folded = None
-    if flat:
-        xy = xy[source]
-    else:
-        folded, fit = _nearest_rigid(frame, label, xyz, faces, source, notes)
-        xy, more = fold_mesh.unfold(folded, faces)
-        notes.extend(more)
-    xy = xy * scale
 
     # Edges on the new vertices: a cut becomes one border edge per side, a join disappears.
     def renamed(f: int, a: int, b: int) -> tuple[int, int]:
         return (a, b) if new_of is None else (new_of[f, a], new_of[f, b])
+
+    fit = folded = None
+    if flat:
+        xy = xy[source]
+    else:
+        flat_sides = [renamed(by_side[key(*e)][0][0], *e) for e, letter in zip(edges, letters, strict=True)
+                      if letter == "F"]
+        folded, fit = _nearest_rigid(frame, label, xyz, _panels(faces, flat_sides), source, notes)
+        xy, more = fold_mesh.unfold(folded, faces)
+        notes.extend(more)
+    xy = xy * scale
 
     new_edges, new_letters, fold_index = edges, letters, list(range(len(edges)))
     if cuts or "J" in letters:
@@ -912,6 +971,21 @@ def _nearest_rigid(
     return fit.xyz, fit
 
 
+def _panels(faces: list[Face], flat: list[tuple[int, int]]) -> list[Face]:
+    """
+    The rigid panels of a sheet whose F creases (vertex pairs `flat`) stay flat, as its model holds them
+    (`kinematics.numeric_pattern.lock_flat`): the faces on either side of each merged into one polygon, which the fits
+    hold planar. A file written by a simulator or mesher (triangles, their diagonals F) is thereby fitted as its
+    quadrilaterals; otherwise each triangle pair could bend a little across its F crease within the precision, and the
+    model, holding it flat, would not close. The faces as they are where merging leaves no simple polygons (F creases
+    round a loop).
+    """
+    try:
+        return fold_mesh.merge_joins(faces, list(enumerate(flat))) if flat else faces
+    except ParameterError:
+        return faces
+
+
 def _worst(sheet: _Sheet) -> FormFit | None:
     """The folded forms read (the crease pattern's frame unfolded, other frames' coordinates) farthest from their
     nearest rigid states against their precision, and how many were compared; None without any."""
@@ -950,21 +1024,24 @@ def _on_a_motion(
     if len(sigma) < len(rho) or sigma[-1] <= MOBILE_RTOL * sigma[0]:
         return None  # its state already moves (an exact Miura sheet: 1e-15 of the largest; 6 decimals 1e-11)
     missed = []
+    panels = _panels(list(pattern.faces), [(c.start, c.end) for c in pattern.creases if c.assignment == "F"])
     if len(fit.xyz) <= MOTION_VERTICES:
-        moving = _further_states(fit, pattern, scale, hinges, loops, rho, k, label, missed)
+        moving = _further_states(fit, pattern, panels, scale, hinges, loops, rho, k, label, missed)
         if moving is not None:
             notes += missed
             return moving
-    flat = _flat_foldable(fit, pattern, label, notes)
+    flat = _flat_foldable(fit, panels, label, notes)
     notes += missed if flat is None else []
     return flat
 
 
 def _further_states(
-    fit: fold_mesh.Fit, pattern: CreasePattern, scale: float, hinges: list[tuple[int, int, int, int]],
-    loops: LoopSystem, rho: NDArray[np.float64], k: int, label: str, notes: list[str],
+    fit: fold_mesh.Fit, pattern: CreasePattern, panels: list[Face], scale: float,
+    hinges: list[tuple[int, int, int, int]], loops: LoopSystem, rho: NDArray[np.float64], k: int, label: str,
+    notes: list[str],
 ) -> fold_mesh.Fit | None:
-    """`_on_a_motion`'s fit with MOTION_STATES further states of the same faces (crease k the most folded of rho)."""
+    """`_on_a_motion`'s fit with MOTION_STATES further states of the same panels (`_panels`; crease k the most folded
+    of rho)."""
     fixed = np.zeros(len(rho), dtype=bool)
     fixed[k] = True
     faces = list(pattern.faces)
@@ -980,7 +1057,7 @@ def _further_states(
     marker = tuple(max((v for v in faces[f] if v not in (a, b)),
                        key=lambda v: np.linalg.norm(np.cross(fit.xyz[b] - fit.xyz[a], fit.xyz[v] - fit.xyz[a])))
                    for f in (left, right))
-    conditions = fold_mesh.MotionConditions(fit.xyz, faces, states, root, marker)
+    conditions = fold_mesh.MotionConditions(fit.xyz, panels, states, faces[root], marker)
     # the further states are free to move: 1e6 x the form's precision (as free as the least squares can tell)
     cheap = np.full(fit.given.shape, FREE_STATES * float(np.max(fit.precision)))
     n = len(fit.given)
@@ -1001,19 +1078,17 @@ def _further_states(
     return moving
 
 
-def _flat_foldable(fit: fold_mesh.Fit, pattern: CreasePattern, label: str, notes: list[str]) -> fold_mesh.Fit | None:
+def _flat_foldable(fit: fold_mesh.Fit, panels: list[Face], label: str, notes: list[str]) -> fold_mesh.Fit | None:
     """
-    For a pattern without F creases whose interior vertices all have four corners, the nearest developable form whose
+    For a pattern whose interior vertices all have four corners of its panels (`_panels`: faces joined by F creases are
+    one), the nearest developable form whose
     vertices are also flat-foldable (Kawasaki: opposite sectors sum to pi). A developable, flat-foldable
     quadrilateral mesh with one rigidly folded state folds rigidly (Tachi 2009, "Generalization of rigid-foldable
     quadrilateral-mesh origami"), so this is a state on a rigid motion of its pattern, found by one sparse projection
     at any size (the fit of further states costs 7.6 s at 121 vertices). Used when within the coordinates' precision
     or the developable state (`fit`) is not; None otherwise.
     """
-    if any(c.assignment == "F" for c in pattern.creases):
-        return None  # a vertex with a crease held flat is not one of four folding creases
-    faces = list(pattern.faces)
-    conditions = fold_mesh.RigidConditions(fit.given, faces, flat_foldable=True)
+    conditions = fold_mesh.RigidConditions(fit.given, panels, flat_foldable=True)
     if conditions.n_sectors != 2 * len(conditions.interior) or not len(conditions.interior):
         return None
     found = fold_mesh.nearest_rigid(fit.given, fit.precision, conditions)
@@ -1185,7 +1260,7 @@ def _measured(sheet: _Sheet, frame: Mapping[str, Any], field: str) -> NDArray[np
         raise ParameterError(f"{field} has {len(xyz)} vertices; the crease pattern has {sheet.n_file_vertices}")
     given = xyz[sheet.source]
     fold_mesh.dihedral_angles(given, list(sheet.pattern.faces), sheet.hinges, sheet.signs, field)  # faces with area
-    faces = list(sheet.pattern.faces)
+    faces = _panels(list(sheet.pattern.faces), [(c.start, c.end) for c in sheet.pattern.creases if c.assignment == "F"])
     bars = fold_mesh.face_bars(faces)
     unit = frame.get("frame_unit", "unit")
     rest = np.linalg.norm(sheet.pattern.vertices[bars[:, 0]] - sheet.pattern.vertices[bars[:, 1]], axis=1)
@@ -1227,6 +1302,33 @@ def _letter_agreement(sheet: _Sheet) -> tuple[int, int]:
         same = np.sign(rho[clear]) == sheet.signs[clear]
         agree, disagree = agree + int(same.sum()), disagree + int((~same).sum())
     return agree, disagree
+
+
+def _say_sign_conflicts(sheet: _Sheet, key: NDArray[np.float64] | None, rows: NDArray[np.float64] | None) -> None:
+    """A note naming the M/V creases whose fold angle has the other letter's sign in some state (beyond FOLDED of
+    flat): the letters bound the trace to their side, so such a state cannot be reached as written."""
+    states = [s for s in (key, *(() if rows is None else rows)) if s is not None]
+    if not states:
+        return
+    rho = np.stack(states)
+    against = (np.sign(rho) == -sheet.signs) & (np.abs(rho) > FOLDED) & (sheet.signs != 0)
+    creases = np.flatnonzero(against.any(axis=0))
+    if not len(creases):
+        return
+    shown = []
+    for j in creases[:ADJUSTMENTS_SHOWN]:
+        row = int(np.flatnonzero(against[:, j])[0])
+        where = "" if row == 0 and key is not None else f" in frame {row + (key is None)}"
+        letter = sheet.pattern.creases[j].assignment  # as the file has it (the pattern's are swapped when seen from -z)
+        letter = {"M": "V", "V": "M"}[letter] if sheet.sign < 0 else letter
+        angle = np.rad2deg(sheet.sign * rho[row, j])
+        shown.append(f"{sheet.pattern.creases[j].name} {letter} at {angle:+.4g} deg{where}")
+    more = f" and {len(creases) - len(shown)} more" if len(creases) > len(shown) else ""
+    sheet.notes.append(
+        f"the fold angles contradict the M/V letters at {len(creases)} of {int(np.count_nonzero(sheet.signs))} "
+        f"lettered creases ({'; '.join(shown)}{more}): FOLD's positive angle is a valley; a crease folds only to its "
+        "letter's side, so such a state cannot be reached as written"
+    )
 
 
 def _swap_letters(sheet: _Sheet) -> _Sheet:

@@ -712,9 +712,10 @@ class MotionConditions:
     The conditions for a folded form X0 (n, 3) to lie on a rigid motion of its own crease pattern, for patterns
     whose loops leave them no freedom unless their geometry is special (a Miura or square-twist sheet: as many
     closure conditions as creases). X0 developable (`RigidConditions`), and K more folded states X1..XK of the same
-    faces: each face congruent to X0's (its sides and fan diagonals as long, and planar), the root face's vertices
-    where X0's are (the rigid placement fixed) and the distance between two vertices across a crease held (where the
-    state lies along the motion). Coordinates stacked ((K + 1) n, 3); `residual`, `jacobian` as `RigidConditions`.
+    faces: each face congruent to X0's (its sides and fan diagonals as long, and planar), the `gauge` vertices (one
+    face's) where X0's are (the rigid placement fixed) and the distance between two vertices across a crease held
+    (where the state lies along the motion). Coordinates stacked ((K + 1) n, 3); `residual`, `jacobian` as
+    `RigidConditions`.
     """
 
     def __init__(
@@ -722,14 +723,14 @@ class MotionConditions:
         xyz: NDArray[np.float64],
         faces: list[Face],
         states: list[NDArray[np.float64]],
-        root: int,
+        gauge: Face,
         marker: tuple[int, int],
     ):
         self.n, self.k = len(xyz), len(states)
         self.base = RigidConditions(xyz, faces)
         self.shape = RigidConditions(xyz, faces, np.zeros((0, 2), dtype=int), np.zeros(0))  # planarity only
         self.bars = face_bars(faces)
-        self.gauge = np.array(faces[root], dtype=int)
+        self.gauge = np.array(gauge, dtype=int)
         self.marker = np.array(marker, dtype=int)
         self.reach = np.array([np.linalg.norm(x[marker[0]] - x[marker[1]]) for x in states])
 

@@ -270,3 +270,51 @@ def test_rabbit_ear_check_catches_unassigned_creases_with_angles(motions, tmp_pa
     old.write_text(json.dumps(doc))
     distance = shape_distance(our_frames(old), rabbit_ear_frames(old))
     assert np.all(distance > 0.1)
+
+
+def user_file_in_mm() -> dict:
+    """A degree-4 vertex as a user's editor writes it: millimetres, its border edges first, one cut-free sheet."""
+    return {"file_spec": 1.2, "frame_unit": "mm",
+            "vertices_coords": [[0, 0], [163.8, 0], [32.76, 163.8], [-163.8, -16.38], [16.38, -163.8]],
+            "edges_vertices": [[1, 2], [2, 3], [3, 4], [4, 1], [0, 1], [0, 2], [0, 3], [0, 4]],
+            "edges_assignment": ["B", "B", "B", "B", "M", "V", "V", "V"],
+            "faces_vertices": [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 1]]}
+
+
+def test_a_file_in_mm_is_written_back_in_mm_with_its_own_edge_numbers():
+    # the pattern is read in metres and renumbered (creases first): written from it, a 163.8 mm sheet came back as
+    # 0.1638 m and its crease e4 as edge 0
+    doc = user_file_in_mm()
+    fold = read_fold(doc)
+    rho = np.deg2rad([-40.0, 20.0, 30.0, 25.0])
+    out = fold_dict(fold.pattern, rho, numbering=fold.numbering)
+    assert out["frame_unit"] == "mm" and out["vertices_coords"] == doc["vertices_coords"]
+    assert out["edges_vertices"] == doc["edges_vertices"]
+    assert out["edges_assignment"] == ["B"] * 4 + ["M", "V", "V", "V"]
+    assert out["edges_foldAngle"] == pytest.approx([0.0] * 4 + [-40.0, 20.0, 30.0, 25.0], abs=1e-12)
+    assert "vertices_sim_origami:fileVertex" not in out
+    # without the numbering: metres, creases first (what a caller without a file gets)
+    plain = fold_dict(fold.pattern, rho)
+    assert plain["frame_unit"] == "m" and plain["edges_vertices"][0] == [0, 1]
+
+
+def test_a_scaled_pattern_is_written_in_the_file_unit_too():
+    # the validation's pattern has its longest edge 1 (scenes.fold_file.unit_size): its numbering is scaled with it
+    fold = read_fold(user_file_in_mm())
+    longest = 0.1638 * np.hypot(1.0, 0.1)
+    pattern = dataclasses.replace(fold.pattern, vertices=fold.pattern.vertices / longest)
+    out = fold_dict(pattern, numbering=fold.numbering.scaled(1.0 / longest))
+    assert np.allclose(out["vertices_coords"], user_file_in_mm()["vertices_coords"], rtol=0, atol=1e-12)
+
+
+def test_a_cut_pattern_writes_its_numbering_as_a_mapping():
+    # a cut doubles vertices along it, so its vertices cannot keep their numbers: each written vertex and edge names
+    # its number in the file instead (null for an edge the file does not have)
+    doc = user_file_in_mm() | {"edges_assignment": ["B", "B", "B", "B", "C", "V", "V", "V"]}
+    fold = read_fold(doc)
+    out = fold_dict(fold.pattern, numbering=fold.numbering)
+    vertex_of, edge_of = out["vertices_sim_origami:fileVertex"], out["edges_sim_origami:fileEdge"]
+    assert len(vertex_of) == len(out["vertices_coords"]) == 6 and sorted(set(vertex_of)) == [0, 1, 2, 3, 4]
+    assert len(edge_of) == len(out["edges_vertices"])
+    for (a, b), k in zip(out["edges_vertices"], edge_of, strict=True):
+        assert k is None or sorted(doc["edges_vertices"][k]) == sorted((vertex_of[a], vertex_of[b]))
