@@ -107,18 +107,17 @@ def sweep_scale(scene: Scene, branch: str, start: float, stop: float) -> float:
     """
     The sweep start -> stop (rad) on `branch` over its preset's duration: long enough that the `fast` preset's lag
     stays near TARGET_FRACTION of its path-error tolerance, at least 1 and at most MAX_SCALE. A scene whose fast
-    closures are softer (`fast_step_scale`, `fast_timeconst_scale`) lags as their time constant squared, so it
-    sweeps slower in proportion.
+    closures are softer (`Tuning.fast_softening`) lags as their time constant squared, so it sweeps slower in
+    proportion.
     """
     base = FAST.sweep_duration
     needed = np.sqrt(LAG_S2 * path_acceleration(scene, branch, start, stop) / (TARGET_FRACTION * FAST.angle_rad))
-    soft = scene.fast_step_scale * scene.fast_timeconst_scale
-    return float(np.clip(soft * needed / base, 1.0, MAX_SCALE))
+    return float(np.clip(scene.tuning.fast_softening * needed / base, 1.0, MAX_SCALE))
 
 
 def sweep_duration(scene: Scene, branch: str, preset: Preset, start: float, stop: float) -> float:
     """
     Sweep time (s) of a run start -> stop (rad) on `branch` with `preset`: the preset's duration times the path's
-    `sweep_scale` times the scene's own `sweep_time_scale`.
+    `sweep_scale` times the scene's `Tuning.sweep_time_scale`.
     """
-    return preset.sweep_duration * sweep_scale(scene, branch, start, stop) * scene.sweep_time_scale
+    return preset.sweep_duration * sweep_scale(scene, branch, start, stop) * scene.tuning.sweep_time_scale

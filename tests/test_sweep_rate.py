@@ -10,6 +10,7 @@ from sim_origami.checks.paths import compare
 from sim_origami.kinematics.base import Branch
 from sim_origami.kinematics.bennett import Bennett
 from sim_origami.presets import FAST
+from sim_origami.scenes.base import Tuning
 from sim_origami.simulate import simulate
 from sim_origami.sweep_rate import MAX_SCALE, path_acceleration, sweep_duration, sweep_scale
 
@@ -86,3 +87,15 @@ def test_the_scale_is_at_least_one_and_capped():
     scene = scenes.get("bennett").build()
     assert sweep_scale(scene, "bennett", 1.0, 1.01) == 1.0
     assert sweep_scale(bennett_across_pi(1.0005), "bennett", *ACROSS_PI) == MAX_SCALE
+
+
+def test_the_scenes_tuning_scales_the_sweep():
+    """Softer fast closures (`Tuning.fast_softening`) lengthen the path rule's sweep in proportion, and
+    `Tuning.sweep_time_scale` multiplies the whole duration."""
+    scene = bennett_across_pi(1.2)
+    rule = sweep_duration(scene, "bennett", FAST, *ACROSS_PI)
+    assert rule > 2 * FAST.sweep_duration  # the rule's scale is above its floor of 1
+    soft = replace(scene, tuning=Tuning(fast_step_scale=1.25, fast_timeconst_scale=1.2, why="test"))
+    slow = replace(scene, tuning=Tuning(sweep_time_scale=3.0, why="test"))
+    np.testing.assert_allclose(sweep_duration(soft, "bennett", FAST, *ACROSS_PI), 1.5 * rule, rtol=1e-12)
+    np.testing.assert_allclose(sweep_duration(slow, "bennett", FAST, *ACROSS_PI), 3.0 * rule, rtol=1e-12)

@@ -7,7 +7,7 @@ module plus one scene module that calls `register`.
 
 import functools
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -19,6 +19,7 @@ from ..kinematics.base import Kinematics
 from ..mechanism import Mechanism
 from ..mjcf import ModelSetup
 from ..path import Polyline
+from ..peer_times import FREE_RUN_PEERS
 from ..precision import Adjustment, Typed, nearest_exact
 from ..presets import FAST, Preset
 
@@ -27,6 +28,50 @@ UNITS = {"deg": np.pi / 180.0, "m": 1.0, "": 1.0}
 # the loops the couplings imply.
 CLOSURE_SAMPLES = 9
 
+
+@dataclass(frozen=True)
+class Tuning:
+    """
+    How a scene's runs are tuned, apart from what its mechanism is: the preset they use unless told otherwise, and
+    scales that the `fast` preset (`Scene.model_setup`) and the path rule (`sweep_rate.sweep_duration`) apply. The
+    defaults suit every registered scene but the few whose `why` says, in one line, what they need and what it measured.
+    """
+
+    # The preset runs use unless told otherwise (with the presets' scaled regulariser `fast` beats `stiff` on every
+    # registered scene: `scripts/preset_compare.py`).
+    preset: Preset = FAST
+    # A sweep lasts the time its path's joint rates ask for (`sweep_rate.sweep_duration`) times this.
+    sweep_time_scale: float = 1.0
+    # The fast preset's step and its closure and drive time constants times this (their ratio kept); the path rule
+    # sweeps slower in proportion (the lag grows as the time constant squared).
+    fast_step_scale: float = 1.0
+    # The fast preset's closure and drive time constants times this as well, its step unchanged: softer closures lower
+    # a large pattern's closure gap mid-path and raise its lag near a lock (docs/fold_files.md).
+    fast_timeconst_scale: float = 1.0
+    # The fast preset's regulariser scale (mjcf_templates/options/fast.xml) times this: what lets MuJoCo's lag through
+    # an ill-conditioned closure near a lock.
+    fast_regularization_scale: float = 1.0
+    # Why the values differ from the defaults, in one line, with what was measured.
+    why: str = ""
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.preset, Preset):
+            raise ParameterError(f"preset = {self.preset!r}; it must be a Preset (presets.as_preset takes a name)")
+        for name in SCALES:
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not np.isfinite(value) or value <= 0:
+                raise ParameterError(f"{name} = {value!r}; it must be a finite number > 0")
+
+    @property
+    def fast_softening(self) -> float:
+        """How much softer than `fast`'s own its closures are: the factor its time constants grow by, which its lag
+        grows as the square of (the path rule sweeps this much slower)."""
+        return self.fast_step_scale * self.fast_timeconst_scale
+
+
+# The run-tuning scales, each > 0.
+SCALES = ("sweep_time_scale", "fast_step_scale", "fast_timeconst_scale", "fast_regularization_scale")
+DEFAULT_TUNING = Tuning()
 
 
 # Angle ranges (deg) shared by many parameters: sector angles and twists of a spherical or spatial link. An angle
@@ -143,6 +188,7 @@ class Scene:
       space, its parameter is the input, rad); `drive_joint` is then the first of them and `drive_scale` 1. Empty
       and None for the single drive (`drive_joint` = `drive_scale` * input).
     adjustments : the values as typed (parameters, a file's numbers) that the nearest exact model moved.
+    tuning : how its runs are tuned (`Tuning`), apart from the mechanism; the defaults unless the scene says why.
     """
 
     name: str
@@ -157,26 +203,7 @@ class Scene:
     gravity: tuple[float, float, float] | None = None  # m/s^2 in the root's frame: adds a free run
     free_start: float = 0.0  # input (rad) at which the free run is released at rest
     free_branch: str = ""  # branch of that start pose
-    # Another tool's published CPU time (s) for the same free run, shown beside ours: (tool, seconds)
-    free_run_peer: tuple[str, float] | None = None
-    # A sweep lasts the time its path's joint rates ask for (`sweep_rate.sweep_duration`) times this: the soft
-    # closures' angle error falls as the square of the sweep time (3.8-4.3x per doubling on every scene), and a scene
-    # whose closures lag more than the rule allows for says why it sets this.
-    sweep_time_scale: float = 1.0
-    # The preset runs use unless told otherwise, chosen per scene from `scripts/preset_compare.py` (with the
-    # presets' scaled regulariser 'fast' beats 'stiff' on every scene, and every registered scene runs it).
-    preset: Preset = FAST
-    # The fast preset's step and closure and drive time constants times this (their ratio kept). Larger models set
-    # 1.25: at 8 ms RK4's four force evaluations per step cost what Euler's one per 2 ms does, and MuJoCo's defaults
-    # (scripts/fast_vs_defaults.py) matched fast's CPU there; 1.25x costs 1.6x the error at 0.8x the CPU.
-    fast_step_scale: float = 1.0
-    # The fast preset's closure and drive time constants times this as well, its step unchanged: softer closures lower
-    # a large pattern's closure gap, which peaks mid-path where the sweep is fastest, and raise its lag near a lock
-    # (measured on FOLD sheets: docs/fold_files.md).
-    fast_timeconst_scale: float = 1.0
-    # The fast preset's regulariser scale (mjcf_templates/options/fast.xml) times this: MuJoCo softens every constraint
-    # row by R, and a large pattern near a lock, where its closure is ill-conditioned, lags by what R lets through.
-    fast_regularization_scale: float = 1.0
+    tuning: Tuning = DEFAULT_TUNING
     notes: str = ""
     pattern: CreasePattern | None = None
     self_contact: bool = False
@@ -185,6 +212,38 @@ class Scene:
     # Values as typed that the nearest exact model moved (`precision.nearest_exact`): validation checks that model
     # and reports each move against the value's precision.
     adjustments: tuple[Adjustment, ...] = ()
+
+    # Read-only views of `tuning` and of the peer table by the names callers outside the scenes still use (simulate,
+    # validation, the CLI, studies, scripts); to go once they read `tuning` and `peer_times` themselves.
+    @property
+    def preset(self) -> Preset:
+        """`tuning.preset`."""
+        return self.tuning.preset
+
+    @property
+    def sweep_time_scale(self) -> float:
+        """`tuning.sweep_time_scale`."""
+        return self.tuning.sweep_time_scale
+
+    @property
+    def fast_step_scale(self) -> float:
+        """`tuning.fast_step_scale`."""
+        return self.tuning.fast_step_scale
+
+    @property
+    def fast_timeconst_scale(self) -> float:
+        """`tuning.fast_timeconst_scale`."""
+        return self.tuning.fast_timeconst_scale
+
+    @property
+    def fast_regularization_scale(self) -> float:
+        """`tuning.fast_regularization_scale`."""
+        return self.tuning.fast_regularization_scale
+
+    @property
+    def free_run_peer(self) -> tuple[str, float] | None:
+        """Another tool's published CPU time for this scene's free run (`peer_times.FREE_RUN_PEERS`), if any."""
+        return FREE_RUN_PEERS.get(self.name)
 
     @property
     def drives(self) -> tuple[str, ...]:
@@ -235,8 +294,9 @@ class Scene:
             name=self.name, drives=self.drives, notes=self.notes,
             contact_pairs=self.contact_pairs,
             self_contact_exclude=self.pattern.touching_faces() if self.self_contact else None,
-            gravity=self.gravity, creases=self.crease_hinges, fast_step_scale=self.fast_step_scale,
-            fast_timeconst_scale=self.fast_timeconst_scale, fast_regularization_scale=self.fast_regularization_scale,
+            gravity=self.gravity, creases=self.crease_hinges, fast_step_scale=self.tuning.fast_step_scale,
+            fast_timeconst_scale=self.tuning.fast_timeconst_scale,
+            fast_regularization_scale=self.tuning.fast_regularization_scale,
         )
 
     def loop_to_mechanism(self, q_loop: ArrayLike) -> NDArray[np.float64]:
@@ -276,6 +336,27 @@ class Scene:
         margin = min(0.05 * max(abs(lo), abs(hi)), 0.25 * (hi - lo))
         start, stop = np.clip(self.path, lo + margin, hi - margin)
         return float(start), float(stop)
+
+
+# `Tuning`'s fields but `why`: `Scene(..., sweep_time_scale=3.0)` and `replace(scene, preset=STIFF)` (tests, plugins,
+# linkage files, docs/extending.md) still set them by these names; they go into `tuning`.
+TUNING_NAMES = frozenset(f.name for f in fields(Tuning)) - {"why"}
+
+
+def _tuning_by_name(init: Callable[..., None]) -> Callable[..., None]:
+    """Scene's dataclass `__init__`, taking `Tuning`'s fields by name into `tuning` as well."""
+
+    @functools.wraps(init)
+    def init_with_tuning(self: Scene, *args: object, **kwargs: object) -> None:
+        given = {name: kwargs.pop(name) for name in TUNING_NAMES & kwargs.keys()}
+        if given:
+            kwargs["tuning"] = replace(kwargs.get("tuning", DEFAULT_TUNING), **given)
+        init(self, *args, **kwargs)
+
+    return init_with_tuning
+
+
+Scene.__init__ = _tuning_by_name(Scene.__init__)
 
 
 def without_implied_closures(scene: Scene) -> Scene:

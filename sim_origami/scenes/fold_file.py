@@ -32,7 +32,7 @@ from ..graph import breadth_first_depths, central_node
 from ..kinematics.numeric_pattern import LOCK_MARGIN, SPARSE_FROM, TARGET_TOL, PatternPath, assignment_signs, lock_flat
 from ..origami import pattern_mechanism
 from ..path import independent_joints
-from .base import Scene
+from .base import Scene, Tuning
 
 # The default sweep runs from this fraction of the motion's end to the end.
 SWEEP_FROM = 0.3
@@ -56,6 +56,11 @@ LARGE_TIMECONST_SCALE = 1.2
 # sheets at a zigzag of 0.2 edge), so at most 0.65 of it at any extent (a 20 x 20 sheet, extent 27: 0.52 at x2).
 # Rooted at the input crease's face the gaps were twice as large, and this extent 15.
 LARGE_EXTENT = 30.0
+# Why a file's scene is tuned (`Tuning.why`), as measured above and in docs/fold_files.md.
+WHY = ("a file's thin panels lag near the lock a sweep ends at by what MuJoCo's regulariser R lets through "
+       "(4 x 4 sheet of 50:1 panels: 4.25x the angle tolerance at R / 10^4, 0.042x at R / 10^6)")
+LARGE_WHY = ("a large sheet's closure gap peaks mid-path and grows with its extent (12 x 12, 16 x 16 Miura sheets: "
+             "1.1-1.6x its tolerance, 0.68-0.97x at 1.2x the time constant)")
 # Exact frame angles may be this far (rad) from the rigid motion through them: FOLD writers round angles (the
 # same allowance as `numeric_pattern.TARGET_TOL`).
 FRAMES_TOL = TARGET_TOL
@@ -199,12 +204,14 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
         "M/V letters" if letters_only else "folded state"
     large = len(pattern.creases) > SPARSE_FROM
     extent = fold_mesh.size(pattern.vertices)  # units of the longest edge (`unit_size`)
+    tuning = Tuning(fast_regularization_scale=REGULARIZATION_SCALE, why=WHY)
+    if large:
+        tuning = replace(tuning, sweep_time_scale=max(1.0, np.sqrt(extent / LARGE_EXTENT)),
+                         fast_timeconst_scale=LARGE_TIMECONST_SCALE, why=f"{WHY}; {LARGE_WHY}")
     return Scene(
         name=f"fold-{Path(path).stem}", params={"size_m": size}, kinematics=kinematics, mechanism=mechanism,
         loop_joints=tuple(names), drive_joint=inputs[0], drive_scale=1.0, path=(float(sweep[0]), float(sweep[1])),
-        sweep_time_scale=max(1.0, np.sqrt(extent / LARGE_EXTENT)) if large else 1.0,
-        fast_timeconst_scale=LARGE_TIMECONST_SCALE if large else 1.0,
-        fast_regularization_scale=REGULARIZATION_SCALE,
+        tuning=tuning,
         notes=f"from {Path(path).name} ({source}), lengths in units of its longest edge {size:.6g} m, inputs "
         f"{', '.join(inputs)}; {kinematics.summary()}",
         pattern=pattern, drive_joints=tuple(inputs) if multi else (), drive_path=kinematics.path if multi else None,

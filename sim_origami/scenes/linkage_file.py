@@ -37,7 +37,7 @@ from ..mechanism import Mechanism
 from ..path import correct, secant
 from ..precision import Adjustment
 from ..presets import PRESETS
-from .base import Scene
+from .base import DEFAULT_TUNING, Scene, Tuning
 
 # Share of the sweep's stretch kept clear of a bifurcation at each end it meets one. Measured on the plane-symmetric
 # Bricard (case 10) over theta2 = -60 .. 60 deg, through its crossing at 0: fast path error 4.3e-5 rad, closure
@@ -127,7 +127,9 @@ def linkage_scene(path: str | Path) -> Scene:
     return Scene(
         name=f"linkage-{spec.name}", params={"length_unit_m": spec.length_m}, kinematics=kinematics,
         mechanism=mechanism, loop_joints=names, drive_joint=spec.input_joint, drive_scale=1.0, path=(lo, hi),
-        contact_pairs=spec.contact_pairs, sweep_time_scale=spec.sweep_time_scale,
+        contact_pairs=spec.contact_pairs,
+        tuning=DEFAULT_TUNING if spec.sweep_time_scale == 1.0 else Tuning(
+            sweep_time_scale=spec.sweep_time_scale, why="the file's sweep_time_scale"),
         notes=f"{spec.notes}; {notes}" if spec.notes else notes, adjustments=adjustments,
     )
 

@@ -30,13 +30,15 @@ from ..kinematics.truncated_octahedron import (
 from ..linkage import bar
 from ..mechanism import Body, Joint, Mechanism, ball_joint
 from ..origami import PALETTE
-from ..presets import FAST
-from .base import Param, Scene, register
+from .base import Param, Scene, Tuning, register
 from .polyhedra import AssemblyKinematics, collision_plate, kutzbach, plate
 
 WIDTH = 0.04  # bar and plate thickness (m); geometry only, the kinematics has zero thickness
 INPUT_JOINT = "A1"
 SQUARE_PAIRS = tuple(itertools.combinations([square[0][0] for square in SQUARES], 2))  # no square shares a joint
+# Why it sweeps slower than its path's rates ask (`Tuning.why`; the measurements in `interference_scene`).
+WHY = ("its blockage run stops at the cube's contact only at about 16x the preset's sweep: at the path "
+       "rule's 3.5x it stopped 1.5e-2 rad short (tolerance 3e-3), at 4.5 x that 9.6e-10 rad")
 
 
 def _bodies() -> list[Body]:
@@ -158,14 +160,13 @@ def interference_scene(
         # Seven coupled loops swept through 2.3 rad: stiff measured 1.8e-5 rad at the preset's 2 s sweep and
         # 6.9e-8 rad (vertices 6.8e-8) 16x slower, in 0.45 s of CPU; fast 16x gave 4.4e-7 with MuJoCo's own
         # regulariser and 8.0e-9 with the presets' (8x: 3.1e-8). Near the singular cube the blockage servo is
-        # slow to settle (it bounces off the contact and creeps back): held 1 s, fast stopped 1.3e-2 rad short,
-        # so the scene ran stiff; held 3 s (validation.BLOCKAGE_HOLD) fast 16x stops 9.6e-10 (zeta = 0) and 5.5e-6
-        # rad (15 deg) from the contact in 5.1-5.7 s of CPU, stiff 16x 2.0e-11 and 2.4e-5 in 8.5 s; fast 8x 3.5e-4
-        # and 1.1e-2 (too short at 15 deg). The path's rates ask for 3.4-3.6x (`sweep_rate`); the blockage, 16x.
-        preset=FAST,
-        # A design the closed form cannot follow to the cube has no path rates past its turning point
-        # (`sweep_rate` then times the preset's duration alone): it keeps the 16x the blockage needs.
-        sweep_time_scale=4.5 if drivable else 16.0,
+        # slow to settle (it bounces off the contact and creeps back): held 1 s, fast stopped 1.3e-2 rad short;
+        # held 3 s (validation.BLOCKAGE_HOLD) fast 16x stops 9.6e-10 (zeta = 0) and 5.5e-6 rad (15 deg) from the
+        # contact in 5.1-5.7 s of CPU, stiff 16x 2.0e-11 and 2.4e-5 in 8.5 s; fast 8x 3.5e-4 and 1.1e-2 (too short at
+        # 15 deg). The path's rates ask for 3.4-3.6x (`sweep_rate`), at which the blockage stops 1.5e-2 rad short.
+        # A design the closed form cannot follow to the cube has no path rates past its turning point (`sweep_rate`
+        # then times the preset's duration alone): it keeps the 16x the blockage needs.
+        tuning=Tuning(sweep_time_scale=4.5 if drivable else 16.0, why=WHY),
         # Squares share no joint: every pair may collide (faces passing through each other, Yang 2017's
         # "interference"); the collision plates touch 9.8 mrad of A1 before the cube, where the servo stops
         # (blockage study).
