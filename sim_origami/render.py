@@ -119,8 +119,9 @@ def render_frames(
     (`render_paper`), one camera that holds every frame.
     """
     out = Path(out)
-    model, data = compile_model(scene, ModelOptions(render=True))
-    binds = Bindings(scene, model)
+    compiled = compile_model(scene, ModelOptions(render=True))
+    model, data = compiled.fresh()
+    binds = Bindings(compiled)
     model.vis.global_.offwidth = max(model.vis.global_.offwidth, width)  # the offscreen buffer holds the frame
     model.vis.global_.offheight = max(model.vis.global_.offheight, height)
     _, radius = framing(scene, q)

@@ -21,9 +21,9 @@ from scipy.spatial.transform import Rotation
 from . import __version__
 from .files import atomic_path, write_text
 from .fold import write_fold
-from .mjcf import ModelOptions, Replay, replay_xml
+from .mjcf import CompiledModel, Replay, replay_xml
 from .presets import Preset
-from .simulate import Bindings, Scene, closure_model, constraint_jacobian, scene_xml, start_input
+from .simulate import Bindings, Scene, closure_model, constraint_jacobian, start_input
 from .validation import Report
 
 # Frames of each branch's motion in report.html's 3-D view, and the significant digits of its solids' vertices and
@@ -384,16 +384,18 @@ def pattern_drawing(report: Report) -> dict:
 
 
 def model_xml(report: Report) -> str:
-    """model.xml of a validation (`replay_model_xml` for its runs' branches and start inputs)."""
+    """model.xml of a validation (`replay_model_xml` of the model its runs stepped, for their branches and start
+    inputs)."""
     scene = report.scene
-    return replay_model_xml(scene, report.preset, {r.requested: start_input(scene, r.requested, report.seed)
-                                                   for r in report.runs})
+    return replay_model_xml(scene, report.model, {r.requested: start_input(scene, r.requested, report.seed)
+                                                  for r in report.runs})
 
 
-def replay_model_xml(scene: Scene, preset: Preset, starts: dict[str, float]) -> str:
+def replay_model_xml(scene: Scene, model: CompiledModel, starts: dict[str, float]) -> str:
     """
-    model.xml for runs from these start inputs (rad) by branch: the MJCF the dynamic runs stepped (preset,
-    joint-equality drive, no contact) with what plain MuJoCo needs to play it alone (`mjcf.replay_xml`): keyframes
+    model.xml for runs from these start inputs (rad) by branch: the MJCF text of `model`, the one the dynamic runs
+    stepped (`simulate.compile_model`: preset, joint-equality drive, no contact), with what plain MuJoCo needs to play
+    it alone (`mjcf.replay_xml`): keyframes
     `start_<branch>` at the closed form's start poses with ctrl there, and a position servo per driven joint. Loaded
     with `mujoco.MjModel.from_xml_path`, reset to a keyframe and stepped, it holds the start pose. To repeat a run
     bitwise: multiply `body_invweight0` and `dof_invweight0` by its numeric `regularization_scale`, disable actuation,
@@ -401,19 +403,19 @@ def replay_model_xml(scene: Scene, preset: Preset, starts: dict[str, float]) -> 
     (`simulate.drive_targets`) into its eq_data each step.
     """
     poses = {branch: scene.pose(branch, x) for branch, x in starts.items()}
-    kp, kv = servo_gains(scene, preset, poses)
+    kp, kv = servo_gains(model, poses)
     replay = Replay(poses, kp, kv, _ctrl_ranges(scene, starts), SERVO_TIMECONST)
-    return replay_xml(scene_xml(scene, ModelOptions(preset=preset)), scene.mechanism, scene.drives, replay) + "\n"
+    return replay_xml(model.xml, scene.mechanism, scene.drives, replay) + "\n"
 
 
 def servo_gains(
-    scene: Scene, preset: Preset, poses: dict[str, NDArray[np.float64]]
+    compiled: CompiledModel, poses: dict[str, NDArray[np.float64]]
 ) -> tuple[tuple[float, ...], tuple[float, ...]]:
     """model.xml's servo gains (kp, kv) per driven joint: critically damped with SERVO_TIMECONST on the mechanism's
-    inertia at that joint (`drive_inertia`) in the lightest of the start poses."""
-    model, data, _ = closure_model(scene, ModelOptions(preset=preset))
-    binds = Bindings(scene, model)
-    dofs = np.array([model.jnt_dofadr[model.joint(j).id] for j in scene.drives])
+    inertia at that joint (`drive_inertia`) in the lightest of the start poses, on the compiled model."""
+    model, data, _ = closure_model(compiled)
+    binds = Bindings(compiled)
+    dofs = np.array(compiled.ids.drive_dofs)
     inertia = []
     for q in poses.values():
         binds.set_pose(data, q)

@@ -14,10 +14,8 @@ aborts the run with `SimulationError`; warnings are captured so no MUJOCO_LOG.TX
 """
 
 import contextlib
-import copy
 import time
 import warnings
-import weakref
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -29,16 +27,7 @@ from scipy import sparse as sp
 from scipy.sparse.linalg import splu
 
 from .errors import DomainError, ParameterError, SimulationError
-from .mjcf import (
-    ModelOptions,
-    build_xml,
-    closures,
-    collision_name,
-    drive_name,
-    mujoco_joints,
-    site_name,
-    with_keyframes,
-)
+from .mjcf import CompiledModel, ModelIds, ModelOptions, build_model, build_xml, with_keyframes
 from .path import rank, rank_of
 from .presets import ACCURATE, Preset
 from .scenes.base import Scene
@@ -63,13 +52,6 @@ CHORD_RATE = 0.1
 CHOLESKY_SPAN = 1e6
 # A quasi-static sweep moves no joint by this much (rad) in one step: a larger jump marks a divergence.
 JUMP_RAD = 0.5
-# (scene, options) pairs whose MJCF text (`scene_xml`) and compiled model (`compile_model`) are kept: scenes are
-# immutable, and a scene's text is asked for up to four times a validation.
-XML_MEMO = 8
-_XML: dict[tuple[int, ModelOptions], tuple[weakref.ref, str]] = {}
-# The compiled models of the same pairs (a validation's run and projection share one; 32 ms to compile on the 16 x 16
-# Miura FOLD sheet, 0.8 ms to copy): each caller gets its own copy.
-_MODELS: dict[tuple[int, ModelOptions], tuple[weakref.ref, mujoco.MjModel]] = {}
 
 
 @dataclass(frozen=True)
@@ -121,67 +103,42 @@ def captured_warnings():
 
 
 def scene_xml(scene: Scene, options: ModelOptions, keyframes: dict[str, NDArray[np.float64]] | None = None) -> str:
+    """The MJCF text of a scene's mechanism and setup for these options (`mjcf.build_xml`), with keyframes if given."""
+    xml = build_xml(scene.mechanism, scene.model_setup(), options)
+    return with_keyframes(xml, scene.mechanism, keyframes) if keyframes else xml
+
+
+def compile_model(scene: Scene, options: ModelOptions | None = None) -> CompiledModel:
     """
-    The MJCF text of a scene's mechanism and setup for these options (`mjcf.build_xml`), kept for the last XML_MEMO
-    (scene, options) pairs (the 16 x 16 Miura FOLD sheet's text takes 0.42 s of CPU to build); with keyframes, that
-    text with them added (`mjcf.with_keyframes`).
+    The scene's model for these options (default `ModelOptions()`), built and compiled once (`mjcf.build_model`): the
+    16 x 16 Miura FOLD sheet's text takes 0.42 s of CPU to build, 32 ms to compile. A validation makes one per kind
+    of run and passes it to each function that steps or measures that model.
     """
-    if keyframes:
-        return with_keyframes(scene_xml(scene, options), scene.mechanism, keyframes)
-    return _kept(_XML, scene, options, lambda: build_xml(scene.mechanism, scene.model_setup(), options))
+    return build_model(scene.mechanism, scene.model_setup(), options or ModelOptions())
 
 
-def compile_model(scene: Scene, options: ModelOptions) -> tuple[mujoco.MjModel, mujoco.MjData]:
-    """Compile the scene's MJCF for these options, with the regularisation scale it states (the preset's, times the
-    scene's `fast_regularization_scale` under fast) applied; the compiled model is kept as the text is, so a
-    validation compiles once for its run, its projection and its mobility count, each getting a copy."""
-
-    def compiled() -> mujoco.MjModel:
-        model = mujoco.MjModel.from_xml_string(scene_xml(scene, options))
-        scale_regularization(model, float(model.numeric("regularization_scale").data[0]))
-        return model
-
-    model = copy.copy(_kept(_MODELS, scene, options, compiled))
-    return model, mujoco.MjData(model)
-
-
-def _kept(table: dict, scene: Scene, options: ModelOptions, make: Callable[[], object]) -> object:
-    """`make()` for (scene, options), kept in `table` for the last XML_MEMO pairs (first in, first out); a scene is
-    the same object, not a later one at a reused id."""
-    key = (id(scene), options)
-    kept = table.get(key)
-    if kept is None or kept[0]() is not scene:
-        if len(table) >= XML_MEMO:
-            table.pop(next(iter(table)))
-        kept = table[key] = (weakref.ref(scene), make())
-    return kept[1]
-
-
-def scale_regularization(model: mujoco.MjModel, scale: float) -> None:
-    """
-    Multiply every constraint row's regulariser R = (1 - d) / d x diagApprox by `scale`, through the inverse
-    weights diagApprox is read from (body_invweight0: connects and contacts; dof_invweight0: joint equalities).
-    MuJoCo caps the impedance d at 0.9999; scale 0.01 acts as d = 0.999999 (mjcf_templates/options/).
-    """
-    model.body_invweight0[:] *= scale
-    model.dof_invweight0[:] *= scale
+def _model(scene: Scene, model: CompiledModel | None, preset: Preset | None, **options) -> CompiledModel:
+    """`model`, or, without one, the scene's compiled for `preset` (default the scene's) and `options`; a model and
+    options for another are not taken together."""
+    if model is None:
+        return compile_model(scene, ModelOptions(preset=preset or scene.preset, **options))
+    if preset is not None or options:
+        raise ParameterError("give a compiled model or the options to compile one, not both")
+    return model
 
 
 class Bindings:
-    """Indices that map mechanism joints and closure sites to a compiled model."""
+    """A compiled model's ids (`CompiledModel.ids`) as index arrays that map mechanism joints and closure sites."""
 
-    def __init__(self, scene: Scene, model: mujoco.MjModel):
-        mech = scene.mechanism
-        joints = [(j, model.jnt_qposadr[model.joint(j.name).id]) for j in mujoco_joints(mech)]
+    def __init__(self, model: CompiledModel):
+        joints = model.ids.joints
         # hinges map one qpos entry to one mechanism angle: moved in one indexed copy (per step of a log)
         self.hinge_joints = np.array([j.joints[0] for j, _ in joints if j.triad is None], dtype=int)
         self.hinge_qpos = np.array([adr for j, adr in joints if j.triad is None], dtype=int)
         self.balls = [(j, adr) for j, adr in joints if j.triad is not None]
-        self.drive_qpos = model.jnt_qposadr[model.joint(scene.drive_joint).id]
-        self.drives_qpos = np.array([model.jnt_qposadr[model.joint(n).id] for n in scene.drives], dtype=int)
-        pairs = [(model.site(site_name(c.joint, "parent", c.k)).id, model.site(site_name(c.joint, "child", c.k)).id)
-                 for c in closures(mech)]
-        self.site_pairs = np.array(pairs, dtype=int).reshape(-1, 2)
+        self.drives_qpos = np.array(model.ids.drive_qpos, dtype=int)
+        self.drive_qpos = int(self.drives_qpos[0])
+        self.site_pairs = np.array(model.ids.site_pairs, dtype=int).reshape(-1, 2)
 
     def set_pose(self, data: mujoco.MjData, q: NDArray[np.float64]) -> None:
         """Write mechanism angles (n_joints,) into qpos (the spanning tree's joints)."""
@@ -292,26 +249,27 @@ def track(
 
 
 def drive_targets(
-    scene: Scene, model: mujoco.MjModel, drive: str, start: float, stop: float, duration: float, n: int
+    scene: Scene, model: mujoco.MjModel, ids: ModelIds, start: float, stop: float, duration: float, n: int
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """
     The input x (n,) (rad) of a minimum-jerk sweep start -> stop over `duration` (s) in n steps of the model's
     timestep, and the setpoints the drive is given: drive_scale * x for the servo; for the joint-equality
-    drive, x led by its lag 2 tau zeta xdot (tau clamped to refsafe's 2 h), so the joint tracks x. One drive:
-    setpoints (n,); a scene with `drive_path`: (n, k), the path's joint values at the (led) input.
+    drive (`ids` name its equalities), x led by its lag 2 tau zeta xdot (tau clamped to refsafe's 2 h), so the joint
+    tracks x. One drive: setpoints (n,); a scene with `drive_path`: (n, k), the path's joint values at the (led)
+    input.
     """
     h = model.opt.timestep
     shape, rate = ramp(np.clip(h * np.arange(1, n + 1) / duration, 0.0, 1.0))
     x = start + (stop - start) * shape
     if scene.drive_path is not None:
-        if drive == "equality":
-            eq = model.equality(drive_name(scene.drive_joint)).id
+        if ids.drive_equalities:
+            eq = ids.drive_equalities[0]
             tau = max(model.eq_solref[eq, 0], 2 * h)
             return x, scene.drive_values(x + 2 * tau * model.eq_solref[eq, 1] * (stop - start) * rate / duration)
         return x, scene.drive_values(x)
-    if drive != "equality":
+    if not ids.drive_equalities:
         return x, scene.drive_scale * x
-    eq = model.equality(drive_name(scene.drive_joint)).id
+    eq = ids.drive_equalities[0]
     tau = max(model.eq_solref[eq, 0], 2 * h)
     return x, scene.drive_scale * (x + 2 * tau * model.eq_solref[eq, 1] * (stop - start) * rate / duration)
 
@@ -343,11 +301,12 @@ def simulate(
     stop: float | None = None,
     seed: str = "closed",
     bias: float = 1e-4,
-    drive: str = "equality",
-    contact: bool = False,
+    drive: str | None = None,
+    contact: bool | None = None,
     duration: float | None = None,
     hold: float = 0.0,
     initial: NDArray[np.float64] | None = None,
+    model: CompiledModel | None = None,
 ) -> Trajectory:
     """
     Drive the scene's input from `start` to `stop` (radians) along a minimum-jerk ramp.
@@ -358,10 +317,10 @@ def simulate(
       Analytic branch to start on (seed 'closed') or to bias towards (seed 'flat').
     preset : Preset
       Integrator, step, constraint stiffness and sweep duration (mjcf_templates/options/); default the scene's.
-    drive : 'equality' or 'servo'
+    drive : 'equality' (default) or 'servo'
       Kinematic tracking, or a force-limited position servo (blockage runs).
     contact : bool
-      Enable the scene's contact pairs (thick panels).
+      Enable the scene's contact pairs (thick panels); default off.
     duration, hold : float
       Sweep time (default: `sweep_rate.sweep_duration`, from the path's joint rates) and extra time holding the
       final target.
@@ -369,15 +328,22 @@ def simulate(
       Mechanism angles to start from instead of the closed form's pose on `branch` at `start` (e.g. a
       pose of another model, to see which branch this mechanism takes from it); the drive starts at
       its angle there.
+    model : CompiledModel, optional
+      The model to step (`compile_model`; its options give the preset, drive and contact), instead of one compiled
+      from `preset`, `drive` and `contact` for this run.
     """
-    preset = preset or scene.preset
+    given = {k: v for k, v in (("drive", drive), ("contact", contact)) if v is not None}
+    if given.get("drive", "equality") not in ("equality", "servo"):
+        raise DomainError(f"unknown drive {drive!r}; use 'equality' or 'servo'")
     stop = scene.branch_path(branch)[1] if stop is None else stop
     if seed != "closed" or start is None:
         start = start_input(scene, branch, seed, bias, stop)
+    compiled = _model(scene, model, preset, **given)
+    preset, drive, ids = compiled.preset, compiled.options.drive, compiled.ids
     if drive not in ("equality", "servo"):
-        raise DomainError(f"unknown drive {drive!r}; use 'equality' or 'servo'")
-    model, data = compile_model(scene, ModelOptions(preset=preset, drive=drive, contact=contact))
-    binds = Bindings(scene, model)
+        raise DomainError(f"a run needs a driven model (drive 'equality' or 'servo'), not drive {drive!r}")
+    model, data = compiled.fresh()
+    binds = Bindings(compiled)
     if initial is not None:
         start = float(initial[scene.mechanism.joint_index(scene.drive_joint)]) / scene.drive_scale
     binds.set_pose(data, start_pose(scene, branch, start) if initial is None else np.asarray(initial, dtype=float))
@@ -390,21 +356,18 @@ def simulate(
     if n < 2:
         raise DomainError(f"a sweep of {T + hold:g} s is shorter than two time steps of {h:g} s")
     t = h * np.arange(1, n + 1)
-    x, setpoints = drive_targets(scene, model, drive, start, stop, T, n)
+    x, setpoints = drive_targets(scene, model, ids, start, stop, T, n)
     qpos_log = np.empty((n, model.nq))
     contacts = np.zeros(n if drive == "servo" else 0, dtype=np.int64)
     force = np.zeros(n if drive == "servo" else 0)
-    step = run_step(model, data, preset, scene.drives)
+    step = run_step(model, data, compiled)
     with captured_warnings() as messages:
         if drive == "equality" and scene.drive_path is not None:
-            rows = np.array([model.equality(drive_name(j)).id for j in scene.drives])
-            cpu = track_path(model, data, rows, setpoints, qpos_log, step)
+            cpu = track_path(model, data, np.array(ids.drive_equalities), setpoints, qpos_log, step)
         elif drive == "equality":
-            eq = model.equality(drive_name(scene.drive_joint)).id
-            cpu = track(model, data, model.eq_data[eq], 0, setpoints, qpos_log, step)
+            cpu = track(model, data, model.eq_data[ids.drive_equalities[0]], 0, setpoints, qpos_log, step)
         else:
-            act = model.actuator(drive_name(scene.drive_joint)).id
-            acts = np.array([model.actuator(drive_name(j)).id for j in scene.drives])
+            act, acts = ids.drive_actuators[0], np.array(ids.drive_actuators)
             cpu = time.thread_time()
             for k in range(n):
                 data.ctrl[acts if scene.drive_path is not None else act] = setpoints[k]
@@ -475,7 +438,10 @@ def _sparse_normal(J: sp.csr_matrix) -> Callable[[NDArray[np.float64]], NDArray[
     return lambda r: lu.solve(transposed @ r)
 
 
-def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: Preset | None = None) -> Trajectory:
+def project(
+    scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: Preset | None = None,
+    model: CompiledModel | None = None,
+) -> Trajectory:
     """
     Kinematic projection: at each input, Gauss-Newton on MuJoCo's equality residuals (efc_pos,
     efc_J rows of the closures) over the free hinges, from a secant prediction along the path; each input keeps the
@@ -483,10 +449,12 @@ def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: P
     earlier one (chord method), while the residual falls by 1 / CHORD_RATE a step or is below STALL_TOL, by Cholesky
     where J is well conditioned (`_least_squares`): the 16 x 16 Miura FOLD sheet (1350 rows, 255 hinges) took 418
     factorisations and 4.6 s of CPU for 200 inputs with a fresh one per input and per slow step, 201 and 2.5 s now.
+    On `model` (an equality-driven `compile_model`) when given, else on one compiled for `preset` (the scene's).
     """
-    preset = preset or scene.preset
-    model, data, free = closure_model(scene, ModelOptions(preset=preset))
-    binds = Bindings(scene, model)
+    compiled = _model(scene, model, preset)
+    preset = compiled.preset
+    model, data, free = closure_model(compiled)
+    binds = Bindings(compiled)
     inputs = np.asarray(inputs, dtype=float)
     binds.set_pose(data, scene.pose(branch, float(inputs[0])))
     qpos_log, step, rate = np.empty((len(inputs), model.nq)), np.zeros(model.nv), np.zeros(model.nv)
@@ -538,22 +506,31 @@ def project(scene: Scene, branch: str, inputs: NDArray[np.float64], *, preset: P
     )
 
 
-def contact_distance(scene: Scene, branch: str, inputs: NDArray[np.float64]) -> NDArray[np.float64]:
+def contact_distance(
+    scene: Scene, branch: str, inputs: NDArray[np.float64], model: CompiledModel | None = None
+) -> NDArray[np.float64]:
     """
-    Smallest signed distance (m) between the collision solids of `Scene.colliding_pairs`, posed by the closed form.
+    Smallest signed distance (m) between the collision solids of `Scene.colliding_pairs`, posed by the closed form,
+    on `model` (a `compile_model` with contact) or one compiled for it.
 
     A kinematic sweep (no dynamics): negative means the solids overlap at that input.
     """
-    return _contact_probe(scene, branch)(np.asarray(inputs, dtype=float))
+    return _contact_probe(scene, branch, model)(np.asarray(inputs, dtype=float))
 
 
-def _contact_probe(scene: Scene, branch: str) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
+def _contact_probe(
+    scene: Scene, branch: str, model: CompiledModel | None = None
+) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
     """contact_distance on one compiled model: a function of the inputs (rad) for repeated calls."""
     if not scene.colliding_pairs:
         raise ParameterError(f"scene {scene.name!r} has no collision solids (no contact pairs, no self contact)")
-    model, data = compile_model(scene, ModelOptions(contact=True))
-    binds = Bindings(scene, model)
-    pairs = [(model.geom(collision_name(a)).id, model.geom(collision_name(b)).id) for a, b in scene.colliding_pairs]
+    compiled = model or compile_model(scene, ModelOptions(contact=True))
+    if not compiled.ids.collision:
+        raise ParameterError(f"scene {scene.name!r}: the model given has no collision solids (compiled without "
+                             "contact)")
+    model, data = compiled.fresh()
+    binds = Bindings(compiled)
+    pairs = [(compiled.ids.collision[a], compiled.ids.collision[b]) for a, b in scene.colliding_pairs]
     fromto = np.zeros(6)
 
     def distance(inputs: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -567,14 +544,17 @@ def _contact_probe(scene: Scene, branch: str) -> Callable[[NDArray[np.float64]],
     return distance
 
 
-def contact_input(scene: Scene, branch: str, start: float, stop: float, samples: int = 400) -> float:
+def contact_input(
+    scene: Scene, branch: str, start: float, stop: float, samples: int = 400, model: CompiledModel | None = None
+) -> float:
     """
-    First input between start and stop at which the contact pairs touch, or nan if none.
+    First input between start and stop at which the contact pairs touch, or nan if none (on `model`, as
+    `contact_distance`).
 
     A sweep first (the distance is not monotonic: solids can pass through and separate again),
     then bisection inside the first bracket, to about 1e-12 rad.
     """
-    distance = _contact_probe(scene, branch)
+    distance = _contact_probe(scene, branch, model)
     grid = np.linspace(start, stop, samples)
     dist = distance(grid)
     hits = np.flatnonzero(dist <= 0.0)
@@ -592,13 +572,15 @@ def contact_input(scene: Scene, branch: str, start: float, stop: float, samples:
     return float(hi)
 
 
-def mujoco_mobility(scene: Scene, q: NDArray[np.float64]) -> int:
+def mujoco_mobility(scene: Scene, q: NDArray[np.float64], model: CompiledModel | None = None) -> int:
     """
     Instantaneous mobility in MuJoCo at mechanism angles q: hinges minus the numerical rank of
-    the closure rows of efc_J (the drive disabled). Redundant connect rows only lower the rank.
+    the closure rows of efc_J (the drive disabled), on `model` (an equality-driven `compile_model`; its options do not
+    change the rows) or one compiled for the fast preset. Redundant connect rows only lower the rank.
     """
-    model, data, _ = closure_model(scene, ModelOptions())
-    return model.nv - rank(_closure_rows(model, data, Bindings(scene, model), q))
+    compiled = model or compile_model(scene)
+    mj, data, _ = closure_model(compiled)
+    return mj.nv - rank(_closure_rows(mj, data, Bindings(compiled), q))
 
 
 def _closure_rows(model: mujoco.MjModel, data: mujoco.MjData, binds: Bindings, q: NDArray[np.float64]) -> NDArray:
@@ -608,17 +590,20 @@ def _closure_rows(model: mujoco.MjModel, data: mujoco.MjData, binds: Bindings, q
     return constraint_jacobian(model, data)[data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY]
 
 
-def projection_conditions(scene: Scene, q: NDArray[np.float64]) -> NDArray[np.float64]:
+def projection_conditions(
+    scene: Scene, q: NDArray[np.float64], model: CompiledModel | None = None
+) -> NDArray[np.float64]:
     """
     How much the rounding of MuJoCo's closure residuals can move the free hinges at mechanism angles q (k, n_joints)
     (rad), per pose (k,): the sites' largest distance from the world origin (m) over the smallest singular value of
     efc_J's closure rows over the free hinges (m per rad; the smallest the rank keeps, `path.rank_of`, as
     `mujoco_mobility` counts). Site positions round to eps times their coordinates, and a least-squares step turns a
     residual r into angles of up to |r| / s_min: a thin-panelled sheet (6 x 6 Miura of 25:1 panels, 6 units long,
-    s_min 8.5e-4) reads 7000 where the loop closure's own condition number is 207.
+    s_min 8.5e-4) reads 7000 where the loop closure's own condition number is 207. On `model` as `mujoco_mobility`.
     """
-    model, data, free = closure_model(scene, ModelOptions())
-    binds = Bindings(scene, model)
+    compiled = model or compile_model(scene)
+    model, data, free = closure_model(compiled)
+    binds = Bindings(compiled)
     q = np.atleast_2d(q)
     out = np.ones(len(q))
     for k, pose in enumerate(q):
@@ -629,13 +614,13 @@ def projection_conditions(scene: Scene, q: NDArray[np.float64]) -> NDArray[np.fl
     return out
 
 
-def closure_model(scene: Scene, options: ModelOptions) -> tuple[mujoco.MjModel, mujoco.MjData, NDArray[np.int64]]:
-    """The compiled model with its drive equalities off, and the dof addresses of the hinges it leaves free (every one
-    but the driven): what the kinematic projection, the mobility count and the projection's conditioning work on."""
-    model, data = compile_model(scene, options)
-    for name in scene.drives:
-        data.eq_active[model.equality(drive_name(name)).id] = 0
-    held = {model.jnt_dofadr[model.joint(name).id] for name in scene.drives}
+def closure_model(compiled: CompiledModel) -> tuple[mujoco.MjModel, mujoco.MjData, NDArray[np.int64]]:
+    """A copy of the compiled model with its drive equalities off, and the dof addresses of the hinges it leaves free
+    (every one but the driven): what the kinematic projection, the mobility count and the projection's conditioning
+    work on."""
+    model, data = compiled.fresh()
+    data.eq_active[list(compiled.ids.drive_equalities)] = 0
+    held = set(compiled.ids.drive_dofs)
     return model, data, np.array([a for a in range(model.nv) if a not in held], dtype=int)
 
 
@@ -673,20 +658,28 @@ def state_energy(model: mujoco.MjModel, qpos: NDArray[np.float64], qvel: NDArray
     return out
 
 
-def simulate_free(scene: Scene, branch: str, start: float, duration: float, *, preset: Preset = ACCURATE) -> FreeRun:
+def simulate_free(
+    scene: Scene, branch: str, start: float, duration: float, *, preset: Preset | None = None,
+    model: CompiledModel | None = None,
+) -> FreeRun:
     """
     Release the scene at rest from the closed pose on `branch` at input `start`, under its gravity,
     with no drive, and record joint angles and total (kinetic + potential) energy at the trajectory's states
-    (`state_energy`, after the stepping: its CPU is not the run's).
+    (`state_energy`, after the stepping: its CPU is not the run's). On `model` (`compile_model` with drive "none" and
+    gravity) when given, else on one compiled for `preset` (default accurate).
     """
-    model, data = compile_model(scene, ModelOptions(preset=preset, drive="none", gravity=True))
-    binds = Bindings(scene, model)
+    if model is not None and preset is not None:
+        raise ParameterError("give a compiled model or the options to compile one, not both")
+    compiled = model or compile_model(scene, ModelOptions(preset=preset or ACCURATE, drive="none", gravity=True))
+    preset = compiled.preset
+    model, data = compiled.fresh()
+    binds = Bindings(compiled)
     binds.set_pose(data, start_pose(scene, branch, start))
     mujoco.mj_forward(model, data)
     n = round(duration / model.opt.timestep)
     qpos_log, qvel_log = np.empty((n + 1, model.nq)), np.empty((n + 1, model.nv))
     qpos_log[0], qvel_log[0] = data.qpos, data.qvel
-    step = run_step(model, data, preset)
+    step = run_step(model, data, compiled)
     with captured_warnings() as messages:
         qpos, qvel = data.qpos, data.qvel
         cpu = time.thread_time()

@@ -20,8 +20,8 @@ import mujoco
 import numpy as np
 
 from .errors import ParameterError
-from .mjcf import drive_name
-from .presets import STABILIZE_MODES, Preset
+from .mjcf import CompiledModel, ModelIds
+from .presets import STABILIZE_MODES
 
 MODES = STABILIZE_MODES  # "none", "position", "position-velocity": what a preset states (`Preset.stabilize`)
 
@@ -52,27 +52,22 @@ def before_projection() -> Iterator[list[np.ndarray]]:
         _BEFORE.remove(log)
 
 
-def run_step(
-    model: mujoco.MjModel, data: mujoco.MjData, preset: Preset, drive_joints: tuple[str, ...] = (), iterations: int = 1
-) -> StepFunction:
+def run_step(model: mujoco.MjModel, data: mujoco.MjData, compiled: CompiledModel, iterations: int = 1) -> StepFunction:
     """
-    The step function of a run with `preset`: `mujoco.mj_step` itself for a preset without stabilisation, else
-    `step_function` (`iterations` projection steps) with the drives' equality rows left out and their joints held
-    (the inputs stay the drives' own).
+    The step function of a run on `model` (a copy of `compiled.model`) with its preset: `mujoco.mj_step` itself for a
+    preset without stabilisation, else `step_function` (`iterations` projection steps) with the drives' equality rows
+    left out and their joints held (the inputs stay the drives' own; an undriven model holds none).
     """
-    return drive_step(model, data, preset.stabilize, drive_joints, iterations)
+    return drive_step(model, data, compiled.preset.stabilize, compiled.ids, iterations)
 
 
 def drive_step(
-    model: mujoco.MjModel, data: mujoco.MjData, mode: str, drive_joints: tuple[str, ...] = (), iterations: int = 1
+    model: mujoco.MjModel, data: mujoco.MjData, mode: str, ids: ModelIds | None = None, iterations: int = 1
 ) -> StepFunction:
-    """`step_function` for `mode` with the equality rows of `drive_joints` (if any) left out and their dofs held."""
-    if mode == "none" or not drive_joints:
+    """`step_function` for `mode` with the drives' equality rows (`ids`, if any) left out and their dofs held."""
+    if mode == "none" or ids is None or not ids.held:
         return step_function(model, data, mode, iterations=iterations)
-    names = [model.equality(i).name for i in range(model.neq)]
-    skip = tuple(i for i, name in enumerate(names) if name in {drive_name(j) for j in drive_joints})
-    frozen = tuple(int(model.jnt_dofadr[model.joint(j).id]) for j in drive_joints)
-    return step_function(model, data, mode, skip=skip, frozen=frozen, iterations=iterations)
+    return step_function(model, data, mode, skip=ids.drive_equalities, frozen=ids.held, iterations=iterations)
 
 
 def make_constraint(model: mujoco.MjModel, data: mujoco.MjData) -> None:

@@ -31,8 +31,9 @@ from .checks.branches import classify
 from .checks.paths import compare
 from .errors import ParameterError
 from .files import atomic_path, write_text
+from .mjcf import ModelOptions
 from .presets import Preset, as_preset
-from .simulate import simulate
+from .simulate import compile_model, simulate
 from .tolerances import TOLERANCES
 
 # Largest grid a sweep takes: at 1 to 20 s of CPU per point, 10 000 points keep 8 cores busy for up to 7 hours.
@@ -135,12 +136,13 @@ def run_point(scene_name: str, params: dict[str, float], preset: Preset | None =
     try:
         scene = scenes.get(scene_name).build_from_user(params)
         kin, loops = scene.kinematics, scene.kinematics.loop_system()
+        model = compile_model(scene, ModelOptions(preset=preset or scene.preset))  # every branch's run
         errors, gaps, residuals, followed = [], [], [], []
         for branch in kin.branches():
             start, stop = scene.branch_path(branch.name)
             x = np.linspace(start, stop, 50)
             residuals.append(float(np.max(loops.residual_norm(kin.loop_angles(kin.joint_angles(branch.name, x))))))
-            run = simulate(scene, branch.name, preset=preset)
+            run = simulate(scene, branch.name, model=model)
             path = compare(scene, branch.name, run.q)
             errors.append(path.max_error())
             gaps.append(float(np.max(run.closure_residual)))

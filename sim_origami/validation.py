@@ -20,7 +20,7 @@ from .checks.reference import ReferenceCheck, ReferenceCurves, compare_reference
 from .checks.verdict import Verdict
 from .conventions import MIN_SWEEP_RAD
 from .errors import ConvergenceError, SimulationError
-from .mjcf import ModelOptions
+from .mjcf import CompiledModel, ModelOptions
 from .presets import FAST, Preset, as_preset
 from .scenes.base import Scene
 from .simulate import (
@@ -90,7 +90,7 @@ class Report:
     """Everything `report.write` saves: verdicts, runs, events and timings (seconds)."""
 
     scene: Scene
-    preset: Preset
+    model: CompiledModel  # what the dynamic runs and the projection stepped (model.xml starts from its text)
     seed: str
     runs: tuple[BranchRun, ...]
     verdicts: tuple[Verdict, ...]
@@ -99,6 +99,11 @@ class Report:
     free_run: dict | None = None
     timings: dict[str, float | int] = field(default_factory=dict)
     reference: ReferenceCheck | None = None  # the user's curves against the numeric path and MuJoCo
+
+    @property
+    def preset(self) -> Preset:
+        """The preset the runs used."""
+        return self.model.preset
 
     @property
     def passed(self) -> bool:
@@ -161,12 +166,12 @@ def path_events(
     return tuple(out)
 
 
-def mobility_report(scene: Scene, branch: str, start: float) -> dict:
+def mobility_report(scene: Scene, branch: str, start: float, model: CompiledModel | None = None) -> dict:
     """
     Grubler-Kutzbach count next to the numerical rank of the closure Jacobian, from the numeric
-    loop and from MuJoCo's efc_J, and the truss method's mobility and states of self-stress (Yang 2017, ch. 2),
-    at the path start and at each bifurcation point of the branch. The idle spins of bars held by two
-    spherical joints are left out of every count (the truss method has none).
+    loop and from MuJoCo's efc_J (on `model`, `simulate.mujoco_mobility`), and the truss method's mobility and states
+    of self-stress (Yang 2017, ch. 2), at the path start and at each bifurcation point of the branch. The idle spins
+    of bars held by two spherical joints are left out of every count (the truss method has none).
     """
     kin = scene.kinematics
     loops = kin.loop_system()
@@ -177,8 +182,9 @@ def mobility_report(scene: Scene, branch: str, start: float) -> dict:
         q_loop = kin.loop_angles(kin.joint_angles(branch, x))
         q = scene.loop_to_mechanism(q_loop)[0]
         truss = truss_mobility(scene, q, stresses=False)  # counts only: the sparse Gram matrix ranks big trusses
-        return {"input_rad": x, "numeric": loops.mobility(q_loop[0]) - idle, "mujoco": mujoco_mobility(scene, q) - idle,
-                "truss": truss.mobility, "truss_self_stress": truss.self_stress}
+        return {"input_rad": x, "numeric": loops.mobility(q_loop[0]) - idle,
+                "mujoco": mujoco_mobility(scene, q, model) - idle, "truss": truss.mobility,
+                "truss_self_stress": truss.self_stress}
 
     points = [e.input for e in kin.events() if e.kind == "bifurcation" and branch in e.branches]
     out = {"gruebler": kin.gruebler(), "idle_spins": idle, "inputs": len(scene.drives), "start": at(start),
@@ -203,15 +209,16 @@ def _followed(scene: Scene, branch: str, run: Trajectory) -> str:
     return classify(scene.kinematics, path.input, path.simulated).followed
 
 
-def bifurcation_study(scene: Scene, preset: Preset) -> list[dict]:
+def bifurcation_study(scene: Scene, model: CompiledModel) -> list[dict]:
     """
     At each bifurcation point x_b: for each branch through it, start MuJoCo on that branch (a closed
     pose) at x_b + d for d in SEED_OFFSETS and drive STUDY_SPAN away; record the smallest d at which
     the engine follows the branch. Unseeded: start at x_b itself, at rest, and record what it takes.
     Each run lasts the preset's sweep time, without the scene's slow-down: telling branches apart needs
-    far less accuracy than the path check (at most 1e-5 rad against branches >= 1e-2 apart here).
+    far less accuracy than the path check (at most 1e-5 rad against branches >= 1e-2 apart here). The runs step
+    `model` (an equality-driven `simulate.compile_model`).
     """
-    duration = preset.sweep_duration
+    duration = model.preset.sweep_duration
     out = []
     for event in scene.kinematics.events():
         if event.kind != "bifurcation":
@@ -224,13 +231,13 @@ def bifurcation_study(scene: Scene, preset: Preset) -> list[dict]:
             seeded[branch] = None
             for d in SEED_OFFSETS:
                 start = xb + sign * d
-                run = simulate(scene, branch, preset=preset, start=start, stop=start + sign * STUDY_SPAN,
-                               duration=duration)
+                run = simulate(scene, branch, start=start, stop=start + sign * STUDY_SPAN, duration=duration,
+                               model=model)
                 if _followed(scene, branch, run) == branch:
                     seeded[branch] = d
                     break
         stop = xb + sign * STUDY_SPAN
-        run = simulate(scene, event.branches[0], preset=preset, start=xb, stop=stop, duration=duration)
+        run = simulate(scene, event.branches[0], start=xb, stop=stop, duration=duration, model=model)
         unseeded = _followed(scene, event.branches[0], run)
         out.append(
             {
@@ -255,20 +262,22 @@ def _point_verdicts(scene: Scene, branch: str, preset: Preset, q: np.ndarray, x:
                     preset.angle_rad, "max over samples and vertices, unit edges", len(x)),)
 
 
-def run_branch(scene: Scene, branch: str, preset: Preset, seed: str) -> BranchRun:
-    """MuJoCo dynamic run and projection on one branch, compared and classified."""
+def run_branch(scene: Scene, branch: str, model: CompiledModel, seed: str) -> BranchRun:
+    """MuJoCo dynamic run and projection on one branch, both on `model` (an equality-driven
+    `simulate.compile_model`), compared and classified."""
+    preset = model.preset
     with before_projection() as own:
-        dynamic = simulate(scene, branch, preset=preset, seed=seed)
+        dynamic = simulate(scene, branch, seed=seed, model=model)
     dyn = compare(scene, branch, dynamic.q)
     labels = classify(scene.kinematics, dyn.input, dyn.simulated)
     start, stop = scene.branch_path(branch)
-    proj_traj = project(scene, branch, np.linspace(start, stop, ANALYTIC_SAMPLES), preset=preset)
+    proj_traj = project(scene, branch, np.linspace(start, stop, ANALYTIC_SAMPLES), model=model)
     proj = compare(scene, branch, proj_traj.q)
     proj_error, proj_tol, proj_where = floor_verdict_values(
         scene, proj, TOLERANCES.projection_rad, TOLERANCES.projection_cond_factor,
-        other_condition=lambda k: projection_conditions(scene, proj_traj.q[k]),
+        other_condition=lambda k: projection_conditions(scene, proj_traj.q[k], model),
     )
-    mobility = mobility_report(scene, branch, start)
+    mobility = mobility_report(scene, branch, start, model)
     disagree = sum(
         len({p["numeric"], p["mujoco"], p["truss"]}) > 1 for p in [mobility["start"], *mobility["bifurcations"]]
     )
@@ -278,7 +287,7 @@ def run_branch(scene: Scene, branch: str, preset: Preset, seed: str) -> BranchRu
                 MIN_SWEEP_RAD / swept if swept > 0 else float("inf"), 1.0,
                 f"the input moved over {swept:.3g} rad; a run that sweeps less than {MIN_SWEEP_RAD:g} rad cannot pass"),
         *_point_verdicts(scene, branch, preset, dynamic.q, dyn.input),
-        *_own_step_verdicts(scene, branch, preset, own),
+        *_own_step_verdicts(scene, branch, model, own),
         Verdict(f"{branch}: MuJoCo {preset.name} path error" + (" after projection" if own else "") + " (rad)",
                 dyn.max_error(), preset.angle_rad,
                 "max over samples and joints of |sim - closed form at the simulated input|"
@@ -382,29 +391,31 @@ def _input_count_verdict(scene: Scene, branch: str, mobility: dict) -> tuple[Ver
                     f"{', '.join(scene.drives)}"),)
 
 
-def _own_step_verdicts(scene: Scene, branch: str, preset: Preset, own: list[np.ndarray]) -> tuple[Verdict, ...]:
+def _own_step_verdicts(scene: Scene, branch: str, model: CompiledModel, own: list[np.ndarray]) -> tuple[Verdict, ...]:
     """
     A projected preset's dynamic check: the path error of MuJoCo's own steps, each from the last projected state and
     read before its projection (`stabilize.before_projection`), held to the plain fast preset's tolerance; () for a
     plain preset (it records nothing). After the projection the path is on the closures whatever the dynamics did.
+    `model` is the one the run stepped.
     """
     if not own:
         return ()
-    model, _ = compile_model(scene, ModelOptions(preset=preset))
-    path = compare(scene, branch, Bindings(scene, model).angles(scene, np.array(own)))
-    return (Verdict(f"{branch}: MuJoCo {preset.name} path error before projection (rad)", path.max_error(),
+    path = compare(scene, branch, Bindings(model).angles(scene, np.array(own)))
+    return (Verdict(f"{branch}: MuJoCo {model.preset.name} path error before projection (rad)", path.max_error(),
                     FAST.angle_rad, "MuJoCo's own step from each projected state, before its projection: "
                     "max over steps and joints of |sim - closed form at the simulated input|", len(own)),)
 
 
 def run_blockage(scene: Scene, branch: str) -> tuple[Blockage, float]:
-    """Force-limited servo from the path start to the branch's end in the direction of travel, held BLOCKAGE_HOLD."""
+    """Force-limited servo from the path start to the branch's end in the direction of travel, held BLOCKAGE_HOLD,
+    under the scene's preset; the kinematic contact on the same model."""
     start, stop = scene.branch_path(branch)
     lo, hi = scene.kinematics.branch(branch).domain
     lock = hi if stop >= start else lo
     t0 = time.thread_time()
-    touch = contact_input(scene, branch, start, lock)
-    run = simulate(scene, branch, drive="servo", contact=True, start=start, stop=lock, hold=BLOCKAGE_HOLD)
+    model = compile_model(scene, ModelOptions(preset=scene.preset, drive="servo", contact=True))
+    touch = contact_input(scene, branch, start, lock, model=model)
+    run = simulate(scene, branch, start=start, stop=lock, hold=BLOCKAGE_HOLD, model=model)
     x = run.q[:, scene.mechanism.joint_index(scene.drive_joint)] / scene.drive_scale
     result = assess(x, run.target, run.drive_force / scene.drive_scale, 20.0 / scene.drive_scale, touch, lock)
     return result, time.thread_time() - t0
@@ -414,8 +425,9 @@ def run_free(scene: Scene, preset: Preset) -> tuple[dict, list[Verdict]]:
     """Release the scene at rest under gravity for FREE_DURATION s: energy drift (at the run's states) and path error;
     under a projected preset also the path error of MuJoCo's own steps before their projections (`_own_step_verdicts`:
     after them the run is on the closures whatever the dynamics did)."""
+    model = compile_model(scene, ModelOptions(preset=preset, drive="none", gravity=True))
     with before_projection() as own:
-        run = simulate_free(scene, scene.free_branch, scene.free_start, FREE_DURATION, preset=preset)
+        run = simulate_free(scene, scene.free_branch, scene.free_start, FREE_DURATION, model=model)
     path = compare(scene, scene.free_branch, run.q)
     drift = float(np.max(np.abs(run.energy - run.energy[0])))
     doc = {"duration_s": FREE_DURATION, "steps": run.steps, "step_cpu_time_s": run.cpu_time_s,
@@ -427,7 +439,7 @@ def run_free(scene: Scene, preset: Preset) -> tuple[dict, list[Verdict]]:
         tool, seconds = scene.free_run_peer
         doc |= {"peer": tool, "peer_time_s": seconds, "peer_over_mujoco": seconds / run.cpu_time_s}
         peer = f" ({tool}: {seconds} s)"
-    own_step = _own_step_verdicts(scene, scene.free_branch, preset, own)
+    own_step = _own_step_verdicts(scene, scene.free_branch, model, own)
     if own_step:
         doc["angle_error_before_projection_max_rad"] = own_step[0].measured
     verdicts = [
@@ -481,6 +493,7 @@ def validate(
         start, stop = scene.branch_path(name)
         verdicts += closed_form_verdicts(scene, name, np.linspace(start, stop, ANALYTIC_SAMPLES))
     timings["closed_form_and_numeric_cpu_s"] = time.thread_time() - t0
+    model = compile_model(scene, ModelOptions(preset=preset))  # the dynamic runs', the projection's and model.xml's
     runs = []
     for name in names:
         phase(f"MuJoCo {preset.name} and its projection, {name}")
@@ -497,7 +510,7 @@ def validate(
                                  f"-> {stop:.6g} rad)",
                                  (*verdicts, *known), events)
         try:
-            runs.append(run_branch(scene, name, preset, seed))
+            runs.append(run_branch(scene, name, model, seed))
         except SimulationError as err:  # the report keeps what is known without MuJoCo: often the first cause
             known = _input_count_verdict(scene, name, {"along_path": _along_path(scene.kinematics),
                                                        "inputs": len(scene.drives)})
@@ -526,7 +539,7 @@ def validate(
     t1 = time.thread_time()
     if branch is None:
         phase("bifurcation study")
-    study = tuple(bifurcation_study(scene, preset)) if branch is None else ()
+    study = tuple(bifurcation_study(scene, model)) if branch is None else ()
     for point in study:
         never = [b for b, d in point["seed_offset_followed_rad"].items() if d is None]
         verdicts.append(
@@ -546,4 +559,4 @@ def validate(
         verdicts += checked.verdicts
         timings["reference_cpu_s"] = time.thread_time() - t2
     timings["total_cpu_s"] = time.thread_time() - t0
-    return Report(scene, preset, seed, tuple(runs), tuple(verdicts), blockage, study, free, timings, checked)
+    return Report(scene, model, seed, tuple(runs), tuple(verdicts), blockage, study, free, timings, checked)

@@ -56,7 +56,7 @@ def test_mjcf_connects_the_kept_loops_and_measures_every_one():
     """Two connects a kept cut crease, none for an implied one; both carry their closure sites."""
     scene = without_implied_closures(scenes.get("waterbomb-tube").build(n=6, m=3))
     mech = scene.mechanism
-    model, _ = compile_model(scene, ModelOptions())
+    model = compile_model(scene, ModelOptions()).model
     connects = [model.equality(i).name for i in range(model.neq) if model.eq_type[i] == mujoco.mjtEq.mjEQ_CONNECT]
     kept = [mech.joints[i].name for i in mech.cut_joints if mech.joints[i].name not in mech.implied]
     assert sorted(connects) == sorted(f"close_{name}_{k}" for name in kept for k in range(2))

@@ -20,8 +20,10 @@ from sim_origami.geometry import wrap
 from sim_origami.kinematics.rssr import RSSR
 from sim_origami.linkage_file import read_linkage
 from sim_origami.linkage_forms import chain_poses
+from sim_origami.mjcf import ModelOptions
 from sim_origami.presets import FAST
 from sim_origami.scenes.linkage_file import linkage_scene
+from sim_origami.simulate import compile_model
 from sim_origami.validation import run_branch
 
 
@@ -431,7 +433,7 @@ def test_a_sweep_through_the_rsrrr_singular_pose_fails_naming_it():
     (mobility 2); the failing verdict names the singular pose it crossed."""
     scene = linkage_scene(EXAMPLES / "myard-rsrrr.toml")
     crossing = dataclasses.replace(scene, path=(np.deg2rad(25.0), np.deg2rad(155.0)))
-    run = run_branch(crossing, "path-2", FAST, "closed")
+    run = run_branch(crossing, "path-2", compile_model(crossing, ModelOptions(preset=FAST)), "closed")
     failed = {v.name.split(": ")[1]: v for v in run.verdicts if not v.passed}
     error = failed["MuJoCo fast path error (rad)"]
     assert error.measured > 1e-4 and set(failed) <= {"MuJoCo fast path error (rad)", "MuJoCo fast closure residual (m)",

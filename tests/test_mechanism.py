@@ -152,7 +152,7 @@ def test_panel_solids_and_collision_solids_are_watertight_volumes(name, values):
 )
 def test_mujoco_body_mass_and_inertia_equal_trimesh_at_panel_density(name, values):
     scene = scenes.get(name).build(**values)
-    model, _ = compile_model(scene, ModelOptions(contact=True))  # collision solids compiled too: massless
+    model = compile_model(scene, ModelOptions(contact=True)).model  # collision solids compiled too: massless
     density = panel_density()
     checked = 0
     for body in scene.mechanism.bodies:

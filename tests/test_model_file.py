@@ -11,11 +11,11 @@ import pytest
 
 from sim_origami import scenes
 from sim_origami.checks.paths import compare
-from sim_origami.mjcf import ModelOptions, build_xml, closures, colour_name, with_keyframes
+from sim_origami.mjcf import ModelOptions, build_xml, closures, colour_name, scale_regularization, with_keyframes
 from sim_origami.mjcf_tidy import box_of, short
 from sim_origami.presets import ACCURATE, FAST, FAST_PROJECTED, STIFF
 from sim_origami.report import model_xml, replay_model_xml, write
-from sim_origami.simulate import Bindings, drive_targets, scale_regularization, scene_xml, start_input, track
+from sim_origami.simulate import Bindings, compile_model, drive_targets, scene_xml, start_input, track
 from sim_origami.validation import validate
 
 GUIDE = Path(__file__).resolve().parents[1] / "docs" / "guide.md"
@@ -81,9 +81,11 @@ def assert_holds(scene, text: str) -> None:
         assert np.max(np.abs(moved)) <= HOLD_RAD, (model.key(key).name, np.max(np.abs(moved)))
 
 
-def replay(scene, path, branch: str, duration: float, scaled: bool = True) -> np.ndarray:
+def replay(report, path, branch: str, duration: float, scaled: bool = True) -> np.ndarray:
     """Plain MuJoCo repeating a validation run: load model.xml, apply its regulariser scale, actuation off, start at
-    the keyframe, the run's equality drive on along the run's ramp over `duration` s (report.json's sweep time)."""
+    the keyframe, the run's equality drive on along the run's ramp over `duration` s (report.json's sweep time); the
+    run's model (`report.model`) maps qpos to angles and times the drive."""
+    scene = report.scene
     model = mujoco.MjModel.from_xml_path(str(path))
     if scaled:
         scale_regularization(model, float(model.numeric("regularization_scale").data[0]))
@@ -95,20 +97,20 @@ def replay(scene, path, branch: str, duration: float, scaled: bool = True) -> np
     mujoco.mj_forward(model, data)
     n = round(duration / model.opt.timestep)
     start, stop = start_input(scene, branch), scene.branch_path(branch)[1]
-    _, setpoints = drive_targets(scene, model, "equality", start, stop, duration, n)
+    _, setpoints = drive_targets(scene, model, report.model.ids, start, stop, duration, n)
     qpos_log = np.empty((n, model.nq))
     track(model, data, model.eq_data[drive], 0, setpoints, qpos_log)
-    return Bindings(scene, model).angles(scene, qpos_log)
+    return Bindings(report.model).angles(scene, qpos_log)
 
 
 def test_model_xml_loaded_in_plain_mujoco_repeats_the_run_bitwise(bennett_run):
     scene, report, path = bennett_run
     run = report.runs[0]
-    q = replay(scene, path, run.requested, run.dynamic.sweep_time_s)
+    q = replay(report, path, run.requested, run.dynamic.sweep_time_s)
     assert np.array_equal(q, run.dynamic.q)
     assert compare(scene, run.requested, q).max_error() == run.dynamic_path.max_error()
     # the scale matters: without it the same file gives another run (the regulariser is 100x larger)
-    unscaled = replay(scene, path, run.requested, run.dynamic.sweep_time_s, scaled=False)
+    unscaled = replay(report, path, run.requested, run.dynamic.sweep_time_s, scaled=False)
     assert compare(scene, run.requested, unscaled).max_error() != run.dynamic_path.max_error()
 
 
@@ -118,14 +120,15 @@ def test_no_mjcf_attribute_states_the_regulariser_scale():
     weights and the inertia together (the motion is the unscaled model's). Should a MuJoCo lift the clamp, this
     fails: then state the scale in solimp."""
     scene = scenes.get("bennett").build()
-    xml = scene_xml(scene, ModelOptions(preset=FAST))
+    compiled = compile_model(scene, ModelOptions(preset=FAST))
+    xml = compiled.xml
 
     def state(text: str, scaled: bool = False) -> mujoco.MjData:
         model = mujoco.MjModel.from_xml_string(text)
         if scaled:
             scale_regularization(model, 0.01)
         data = mujoco.MjData(model)
-        Bindings(scene, model).set_pose(data, scene.pose("bennett", 1.0) + 1e-3)  # a little open, moving
+        Bindings(compiled).set_pose(data, scene.pose("bennett", 1.0) + 1e-3)  # a little open, moving
         data.qvel[:] = [0.3, -0.2, 0.1]
         mujoco.mj_forward(model, data)
         return data
@@ -159,7 +162,8 @@ def test_model_xml_reads_as_a_model_file(bennett_run):
 @pytest.mark.parametrize("preset", [FAST, STIFF, ACCURATE, FAST_PROJECTED], ids=lambda p: p.name)
 def test_model_xml_comments_need_no_code_of_this_package(preset):
     scene = scenes.get("bennett").build()
-    comments = re.findall(r"<!--(.*?)-->", replay_model_xml(scene, preset, starts(scene)))
+    model = compile_model(scene, ModelOptions(preset=preset))
+    comments = re.findall(r"<!--(.*?)-->", replay_model_xml(scene, model, starts(scene)))
     assert not [c for c in comments if any(w in c for w in CODE_WORDS)]
 
 
@@ -176,8 +180,8 @@ def test_materials_are_named_by_colour(rgba, name):
 def test_model_file_is_the_run_text_plus_replay_lines(bennett_run):
     """The file is the run's MJCF text line for line, except lines added for replay and two kinds of changed line:
     the solids' colours by material name, the drive equality off."""
-    scene, report, path = bennett_run
-    run = (scene_xml(scene, ModelOptions(preset=report.preset)) + "\n").splitlines()
+    _, report, path = bennett_run
+    run = (report.model.xml + "\n").splitlines()
     diff = list(difflib.ndiff(run, path.read_text().splitlines()))
     removed = [line[2:] for line in diff if line.startswith("- ")]
     added = [line[2:].strip() for line in diff if line.startswith("+ ")]
@@ -192,7 +196,8 @@ def test_model_file_is_the_run_text_plus_replay_lines(bennett_run):
 
 def test_model_file_is_the_compiled_model_of_the_run(bennett_run):
     scene, report, path = bennett_run
-    stepped = scene_xml(scene, ModelOptions(preset=report.preset))
+    stepped = report.model.xml
+    assert stepped == scene_xml(scene, ModelOptions(preset=report.preset))  # built again: the same text
     loaded = mujoco.MjModel.from_xml_path(str(path))
     compiled = mujoco.MjModel.from_xml_string(stepped)
     assert loaded.opt.timestep == compiled.opt.timestep == 0.008
@@ -208,7 +213,8 @@ def test_model_file_is_the_compiled_model_of_the_run(bennett_run):
 def test_validation_writes_the_replay_text_of_its_runs(bennett_run):
     """The cheaper path the all-scenes test takes (no validation) writes model.xml's text exactly."""
     scene, report, path = bennett_run
-    assert path.read_text() == model_xml(report) == replay_model_xml(scene, report.preset, starts(scene))
+    again = compile_model(scene, ModelOptions(preset=report.preset))
+    assert path.read_text() == model_xml(report) == replay_model_xml(scene, again, starts(scene))
 
 
 def test_replay_snippet_in_the_guide_holds_and_folds(bennett_run):
@@ -231,7 +237,7 @@ def test_replay_snippet_in_the_guide_holds_and_folds(bennett_run):
 @pytest.mark.parametrize("name", ["bennett", "miura"])
 def test_model_xml_holds_every_start_pose_in_plain_mujoco(name):
     scene = scenes.get(name).build()
-    assert_holds(scene, replay_model_xml(scene, scene.preset, starts(scene)))
+    assert_holds(scene, replay_model_xml(scene, compile_model(scene, ModelOptions(preset=scene.preset)), starts(scene)))
 
 
 @pytest.mark.slow
@@ -240,7 +246,7 @@ def test_every_scenes_model_xml_holds_every_start_pose_in_plain_mujoco(name):
     """Each built-in scene's model.xml as a validation of all its branches writes it (28 scenes, 58 keyframes: about
     45 s here, most of it building the polyhedra and tubes)."""
     scene = scenes.get(name).build()
-    text = replay_model_xml(scene, scene.preset, starts(scene))
+    text = replay_model_xml(scene, compile_model(scene, ModelOptions(preset=scene.preset)), starts(scene))
     assert_holds(scene, text)
     assert not [c for c in re.findall(r"<!--(.*?)-->", text) if any(w in c for w in CODE_WORDS)]
 

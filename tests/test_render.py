@@ -151,7 +151,7 @@ def test_render_model_has_a_front_and_a_back_surface_per_panel():
     from sim_origami.simulate import compile_model
 
     scene = scenes.get("vertex4").build()
-    model, _ = compile_model(scene, ModelOptions(render=True))
+    model = compile_model(scene, ModelOptions(render=True)).model
     for body in scene.mechanism.bodies:
         front, back = model.geom(f"{body.name}_front"), model.geom(f"{body.name}_back")
         assert front.rgba[0] - front.rgba[2] > 0.5 and abs(back.rgba[0] - back.rgba[2]) < 0.05  # yellow, white

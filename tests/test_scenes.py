@@ -36,13 +36,14 @@ def test_registry_lists_the_shipped_scenes_sorted():
 def test_scene_builds_with_defaults_compiles_and_steps_without_mujoco_warnings(name):
     scene = scenes.get(name).build()
     assert scene.name == name
-    model, data = compile_model(scene, ModelOptions())
-    binds = Bindings(scene, model)
+    compiled = compile_model(scene, ModelOptions())
+    model, data = compiled.fresh()
+    binds = Bindings(compiled)
     branch = scene.kinematics.branches()[0].name
     start, _ = scene.branch_path(branch)
     binds.set_pose(data, scene.pose(branch, start))
     mujoco.mj_forward(model, data)
-    drive = model.equality(f"drive_{scene.drive_joint}").id
+    drive = compiled.ids.drive_equalities[0]
     model.eq_data[drive, 0] = scene.drive_scale * start
     for _ in range(50):
         mujoco.mj_step(model, data)

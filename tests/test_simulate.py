@@ -62,8 +62,9 @@ def drive_input(scene, q: np.ndarray) -> np.ndarray:
 
 def posed(scene, q: np.ndarray):
     """A compiled model and data with hinges at mechanism angles q (n_joints,), kinematics done."""
-    model, data = compile_model(scene, ModelOptions())
-    Bindings(scene, model).set_pose(data, q)
+    compiled = compile_model(scene, ModelOptions())
+    model, data = compiled.fresh()
+    Bindings(compiled).set_pose(data, q)
     mujoco.mj_kinematics(model, data)
     return model, data
 
@@ -247,7 +248,7 @@ def test_compiled_models_carry_the_presets_regulariser_scale(preset):
     """compile_model scales MuJoCo's inverse weights (hence every row's R) by the preset's stated factor."""
     scene = scenes.get("thick-diamond").build()
     plain = mujoco.MjModel.from_xml_string(scene_xml(scene, ModelOptions(preset=preset)))
-    model, _ = compile_model(scene, ModelOptions(preset=preset))
+    model = compile_model(scene, ModelOptions(preset=preset)).model
     scale = preset.regularization_scale
     assert scale == model.numeric("regularization_scale").data[0] == 0.01
     np.testing.assert_allclose(model.body_invweight0, scale * plain.body_invweight0, rtol=1e-15, atol=0)
@@ -259,7 +260,7 @@ def test_a_scenes_regulariser_scale_multiplies_the_fast_presets_and_is_written_i
     scene = replace(scenes.get("thick-diamond").build(), fast_regularization_scale=0.01)
     for preset, expected in ((FAST, 1e-4), (STIFF, 0.01)):
         plain = mujoco.MjModel.from_xml_string(scene_xml(scene, ModelOptions(preset=preset)))
-        model, _ = compile_model(scene, ModelOptions(preset=preset))
+        model = compile_model(scene, ModelOptions(preset=preset)).model
         assert model.numeric("regularization_scale").data[0] == pytest.approx(expected, rel=1e-15)
         np.testing.assert_allclose(model.body_invweight0, expected * plain.body_invweight0, rtol=1e-14, atol=0)
 
@@ -284,7 +285,7 @@ def test_a_raw_stepping_loop_warns_in_python_and_leaves_no_mujoco_log(tmp_path, 
     arrives as a RuntimeWarning and no MUJOCO_LOG.TXT lands in the working directory."""
     monkeypatch.chdir(tmp_path)
     assert mujoco.get_mju_user_warning() is warn_in_python  # installed by importing the harness
-    model, data = compile_model(scene_of("vertex4"), ModelOptions())
+    model, data = compile_model(scene_of("vertex4"), ModelOptions()).fresh()
     data.qvel[:] = 1e200  # deterministic: MuJoCo reports a bad QVEL/QACC on the first step
     with pytest.warns(RuntimeWarning, match="MuJoCo: .*"):
         for _ in range(3):

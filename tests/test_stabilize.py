@@ -56,14 +56,15 @@ def test_plain_presets_step_bit_for_bit_as_mj_step(preset):
     """The plain presets run mj_step itself: the harness's Bennett sweep equals a bare mj_step loop bit for bit."""
     scene = scene_of("bennett")
     run = simulate(scene, "bennett", preset=preset)
-    model, data = compile_model(scene, ModelOptions(preset=preset))
-    assert run_step(model, data, preset, scene.drives) is mujoco.mj_step
-    binds = Bindings(scene, model)
+    compiled = compile_model(scene, ModelOptions(preset=preset))
+    model, data = compiled.fresh()
+    assert run_step(model, data, compiled) is mujoco.mj_step
+    binds = Bindings(compiled)
     start, stop = scene.branch_path("bennett")
     binds.set_pose(data, start_pose(scene, "bennett", start))
     mujoco.mj_forward(model, data)
-    _, setpoints = drive_targets(scene, model, "equality", start, stop, run.steps * model.opt.timestep, run.steps)
-    eq = model.equality(f"drive_{scene.drive_joint}").id
+    _, setpoints = drive_targets(scene, model, compiled.ids, start, stop, run.steps * model.opt.timestep, run.steps)
+    eq = compiled.ids.drive_equalities[0]
     log = np.empty((run.steps, model.nq))
     for value, row in zip(setpoints, log, strict=True):
         model.eq_data[eq][0] = value
@@ -76,8 +77,9 @@ def test_plain_free_run_is_mj_step():
     """A04's fast free run equals a bare mj_step loop bit for bit, and differs from fast-projected's."""
     scene = scene_of("iftomm-a04")
     run = simulate_free(scene, scene.free_branch, scene.free_start, 1.0, preset=FAST)
-    model, data = compile_model(scene, ModelOptions(preset=FAST, drive="none", gravity=True))
-    binds = Bindings(scene, model)
+    compiled = compile_model(scene, ModelOptions(preset=FAST, drive="none", gravity=True))
+    model, data = compiled.fresh()
+    binds = Bindings(compiled)
     binds.set_pose(data, start_pose(scene, scene.free_branch, scene.free_start))
     mujoco.mj_forward(model, data)
     log = np.empty((run.steps, model.nq))
@@ -95,9 +97,10 @@ def test_free_run_energy_is_read_at_the_states():
     reading is off the state's by up to about 1e-5 J (measured), more than the drift the states hold."""
     scene = scene_of("iftomm-a04")
     run = simulate_free(scene, scene.free_branch, scene.free_start, 1.0, preset=FAST)
-    model, data = compile_model(scene, ModelOptions(preset=FAST, drive="none", gravity=True))
+    compiled = compile_model(scene, ModelOptions(preset=FAST, drive="none", gravity=True))
+    model, data = compiled.fresh()
     assert model.opt.enableflags & mujoco.mjtEnableBit.mjENBL_ENERGY
-    Bindings(scene, model).set_pose(data, start_pose(scene, scene.free_branch, scene.free_start))
+    Bindings(compiled).set_pose(data, start_pose(scene, scene.free_branch, scene.free_start))
     mujoco.mj_forward(model, data)
     probe = mujoco.MjData(model)
     at_states, at_stages = np.empty(run.steps), np.empty(run.steps)
@@ -115,7 +118,7 @@ def test_free_run_energy_is_read_at_the_states():
 
 def test_preset_modes_and_bad_mode():
     assert [p.stabilize for p in (FAST, STIFF, ACCURATE, FAST_PROJECTED)] == ["none"] * 3 + ["position"]
-    model, data = compile_model(scene_of("bennett"), ModelOptions())
+    model, data = compile_model(scene_of("bennett"), ModelOptions()).fresh()
     with pytest.raises(ParameterError, match="'velocity'"):
         step_function(model, data, "velocity")
 
@@ -149,8 +152,8 @@ def test_before_projection_records_mujocos_own_steps():
         run = simulate_free(scene, scene.free_branch, scene.free_start, 1.0, preset=FAST_PROJECTED)
         simulate_free(scene, scene.free_branch, scene.free_start, 1.0, preset=FAST)
     assert len(own) == run.steps == 125
-    model, _ = compile_model(scene, ModelOptions(preset=FAST_PROJECTED, drive="none", gravity=True))
-    raw = compare(scene, scene.free_branch, Bindings(scene, model).angles(scene, np.array(own)))
+    compiled = compile_model(scene, ModelOptions(preset=FAST_PROJECTED, drive="none", gravity=True))
+    raw = compare(scene, scene.free_branch, Bindings(compiled).angles(scene, np.array(own)))
     assert 1e-11 < raw.max_error() < FAST.angle_rad
     assert compare(scene, scene.free_branch, run.q).max_error() < 1e-13
     with before_projection() as outside:

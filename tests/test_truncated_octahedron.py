@@ -149,7 +149,8 @@ def scene():
 
 
 def test_spherical_joints_become_ball_joints_or_one_connect(scene):
-    model, data = compile_model(scene, ModelOptions())
+    compiled = compile_model(scene, ModelOptions())
+    model, data = compiled.fresh()
     balls = [j for j in mujoco_joints(scene.mechanism) if j.triad is not None]
     assert [model.jnt_type[model.joint(j.name).id] for j in balls] == [mujoco.mjtJoint.mjJNT_BALL] * len(balls)
     assert {j.reverse for j in balls} == {False, True}  # both orientations occur in this tree
@@ -160,7 +161,7 @@ def test_spherical_joints_become_ball_joints_or_one_connect(scene):
         with pytest.raises(KeyError):
             model.equality(f"close_{name}_1")
     # mechanism angles -> qpos (quaternions) -> angles, every joint incl. the measured cut ones
-    binds, q = Bindings(scene, model), scene.pose("octahedron-to-cube", 1.5)
+    binds, q = Bindings(compiled), scene.pose("octahedron-to-cube", 1.5)
     binds.set_pose(data, q)
     assert np.max(np.abs(binds.angles(scene, data.qpos[None])[0] - q)) < 1e-13  # measured 1.6e-15
 

@@ -53,8 +53,9 @@ class Contacts:
 
     def __init__(self, scene):
         self.scene = scene
-        self.model, self.data = compile_model(scene, ModelOptions(preset=scene.preset, contact=True))
-        self.binds = Bindings(scene, self.model)
+        compiled = compile_model(scene, ModelOptions(preset=scene.preset, contact=True))
+        self.model, self.data = compiled.fresh()
+        self.binds = Bindings(compiled)
 
     def at(self, theta: float) -> set[tuple[str, str]]:
         """Pairs of bodies in contact (penetrating) at theta (deg)."""
@@ -99,7 +100,7 @@ def test_tube_pattern_also_excludes_panels_that_meet_across_the_seam():
     kin = scene.kinematics
     strip_pairs = set(kin.pattern.touching_faces())
     tube_pairs = set(scene.pattern.touching_faces())
-    model, _ = compile_model(scene, ModelOptions(contact=True))
+    model = compile_model(scene, ModelOptions(contact=True)).model
     assert model.nexclude == len(tube_pairs) == 996 and len(strip_pairs) == 933 and strip_pairs < tube_pairs
     faces = dict(zip(kin.pattern.face_names, kin.pattern.faces, strict=True))
     xy = kin.pattern.vertices

@@ -21,9 +21,10 @@ import numpy as np
 from .. import scenes
 from ..checks.paths import compare
 from ..files import claimed_folder, write_text
+from ..mjcf import ModelOptions
 from ..plots import plot_pareto
 from ..presets import ACCURATE, FAST
-from ..simulate import project, simulate
+from ..simulate import compile_model, project, simulate
 from ..studies import pareto
 from .options import add_params, out_folder, parse_params, whole_number_at_least
 
@@ -66,18 +67,20 @@ def bench_case(name, params, branch, start, stop, repeats) -> dict:
     start = lo if start is None else start
     stop = hi if stop is None else stop
     row = {"scene": name, "branch": branch, "input_rad": [start, stop]}
+    models = {preset: compile_model(scene, ModelOptions(preset=preset)) for preset in (FAST, ACCURATE, scene.preset)}
     for preset in (FAST, ACCURATE):
-        runs = [simulate(scene, branch, preset=preset, start=start, stop=stop) for _ in range(repeats)]
+        runs = [simulate(scene, branch, start=start, stop=stop, model=models[preset]) for _ in range(repeats)]
         if preset == FAST:
             runs_fast = runs
         row[f"{preset.name}_error_rad"] = compare(scene, branch, runs[0].q).max_error()
         row[f"{preset.name}_step_cpu_s"] = min(r.cpu_time_s for r in runs)
         row[f"{preset.name}_steps"] = runs[0].steps
         if preset == FAST:
-            row["fast_call_cpu_s"] = _best(lambda: simulate(scene, branch, start=start, stop=stop), repeats)[1]
+            row["fast_call_cpu_s"] = _best(lambda: simulate(scene, branch, start=start, stop=stop,
+                                                            model=models[scene.preset]), repeats)[1]
     row["bare_loop_cpu_s"] = pareto.bare_loop_cpu(scene, branch, runs_fast[0].target, repeats)
     row["harness_loop_over_bare"] = row["fast_step_cpu_s"] / row["bare_loop_cpu_s"]
-    proj, cpu = _best(lambda: project(scene, branch, np.linspace(start, stop, 200)), 1)
+    proj, cpu = _best(lambda: project(scene, branch, np.linspace(start, stop, 200), model=models[scene.preset]), 1)
     row["projection_error_rad"] = compare(scene, branch, proj.q).max_error()
     row["projection_cpu_s_per_sample"] = cpu / 200
     x = np.linspace(start, stop, 1_000_000)

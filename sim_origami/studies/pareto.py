@@ -25,10 +25,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..checks.paths import compare
-from ..mjcf import ModelOptions, drive_name
+from ..mjcf import CompiledModel, ModelIds, ModelOptions, scale_regularization
 from ..presets import FAST, FAST_PROJECTED, STIFF, Preset
 from ..scenes.base import Scene, without_implied_closures
-from ..simulate import Bindings, drive_targets, scale_regularization, scene_xml, simulate, start_pose, track
+from ..simulate import Bindings, compile_model, drive_targets, simulate, start_pose, track
 from ..stabilize import drive_step
 
 INTEGRATORS = {"RK4": mujoco.mjtIntegrator.mjINT_RK4, "Euler": mujoco.mjtIntegrator.mjINT_EULER,
@@ -51,7 +51,7 @@ class Setting:
     solimp: tuple[float, ...]
     closure: str = "connect2"
     drive: str = "equality"
-    regularization: float = 1.0  # scale on MuJoCo's constraint regulariser R (simulate.scale_regularization)
+    regularization: float = 1.0  # scale on MuJoCo's constraint regulariser R (mjcf.scale_regularization)
     stabilize: str = "none"  # projection onto the closures after each step (sim_origami.stabilize)
 
 
@@ -128,9 +128,14 @@ def _scene_for(scene: Scene, closure: str) -> Scene:
     return dataclasses.replace(scene, mechanism=dataclasses.replace(mech, joints=joints))
 
 
-def model_for(scene: Scene, setting: Setting) -> mujoco.MjModel:
-    """The compiled model of `scene` with `setting` applied on top of the fast preset's MJCF."""
-    model = mujoco.MjModel.from_xml_string(scene_xml(scene, ModelOptions(preset=FAST, drive=setting.drive)))
+def fast_model(scene: Scene, setting: Setting) -> CompiledModel:
+    """The fast preset's model of `scene` with `setting`'s closures and drive, on which `model_for` applies the rest."""
+    return compile_model(_scene_for(scene, setting.closure), ModelOptions(preset=FAST, drive=setting.drive))
+
+
+def model_for(compiled: CompiledModel, setting: Setting) -> mujoco.MjModel:
+    """`compiled`'s MJCF (`fast_model`) compiled afresh with `setting` applied on top of the fast preset's options."""
+    model = mujoco.MjModel.from_xml_string(compiled.xml)
     model.opt.integrator, model.opt.timestep = INTEGRATORS[setting.integrator], setting.h
     model.eq_solref[:, 0], model.eq_solimp[:] = setting.tau, setting.solimp
     scale_regularization(model, setting.regularization)
@@ -145,6 +150,7 @@ class _Run:
     scene: Scene
     setting: Setting
     model: mujoco.MjModel
+    ids: ModelIds
     binds: Bindings
     target: NDArray
     pose: NDArray
@@ -153,24 +159,25 @@ class _Run:
 
     def step_through(self) -> None:
         """Run the sweep from its start pose once; keep the lowest stepping CPU time."""
-        model, data, drive = self.model, mujoco.MjData(self.model), drive_name(self.scene.drive_joint)
+        model, data, ids = self.model, mujoco.MjData(self.model), self.ids
         if self.setting.drive == "equality":
-            setpoint, index = model.eq_data[model.equality(drive).id], 0
+            setpoint, index = model.eq_data[ids.drive_equalities[0]], 0
         else:
-            setpoint, index = data.ctrl, model.actuator(drive).id
+            setpoint, index = data.ctrl, ids.drive_actuators[0]
         self.binds.set_pose(data, self.pose)
         mujoco.mj_forward(model, data)
-        step = drive_step(model, data, self.setting.stabilize, self.scene.drives)
+        step = drive_step(model, data, self.setting.stabilize, ids)
         self.cpu = min(self.cpu, track(model, data, setpoint, index, self.target, self.qpos, step))
 
 
-def _prepare(scene: Scene, branch: str, setting: Setting) -> _Run:
+def _prepare(scene: Scene, branch: str, setting: Setting, compiled: CompiledModel) -> _Run:
+    """One setting's sweep on `compiled` (`fast_model` of the setting's closures and drive), the setting applied."""
     scene = _scene_for(scene, setting.closure)
-    model = model_for(scene, setting)
+    model = model_for(compiled, setting)
     start, stop = scene.branch_path(branch)
-    _, target = drive_targets(scene, model, setting.drive, start, stop, SWEEP_S, round(SWEEP_S / model.opt.timestep))
+    _, target = drive_targets(scene, model, compiled.ids, start, stop, SWEEP_S, round(SWEEP_S / model.opt.timestep))
     qpos = np.empty((len(target), model.nq))
-    return _Run(scene, setting, model, Bindings(scene, model), target, start_pose(scene, branch, start), qpos)
+    return _Run(scene, setting, model, compiled.ids, Bindings(compiled), target, start_pose(scene, branch, start), qpos)
 
 
 def measure_all(scene: Scene, branch: str, settings: list[Setting], repeats: int = 3) -> list[Point]:
@@ -180,7 +187,9 @@ def measure_all(scene: Scene, branch: str, settings: list[Setting], repeats: int
     setting's repeats (which put one 0.92x scene at 1.31x and 1.44x the defaults' CPU in two runs of
     scripts/fast_vs_defaults.py).
     """
-    runs = [_prepare(scene, branch, setting) for setting in settings]
+    kinds = {(s.closure, s.drive): s for s in settings}  # one model per closure type and drive, settings on copies
+    models = {kind: fast_model(scene, setting) for kind, setting in kinds.items()}
+    runs = [_prepare(scene, branch, setting, models[setting.closure, setting.drive]) for setting in settings]
     for _ in range(repeats):
         for run in runs:
             run.step_through()
@@ -210,14 +219,16 @@ def bare_loop_cpu(scene: Scene, branch: str, target: NDArray, repeats: int = 3) 
     CPU time (s) of the minimal loop driving the same path with the fast preset: one eq_data write and one mj_step
     per step from the same start pose, with no logging, checks or feed-forward bookkeeping.
     """
-    model = model_for(scene, scene_presets(scene)[FAST])
+    setting = scene_presets(scene)[FAST]
+    compiled = fast_model(scene, setting)
+    model = model_for(compiled, setting)
     data = mujoco.MjData(model)
-    setpoint = model.eq_data[model.equality(drive_name(scene.drive_joint)).id]
+    setpoint = model.eq_data[compiled.ids.drive_equalities[0]]
     targets, pose = (scene.drive_scale * target).tolist(), start_pose(scene, branch, float(target[0]))
     best = np.inf
     for _ in range(repeats):
         mujoco.mj_resetData(model, data)
-        Bindings(scene, model).set_pose(data, pose)
+        Bindings(compiled).set_pose(data, pose)
         mujoco.mj_forward(model, data)
         step, cpu = mujoco.mj_step, time.thread_time()
         for value in targets:

@@ -69,7 +69,7 @@ def rigid_model(scene: Scene, q: NDArray[np.float64], couplings: bool = False) -
     mech = scene.mechanism
     if mech.balls or (mech.couplings and not couplings):
         raise ParameterError(f"scene {scene.name!r}: the peer model takes hinges only (no ball joints, no couplings)")
-    model, _ = compile_model(scene, ModelOptions(drive="none"))
+    model = compile_model(scene, ModelOptions(drive="none")).model
     poses, cut = mech.body_poses(np.asarray(q, dtype=float)), set(mech.cut_joints)
     bodies = []
     for body in mech.bodies:
