@@ -19,8 +19,9 @@ from sim_origami.simulate import Bindings, captured_warnings, compile_model, sta
 
 def main(steps: int = 1_000_000, preset: Preset = FAST) -> None:
     scene = scenes.get("iftomm-a04").build()
-    model, data = compile_model(scene, ModelOptions(preset=preset, drive="none", gravity=True))
-    binds = Bindings(scene, model)
+    compiled = compile_model(scene, ModelOptions(preset=preset, drive="none", gravity=True))
+    model, data = compiled.fresh()
+    binds = Bindings(compiled)
     binds.set_pose(data, start_pose(scene, scene.free_branch, scene.free_start))
     mujoco.mj_forward(model, data)
     e0 = data.energy[0] + data.energy[1]

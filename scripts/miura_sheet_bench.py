@@ -24,8 +24,9 @@ from sim_origami.simulate import Bindings, compile_model, simulate
 
 def most_contacts(scene, q: np.ndarray, samples: int = 50) -> int:
     """Largest number of contacts MuJoCo detects at `samples` poses of a run (contact enabled)."""
-    model, data = compile_model(scene, ModelOptions(contact=True))
-    binds, most = Bindings(scene, model), 0
+    compiled = compile_model(scene, ModelOptions(contact=True))
+    model, data = compiled.fresh()
+    binds, most = Bindings(compiled), 0
     for row in q[np.linspace(0, len(q) - 1, samples).astype(int)]:
         binds.set_pose(data, row)
         mujoco.mj_fwdPosition(model, data)

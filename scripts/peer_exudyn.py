@@ -134,12 +134,13 @@ def mujoco_run(case: Case, preset: Preset, h: float | None = None, iterations: i
     projection steps a step (fast-projected).
     """
     scene = case.scene
-    model, data = compile_model(scene, ModelOptions(preset=preset, drive="none" if case.free else "equality",
-                                                    gravity=case.free))
+    compiled = compile_model(scene, ModelOptions(preset=preset, drive="none" if case.free else "equality",
+                                                 gravity=case.free))
+    model, data = compiled.fresh()
     if h is not None:
         model.eq_solref[:, 0] *= h / model.opt.timestep
         model.opt.timestep = h
-    binds = Bindings(scene, model)
+    binds, ids = Bindings(compiled), compiled.ids
     pose = start_pose(scene, case.branch, case.start)
     n = round(case.simulated / model.opt.timestep)
 
@@ -151,7 +152,7 @@ def mujoco_run(case: Case, preset: Preset, h: float | None = None, iterations: i
         qpos_log[0], qvel_log[0] = data.qpos, data.qvel
         with captured_warnings() as messages:
             if case.free:
-                step = run_step(model, data, preset, iterations=iterations)
+                step = run_step(model, data, compiled, iterations=iterations)
                 qpos, qvel = data.qpos, data.qvel
                 cpu = time.thread_time()
                 for k in range(1, n + 1):
@@ -160,14 +161,12 @@ def mujoco_run(case: Case, preset: Preset, h: float | None = None, iterations: i
                     qvel_log[k] = qvel
                 cpu = time.thread_time() - cpu
             else:
-                step = run_step(model, data, preset, scene.drives, iterations=iterations)
-                _, setpoints = drive_targets(scene, model, "equality", case.start, case.stop, case.duration, n)
+                step = run_step(model, data, compiled, iterations=iterations)
+                _, setpoints = drive_targets(scene, model, ids, case.start, case.stop, case.duration, n)
                 if scene.drive_path is not None:
-                    rows = np.array([model.equality(f"drive_{j}").id for j in scene.drives])
-                    cpu = track_path(model, data, rows, setpoints, qpos_log[1:], step)
+                    cpu = track_path(model, data, np.array(ids.drive_equalities), setpoints, qpos_log[1:], step)
                 else:
-                    eq = model.equality(f"drive_{scene.drive_joint}").id
-                    cpu = track(model, data, model.eq_data[eq], 0, setpoints, qpos_log[1:], step)
+                    cpu = track(model, data, model.eq_data[ids.drive_equalities[0]], 0, setpoints, qpos_log[1:], step)
         if messages or not np.all(np.isfinite(qpos_log)):
             raise RuntimeError(f"MuJoCo warned: {messages[0] if messages else 'non-finite qpos'}")
         energy = state_energy(model, qpos_log, qvel_log) if case.free else None
@@ -314,8 +313,8 @@ def exudyn_tree_run(case: Case, h: float, rho: float, tolerances: tuple[float, f
     drives = () if case.free else scene.drives
     if scene.drive_path is not None and drives:
         raise RuntimeError("the peer's drive takes one input joint (this scene drives a path of several)")
-    model, _ = compile_model(scene, ModelOptions(drive="none", gravity=case.free))
-    binds = Bindings(scene, model)
+    compiled = compile_model(scene, ModelOptions(drive="none", gravity=case.free))
+    model, binds = compiled.model, Bindings(compiled)
 
     def run() -> Run:
         SC = exu.SystemContainer()
@@ -377,7 +376,7 @@ def exudyn_tree_run(case: Case, h: float, rho: float, tolerances: tuple[float, f
             for k, link in enumerate(tree.links):
                 qdot[:, link.joint] = link.sign * c_t[:, k]
             qpos, qvel = np.zeros((n + 1, model.nq)), np.zeros((n + 1, model.nv))
-            qpos[:, binds.hinge_qpos], qvel[:, model.jnt_dofadr[_hinge_ids(model, scene)]] = (
+            qpos[:, binds.hinge_qpos], qvel[:, model.jnt_dofadr[_hinge_ids(model, binds)]] = (
                 q[:, binds.hinge_joints], qdot[:, binds.hinge_joints])
             energy = state_energy(model, qpos, qvel)
         return Run(q, h, cpu, energy)
@@ -385,9 +384,8 @@ def exudyn_tree_run(case: Case, h: float, rho: float, tolerances: tuple[float, f
     return run
 
 
-def _hinge_ids(model: mujoco.MjModel, scene: Scene) -> np.ndarray:
+def _hinge_ids(model: mujoco.MjModel, binds: Bindings) -> np.ndarray:
     """MuJoCo joint ids of the mechanism's tree hinges in `Bindings.hinge_joints` order."""
-    binds = Bindings(scene, model)
     return np.array([model.jnt_qposadr.tolist().index(a) for a in binds.hinge_qpos], dtype=int)
 
 
@@ -450,8 +448,7 @@ def free_settings(case: Case) -> list[tuple[str, str, Callable[[], Run]]]:
 
 def driven_settings(case: Case, exudyn_h: tuple[float, ...] = (0.008,), body: bool = True):
     """(tool, setting, run) of a driven case, the fast preset first."""
-    model, _ = compile_model(case.scene, ModelOptions(preset=FAST))
-    h0 = model.opt.timestep
+    h0 = compile_model(case.scene, ModelOptions(preset=FAST)).model.opt.timestep
     out = [
         ("MuJoCo", f"fast (RK4 {h0 * 1e3:g} ms)", mujoco_run(case, FAST)),
         ("MuJoCo", f"fast-projected (RK4 {h0 * 1e3:g} ms, 1 projection)", mujoco_run(case, FAST_PROJECTED, h=h0)),
@@ -575,8 +572,8 @@ def scaling(rounds: int, only: set[str] | None = None) -> None:
         scene = build()
         case = driven_case(scene, name if steps is None else f"FOLD 16 x 16 Miura, first {steps} steps")
         if steps is not None:
-            model, _ = compile_model(scene, ModelOptions(preset=FAST))
-            case = dataclasses.replace(case, end=steps * model.opt.timestep)
+            h = compile_model(scene, ModelOptions(preset=FAST)).model.opt.timestep
+            case = dataclasses.replace(case, end=steps * h)
         table.append((case, driven_settings(case, exudyn_h=(), body=len(scene.mechanism.bodies) < 40)))
     results = [[Result(tool, label) for tool, label, _ in runs] for _, runs in table]
     print("| scene | bodies | hinges (cut) | couplings | tool, setting | path error (rad) | CPU s | CPU vs `fast` |")

@@ -18,23 +18,24 @@ import mujoco
 import numpy as np
 
 from sim_origami import scenes
-from sim_origami.mjcf import ModelOptions
+from sim_origami.mjcf import ModelOptions, drive_name
 from sim_origami.presets import FAST
 from sim_origami.scenes.base import without_implied_closures
-from sim_origami.simulate import Bindings, ramp, scene_xml, start_pose
+from sim_origami.simulate import Bindings, compile_model, ramp, scene_xml, start_pose
 
 REPEATS = 3
 
 
 def stepping_cpu(model: mujoco.MjModel, scene, branch: str, steps: int, render_every: int = 0) -> float:
-    """CPU time of `steps` driven steps (the harness's drive), optionally rendering every `render_every` steps."""
+    """CPU time of `steps` driven steps (the harness's drive), optionally rendering every `render_every` steps. The
+    variants' joints are the generated model's (`compile_model`): its qpos map serves them all."""
     data = mujoco.MjData(model)
-    binds = Bindings(scene, model)
+    binds = Bindings(compile_model(scene))
     start, stop = scene.branch_path(branch)
     binds.set_pose(data, start_pose(scene, branch, start))
     mujoco.mj_forward(model, data)
     targets = start + (stop - start) * ramp(np.linspace(0, 1, steps))[0]
-    setpoint = model.eq_data[model.equality(f"drive_{scene.drive_joint}").id]
+    setpoint = model.eq_data[model.equality(drive_name(scene.drive_joint)).id]  # a variant's own equality ids
     renderer = mujoco.Renderer(model, 240, 320) if render_every else None
     t = time.thread_time()
     for k, value in enumerate(targets.tolist()):

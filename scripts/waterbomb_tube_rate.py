@@ -146,17 +146,18 @@ def tube(n: int, m: int, option: Option) -> Scene:
 def sweep(scene: Scene, option: Option, contact: bool, steps: int | None = None) -> Run:
     """The scene's default sweep as `simulate` runs it (equality drive, feed-forward), the option applied; only its
     first `steps` steps if given."""
-    model, data = compile_model(scene, ModelOptions(preset=PRESET, contact=contact))
+    compiled = compile_model(scene, ModelOptions(preset=PRESET, contact=contact))
+    model, data = compiled.fresh()
     option.apply(model)
-    binds = Bindings(scene, model)
+    binds = Bindings(compiled)
     start, stop = scene.branch_path(BRANCH)
     binds.set_pose(data, scene.pose(BRANCH, start))
     mujoco.mj_forward(model, data)
     T = PRESET.sweep_duration * scene.sweep_time_scale
     h = model.opt.timestep
-    _, target = drive_targets(scene, model, "equality", start, stop, T, round(T / h))
+    _, target = drive_targets(scene, model, compiled.ids, start, stop, T, round(T / h))
     target, t = target[:steps], h * np.arange(1, len(target) + 1)[:steps]
-    eq = model.equality(f"drive_{scene.drive_joint}").id
+    eq = compiled.ids.drive_equalities[0]
     log = np.empty((len(t), model.nq))
     setpoint, qpos, step = model.eq_data[eq], data.qpos, mujoco.mj_step
     contacts = 0
@@ -179,7 +180,7 @@ def measure(n: int, m: int, option: Option) -> dict:
     error = compare(scene, BRANCH, full.q).max_error()
     off = sweep(scene, option, contact=False, steps=WINDOW)
     on = sweep(scene, option, contact=True, steps=WINDOW)
-    model, data = compile_model(scene, ModelOptions(preset=PRESET))
+    model, data = compile_model(scene, ModelOptions(preset=PRESET)).fresh()
     mujoco.mj_forward(model, data)
     return {
         "panels": len(scene.mechanism.bodies), "nv": model.nv, "rows": data.nefc, "steps": full.steps,

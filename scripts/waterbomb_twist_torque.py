@@ -155,12 +155,13 @@ def run(
             f"theta = {np.rad2deg(x0 + np.pi):.6g} deg is outside the contraction's domain "
             f"[{np.rad2deg(lo + np.pi):.6g}, {np.rad2deg(hi + np.pi):.6g}] deg"
         )
-    model, data = compile_model(scene, ModelOptions(preset=FAST))
+    compiled = compile_model(scene, ModelOptions(preset=FAST))
+    model, data = compiled.fresh()
     model.opt.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
     model.opt.disableflags &= ~int(mujoco.mjtDisableBit.mjDSBL_DAMPER)
     model.dof_damping[:] = damping
-    data.eq_active[model.equality(f"drive_{scene.drive_joint}").id] = 0
-    binds = Bindings(scene, model)
+    data.eq_active[compiled.ids.drive_equalities[0]] = 0
+    binds = Bindings(compiled)
     binds.set_pose(data, scene.pose(CONTRACTION, x0))
     mujoco.mj_forward(model, data)
     vertices = VertexMap(scene, model, data, kin.vertices(np.array([x0]))[0])
