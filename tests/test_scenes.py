@@ -1,5 +1,7 @@
 """The scene registry (`sim_origami.scenes`): building, parameters and a first MuJoCo run of each scene."""
 
+import dataclasses
+
 import mujoco
 import numpy as np
 import pytest
@@ -8,7 +10,9 @@ from sim_origami import scenes
 from sim_origami.errors import ParameterError
 from sim_origami.geometry import wrap
 from sim_origami.mjcf import ModelOptions
-from sim_origami.presets import FAST
+from sim_origami.peer_times import FREE_RUN_PEERS
+from sim_origami.presets import FAST, STIFF
+from sim_origami.scenes.base import DEFAULT_TUNING, Tuning
 from sim_origami.simulate import Bindings, compile_model
 
 # Command-line values (degrees, metres) that keep each scene valid but differ from the defaults.
@@ -114,3 +118,46 @@ def test_build_from_user_degrees_reach_the_geometry():
 def test_param_unit_conversion_round_trips(name):
     for p in scenes.get(name).params:
         np.testing.assert_allclose(p.to_user(p.to_api(p.default)), p.default, atol=1e-12, rtol=0)
+
+
+# Scene modules that may tune their runs (issue 29: at most three, each saying why).
+MOST_TUNED_MODULES = 3
+
+
+def test_a_registered_scene_runs_the_default_tuning_unless_it_says_why_in_one_line():
+    tuned = {}
+    for name in scenes.names():
+        kind = scenes.get(name)
+        tuning = kind.build().tuning
+        if tuning != DEFAULT_TUNING:
+            assert tuning.why and "\n" not in tuning.why, name
+            tuned.setdefault(kind.build_fn.__module__, []).append(name)
+    assert len(tuned) <= MOST_TUNED_MODULES, tuned
+
+
+def test_tuning_fields_given_by_name_go_into_the_scenes_tuning():
+    """`Scene(..., sweep_time_scale=...)` and `replace(scene, preset=...)`, as callers outside the scenes still write
+    them, set `Scene.tuning` and keep its other values."""
+    scene = dataclasses.replace(scenes.get("bennett").build(), tuning=Tuning(fast_step_scale=1.25, why="test"))
+    tuned = dataclasses.replace(scene, sweep_time_scale=3.0, preset=STIFF)
+    assert tuned.tuning == Tuning(preset=STIFF, sweep_time_scale=3.0, fast_step_scale=1.25, why="test")
+    assert (tuned.preset, tuned.sweep_time_scale, tuned.fast_step_scale) == (STIFF, 3.0, 1.25)
+    assert dataclasses.replace(tuned, notes="x").tuning == tuned.tuning
+    assert "sweep_time_scale" not in {f.name for f in dataclasses.fields(scene)}
+
+
+@pytest.mark.parametrize(("values", "needle"), [
+    ({"sweep_time_scale": 0.0}, "sweep_time_scale = 0.0"),
+    ({"fast_step_scale": float("nan")}, "fast_step_scale = nan"),
+    ({"fast_regularization_scale": -1.0}, "fast_regularization_scale = -1.0"),
+    ({"preset": "fast"}, "preset = 'fast'"),
+])
+def test_tuning_refuses_a_scale_not_above_zero_and_a_preset_by_name(values, needle):
+    with pytest.raises(ParameterError, match=needle):
+        Tuning(**values)
+
+
+def test_a_peers_free_run_time_comes_from_the_peer_table_not_the_scene():
+    assert scenes.get("iftomm-a04").build().free_run_peer == FREE_RUN_PEERS["iftomm-a04"] == ("OpenSim", 0.258)
+    assert scenes.get("bennett").build().free_run_peer is None
+    assert "free_run_peer" not in {f.name for f in dataclasses.fields(scenes.Scene)}

@@ -24,12 +24,6 @@ PARAMS = (
     Param("cols", "", 2, "units along u (the AD direction), >= 1", **SIZE),
     *UNIT_PARAMS[1:],  # the unit's design angles and lengths, as scene `corrugated-unit`
 )
-# fast at 1.25x its step and closure time constant (Scene.fast_step_scale: 10 ms, solref 25 ms). At 8 ms
-# RK4's four force evaluations a step cost what Euler's one per 2 ms does: the sheet measured 0.94-0.96x the
-# CPU of MuJoCo's defaults on their 2 s sweep (96146x more accurate); at 1.25x, 62392x at 0.77x
-# (scripts/fast_vs_defaults.py). Scene runs (32x, six branches): worst 1.45e-9 rad in 6.0 s of CPU at 8 ms,
-# 2.3e-9 in 4.6 s at 10 ms.
-FAST_STEP_SCALE = 1.25
 # Collision solids are inset from every panel edge by this fraction of the shortest length (as `miura-sheet`).
 INSET = 0.05
 
@@ -61,7 +55,6 @@ def build(
         path=UNIT_PATH,
         root=ROOT,
         collision_inset=INSET * min(L1, L2, L3),
-        fast_step_scale=FAST_STEP_SCALE,
         self_contact=True,
         notes=f"{int(rows)} x {int(cols)} units {name}; hinge qpos = fold angle rho (> 0 valley from +z); "
         "no M/V joint limits",

@@ -7,8 +7,7 @@ the drive crease stays in the spanning tree, and the fixed body defaults to the 
 from ..creases import CreasePattern
 from ..kinematics.base import Kinematics
 from ..origami import pattern_mechanism
-from ..presets import FAST, Preset
-from .base import Scene
+from .base import DEFAULT_TUNING, Scene, Tuning
 
 
 def pattern_scene(
@@ -21,14 +20,12 @@ def pattern_scene(
     path: tuple[float, float],
     root: str | None = None,
     couplings: tuple[tuple[str, str, float], ...] = (),
-    sweep_time_scale: float = 1.0,
-    preset: Preset = FAST,
     notes: str = "",
     collision_inset: float | None = None,
     self_contact: bool = False,
     contact_pairs: tuple[tuple[str, str], ...] = (),
     breadth_first: bool = False,
-    fast_step_scale: float = 1.0,
+    tuning: Tuning = DEFAULT_TUNING,
 ) -> Scene:
     """A Scene whose mechanism is `pattern_mechanism(pattern)`, driven at crease `drive` (input = its fold angle)."""
     root = root or pattern.crease_faces(pattern.crease(drive))[0]
@@ -39,6 +36,5 @@ def pattern_scene(
     return Scene(
         name=name, params=params, kinematics=kinematics, mechanism=mechanism,
         loop_joints=tuple(c.name for c in pattern.creases), drive_joint=drive, drive_scale=1.0, path=path,
-        sweep_time_scale=sweep_time_scale, preset=preset, notes=notes, pattern=pattern, self_contact=self_contact,
-        contact_pairs=contact_pairs, fast_step_scale=fast_step_scale,
+        notes=notes, pattern=pattern, self_contact=self_contact, contact_pairs=contact_pairs, tuning=tuning,
     )

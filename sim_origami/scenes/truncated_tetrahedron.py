@@ -34,7 +34,6 @@ from ..kinematics.truncated_tetrahedron import (
 from ..linkage import bar
 from ..mechanism import Body, Joint, Mechanism, ball_joint
 from ..origami import PALETTE
-from ..presets import FAST
 from .base import ANGLE_MARGIN, Param, Scene, register
 from .polyhedra import AssemblyKinematics, collision_plate, kutzbach, plate
 
@@ -157,21 +156,14 @@ def _scene(scheme: str, delta: float) -> Scene:
         drive_joint=INPUT_JOINT[scheme],
         drive_scale=1.0,
         path=(0.0, far - closed_form.reference),
-        # measured at the preset's 2 s sweep: stiff 1.2e-5 rad (I) and 1.1e-5 (II); fast 9.1e-5 and 3.6e-5 with
-        # MuJoCo's regulariser, 2.0e-6 and 1.2e-6 with the presets' (scaled 0.01)
-        preset=FAST,
-        fast_step_scale=FAST_STEP_SCALE,
+        # The default tuning. At the preset's 2 s sweep: stiff 1.2e-5 rad (I) and 1.1e-5 (II); fast 9.1e-5 and 3.6e-5
+        # with MuJoCo's regulariser, 2.0e-6 and 1.2e-6 with the presets' (scaled 0.01). Without the former 1.25x fast
+        # step `validate` measured the same path errors (the path rule lengthened the sweep with the step) at 0.93x
+        # (II) and 1.17x (I) the CPU, all of it in the blockage run.
         contact_pairs=TRIANGLE_PAIRS,
         notes=f"input {INPUT_JOINT[scheme]} = {closed_form.input_name} - its deployed value (rad); "
         "S joints as MuJoCo ball joints",
     )
-
-
-# fast at 1.25x its step and closure time constant (Scene.fast_step_scale: 10 ms, solref 25 ms). At 8 ms
-# RK4's four force evaluations a step cost what Euler's one per 2 ms does: scheme I measured 0.91-1.00x the CPU
-# of MuJoCo's defaults on their 2 s sweep (35413x more accurate), scheme II 0.90-0.94x (21672x); at 1.25x, I
-# 22718x at 0.73x, II 13497x at 0.80x (scripts/fast_vs_defaults.py).
-FAST_STEP_SCALE = 1.25
 
 
 @register(

@@ -21,8 +21,7 @@ import itertools
 
 from ..kinematics.waterbomb import FACES, Waterbomb
 from ..kinematics.waterbomb_sheet import WaterbombSheet
-from ..presets import FAST
-from .base import ACUTE, Param, Scene, register
+from .base import ACUTE, Param, Scene, Tuning, register
 from .patterns import pattern_scene
 from .thick_vertex4 import RELIEF
 
@@ -43,16 +42,9 @@ THICK = (
 # (Euler 1.25 ms) beat it (2.4e-8 at 16x). With the presets' regulariser scaled by 0.01 fast measured 1.2e-6 (cell)
 # and 6.2e-7 (thick cell) at 2 s, against stiff's 2.4e-8 at 16x.
 PATH = (-0.5, -1.8)
-PRESET = FAST
 # The thick cell's closure is thin in the direction of its hinge offsets: with a = 0.02 m the projection's
 # angle error was 1.9e-13 rad (0.05 m: 2.8e-14) and the fast path error 5.6e-7 (0.05 m: 1.1e-7).
 ROOT, DRIVE = "A12", "A4"
-# fast at 1.25x its step and closure time constant (Scene.fast_step_scale: 10 ms, solref 25 ms). At 8 ms
-# RK4's four force evaluations a step cost what Euler's one per 2 ms does: the sheet measured 0.90-1.01x the
-# CPU of MuJoCo's defaults on their 2 s sweep (76774x more accurate); at 1.25x, 50101x at 0.82x
-# (scripts/fast_vs_defaults.py). Scene runs (16x, four branches): worst 3.2e-8 rad in 1.3 s of CPU at 8 ms,
-# 4.7e-8 in 1.1 s at 10 ms.
-SHEET_FAST_STEP_SCALE = 1.25
 
 
 def _scene(name: str, kinematics: Waterbomb, params: dict[str, float], notes: str, **contact) -> Scene:
@@ -66,7 +58,6 @@ def _scene(name: str, kinematics: Waterbomb, params: dict[str, float], notes: st
         path=PATH,
         root=ROOT,
         couplings=couplings,
-        preset=PRESET,
         notes=notes,
         **contact,
     )
@@ -97,8 +88,10 @@ def build_thick(alpha: float, beta: float, t: float, mu: float, a: float) -> Sce
 
 
 # The 2 x 2 sheet's 18 couplings (soft joint equalities) lag up to 5.3x more than `sweep_rate.LAG_S2` allows for its
-# path's joint rates: it sweeps 3x the rule's time (docs/performance.md, "The sweep's duration").
-SHEET_SWEEP_TIME_SCALE = 3.0
+# path's joint rates: it sweeps 3x the rule's time (docs/performance.md, "The sweep's duration"). Its former 1.25x
+# fast step changed neither the path error nor the steps under the path rule (the sweep grew with the step).
+SHEET_TUNING = Tuning(sweep_time_scale=3.0, why="its 18 soft couplings lag more than the path rule allows: at the "
+                      "rule's time `validate` measured 1.1e-6 rad (tolerance 1e-6), at 3x 1.3e-7")
 # The sheet's panels carry collision solids inset by SHEET_INSET x t from every edge, and every pair of panels that
 # shares no vertex may collide (Scene.self_contact, as the Miura and corrugated sheets).
 SHEET_INSET = 0.05
@@ -131,10 +124,8 @@ def build_sheet(alpha: float, beta: float, t: float, rows: float, cols: float) -
         drive=drive,
         path=PATH,
         couplings=tuple(couplings),
-        sweep_time_scale=SHEET_SWEEP_TIME_SCALE,
-        preset=PRESET,
         collision_inset=SHEET_INSET * t,
         self_contact=True,
-        fast_step_scale=SHEET_FAST_STEP_SCALE,
+        tuning=SHEET_TUNING,
         notes=f"{int(rows)} x {int(cols)} bases; {len(couplings)} symmetry couplings on tree hinges",
     )

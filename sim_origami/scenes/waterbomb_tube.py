@@ -21,7 +21,6 @@ from ..errors import ParameterError
 from ..kinematics.waterbomb_tube import WaterbombTube
 from ..mechanism import Joint, Mechanism
 from ..origami import pattern_mechanism
-from ..presets import FAST
 from .base import ACUTE, Param, Scene, register
 
 # Largest tube accepted: n <= 24, m <= 15 and n m <= 120 units (`check_size`): 12 x 9 builds in 4.6 s of CPU,
@@ -51,12 +50,6 @@ PATH_SHARE = 0.7
 # (180 panels), 796 on 8 x 5, 554 on 10 x 5 (300 panels, 3.5e-7 rad; the crease-order tree: 648, 422, 297);
 # contact on costs 35-45 %. With only the loops the couplings do not imply (`without_implied_closures`: 6 of 131
 # on 10 x 5) 4054, 2510 and 1793 steps/s at the same error; the scene imposes every loop, which `fast` needs.
-PRESET = FAST
-# fast at 1.25x its step and closure time constant (Scene.fast_step_scale: 10 ms, solref 25 ms). At 8 ms
-# RK4's four force evaluations a step cost what Euler's one per 2 ms does: the 6 x 5 tube measured 0.97-1.00x the
-# CPU of MuJoCo's defaults on their 2 s sweep (34318x more accurate); at 1.25x, 21651x at 0.75-0.87x
-# (scripts/fast_vs_defaults.py). 12.5 ms: tube 2.5e-6 rad at 0.66x, twist 5.5e-7 at 0.64x.
-FAST_STEP_SCALE = 1.25
 ANCHORS = (0.5, 1.0)
 # Collision solids: each face's plate (NOMINAL_THICKNESS x the longest crease thick) inset from every edge by INSET * a.
 # Panels that share a vertex of the tube (across the seam too: `TubePattern`) never collide, so only the sources'
@@ -144,7 +137,6 @@ def build(n: float, m: float, alpha: float, beta: float, a: float) -> Scene:
         name="waterbomb-tube", params={"n": n, "m": m, "alpha": alpha, "beta": beta, "a": a},
         kinematics=kinematics, mechanism=tube_mechanism(kinematics, INSET * a), loop_joints=kinematics.crease_names,
         drive_joint=kinematics.input_crease, drive_scale=1.0, path=default_path(kinematics),
-        preset=PRESET, fast_step_scale=FAST_STEP_SCALE,
         pattern=tube_pattern(kinematics), self_contact=True,
         notes=f"{int(n)} x {int(m)} tube; {len(kinematics.couplings)} symmetry couplings; "
         f"{len(kinematics.layout.seam)} seam creases closed by connects",

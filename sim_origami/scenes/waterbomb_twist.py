@@ -15,7 +15,6 @@ twist senses only.
 
 from ..kinematics.waterbomb_tube import beta_max_residual
 from ..kinematics.waterbomb_twist import WaterbombTwist
-from ..presets import FAST
 from .base import ACUTE, Condition, Param, Scene, register
 from .waterbomb_tube import TUBE_ROWS, TUBE_UNITS, check_size, tube_mechanism
 
@@ -43,12 +42,6 @@ PARAMS = (
 # 2.6e-8 (ccw), 3.5e-8 rad (cw), 6.4 s; 6 x 1: 1.4e-8 rad, 0.5 s. Those fast figures were with MuJoCo's own
 # regulariser; with the presets' (scaled 0.01) fast 8x on 6 x 3 measured 4.9e-9 rad (ccw) in 3.8 s of CPU against
 # stiff's 2.6e-8 in 7.1 s, so the scene runs fast.
-PRESET = FAST
-# fast at 1.25x its step and closure time constant (Scene.fast_step_scale: 10 ms, solref 25 ms). At 8 ms
-# RK4's four force evaluations a step cost what Euler's one per 2 ms does: the 6 x 3 twist measured 1.01-1.02x the
-# CPU of MuJoCo's defaults on their 2 s sweep (68190x more accurate); at 1.25x, 43014x at 0.79-0.85x
-# (scripts/fast_vs_defaults.py). 12.5 ms: tube 2.5e-6 rad at 0.66x, twist 5.5e-7 at 0.64x.
-FAST_STEP_SCALE = 1.25
 
 
 # A row other than the middle one twists only at beta = beta_max (eqn 40): beta as typed (e.g. 42.01 for
@@ -70,7 +63,7 @@ def build(n: float, m: float, alpha: float, beta: float, a: float, row: float) -
         name="waterbomb-twist", params={"n": n, "m": m, "alpha": alpha, "beta": beta, "a": a, "row": row},
         kinematics=kinematics, mechanism=tube_mechanism(kinematics), loop_joints=kinematics.crease_names,
         drive_joint=kinematics.input_crease, drive_scale=1.0, path=(lo, hi),
-        preset=PRESET, fast_step_scale=FAST_STEP_SCALE, pattern=kinematics.pattern,
+        pattern=kinematics.pattern,
         notes=f"{int(n)} x {int(m)} tube, row {kinematics.row} twisting; {len(kinematics.couplings)} "
         "twist-symmetry couplings; "
         f"{len(kinematics.layout.seam)} seam creases closed by connects",
