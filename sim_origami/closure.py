@@ -349,4 +349,4 @@ class LoopSystem:
         Singular values below rtol times the largest count as zero (the Jacobian is exact, so only rounding
         is below it; a regular pose keeps O(0.1) values).
         """
-        return self.n_joints - rank(self.jacobian(q), rtol)
+        return self.n_joints - rank(self.jacobian_sparse(q) if self.sparse else self.jacobian(q), rtol)
