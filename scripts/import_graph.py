@@ -21,8 +21,9 @@ PAGE = ROOT / "docs" / "architecture.md"
 
 # (layer, what it is, the modules or subpackages in it), lowest first.
 LAYERS = (
-    ("base", "errors, units, atomic files, geometry, graphs, tolerances, typed precision, GL backend",
-     ("__init__", "errors", "conventions", "files", "geometry", "graph", "tolerances", "precision", "gl")),
+    ("base", "errors, units, atomic files, geometry, graphs, tolerances, typed precision, GL backend, peers' times",
+     ("__init__", "errors", "conventions", "files", "geometry", "graph", "tolerances", "precision", "gl",
+      "peer_times")),
     ("kinematics", "closed forms (numpy only), the numeric loop closure and path engine, crease patterns, FOLD files",
      ("kinematics", "closure", "path", "creases", "fold", "fold_mesh")),
     ("mechanism", "bodies, joints, spanning trees, panel and link solids, linkage files",
