@@ -147,6 +147,7 @@ def as_dict(report: Report, command: str | None = None) -> dict:
         "params": scene.params,
         # values as typed that the nearest exact model moved, each against its precision (in the unit it was given)
         "adjustments": [a.as_dict() for a in scene.adjustments],
+        "notes": scene.notes,
         "preset": report.preset.name,
         # "none" for plain MuJoCo; "position" when the preset projects qpos onto the closures after each step
         "stabilize": report.preset.stabilize,
@@ -261,7 +262,8 @@ def motion_fold(report: Report, out: Path) -> Path:
     )
     title = f"{scene.name}: MuJoCo {report.preset.name}, branch {run.requested}"
     rho = np.clip(rho, -np.pi, np.pi)
-    return write_fold(out, scene.pattern, rho, fold_angles=rho[-1], title=title, flat_tol=tol, notes=notes)
+    return write_fold(out, scene.pattern, rho, fold_angles=rho[-1], title=title, flat_tol=tol, notes=notes,
+                      numbering=scene.numbering)
 
 
 def _rounded(values: ArrayLike, digits: int = VIEW_DIGITS) -> list[float]:

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from sim_origami import scenes
+from sim_origami.cli import main
 from sim_origami.errors import ParameterError
 from sim_origami.fold import FLAT_TOL, fold_dict, read_fold
 from sim_origami.geometry import rigid_fit
@@ -318,3 +319,23 @@ def test_a_cut_pattern_writes_its_numbering_as_a_mapping():
     assert len(edge_of) == len(out["edges_vertices"])
     for (a, b), k in zip(out["edges_vertices"], edge_of, strict=True):
         assert k is None or sorted(doc["edges_vertices"][k]) == sorted((vertex_of[a], vertex_of[b]))
+
+
+@pytest.mark.slow
+def test_a_validated_file_in_mm_writes_its_motion_in_mm_with_its_edge_numbers(tmp_path, capsys):
+    # the validation's motion.fold came back rescaled to 1 m, labelled "m", creases first (the file's crease e4 as
+    # edge 0); it now keeps the file's unit and numbering, and reads back to the same pattern
+    doc = user_file_in_mm() | {"edges_foldAngle": [0, 0, 0, 0, 30.0, 0, 0, 0]}  # against e4's M: said when read
+    path = tmp_path / "user.fold"
+    path.write_text(json.dumps(doc))
+    code = main(["validate", "--fold", str(path), "--out", str(tmp_path / "out")])
+    assert code in (0, 1)
+    said = capsys.readouterr().out
+    assert "  read: the fold angles contradict the M/V letters at 1 of 4 lettered creases (e4 M at +30 deg)" in said
+    report = json.loads((tmp_path / "out" / "report.json").read_text())
+    assert "; read: the fold angles contradict" in report["notes"]
+    written = json.loads((tmp_path / "out" / "motion.fold").read_text())
+    assert written["frame_unit"] == "mm" and written["vertices_coords"] == doc["vertices_coords"]
+    assert written["edges_vertices"] == doc["edges_vertices"] and written["edges_assignment"][:4] == ["B"] * 4
+    again = read_fold(tmp_path / "out" / "motion.fold")
+    assert again.edge_of_crease == read_fold(doc).edge_of_crease == (4, 5, 6, 7)

@@ -20,6 +20,7 @@ from sim_origami import scenes
 from sim_origami.cli import main
 from sim_origami.cli import validate as validate_command
 from sim_origami.presets import PRESET_NAMES
+from sim_origami.scenes import Tuning
 from sim_origami.scenes.fold_file import fold_scene
 from sim_origami.stabilize import MODES
 
@@ -79,7 +80,8 @@ def minimal_report() -> dict:
               "step_cpu_time_s": 0.02, "events": [],
               "mobility": {"gruebler": -2, "idle_spins": 0, "inputs": 1, "start": point, "bifurcations": []},
               "verdicts": [verdict("B: MuJoCo fast path error (rad)")]}
-    return {"sim_origami": "0.1.0", "scene": "bennett", "params": {"a": 1.0}, "adjustments": [], "preset": "fast",
+    return {"sim_origami": "0.1.0", "scene": "bennett", "params": {"a": 1.0}, "adjustments": [], "notes": "",
+            "preset": "fast",
             "stabilize": "none", "seed": "closed", "input": {"name": "theta1", "drive_joint": "theta1"},
             "joints": ["theta1", "theta2"], "angle_error_max_rad": 1e-7, "closure_residual_max_m": 1e-7,
             "branches": [branch], "events": [], "bifurcation_study": [], "free_run": None, "verdicts": [verdict()],
@@ -259,7 +261,7 @@ def test_a_run_mujoco_could_not_finish_conforms(tmp_path, capsys):
     validate_command.add_args(parser)
     args = parser.parse_args(["--fold", str(path), "--preset", "fast", "--out", str(tmp_path / "out")])
     scene = fold_scene(path, GRID7_INPUTS.rsplit(",", 3)[0])
-    assert validate_command.validate_scene(replace(scene, sweep_time_scale=0.01), args) == 1
+    assert validate_command.validate_scene(replace(scene, tuning=Tuning(sweep_time_scale=0.01)), args) == 1
     doc = conforming(tmp_path / "out" / "report.json")
     assert doc["verdicts"][-1]["name"] == "MuJoCo run finished without a warning" and "events" not in doc
     assert doc["provenance"]["command"] is None  # validate_scene called, not the command line

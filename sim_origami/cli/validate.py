@@ -90,7 +90,7 @@ def check_run(scene, args: argparse.Namespace) -> None:
 
 def chosen_preset(scene, args: argparse.Namespace) -> Preset:
     """The preset --preset names, or the scene's own."""
-    return as_preset(args.preset) if args.preset else scene.preset
+    return as_preset(args.preset) if args.preset else scene.tuning.preset
 
 
 def registered(scene, args: argparse.Namespace) -> dict:
@@ -250,6 +250,9 @@ def validate_scene(scene, args: argparse.Namespace) -> int:
     if args.reference is not None:  # read and checked before anything is simulated
         tol = None if args.reference_tol is None else float(deg_to_rad(args.reference_tol))
         reference = read_reference(args.reference, scene.kinematics, units=args.reference_units, tol=tol)
+    if not args.json:
+        for note in scene.source_notes:  # what reading the file did, before the long work
+            print(f"  read: {note}")
     out = args.out or Path("runs") / scene.name
     with claimed_folder(out, force=args.force) as stage:  # the previous run's files stay until this one finishes
         try:

@@ -7,7 +7,7 @@ module plus one scene module that calls `register`.
 
 import functools
 from collections.abc import Callable
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -15,11 +15,11 @@ from numpy.typing import ArrayLike, NDArray
 from ..conventions import LENGTH_RANGE, LENGTH_RATIO_MAX
 from ..creases import CreasePattern
 from ..errors import AssemblyError, ParameterError
+from ..fold import FileNumbering
 from ..kinematics.base import Kinematics
 from ..mechanism import Mechanism
 from ..mjcf import ModelSetup
 from ..path import Polyline
-from ..peer_times import FREE_RUN_PEERS
 from ..precision import Adjustment, Typed, nearest_exact
 from ..presets import FAST, Preset
 
@@ -212,38 +212,10 @@ class Scene:
     # Values as typed that the nearest exact model moved (`precision.nearest_exact`): validation checks that model
     # and reports each move against the value's precision.
     adjustments: tuple[Adjustment, ...] = ()
-
-    # Read-only views of `tuning` and of the peer table by the names callers outside the scenes still use (simulate,
-    # validation, the CLI, studies, scripts); to go once they read `tuning` and `peer_times` themselves.
-    @property
-    def preset(self) -> Preset:
-        """`tuning.preset`."""
-        return self.tuning.preset
-
-    @property
-    def sweep_time_scale(self) -> float:
-        """`tuning.sweep_time_scale`."""
-        return self.tuning.sweep_time_scale
-
-    @property
-    def fast_step_scale(self) -> float:
-        """`tuning.fast_step_scale`."""
-        return self.tuning.fast_step_scale
-
-    @property
-    def fast_timeconst_scale(self) -> float:
-        """`tuning.fast_timeconst_scale`."""
-        return self.tuning.fast_timeconst_scale
-
-    @property
-    def fast_regularization_scale(self) -> float:
-        """`tuning.fast_regularization_scale`."""
-        return self.tuning.fast_regularization_scale
-
-    @property
-    def free_run_peer(self) -> tuple[str, float] | None:
-        """Another tool's published CPU time for this scene's free run (`peer_times.FREE_RUN_PEERS`), if any."""
-        return FREE_RUN_PEERS.get(self.name)
+    # A scene read from a user's file: what the reader did and warned of, one sentence each (shown with the verdicts),
+    # and the file's unit and numbering, which files written from the scene keep (`fold.FileNumbering`).
+    source_notes: tuple[str, ...] = ()
+    numbering: FileNumbering | None = None
 
     @property
     def drives(self) -> tuple[str, ...]:
@@ -336,27 +308,6 @@ class Scene:
         margin = min(0.05 * max(abs(lo), abs(hi)), 0.25 * (hi - lo))
         start, stop = np.clip(self.path, lo + margin, hi - margin)
         return float(start), float(stop)
-
-
-# `Tuning`'s fields but `why`: `Scene(..., sweep_time_scale=3.0)` and `replace(scene, preset=STIFF)` (tests, plugins,
-# linkage files, docs/extending.md) still set them by these names; they go into `tuning`.
-TUNING_NAMES = frozenset(f.name for f in fields(Tuning)) - {"why"}
-
-
-def _tuning_by_name(init: Callable[..., None]) -> Callable[..., None]:
-    """Scene's dataclass `__init__`, taking `Tuning`'s fields by name into `tuning` as well."""
-
-    @functools.wraps(init)
-    def init_with_tuning(self: Scene, *args: object, **kwargs: object) -> None:
-        given = {name: kwargs.pop(name) for name in TUNING_NAMES & kwargs.keys()}
-        if given:
-            kwargs["tuning"] = replace(kwargs.get("tuning", DEFAULT_TUNING), **given)
-        init(self, *args, **kwargs)
-
-    return init_with_tuning
-
-
-Scene.__init__ = _tuning_by_name(Scene.__init__)
 
 
 def without_implied_closures(scene: Scene) -> Scene:

@@ -213,9 +213,10 @@ def fold_scene(path: str | Path, input_crease: str | None = None, frames_toleran
         loop_joints=tuple(names), drive_joint=inputs[0], drive_scale=1.0, path=(float(sweep[0]), float(sweep[1])),
         tuning=tuning,
         notes=f"from {Path(path).name} ({source}), lengths in units of its longest edge {size:.6g} m, inputs "
-        f"{', '.join(inputs)}; {kinematics.summary()}",
+        f"{', '.join(inputs)}; {kinematics.summary()}" + "".join(f"; read: {note}" for note in fold.notes),
         pattern=pattern, drive_joints=tuple(inputs) if multi else (), drive_path=kinematics.path if multi else None,
         adjustments=fold.fit.adjustments if fold.fit is not None else (),
+        source_notes=fold.notes, numbering=None if fold.numbering is None else fold.numbering.scaled(1.0 / size),
     )
 
 
