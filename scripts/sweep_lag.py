@@ -25,7 +25,7 @@ def main(names: list[str]) -> None:
         for branch in (b.name for b in scene.kinematics.branches()):
             start, stop = scene.branch_path(branch)
             accel = path_acceleration(scene, branch, start, stop)
-            soft = scene.fast_step_scale * scene.fast_timeconst_scale  # the lag grows as the time constant squared
+            soft = scene.tuning.fast_softening  # the lag grows as the time constant squared
             short = simulate(scene, branch, preset=FAST, duration=base)
             err = compare(scene, branch, short.q).max_error()
             run = simulate(scene, branch, preset=FAST)

@@ -153,7 +153,7 @@ def sweep(scene: Scene, option: Option, contact: bool, steps: int | None = None)
     start, stop = scene.branch_path(BRANCH)
     binds.set_pose(data, scene.pose(BRANCH, start))
     mujoco.mj_forward(model, data)
-    T = PRESET.sweep_duration * scene.sweep_time_scale
+    T = PRESET.sweep_duration * scene.tuning.sweep_time_scale
     h = model.opt.timestep
     _, target = drive_targets(scene, model, compiled.ids, start, stop, T, round(T / h))
     target, t = target[:steps], h * np.arange(1, len(target) + 1)[:steps]

@@ -121,7 +121,7 @@ def _model(scene: Scene, model: CompiledModel | None, preset: Preset | None, **o
     """`model`, or, without one, the scene's compiled for `preset` (default the scene's) and `options`; a model and
     options for another are not taken together."""
     if model is None:
-        return compile_model(scene, ModelOptions(preset=preset or scene.preset, **options))
+        return compile_model(scene, ModelOptions(preset=preset or scene.tuning.preset, **options))
     if preset is not None or options:
         raise ParameterError("give a compiled model or the options to compile one, not both")
     return model

@@ -136,7 +136,7 @@ def run_point(scene_name: str, params: dict[str, float], preset: Preset | None =
     try:
         scene = scenes.get(scene_name).build_from_user(params)
         kin, loops = scene.kinematics, scene.kinematics.loop_system()
-        model = compile_model(scene, ModelOptions(preset=preset or scene.preset))  # every branch's run
+        model = compile_model(scene, ModelOptions(preset=preset or scene.tuning.preset))  # every branch's run
         errors, gaps, residuals, followed = [], [], [], []
         for branch in kin.branches():
             start, stop = scene.branch_path(branch.name)
@@ -147,7 +147,7 @@ def run_point(scene_name: str, params: dict[str, float], preset: Preset | None =
             errors.append(path.max_error())
             gaps.append(float(np.max(run.closure_residual)))
             followed.append(classify(kin, path.input, path.simulated).followed)
-        used = preset or scene.preset
+        used = preset or scene.tuning.preset
         passed = (max(errors) <= used.angle_rad and max(gaps) <= used.residual(scene.length_scale)
                   and max(residuals) <= TOLERANCES.loop_residual(scene.length_scale)
                   and followed == [b.name for b in kin.branches()])

@@ -21,6 +21,7 @@ from .checks.verdict import Verdict
 from .conventions import MIN_SWEEP_RAD
 from .errors import ConvergenceError, SimulationError
 from .mjcf import CompiledModel, ModelOptions
+from .peer_times import FREE_RUN_PEERS
 from .presets import FAST, Preset, as_preset
 from .scenes.base import Scene
 from .simulate import (
@@ -413,7 +414,7 @@ def run_blockage(scene: Scene, branch: str) -> tuple[Blockage, float]:
     lo, hi = scene.kinematics.branch(branch).domain
     lock = hi if stop >= start else lo
     t0 = time.thread_time()
-    model = compile_model(scene, ModelOptions(preset=scene.preset, drive="servo", contact=True))
+    model = compile_model(scene, ModelOptions(preset=scene.tuning.preset, drive="servo", contact=True))
     touch = contact_input(scene, branch, start, lock, model=model)
     run = simulate(scene, branch, start=start, stop=lock, hold=BLOCKAGE_HOLD, model=model)
     x = run.q[:, scene.mechanism.joint_index(scene.drive_joint)] / scene.drive_scale
@@ -435,8 +436,8 @@ def run_free(scene: Scene, preset: Preset) -> tuple[dict, list[Verdict]]:
            "angle_error_max_rad": path.max_error(), "closure_residual_max_m": float(np.max(run.closure_residual)),
            "input_range_rad": [float(np.min(path.input)), float(np.max(path.input))]}
     peer = ""
-    if scene.free_run_peer is not None:
-        tool, seconds = scene.free_run_peer
+    if scene.name in FREE_RUN_PEERS:
+        tool, seconds = FREE_RUN_PEERS[scene.name]
         doc |= {"peer": tool, "peer_time_s": seconds, "peer_over_mujoco": seconds / run.cpu_time_s}
         peer = f" ({tool}: {seconds} s)"
     own_step = _own_step_verdicts(scene, scene.free_branch, model, own)
@@ -473,7 +474,7 @@ def validate(
     ParameterError
       For an unknown branch or preset.
     """
-    preset = as_preset(preset or scene.preset)
+    preset = as_preset(preset or scene.tuning.preset)
     names = [branch] if branch else [b.name for b in scene.kinematics.branches()]
     for name in names:
         scene.kinematics.branch(name)

@@ -187,7 +187,8 @@ def test_a_scene_of_all_that_mujoco_cannot_finish_fails_with_its_report_and_the_
     parser = argparse.ArgumentParser()
     validate_command.add_args(parser)
     args = parser.parse_args(["--all", "--preset", "fast"])
-    scene = replace(fold_scene(path, GRID7_INPUTS.rsplit(",", 3)[0]), sweep_time_scale=0.01)
+    scene = fold_scene(path, GRID7_INPUTS.rsplit(",", 3)[0])
+    scene = replace(scene, tuning=replace(scene.tuning, sweep_time_scale=0.01))
     out = tmp_path / "grid"
     out.mkdir()
     doc = validate_command.validate_in_all(scene, args, out)

@@ -14,7 +14,7 @@ from sim_origami.kinematics.myard import BRANCH, Myard
 from sim_origami.linkage import dh_mechanism
 from sim_origami.linkage_forms import chain_poses, reduced_form
 from sim_origami.presets import FAST
-from sim_origami.scenes.base import Scene
+from sim_origami.scenes.base import Scene, Tuning
 from sim_origami.scenes.polyhedra import kutzbach
 from sim_origami.simulate import mujoco_mobility, simulate
 from sim_origami.studies.fabrication import (
@@ -250,7 +250,7 @@ def test_mujoco_rssr_follows_the_perturbed_closed_form_and_the_bennett_does_not_
     mechanism = dh_mechanism(bad.rows, anchor=0.5)
     bennett = Scene(name="bennett-built", params={}, kinematics=bad, mechanism=mechanism,
                     loop_joints=tuple(j.name for j in mechanism.joints), drive_joint="joint_1", drive_scale=1.0,
-                    path=(0.5, 2.9), sweep_time_scale=3.0)
+                    path=(0.5, 2.9), tuning=Tuning(sweep_time_scale=3.0))
     assert mujoco_mobility(bennett, bennett.pose("bennett", 1.0)) == 0
     assert simulate(bennett, "bennett", preset=FAST).closure_residual.min() > 5e-3
 

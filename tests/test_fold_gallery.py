@@ -518,7 +518,7 @@ def test_mujoco_diverging_on_a_users_file_is_a_failed_check_with_its_report(tmp_
     out = tmp_path / "out"
     args = parser.parse_args(["--fold", str(path), "--preset", "fast", "--out", str(out)])
     scene = fold_scene(path, GRID7_INPUTS.rsplit(",", 3)[0])
-    code = validate_command.validate_scene(replace(scene, sweep_time_scale=0.01), args)
+    code = validate_command.validate_scene(replace(scene, tuning=replace(scene.tuning, sweep_time_scale=0.01)), args)
     printed = capsys.readouterr().out
     assert code == 1, printed
     report = json.loads((out / "report.json").read_text())

@@ -70,7 +70,7 @@ def test_a_large_near_square_sheet_keeps_mujocos_closures_within_tolerance(tmp_p
     tolerance at x2, a failed check on a rigid pattern; at 3 steps, rooted at the centre (12 deep): 0.36, measured."""
     doc = miura_letters_only(12, 12, zig=0.2)
     scene = fold_scene(write(tmp_path, "near-square-12", doc))
-    assert scene.fast_timeconst_scale > 1.0 and max(_depths(scene.mechanism).values()) == 12
+    assert scene.tuning.fast_timeconst_scale > 1.0 and max(_depths(scene.mechanism).values()) == 12
     code, report = validated(tmp_path, "near-square-12", doc)
     assert code == 0, capsys.readouterr().out
     gap = next(v for v in report["branches"][0]["verdicts"] if "fast closure residual" in v["name"])

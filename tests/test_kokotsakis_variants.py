@@ -20,6 +20,7 @@ from sim_origami.kinematics.kokotsakis import (
     loop_mismatch,
 )
 from sim_origami.presets import FAST
+from sim_origami.scenes import Tuning
 from sim_origami.scenes.patterns import pattern_scene
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
@@ -155,7 +156,7 @@ def test_new_plane_symmetric_layout_mesh_in_mujoco():
     assert not kv.mirror_symmetric(v)
     mesh = Kokotsakis(v)
     scene = pattern_scene("kokotsakis_variant", {}, mesh, mesh.pattern, drive=INPUT, path=(0.3, 1.1), root="central",
-                          sweep_time_scale=4.0)
+                          tuning=Tuning(sweep_time_scale=4.0))
     report = validate(scene)
     measured = {x.name: x.measured for x in report.verdicts} | {x.name: x.measured for r in report.runs
                                                                  for x in r.verdicts}

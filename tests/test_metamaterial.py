@@ -173,7 +173,7 @@ def test_closed_form_ratios_and_the_texts_claims():
 def test_mujoco_motion_has_the_published_dimensions_and_ratios(element, stop, nu_out_tol, min_samples):
     sc = sheet()
     branch = ELEMENTS[element].branch
-    run = simulate(sc, branch, stop=stop, duration=32 * sc.preset.sweep_duration)  # 32x: near the rounding floor
+    run = simulate(sc, branch, stop=stop, duration=32 * sc.tuning.preset.sweep_duration)  # 32x: near the rounding floor
     positions, gap, phi, x = measured(sc, run.q)
     exact = sc.loop_to_mechanism(sc.kinematics.joint_angles(branch, x))
     assert np.max(np.abs(run.q - exact)) <= 1e-8  # fold angles on the closed form: measured 6.9e-10, 2.4e-9 rad (3)

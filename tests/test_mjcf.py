@@ -11,6 +11,7 @@ from sim_origami import scenes
 from sim_origami.errors import ParameterError
 from sim_origami.mjcf import ModelOptions, closures, mujoco_joints, qpos_order
 from sim_origami.presets import ACCURATE, FAST, STIFF, as_preset
+from sim_origami.scenes import Tuning
 from sim_origami.simulate import scene_xml
 from sim_origami.studies import pareto
 
@@ -244,7 +245,7 @@ def test_stiff_preset_is_semi_implicit_euler_with_closures_at_twice_its_step():
 def test_a_scenes_fast_step_scale_lengthens_fast_only_and_keeps_tau_over_h():
     """The twist tuned to 1.25x fast's step runs at 10 ms, closures and drive at 25 ms; stiff and other scenes as
     written."""
-    scene = dataclasses.replace(scenes.get("waterbomb-twist").build(), fast_step_scale=1.25)
+    scene = dataclasses.replace(scenes.get("waterbomb-twist").build(), tuning=Tuning(fast_step_scale=1.25))
     fast, _ = compiled(scene, preset=FAST)
     stiff, _ = compiled(scene, preset=STIFF)
     plain, _ = compiled(scenes.get("waterbomb-vertex").build(), preset=FAST)
@@ -257,8 +258,8 @@ def test_a_scenes_fast_step_scale_lengthens_fast_only_and_keeps_tau_over_h():
 def test_a_scenes_fast_timeconst_scale_softens_the_closures_and_drive_not_the_step():
     """A large FOLD pattern's closures and drive run at 1.2x fast's time constant (3 steps, not 2.5), its step 8 ms;
     its regulariser scale reaches model.xml and the pareto study's fast setting."""
-    scene = dataclasses.replace(scenes.get("waterbomb-vertex").build(), fast_timeconst_scale=1.2,
-                                fast_regularization_scale=0.01)
+    scene = dataclasses.replace(scenes.get("waterbomb-vertex").build(),
+                                tuning=Tuning(fast_timeconst_scale=1.2, fast_regularization_scale=0.01))
     fast, _ = compiled(scene, preset=FAST)
     stiff, _ = compiled(scene, preset=STIFF)
     plain, _ = compiled(scenes.get("waterbomb-vertex").build(), preset=STIFF)

@@ -237,7 +237,8 @@ def test_replay_snippet_in_the_guide_holds_and_folds(bennett_run):
 @pytest.mark.parametrize("name", ["bennett", "miura"])
 def test_model_xml_holds_every_start_pose_in_plain_mujoco(name):
     scene = scenes.get(name).build()
-    assert_holds(scene, replay_model_xml(scene, compile_model(scene, ModelOptions(preset=scene.preset)), starts(scene)))
+    compiled = compile_model(scene, ModelOptions(preset=scene.tuning.preset))
+    assert_holds(scene, replay_model_xml(scene, compiled, starts(scene)))
 
 
 @pytest.mark.slow
@@ -246,7 +247,7 @@ def test_every_scenes_model_xml_holds_every_start_pose_in_plain_mujoco(name):
     """Each built-in scene's model.xml as a validation of all its branches writes it (28 scenes, 58 keyframes: about
     45 s here, most of it building the polyhedra and tubes)."""
     scene = scenes.get(name).build()
-    text = replay_model_xml(scene, compile_model(scene, ModelOptions(preset=scene.preset)), starts(scene))
+    text = replay_model_xml(scene, compile_model(scene, ModelOptions(preset=scene.tuning.preset)), starts(scene))
     assert_holds(scene, text)
     assert not [c for c in re.findall(r"<!--(.*?)-->", text) if any(w in c for w in CODE_WORDS)]
 

@@ -28,4 +28,5 @@ def test_a_run_mujoco_could_not_finish_still_says_what_made_it(tmp_path):
     failed_run(scene, args, tmp_path, SimulationError("MuJoCo diverged at step 12"))
     doc = json.loads((tmp_path / "report.json").read_text())
     assert not doc["passed"] and doc["provenance"]["command"] == "sim-origami validate bennett"
-    assert doc["provenance"]["preset"] == scene.preset.name and doc["provenance"].keys() == provenance(FAST).keys()
+    assert doc["provenance"]["preset"] == scene.tuning.preset.name
+    assert doc["provenance"].keys() == provenance(FAST).keys()

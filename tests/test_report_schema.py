@@ -20,7 +20,6 @@ from sim_origami import scenes
 from sim_origami.cli import main
 from sim_origami.cli import validate as validate_command
 from sim_origami.presets import PRESET_NAMES
-from sim_origami.scenes import Tuning
 from sim_origami.scenes.fold_file import fold_scene
 from sim_origami.stabilize import MODES
 
@@ -261,7 +260,8 @@ def test_a_run_mujoco_could_not_finish_conforms(tmp_path, capsys):
     validate_command.add_args(parser)
     args = parser.parse_args(["--fold", str(path), "--preset", "fast", "--out", str(tmp_path / "out")])
     scene = fold_scene(path, GRID7_INPUTS.rsplit(",", 3)[0])
-    assert validate_command.validate_scene(replace(scene, tuning=Tuning(sweep_time_scale=0.01)), args) == 1
+    scene = replace(scene, tuning=replace(scene.tuning, sweep_time_scale=0.01))
+    assert validate_command.validate_scene(scene, args) == 1
     doc = conforming(tmp_path / "out" / "report.json")
     assert doc["verdicts"][-1]["name"] == "MuJoCo run finished without a warning" and "events" not in doc
     assert doc["provenance"]["command"] is None  # validate_scene called, not the command line

@@ -11,7 +11,7 @@ from sim_origami.errors import ParameterError
 from sim_origami.geometry import wrap
 from sim_origami.mjcf import ModelOptions
 from sim_origami.peer_times import FREE_RUN_PEERS
-from sim_origami.presets import FAST, STIFF
+from sim_origami.presets import FAST
 from sim_origami.scenes.base import DEFAULT_TUNING, Tuning
 from sim_origami.simulate import Bindings, compile_model
 
@@ -135,15 +135,14 @@ def test_a_registered_scene_runs_the_default_tuning_unless_it_says_why_in_one_li
     assert len(tuned) <= MOST_TUNED_MODULES, tuned
 
 
-def test_tuning_fields_given_by_name_go_into_the_scenes_tuning():
-    """`Scene(..., sweep_time_scale=...)` and `replace(scene, preset=...)`, as callers outside the scenes still write
-    them, set `Scene.tuning` and keep its other values."""
+def test_a_scenes_run_tuning_is_its_tuning_value_only():
+    """The knobs live in `Scene.tuning` alone: no field, property or keyword of the scene by their names."""
     scene = dataclasses.replace(scenes.get("bennett").build(), tuning=Tuning(fast_step_scale=1.25, why="test"))
-    tuned = dataclasses.replace(scene, sweep_time_scale=3.0, preset=STIFF)
-    assert tuned.tuning == Tuning(preset=STIFF, sweep_time_scale=3.0, fast_step_scale=1.25, why="test")
-    assert (tuned.preset, tuned.sweep_time_scale, tuned.fast_step_scale) == (STIFF, 3.0, 1.25)
-    assert dataclasses.replace(tuned, notes="x").tuning == tuned.tuning
-    assert "sweep_time_scale" not in {f.name for f in dataclasses.fields(scene)}
+    assert dataclasses.replace(scene, notes="x").tuning == Tuning(fast_step_scale=1.25, why="test")
+    for name in ("preset", "sweep_time_scale", "fast_step_scale", "fast_timeconst_scale", "fast_regularization_scale"):
+        assert not hasattr(scene, name), name
+        with pytest.raises(TypeError, match=name):
+            dataclasses.replace(scene, **{name: getattr(scene.tuning, name)})
 
 
 @pytest.mark.parametrize(("values", "needle"), [
@@ -158,6 +157,5 @@ def test_tuning_refuses_a_scale_not_above_zero_and_a_preset_by_name(values, need
 
 
 def test_a_peers_free_run_time_comes_from_the_peer_table_not_the_scene():
-    assert scenes.get("iftomm-a04").build().free_run_peer == FREE_RUN_PEERS["iftomm-a04"] == ("OpenSim", 0.258)
-    assert scenes.get("bennett").build().free_run_peer is None
-    assert "free_run_peer" not in {f.name for f in dataclasses.fields(scenes.Scene)}
+    assert FREE_RUN_PEERS["iftomm-a04"] == ("OpenSim", 0.258) and "bennett" not in FREE_RUN_PEERS
+    assert not hasattr(scenes.get("iftomm-a04").build(), "free_run_peer")

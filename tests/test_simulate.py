@@ -15,6 +15,7 @@ from sim_origami.geometry import rotation
 from sim_origami.mjcf import ModelOptions
 from sim_origami.origami import crease_directions
 from sim_origami.presets import ACCURATE, FAST, STIFF
+from sim_origami.scenes import Tuning
 from sim_origami.simulate import (
     Bindings,
     compile_model,
@@ -256,8 +257,8 @@ def test_compiled_models_carry_the_presets_regulariser_scale(preset):
 
 
 def test_a_scenes_regulariser_scale_multiplies_the_fast_presets_and_is_written_in_the_model():
-    """Scene.fast_regularization_scale reaches the MJCF's numeric (a plain load can repeat the run) under fast only."""
-    scene = replace(scenes.get("thick-diamond").build(), fast_regularization_scale=0.01)
+    """Tuning.fast_regularization_scale reaches the MJCF's numeric (a plain load can repeat the run) under fast only."""
+    scene = replace(scenes.get("thick-diamond").build(), tuning=Tuning(fast_regularization_scale=0.01))
     for preset, expected in ((FAST, 1e-4), (STIFF, 0.01)):
         plain = mujoco.MjModel.from_xml_string(scene_xml(scene, ModelOptions(preset=preset)))
         model = compile_model(scene, ModelOptions(preset=preset)).model

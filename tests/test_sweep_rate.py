@@ -61,8 +61,8 @@ def test_a_bennett_turning_its_output_18_times_as_fast_as_its_input_passes_the_d
     scene = bennett_across_pi(1.1)
     assert peak_rate(scene) >= 10
     run = simulate(scene, "bennett")
-    rule = sweep_duration(scene, "bennett", scene.preset, *ACROSS_PI)
-    assert rule <= run.sweep_time_s < rule + scene.preset.timestep  # whole steps
+    rule = sweep_duration(scene, "bennett", scene.tuning.preset, *ACROSS_PI)
+    assert rule <= run.sweep_time_s < rule + scene.tuning.preset.timestep  # whole steps
     assert run.sweep_time_s > 10 * FAST.sweep_duration
     assert compare(scene, "bennett", run.q).max_error() < 0.5 * FAST.angle_rad
     assert np.max(run.closure_residual) < FAST.residual(scene.length_scale)

@@ -10,6 +10,7 @@ from sim_origami.checks.paths import compare
 from sim_origami.checks.verdict import Verdict
 from sim_origami.errors import ParameterError
 from sim_origami.presets import FAST, STIFF
+from sim_origami.scenes import Tuning
 from sim_origami.simulate import simulate
 from sim_origami.tolerances import TOLERANCES
 from sim_origami.validation import validate
@@ -83,7 +84,7 @@ def test_validate_rejects_an_unknown_preset_naming_it():
 def test_a_scene_runs_its_own_preset_unless_told_otherwise():
     # every registered scene now runs fast (the truncated octahedron, the last on stiff, switched with the 3 s
     # blockage hold); a scene that picks stiff gets it
-    assert {scenes.get(name).build().preset for name in ("vertex4", "truncated-octahedron")} == {FAST}
-    scene = dataclasses.replace(scenes.get("vertex4").build(), preset=STIFF)
+    assert {scenes.get(name).build().tuning.preset for name in ("vertex4", "truncated-octahedron")} == {FAST}
+    scene = dataclasses.replace(scenes.get("vertex4").build(), tuning=Tuning(preset=STIFF))
     run = simulate(scene, "odd1", stop=0.5)
     assert run.preset == STIFF and simulate(scene, "odd1", stop=0.5, preset=FAST).preset == FAST

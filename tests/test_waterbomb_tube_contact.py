@@ -53,7 +53,7 @@ class Contacts:
 
     def __init__(self, scene):
         self.scene = scene
-        compiled = compile_model(scene, ModelOptions(preset=scene.preset, contact=True))
+        compiled = compile_model(scene, ModelOptions(preset=scene.tuning.preset, contact=True))
         self.model, self.data = compiled.fresh()
         self.binds = Bindings(compiled)
 

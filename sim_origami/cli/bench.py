@@ -67,7 +67,8 @@ def bench_case(name, params, branch, start, stop, repeats) -> dict:
     start = lo if start is None else start
     stop = hi if stop is None else stop
     row = {"scene": name, "branch": branch, "input_rad": [start, stop]}
-    models = {preset: compile_model(scene, ModelOptions(preset=preset)) for preset in (FAST, ACCURATE, scene.preset)}
+    own = scene.tuning.preset
+    models = {preset: compile_model(scene, ModelOptions(preset=preset)) for preset in (FAST, ACCURATE, own)}
     for preset in (FAST, ACCURATE):
         runs = [simulate(scene, branch, start=start, stop=stop, model=models[preset]) for _ in range(repeats)]
         if preset == FAST:
@@ -77,10 +78,10 @@ def bench_case(name, params, branch, start, stop, repeats) -> dict:
         row[f"{preset.name}_steps"] = runs[0].steps
         if preset == FAST:
             row["fast_call_cpu_s"] = _best(lambda: simulate(scene, branch, start=start, stop=stop,
-                                                            model=models[scene.preset]), repeats)[1]
+                                                            model=models[own]), repeats)[1]
     row["bare_loop_cpu_s"] = pareto.bare_loop_cpu(scene, branch, runs_fast[0].target, repeats)
     row["harness_loop_over_bare"] = row["fast_step_cpu_s"] / row["bare_loop_cpu_s"]
-    proj, cpu = _best(lambda: project(scene, branch, np.linspace(start, stop, 200), model=models[scene.preset]), 1)
+    proj, cpu = _best(lambda: project(scene, branch, np.linspace(start, stop, 200), model=models[own]), 1)
     row["projection_error_rad"] = compare(scene, branch, proj.q).max_error()
     row["projection_cpu_s_per_sample"] = cpu / 200
     x = np.linspace(start, stop, 1_000_000)

@@ -50,11 +50,16 @@ def run(args: argparse.Namespace) -> int:
     spherical = f", {len(mech.balls)} spherical" if mech.balls else ""
     print(f"mechanism: {len(reduced.bodies)} bodies, {len(reduced.joints) - len(mech.balls)} hinges{spherical}, "
           f"root {mech.root}, loops cut at {', '.join(sorted(cut)) or 'none'}")
-    scaled = f"; fast at {scene.fast_step_scale:g}x its step and time constant" if scene.fast_step_scale != 1 else ""
-    if scene.fast_timeconst_scale != 1:
-        scaled += f"; fast's time constant {scene.fast_timeconst_scale:g}x its own"
-    slower = f" x {scene.sweep_time_scale:g}" if scene.sweep_time_scale != 1 else ""
-    print(f"preset: {scene.preset.name}, sweep as long as its path's joint rates ask{slower}{scaled}")
+    tuning = scene.tuning
+    scaled = f"; fast at {tuning.fast_step_scale:g}x its step and time constant" if tuning.fast_step_scale != 1 else ""
+    if tuning.fast_timeconst_scale != 1:
+        scaled += f"; fast's time constant {tuning.fast_timeconst_scale:g}x its own"
+    if tuning.fast_regularization_scale != 1:
+        scaled += f"; fast's regulariser {tuning.fast_regularization_scale:g}x its own"
+    slower = f" x {tuning.sweep_time_scale:g}" if tuning.sweep_time_scale != 1 else ""
+    print(f"preset: {tuning.preset.name}, sweep as long as its path's joint rates ask{slower}{scaled}")
+    if tuning.why:
+        print(f"tuned: {tuning.why}")
     print("branches:")
     for b in kin.branches():
         lo, hi = b.domain

@@ -6,7 +6,7 @@ package: `validate --fold` needs none of them (about 0.2 s of imports). Scenes o
 import importlib
 from types import ModuleType
 
-from .base import REGISTRY, Param, Scene, SceneType, register
+from .base import REGISTRY, Param, Scene, SceneType, Tuning, register
 from .base import get as _get
 from .base import names as _names
 from .custom import custom_scene
@@ -67,5 +67,5 @@ def names() -> tuple[str, ...]:
     return _names()
 
 
-__all__ = ["REGISTRY", "Param", "Scene", "SceneType", "custom_scene", "get", "load_builtins", "load_plugins", "names",
-           "register"]
+__all__ = ["REGISTRY", "Param", "Scene", "SceneType", "Tuning", "custom_scene", "get", "load_builtins", "load_plugins",
+           "names", "register"]

@@ -9,7 +9,6 @@ builder with `scenes.register` in a module that an installed package names under
 """
 
 import math
-from dataclasses import replace
 
 import numpy as np
 
@@ -17,8 +16,7 @@ from ..closure import LoopSystem
 from ..errors import ParameterError
 from ..kinematics.base import Kinematics
 from ..mechanism import Mechanism
-from ..presets import as_preset
-from .base import DEFAULT_TUNING, TUNING_NAMES, Scene
+from .base import Scene
 
 # Inputs per branch at which the contract is checked: evenly across the domain, ends included.
 CHECK_SAMPLES = 7
@@ -105,8 +103,8 @@ def custom_scene(
     drive_joint, drive_scale : the driven mechanism joint and its angle per unit input (default: the loop joint
       and scale `kinematics.loop_input()` names).
     path : default input sweep (rad); default the middle 80% of the first branch's domain.
-    options : any other `Scene` field (contact_pairs, notes, tuning, ...), and `Tuning`'s fields by name
-      (sweep_time_scale, preset, ...) into its `tuning`; a preset by its name or as a `Preset`.
+    options : any other `Scene` field (contact_pairs, notes, ...); `tuning=Tuning(sweep_time_scale=4.0, why=...)`
+      for runs tuned apart from the defaults.
 
     Raises
     ------
@@ -137,11 +135,6 @@ def custom_scene(
         path = (lo + 0.1 * (hi - lo), hi - 0.1 * (hi - lo))
     if not (len(path) == 2 and all(math.isfinite(p) for p in path) and path[0] != path[1]):
         raise ParameterError(f"path = {path!r} rad; it must be two different finite inputs (start, stop)")
-    if "preset" in options:
-        options["preset"] = as_preset(options["preset"])
-    tuned = {name: options.pop(name) for name in TUNING_NAMES & options.keys()}
-    if tuned:
-        options["tuning"] = replace(options.get("tuning", DEFAULT_TUNING), **tuned)
     return Scene(name=name, params=dict(params or {}), kinematics=kinematics, mechanism=mechanism,
                  loop_joints=loop_joints, drive_joint=drive_joint, drive_scale=drive_scale,
                  path=(float(path[0]), float(path[1])), **options)

@@ -81,11 +81,12 @@ PROJECTED = preset_setting(FAST_PROJECTED)
 
 def scene_presets(scene: Scene) -> dict[Preset, Setting]:
     """The presets as `scene` runs them (`mjcf.build_xml`): fast with its step and time constant times
-    `Scene.fast_step_scale`, the time constant times `Scene.fast_timeconst_scale` too, its regulariser times
-    `Scene.fast_regularization_scale`."""
-    fast, k = PRESET_SETTINGS[FAST], scene.fast_step_scale
-    scaled = dataclasses.replace(fast, h=fast.h * k, tau=fast.tau * k * scene.fast_timeconst_scale,
-                                 regularization=fast.regularization * scene.fast_regularization_scale)
+    `Tuning.fast_step_scale`, the time constant times `Tuning.fast_timeconst_scale` too, its regulariser times
+    `Tuning.fast_regularization_scale` (`Scene.tuning`)."""
+    fast, tuning = PRESET_SETTINGS[FAST], scene.tuning
+    k = tuning.fast_step_scale
+    scaled = dataclasses.replace(fast, h=fast.h * k, tau=fast.tau * k * tuning.fast_timeconst_scale,
+                                 regularization=fast.regularization * tuning.fast_regularization_scale)
     return PRESET_SETTINGS | {FAST: scaled}
 
 

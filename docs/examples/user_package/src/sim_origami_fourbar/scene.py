@@ -5,7 +5,7 @@ anchors on its axis); `custom_scene` checks that the closed form fits it and dri
 """
 
 from sim_origami.linkage import dh_mechanism
-from sim_origami.scenes import Param, Scene, custom_scene, register
+from sim_origami.scenes import Param, Scene, Tuning, custom_scene, register
 
 from .kinematics import FourBar
 
@@ -27,7 +27,7 @@ def build(a1: float, a2: float, a3: float, a4: float) -> Scene:
         dh_mechanism(kinematics.rows, anchor=0.25),
         params={"a1": a1, "a2": a2, "a3": a3, "a4": a4},
         path=(-2.5, 2.5),
-        # fast (RK4 8 ms) at the preset's 2 s for these 5 rad: 3.0e-6 rad; 4x slower: 1.8e-7 (error ~ 1 / time^2)
-        sweep_time_scale=4.0,
+        tuning=Tuning(sweep_time_scale=4.0, why="fast (RK4 8 ms) at the preset's 2 s for these 5 rad: 3.0e-6 rad; 4x "
+                      "slower: 1.8e-7 (error ~ 1 / time^2)"),
         notes="planar: every axis along +z; theta_i is the D-H joint angle, link 4 is the ground",
     )
