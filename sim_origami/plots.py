@@ -14,7 +14,7 @@ from PIL import Image
 
 from .files import atomic_path
 from .studies.pareto import Point, front
-from .validation import Report
+from .validation import MUJOCO_PATH_ERROR, Report
 
 # Simulated markers drawn per branch (the CSV keeps every sample); joints named in a legend at most, and drawn as
 # one error line each (more are drawn as their envelope: 250 lines were unreadable).
@@ -49,12 +49,10 @@ def joint_colors(k: int) -> list:
 
 def _tolerance(report: Report, run) -> float | None:
     """
-    The path-error tolerance the run's verdict used: its 'MuJoCo <preset> path error (rad)' check, '... after
-    projection (rad)' under a projected preset (the path drawn), not the one 'before projection'.
+    The path-error tolerance the run's verdict used: its MuJoCo path error check (`validation.MUJOCO_PATH_ERROR`,
+    after projection under a projected preset: the path drawn), not the one before projection.
     """
-    preset = report.preset.name
-    names = (f"MuJoCo {preset} path error (rad)", f"MuJoCo {preset} path error after projection (rad)")
-    return next((v.tolerance for v in run.verdicts if v.name.endswith(names)), None)
+    return next((v.tolerance for v in run.verdicts if v.id == MUJOCO_PATH_ERROR), None)
 
 
 def _events(report: Report, run) -> list[dict]:

@@ -69,9 +69,10 @@ def _num(value: float) -> float | None:
 
 
 def verdict_json(v) -> dict:
-    """A check as JSON; `compared`: how many values it compared (null where it counts no samples)."""
-    return {"name": v.name, "measured": _num(v.measured), "tolerance": v.tolerance, "passed": v.passed,
-            "detail": v.detail, "compared": v.compared}
+    """A check as JSON: its stable `id` (the check's kind), the branch it is about ("" for the whole scene), its
+    display name; `compared`: how many values it compared (null where it counts no samples)."""
+    return {"id": v.id, "branch": v.branch, "name": v.name, "measured": _num(v.measured), "tolerance": v.tolerance,
+            "passed": v.passed, "detail": v.detail, "compared": v.compared}
 
 
 @functools.cache

@@ -69,7 +69,7 @@ def _data_uri(path: Path, mime: str) -> str | None:
 def _verdict_rows(verdicts: list[dict]) -> str:
     rows = []
     for v in verdicts:
-        rows.append(f"<tr><td>{_status(v['passed'])}</td><td>{_e(v['name'])}</td>"
+        rows.append(f"<tr data-id=\"{_e(v.get('id', ''))}\"><td>{_status(v['passed'])}</td><td>{_e(v['name'])}</td>"
                     f"<td class=num>{_num(v['measured'])}</td><td class=num>{_num(v['tolerance'])}</td>"
                     f"<td>{_e(v.get('detail', ''))}</td></tr>")
     return "\n".join(rows)

@@ -58,6 +58,29 @@ STUDY_SPAN = 0.3
 # after 1 s, 2.5e-5 after 3 s (stiff); the thick Miura vertex (t = 0.02) 3.2e-4 and 9.8e-6.
 BLOCKAGE_HOLD = 3.0
 
+# Each check's stable id (`Verdict.id`, report.json's `verdicts[].id`), by kind; the display names may change.
+CLOSED_FORM_RESIDUAL = "closed-form-residual"  # the closed form's loop residual
+CLOSED_FORM_VS_NUMERIC = "closed-form-vs-numeric"  # the closed form against the numeric continuation
+SWEPT_RANGE = "swept-range"  # how far MuJoCo's run swept its input
+MUJOCO_VERTEX_ERROR = "mujoco-vertex-error"  # a shape model's vertices, MuJoCo against the closed form
+MUJOCO_PATH_ERROR = "mujoco-path-error"  # MuJoCo's path against the closed form (after projection if it projects)
+MUJOCO_OWN_STEP_ERROR = "mujoco-path-error-before-projection"  # a projected preset's own steps
+MUJOCO_CLOSURE_RESIDUAL = "mujoco-closure-residual"  # gaps between MuJoCo's paired closure sites
+PROJECTION_PATH_ERROR = "projection-path-error"  # the projection onto MuJoCo's constraints against the closed form
+BRANCH_FOLLOWED = "branch-followed"  # MuJoCo stayed on the branch it was started on
+MOBILITY_AGREEMENT = "mobility-agreement"  # numeric rank, MuJoCo's rank and the truss count agree
+TRACE_STOPS_AT_START = "trace-stops-at-start"  # a traced reference that never left its start
+FRAMES_DISTANCE = "frames-distance"  # a FOLD file's frames from the rigid motion
+FOLDED_STATE_DISTANCE = "folded-state-distance"  # a FOLD file's folded state from the rigid motion
+FILE_STATE_DISTANCE = "file-state-distance"  # a FOLD file's state from the nearest rigid state
+MV_CREASES_LEFT_FLAT = "mv-creases-left-flat"  # lettered creases the traced motion does not fold
+FREEDOMS_NOT_DRIVEN = "freedoms-not-driven"  # mobility along a traced path beyond its inputs
+BLOCKAGE_STOP = "blockage-stop-vs-contact"  # a force-limited drive's stop against the kinematic contact
+FREE_RUN_ENERGY_DRIFT = "free-run-energy-drift"
+FREE_RUN_OWN_STEP_ERROR = "free-run-path-error-before-projection"
+FREE_RUN_PATH_ERROR = "free-run-path-error"
+BIFURCATION_UNFOLLOWED = "bifurcation-branches-not-followed"  # branches a seeded run never took at a bifurcation
+
 
 class ZeroSweepError(SimulationError):
     """
@@ -124,7 +147,7 @@ def closed_form_verdicts(scene: Scene, branch: str, x: np.ndarray) -> tuple[Verd
         float(np.max(loops.residual_norm(q))),
         TOLERANCES.loop_residual(scene.length_scale),
         "max |rotation vector, translation| of the loop product",
-        compared=len(q),
+        compared=len(q), id=CLOSED_FORM_RESIDUAL, branch=branch,
     )
     name = f"{branch}: closed form vs numeric closure (rad)"
     try:
@@ -134,13 +157,14 @@ def closed_form_verdicts(scene: Scene, branch: str, x: np.ndarray) -> tuple[Verd
         # the input is not bad (a triangulated grid folded along one line and driven by fewer inputs than its
         # motion's freedoms, as --input may ask: 10 x 10, 37 of 109, 2.7e-12 where 1e-12 is asked)
         return residual, Verdict(name, float("inf"), TOLERANCES.closed_form_rad, f"damped-Newton continuation over "
-                                 f"the same inputs did not reach the reference's states: {err}", len(x))
+                                 f"the same inputs did not reach the reference's states: {err}", len(x),
+                                 id=CLOSED_FORM_VS_NUMERIC, branch=branch)
     error, tol, where = floor_verdict_values(scene, PathComparison(x, kin.observe(numeric), values),
                                              TOLERANCES.closed_form_rad, TOLERANCES.closed_form_cond_factor)
     return (
         residual,
         Verdict(name, error, tol, f"damped-Newton continuation over the same inputs, no closed form used; {where}",
-                len(x)),
+                len(x), id=CLOSED_FORM_VS_NUMERIC, branch=branch),
     )
 
 
@@ -260,7 +284,8 @@ def _point_verdicts(scene: Scene, branch: str, preset: Preset, q: np.ndarray, x:
         return ()
     error = float(np.max(np.linalg.norm(kin.observe_points(scene.mechanism_to_loop(q)) - analytic, axis=-1)))
     return (Verdict(f"{branch}: MuJoCo {preset.name} vertex position error (edge lengths)", error,
-                    preset.angle_rad, "max over samples and vertices, unit edges", len(x)),)
+                    preset.angle_rad, "max over samples and vertices, unit edges", len(x), id=MUJOCO_VERTEX_ERROR,
+                    branch=branch),)
 
 
 def run_branch(scene: Scene, branch: str, model: CompiledModel, seed: str) -> BranchRun:
@@ -286,26 +311,30 @@ def run_branch(scene: Scene, branch: str, model: CompiledModel, seed: str) -> Br
     verdicts = (
         Verdict(f"{branch}: swept range ({MIN_SWEEP_RAD:g} rad / input range swept)",
                 MIN_SWEEP_RAD / swept if swept > 0 else float("inf"), 1.0,
-                f"the input moved over {swept:.3g} rad; a run that sweeps less than {MIN_SWEEP_RAD:g} rad cannot pass"),
+                f"the input moved over {swept:.3g} rad; a run that sweeps less than {MIN_SWEEP_RAD:g} rad cannot pass",
+                id=SWEPT_RANGE, branch=branch),
         *_point_verdicts(scene, branch, preset, dynamic.q, dyn.input),
         *_own_step_verdicts(scene, branch, model, own),
         Verdict(f"{branch}: MuJoCo {preset.name} path error" + (" after projection" if own else "") + " (rad)",
                 dyn.max_error(), preset.angle_rad,
                 "max over samples and joints of |sim - closed form at the simulated input|"
                 + _singular_crossings(scene, branch, dyn.input, dyn.error, mobility)
-                + _conditioning(scene, dyn, preset.angle_rad), len(dyn.input)),
+                + _conditioning(scene, dyn, preset.angle_rad), len(dyn.input), id=MUJOCO_PATH_ERROR, branch=branch),
         Verdict(f"{branch}: MuJoCo {preset.name} closure residual (m)", float(np.max(dynamic.closure_residual)),
                 preset.residual(scene.length_scale), "largest gap between paired closure sites",
-                len(dynamic.closure_residual)),
+                len(dynamic.closure_residual), id=MUJOCO_CLOSURE_RESIDUAL, branch=branch),
         Verdict(f"{branch}: MuJoCo projection path error (rad)", proj_error, proj_tol,
                 f"Gauss-Newton on MuJoCo's equality residuals at each input, to the rounding floor; {proj_where}"
-                + _singular_crossings(scene, branch, proj.input, proj.error, mobility), len(proj.input)),
+                + _singular_crossings(scene, branch, proj.input, proj.error, mobility), len(proj.input),
+                id=PROJECTION_PATH_ERROR, branch=branch),
         Verdict(f"{branch}: branch followed", float(labels.followed != branch or labels.flips > 0), 0.0,
-                f"followed {labels.followed or 'none'}, {labels.flips} flips", len(labels.labels)),
+                f"followed {labels.followed or 'none'}, {labels.flips} flips", len(labels.labels), id=BRANCH_FOLLOWED,
+                branch=branch),
         Verdict(f"{branch}: mobility, numeric rank vs MuJoCo rank vs truss (poses that differ)", float(disagree), 0.0,
                 f"Kutzbach {mobility['gruebler']}"
                 + (f" (+{mobility['idle_spins']} idle spin, taken off every count)" if mobility["idle_spins"] else "")
-                + f", instantaneous {mobility['start']['numeric']} at the start", 1 + len(mobility["bifurcations"])),
+                + f", instantaneous {mobility['start']['numeric']} at the start", 1 + len(mobility["bifurcations"]),
+                id=MOBILITY_AGREEMENT, branch=branch),
         *_input_count_verdict(scene, branch, mobility),
     )
     return BranchRun(
@@ -367,29 +396,34 @@ def _input_count_verdict(scene: Scene, branch: str, mobility: dict) -> tuple[Ver
         return ()
     kin = scene.kinematics
     stuck = kin.start_check() if hasattr(kin, "start_check") else None  # a trace that never left its start
-    frames = () if stuck is None else (Verdict(f"{branch}: traced motion stops at its start", *stuck),)
+    frames = () if stuck is None else (Verdict(f"{branch}: traced motion stops at its start", *stuck,
+                                                   id=TRACE_STOPS_AT_START, branch=branch),)
     tolerance = getattr(kin, "frames_tolerance", None)
     if tolerance is not None and getattr(kin, "frame_distances", None):
         far = [d["distance_rad"] for d in kin.frame_distances]
         worst = float("inf") if any(d is None for d in far) else max(far)
         frames += (Verdict(f"{branch}: frames' distance from the rigid motion (rad)", worst, tolerance,
-                           f"{len(far)} frames; beyond the traced motion counts as infinite"),)
+                           f"{len(far)} frames; beyond the traced motion counts as infinite", id=FRAMES_DISTANCE,
+                           branch=branch),)
     target = kin.target_check() if hasattr(kin, "target_check") else None  # a FOLD file's folded state, reached?
     if target is not None:
-        frames += (Verdict(f"{branch}: folded state's distance from the rigid motion (rad)", *target),)
+        frames += (Verdict(f"{branch}: folded state's distance from the rigid motion (rad)", *target,
+                           id=FOLDED_STATE_DISTANCE, branch=branch),)
     state = kin.state_check() if hasattr(kin, "state_check") else None  # a FOLD file's folded form (fold.FormFit)
     if state is not None:
-        frames += (Verdict(f"{branch}: file state's distance from the nearest rigid state (/ its precision)", *state),)
+        frames += (Verdict(f"{branch}: file state's distance from the nearest rigid state (/ its precision)", *state,
+                           id=FILE_STATE_DISTANCE, branch=branch),)
     unfolded = kin.unfolded_letters() if hasattr(kin, "unfolded_letters") else None
     if unfolded is not None:
         frames += (Verdict(f"{branch}: M/V creases the motion leaves flat", float(len(unfolded)), 0.0,
                            f"{', '.join(unfolded[:8])}{' ...' if len(unfolded) > 8 else ''}: the letters do not fold "
-                           "rigidly with them folded" if unfolded else "every M/V crease folds"),)
+                           "rigidly with them folded" if unfolded else "every M/V crease folds",
+                           id=MV_CREASES_LEFT_FLAT, branch=branch),)
     return (*frames, Verdict(f"{branch}: freedoms not driven (mobility along the path - inputs)",
                     float(max(along["typical"] - mobility["inputs"], 0)), 0.0,
                     f"mobility {along['typical']} along the traced path (min {along['min']}, max {along['max']}), "
                     f"{mobility['inputs']} input(s) "
-                    f"{', '.join(scene.drives)}"),)
+                    f"{', '.join(scene.drives)}", id=FREEDOMS_NOT_DRIVEN, branch=branch),)
 
 
 def _own_step_verdicts(scene: Scene, branch: str, model: CompiledModel, own: list[np.ndarray]) -> tuple[Verdict, ...]:
@@ -404,7 +438,8 @@ def _own_step_verdicts(scene: Scene, branch: str, model: CompiledModel, own: lis
     path = compare(scene, branch, Bindings(model).angles(scene, np.array(own)))
     return (Verdict(f"{branch}: MuJoCo {model.preset.name} path error before projection (rad)", path.max_error(),
                     FAST.angle_rad, "MuJoCo's own step from each projected state, before its projection: "
-                    "max over steps and joints of |sim - closed form at the simulated input|", len(own)),)
+                    "max over steps and joints of |sim - closed form at the simulated input|", len(own),
+                    id=MUJOCO_OWN_STEP_ERROR, branch=branch),)
 
 
 def run_blockage(scene: Scene, branch: str) -> tuple[Blockage, float]:
@@ -446,11 +481,11 @@ def run_free(scene: Scene, preset: Preset) -> tuple[dict, list[Verdict]]:
     verdicts = [
         Verdict(f"free run ({FREE_DURATION:g} s under gravity): energy drift (J)", drift, preset.energy_j,
                 f"E0 = {run.energy[0]:.6g} J at the release, E at each state after a step; "
-                f"{run.cpu_time_s:.3g} s CPU{peer}"),
-        *(dataclasses.replace(v, name=f"free run: {v.name}") for v in own_step),
+                f"{run.cpu_time_s:.3g} s CPU{peer}", id=FREE_RUN_ENERGY_DRIFT, branch=scene.free_branch),
+        *(dataclasses.replace(v, name=f"free run: {v.name}", id=FREE_RUN_OWN_STEP_ERROR) for v in own_step),
         Verdict("free run: path error against the closed form" + (" after projection" if own else "") + " (rad)",
                 path.max_error(), preset.angle_rad,
-                "unforced motion stays on the closed-form branch"),
+                "unforced motion stays on the closed-form branch", id=FREE_RUN_PATH_ERROR, branch=scene.free_branch),
     ]
     return doc, verdicts
 
@@ -530,6 +565,7 @@ def validate(
                 TOLERANCES.blockage_rad,
                 f"stopped at {blockage.stop_input:.6f}, contact at {blockage.contact_input:.6f}, "
                 f"zero-thickness lock at {blockage.analytic_limit:.6f} rad",
+                id=BLOCKAGE_STOP, branch=names[0],
             )
         )
     free = None
@@ -549,6 +585,7 @@ def validate(
                 float(len(never)),
                 0.0,
                 f"{', '.join(never) or 'none'}; unseeded it took {point['unseeded_followed'] or 'no clear branch'}",
+                id=BIFURCATION_UNFOLLOWED,
             )
         )
     timings["bifurcation_study_cpu_s"] = time.thread_time() - t1

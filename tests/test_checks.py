@@ -43,7 +43,7 @@ def symmetric_inputs(scene) -> np.ndarray:
      (np.inf, 1.0, False), (-np.inf, 0.0, True)],
 )
 def test_verdict_passes_exactly_when_measured_is_at_most_tolerance(measured, tolerance, passed):
-    verdict = Verdict("check", measured, tolerance)
+    verdict = Verdict("check", measured, tolerance, id="check")
     assert verdict.passed is passed
 
 
@@ -152,7 +152,31 @@ def test_blockage_without_contact_is_measured_against_the_end_of_the_path():
 def test_a_check_that_compared_nothing_cannot_pass():
     from sim_origami.checks.verdict import Verdict
 
-    assert Verdict("error (rad)", 0.0, 1e-6, compared=200).passed
-    assert not Verdict("error (rad)", 0.0, 1e-6, compared=0).passed  # an empty max is no agreement
-    assert Verdict("events", 0.0, 0.0).passed  # a count of events compares no samples
-    assert not Verdict("error (rad)", float("nan"), 1e-6, compared=5).passed
+    assert Verdict("error (rad)", 0.0, 1e-6, compared=200, id="error").passed
+    assert not Verdict("error (rad)", 0.0, 1e-6, compared=0, id="error").passed  # an empty max is no agreement
+    assert Verdict("events", 0.0, 0.0, id="events").passed  # a count of events compares no samples
+    assert not Verdict("error (rad)", float("nan"), 1e-6, compared=5, id="error").passed
+
+
+def test_every_verdict_made_has_its_own_stable_kebab_case_id_constant():
+    """Each `Verdict(...)` the package makes names its kind by a module constant (`id=SWEPT_RANGE`), never a string
+    literal; the constants are short kebab-case (the schema's pattern) and no two kinds share one."""
+    import ast
+    import importlib
+    import re
+    from pathlib import Path
+
+    ids = {}
+    for module in ("sim_origami.validation", "sim_origami.checks.reference", "sim_origami.cli.validate"):
+        mod = importlib.import_module(module)
+        tree = ast.parse(Path(mod.__file__).read_text(encoding="utf-8"))
+        calls = [n for n in ast.walk(tree) if isinstance(n, ast.Call)
+                 and (getattr(n.func, "id", None) == "Verdict" or getattr(n.func, "attr", None) == "replace")]
+        for call in calls:
+            assert getattr(call.func, "id", None) != "Verdict" or any(k.arg == "id" for k in call.keywords), \
+                (module, ast.unparse(call)[:80])
+            for keyword in (k for k in call.keywords if k.arg == "id"):
+                assert isinstance(keyword.value, ast.Name), (module, ast.unparse(call)[:80])
+                ids[keyword.value.id] = getattr(mod, keyword.value.id)
+    assert len(ids) >= 25 and len(set(ids.values())) == len(ids), ids
+    assert all(re.fullmatch(r"[a-z0-9]+(-[a-z0-9]+)*", value) for value in ids.values()), ids

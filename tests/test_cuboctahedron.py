@@ -25,7 +25,7 @@ from sim_origami.kinematics.cuboctahedron import (
     volume,
 )
 from sim_origami.scenes.cuboctahedron import INPUT_JOINT, assembly
-from sim_origami.validation import validate
+from sim_origami.validation import MUJOCO_VERTEX_ERROR, validate
 
 DEG = np.pi / 180
 INDEX = {v: k for k, v in enumerate(NAMES)}
@@ -321,7 +321,7 @@ def test_mujoco_follows_the_transformation_and_sees_the_octahedron_bifurcation()
     report = validate(scenes.get("cuboctahedron").build())
     assert report.passed
     run = report.runs[0]
-    vertex = next(v for v in run.verdicts if "vertex position" in v.name)
+    vertex = next(v for v in run.verdicts if v.id == MUJOCO_VERTEX_ERROR)
     assert vertex.measured < 1e-6  # issue 6 target, unit edges (measured 1.0e-7, fast 8x)
     mobility = run.mobility
     assert (mobility["start"]["numeric"], mobility["start"]["mujoco"], mobility["start"]["truss"]) == (1, 1, 1)

@@ -11,6 +11,7 @@ from fold_fixtures import frog_base, slit_crane, three_flap_base, validated, wat
 
 from sim_origami.fold import read_fold
 from sim_origami.kinematics.vertex4 import Vertex4
+from sim_origami.validation import MV_CREASES_LEFT_FLAT
 
 BASES = {"waterbomb": waterbomb_base, "frog": frog_base, "three-flap": three_flap_base}
 
@@ -126,7 +127,7 @@ def test_the_frog_base_fails_on_its_spines_left_flat(tmp_path, capsys):
     ]
     verdicts = report["verdicts"] + [v for b in report["branches"] for v in b["verdicts"]]
     failing = [v for v in verdicts if not v["passed"]]
-    assert code == 1 and [v["name"] for v in failing] == ["through-target: M/V creases the motion leaves flat"]
+    assert code == 1 and [(v["branch"], v["id"]) for v in failing] == [("through-target", MV_CREASES_LEFT_FLAT)]
     assert len(spines) == failing[0]["measured"] == 8 and failing[0]["detail"].startswith(", ".join(spines) + ": ")
     assert "FAIL through-target: M/V creases the motion leaves flat: 8" in shown
     lock = [e for e in events if e["kind"] == "lock"]

@@ -20,7 +20,7 @@ from sim_origami.cli import validate as validate_command
 from sim_origami.fold import read_fold
 from sim_origami.kinematics.numeric_pattern import LOCK_MARGIN
 from sim_origami.scenes.fold_file import _by_rank, _choose_inputs, fold_scene
-from sim_origami.validation import closed_form_verdicts
+from sim_origami.validation import FREEDOMS_NOT_DRIVEN, MV_CREASES_LEFT_FLAT, TRACE_STOPS_AT_START, closed_form_verdicts
 
 DEG = np.pi / 180
 
@@ -351,7 +351,7 @@ def test_square_twist_with_flat_foldable_letters_does_not_fold_rigidly(tmp_path,
     assert code == 1 and not report["passed"]
     (stop,) = [e for e in report["events"] if e["kind"] == "lock"]
     assert "e1 would fold against its M letter" in stop["detail"] and abs(stop["input_rad"]) < 0.1
-    stuck = next(v for v in report["verdicts"] if "stops at its start" in v["name"])
+    stuck = next(v for v in report["verdicts"] if v["id"] == TRACE_STOPS_AT_START)
     assert not stuck["passed"] and "e1 would fold against its M letter" in stuck["detail"]
 
 
@@ -497,7 +497,7 @@ def test_letters_whose_motion_leaves_some_flat_do_not_fold_rigidly(tmp_path):
 @pytest.mark.slow
 def test_the_diamond_yoshimura_fails_naming_the_creases_left_flat(tmp_path):
     code, report = validated(tmp_path, "diamonds", diamonds(yoshimura()))
-    verdict = next(v for v in report["branches"][0]["verdicts"] if "leaves flat" in v["name"])
+    verdict = next(v for v in report["branches"][0]["verdicts"] if v["id"] == MV_CREASES_LEFT_FLAT)
     assert code == 1 and verdict["measured"] == 16 and "do not fold rigidly" in verdict["detail"]
 
 
@@ -523,10 +523,10 @@ def test_mujoco_diverging_on_a_users_file_is_a_failed_check_with_its_report(tmp_
     assert code == 1, printed
     report = json.loads((out / "report.json").read_text())
     *known, verdict = report["verdicts"]  # the checks made before MuJoCo stopped come first, as they were measured
-    assert not report["passed"] and verdict["name"] == "MuJoCo run finished without a warning"
+    assert not report["passed"] and verdict["id"] == validate_command.MUJOCO_RUN_FINISHED
     assert "preset fast" in verdict["detail"] and "first went wrong at step" in verdict["detail"]
     assert "mjWARN_BADQACC" in verdict["detail"] and "FAIL fold-grid" in printed
-    undriven = next(v for v in known if "freedoms not driven" in v["name"])
+    undriven = next(v for v in known if v["id"] == FREEDOMS_NOT_DRIVEN)
     assert undriven["measured"] == 40 and not undriven["passed"]  # 15 of 55 inputs: the cause, printed first
     assert "FAIL through-target: freedoms not driven (mobility along the path - inputs): 40" in printed
 

@@ -10,10 +10,12 @@ import pytest
 from fold_fixtures import degree4_letters, miura_letters_only, validated, write
 
 from sim_origami.cli import main
+from sim_origami.cli.validate import MUJOCO_RUN_FINISHED
 from sim_origami.errors import ParameterError
 from sim_origami.fold import read_fold
 from sim_origami.kinematics.numeric_pattern import BRANCH, TARGET_TOL, PatternPath, assignment_signs
 from sim_origami.scenes.fold_file import fold_scene
+from sim_origami.validation import FOLDED_STATE_DISTANCE, TRACE_STOPS_AT_START
 
 
 def four_mountains(angle: float) -> dict:
@@ -26,7 +28,7 @@ def test_a_folded_state_off_the_rigid_motion_fails_with_its_distance(tmp_path, c
     # four mountains at -160 deg: a degree-4 vertex folds one diagonal pair only (Maekawa), so the state is far off
     # its rigid motion (measured 3.28 rad at the inputs' end); it passed with exit 0 and an event in report.json only
     code, report = validated(tmp_path, "four mountains", four_mountains(-160.0))
-    verdict = next(v for b in report["branches"] for v in b["verdicts"] if "folded state's distance" in v["name"])
+    verdict = next(v for b in report["branches"] for v in b["verdicts"] if v["id"] == FOLDED_STATE_DISTANCE)
     assert code == 1 and not report["passed"] and not verdict["passed"] and verdict["measured"] > 3.0
     assert verdict["tolerance"] == TARGET_TOL and "does not fold rigidly to it" in verdict["detail"]
     shown = capsys.readouterr().out
@@ -55,9 +57,9 @@ def test_a_trace_stuck_at_its_start_fails_on_its_stall_without_a_mujoco_run(tmp_
     doc["vertices_coords"][6] = [doc["vertices_coords"][6][0] + 0.05, doc["vertices_coords"][6][1] + 0.03]
     code, report = validated(tmp_path, "moved vertex", doc)
     failing = [v for v in report["verdicts"] if not v["passed"]]
-    assert code == 1 and [v["name"] for v in failing] == ["through-target: traced motion stops at its start"]
+    assert code == 1 and [(v["branch"], v["id"]) for v in failing] == [("through-target", TRACE_STOPS_AT_START)]
     assert failing[0]["detail"].startswith("stall at 0.153906 rad: no rigid configuration beyond")
-    assert not any("MuJoCo" in v["name"] for v in report["verdicts"]) and report["events"][0]["kind"] == "stall"
+    assert MUJOCO_RUN_FINISHED not in {v["id"] for v in report["verdicts"]} and report["events"][0]["kind"] == "stall"
     shown = capsys.readouterr().out
     assert "FAIL through-target: traced motion stops at its start" in shown and "stall at 0.153906 rad" in shown
     assert "no MuJoCo run: the drive of through-target sweeps 0 rad" in shown

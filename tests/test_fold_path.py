@@ -20,7 +20,7 @@ from sim_origami.path import Polyline, independent_joints, trace
 from sim_origami.presets import FAST
 from sim_origami.scenes.fold_file import fold_scene, steadiest
 from sim_origami.simulate import simulate
-from sim_origami.validation import MIN_SWEEP_RAD, validate
+from sim_origami.validation import MIN_SWEEP_RAD, SWEPT_RANGE, validate
 
 
 def strip(n: int, letters: str = "MVMVMV") -> CreasePattern:
@@ -107,7 +107,7 @@ def test_a_180_deg_target_is_a_direction_not_a_vacuous_pass(tmp_path, capsys):
 def test_a_frozen_sweep_fails_the_swept_range_verdict(tmp_path):
     scene = fold_scene(write_fold(tmp_path / "s.fold", strip(1, "V"), fold_angles=[1.0]))
     report = validate(replace(scene, path=(0.5, 0.5)))
-    swept = [v for r in report.runs for v in r.verdicts if "swept range" in v.name]
+    swept = [v for r in report.runs for v in r.verdicts if v.id == SWEPT_RANGE]
     assert not report.passed and len(swept) == 1 and not swept[0].passed and MIN_SWEEP_RAD == 1e-3
 
 

@@ -16,14 +16,13 @@ from fold_fixtures import degree4_letters, folded_form, folded_xyz, miura_letter
 from sim_origami.fold import read_fold
 from sim_origami.kinematics.numeric_pattern import BRANCH, PatternPath, assignment_signs
 from sim_origami.scenes.fold_file import fold_scene
-
-NAME = "through-target: file state's distance from the nearest rigid state (/ its precision)"
+from sim_origami.validation import FILE_STATE_DISTANCE, SWEPT_RANGE, TRACE_STOPS_AT_START
 
 
 def state_verdict(report: dict) -> dict:
-    """The folded state's verdict, found by name (at the top level when no MuJoCo run was made)."""
+    """The folded state's verdict, found by its id (at the top level when no MuJoCo run was made)."""
     every = [*report["verdicts"], *(v for b in report.get("branches", []) for v in b["verdicts"])]
-    return next(v for v in every if v["name"] == NAME)
+    return next(v for v in every if v["id"] == FILE_STATE_DISTANCE)
 
 
 def strained(xyz: np.ndarray, strain: float) -> np.ndarray:
@@ -81,7 +80,7 @@ def test_rounded_forms_of_patterns_rigid_only_by_their_geometry_fold(tmp_path, w
     # measured: 0.239 of 5e-5 (Miura), 0.405 of 5e-7 (square twist)
     assert 0.1 < verdict["measured"] < 0.5 and "4 further states of the same faces along one rigid motion" in \
         verdict["detail"] and "the rigid motion passes through it" in verdict["detail"]
-    swept = next(v for b in report["branches"] for v in b["verdicts"] if "swept range" in v["name"])
+    swept = next(v for b in report["branches"] for v in b["verdicts"] if v["id"] == SWEPT_RANGE)
     assert swept["measured"] < 0.01  # the motion sweeps over 0.1 rad
 
 
@@ -119,7 +118,7 @@ def test_strained_series_is_a_failing_verdict_with_its_distance(tmp_path, fracti
     else:
         assert "frame 3 vertices_coords are 0.00237 (0.0011 of the form's size 2.15)" in detail
     # the rest of the validation ran on those nearest states: MuJoCo follows their rigid motion
-    assert all(v["passed"] for b in report["branches"] for v in b["verdicts"] if v["name"] != NAME)
+    assert all(v["passed"] for b in report["branches"] for v in b["verdicts"] if v["id"] != FILE_STATE_DISTANCE)
 
 
 @pytest.mark.slow
@@ -130,7 +129,7 @@ def test_a_direction_whose_start_does_not_close_is_a_verdict_not_a_refusal(tmp_p
 
     code, report = validated(tmp_path, "box", box_fold())
     # the stall is the failing check, and no MuJoCo run is made on its zero-length drive
-    assert code == 1 and not next(v for v in report["verdicts"] if "stops at its start" in v["name"])["passed"]
+    assert code == 1 and not next(v for v in report["verdicts"] if v["id"] == TRACE_STOPS_AT_START)["passed"]
     stall = next(e for e in report["events"] if e["kind"] == "stall")
     assert "the start does not close (residual 1.35e-05)" in stall["detail"]
     verdict = state_verdict(report)  # its coordinates (15 digits) are a developable state: nothing moved

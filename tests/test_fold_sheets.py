@@ -12,6 +12,7 @@ from sim_origami.checks.paths import closure_conditions, compare
 from sim_origami.graph import breadth_first_depths
 from sim_origami.scenes.fold_file import fold_scene
 from sim_origami.simulate import project, projection_conditions
+from sim_origami.validation import MUJOCO_CLOSURE_RESIDUAL, SWEPT_RANGE
 
 SHEETS = {
     "plain": (3, 4, 1.0, 1.0, 0.3),
@@ -28,7 +29,7 @@ SHEETS = {
 def test_letters_only_sheet_folds_to_its_lock_and_validates(tmp_path, capsys, name):
     code, report = validated(tmp_path, name, miura_letters_only(*SHEETS[name]))
     assert code == 0, capsys.readouterr().out
-    swept = next(v for v in report["branches"][0]["verdicts"] if "swept range" in v["name"])
+    swept = next(v for v in report["branches"][0]["verdicts"] if v["id"] == SWEPT_RANGE)
     assert swept["name"].endswith("swept range (0.001 rad / input range swept)")
     assert swept["measured"] < 1e-3  # more than a radian of one crease's motion, up to where it locks
     assert report["passed"] is True
@@ -73,7 +74,7 @@ def test_a_large_near_square_sheet_keeps_mujocos_closures_within_tolerance(tmp_p
     assert scene.tuning.fast_timeconst_scale > 1.0 and max(_depths(scene.mechanism).values()) == 12
     code, report = validated(tmp_path, "near-square-12", doc)
     assert code == 0, capsys.readouterr().out
-    gap = next(v for v in report["branches"][0]["verdicts"] if "fast closure residual" in v["name"])
+    gap = next(v for v in report["branches"][0]["verdicts"] if v["id"] == MUJOCO_CLOSURE_RESIDUAL)
     assert gap["measured"] < 0.5 * gap["tolerance"]
 
 

@@ -21,7 +21,7 @@ from sim_origami.origami import pattern_mechanism
 from sim_origami.presets import FAST
 from sim_origami.report import motion_fold
 from sim_origami.scenes.fold_file import fold_scene
-from sim_origami.validation import Report, validate
+from sim_origami.validation import MUJOCO_PATH_ERROR, Report, validate
 
 JS = Path(__file__).parent / "js"
 ALPHA, BETA, T = 0.7, 0.6, 0.5
@@ -205,7 +205,7 @@ def test_the_default_input_is_the_steadiest_crease(motions):
     scene = fold_scene(motions["waterbomb-thick"])
     assert scene.drives not in (("e10",), ("e7",))
     report = validate(scene)
-    path = next(v for run in report.runs for v in run.verdicts if "MuJoCo fast path error" in v.name)
+    path = next(v for run in report.runs for v in run.verdicts if v.id == MUJOCO_PATH_ERROR)
     assert path.measured < 0.2 * path.tolerance, path
     assert report.passed, failures(report)
 

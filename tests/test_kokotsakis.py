@@ -23,7 +23,7 @@ from sim_origami.kinematics.kokotsakis import (
 from sim_origami.kinematics.vertex4 import Vertex4, flat_foldable_fold_angles, flat_foldable_multipliers
 from sim_origami.presets import FAST
 from sim_origami.tolerances import TOLERANCES
-from sim_origami.validation import validate
+from sim_origami.validation import CLOSED_FORM_VS_NUMERIC, MUJOCO_PATH_ERROR, validate
 
 DEG = np.pi / 180
 # Worked values to 6 decimals: half a unit of the last digit.
@@ -224,15 +224,14 @@ def test_events_name_the_creases_that_fold_flat():
 def test_validate_closed_form_numeric_and_mujoco(case):
     scene = scenes.get("kokotsakis").build(case=float(case))
     report = validate(scene)
-    measured = {v.name: v.measured for v in report.verdicts} | {v.name: v.measured for r in report.runs
-                                                                 for v in r.verdicts}
+    measured = {(v.branch, v.id): v.measured for v in (*report.verdicts, *(v for r in report.runs for v in r.verdicts))}
     for run in report.runs:
         b = run.requested
         # closed form vs numeric: measured <= 3.0e-14 (case 1), 5.5e-14 (2, S from 0.5 rad), 2.9e-14 (3), 1.2e-14 (4)
-        assert measured[f"{b}: closed form vs numeric closure (rad)"] <= TOLERANCES.closed_form_rad
+        assert measured[b, CLOSED_FORM_VS_NUMERIC] <= TOLERANCES.closed_form_rad
         # fast: measured case 1 odd2 2.8e-8, odd3 7.3e-8 (4x sweep); case 2 C 9.0e-10, S 4.3e-8 (16x);
         # case 3 4.8e-9 to 5.6e-8 (4x); case 4 1.7e-8 (1x)
-        assert measured[f"{b}: MuJoCo fast path error (rad)"] <= FAST.angle_rad
+        assert measured[b, MUJOCO_PATH_ERROR] <= FAST.angle_rad
         assert measured[f"{b}: MuJoCo projection path error (rad)"] <= TOLERANCES.projection_rad  # <= 2.1e-14
         assert (run.followed, run.flips) == (b, 0)
         start = run.mobility["start"]

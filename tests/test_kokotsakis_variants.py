@@ -23,7 +23,13 @@ from sim_origami.presets import FAST
 from sim_origami.scenes import Tuning
 from sim_origami.scenes.patterns import pattern_scene
 from sim_origami.tolerances import TOLERANCES
-from sim_origami.validation import validate
+from sim_origami.validation import (
+    CLOSED_FORM_RESIDUAL,
+    CLOSED_FORM_VS_NUMERIC,
+    MUJOCO_PATH_ERROR,
+    PROJECTION_PATH_ERROR,
+    validate,
+)
 
 SCRIPT = Path(__file__).resolve().parents[1] / "scripts" / "kokotsakis_variants.py"
 _spec = importlib.util.spec_from_file_location("kokotsakis_variants", SCRIPT)
@@ -158,16 +164,15 @@ def test_new_plane_symmetric_layout_mesh_in_mujoco():
     scene = pattern_scene("kokotsakis_variant", {}, mesh, mesh.pattern, drive=INPUT, path=(0.3, 1.1), root="central",
                           tuning=Tuning(sweep_time_scale=4.0))
     report = validate(scene)
-    measured = {x.name: x.measured for x in report.verdicts} | {x.name: x.measured for r in report.runs
-                                                                 for x in r.verdicts}
+    measured = {(x.branch, x.id): x.measured for x in (*report.verdicts, *(x for r in report.runs for x in r.verdicts))}
     names = "odd2-odd2-odd4-odd4 odd2-odd3-odd1-odd4 odd3-odd2-odd4-odd1 odd3-odd3-odd1-odd1"
     assert [r.requested for r in report.runs] == names.split()
     for run in report.runs:
         b = run.requested
-        assert measured[f"{b}: closed-form closure residual"] <= TOLERANCES.closed_form_residual  # <= 4.5e-15
-        assert measured[f"{b}: closed form vs numeric closure (rad)"] <= TOLERANCES.closed_form_rad  # <= 3.7e-14
-        assert measured[f"{b}: MuJoCo fast path error (rad)"] <= FAST.angle_rad  # measured 5.3e-9 to 4.5e-8
-        assert measured[f"{b}: MuJoCo projection path error (rad)"] <= TOLERANCES.projection_rad  # <= 7.1e-15
+        assert measured[b, CLOSED_FORM_RESIDUAL] <= TOLERANCES.closed_form_residual  # <= 4.5e-15
+        assert measured[b, CLOSED_FORM_VS_NUMERIC] <= TOLERANCES.closed_form_rad  # <= 3.7e-14
+        assert measured[b, MUJOCO_PATH_ERROR] <= FAST.angle_rad  # measured 5.3e-9 to 4.5e-8
+        assert measured[b, PROJECTION_PATH_ERROR] <= TOLERANCES.projection_rad  # <= 7.1e-15
         start = run.mobility["start"]
         assert (start["numeric"], start["mujoco"], start["truss"]) == (1, 1, 1)
         assert [(p["numeric"], p["mujoco"]) for p in run.mobility["bifurcations"]] == [(4, 4)]

@@ -17,7 +17,13 @@ from sim_origami.kinematics.dh import DHRow, dh_loop
 from sim_origami.kinematics.myard import BRANCH, Myard
 from sim_origami.presets import FAST
 from sim_origami.tolerances import TOLERANCES
-from sim_origami.validation import validate
+from sim_origami.validation import (
+    CLOSED_FORM_RESIDUAL,
+    CLOSED_FORM_VS_NUMERIC,
+    MUJOCO_PATH_ERROR,
+    PROJECTION_PATH_ERROR,
+    validate,
+)
 
 DEG = np.pi / 180
 HYPOTHESIS = settings(max_examples=25, deadline=None, derandomize=True, database=None)
@@ -224,12 +230,12 @@ def test_validate_default_scene_passes_every_verdict():
     assert report.passed, [v for v in report.verdicts if not v.passed]
     (run,) = report.runs
     assert run.followed == BRANCH and run.flips == 0
-    measured = {v.name.split(": ", 1)[1]: v.measured for v in (*report.verdicts, *run.verdicts)}
+    measured = {v.id: v.measured for v in (*report.verdicts, *run.verdicts)}
     # Measured: fast path error 3.9e-7 rad (tolerance 2e-6), projection 2.2e-15 rad (1e-13),
     # closure residual 9.0e-16 (1e-12), closed form vs numeric 2.0e-14 rad (1e-12).
-    assert measured["MuJoCo fast path error (rad)"] <= FAST.angle_rad
-    assert measured["MuJoCo projection path error (rad)"] <= TOLERANCES.projection_rad
-    assert measured["closed-form closure residual"] <= TOLERANCES.closed_form_residual
-    assert measured["closed form vs numeric closure (rad)"] <= TOLERANCES.closed_form_rad
+    assert measured[MUJOCO_PATH_ERROR] <= FAST.angle_rad
+    assert measured[PROJECTION_PATH_ERROR] <= TOLERANCES.projection_rad
+    assert measured[CLOSED_FORM_RESIDUAL] <= TOLERANCES.closed_form_residual
+    assert measured[CLOSED_FORM_VS_NUMERIC] <= TOLERANCES.closed_form_rad
     # measured 1.3e-15 m
     assert run.projection_residual_m <= TOLERANCES.projection_residual_m

@@ -11,7 +11,7 @@ from PIL import Image
 from sim_origami import scenes
 from sim_origami.plots import LEGEND_MAX, PNG_COLOURS, joint_colors, plot_report
 from sim_origami.presets import FAST_PROJECTED
-from sim_origami.validation import validate
+from sim_origami.validation import MUJOCO_PATH_ERROR, validate
 
 SVG = "{http://www.w3.org/2000/svg}"
 
@@ -35,7 +35,7 @@ def test_error_panel_marks_tolerance_events_and_leaves_out_the_driven_input(tmp_
     plot_report(report, tmp_path / "curves.png")
     assert (tmp_path / "curves.png").stat().st_size > 10_000
     texts = svg_text(tmp_path / "curves.svg")
-    tol = next(v.tolerance for v in report.runs[0].verdicts if v.name.endswith("fast path error (rad)"))
+    tol = next(v.tolerance for v in report.runs[0].verdicts if v.id == MUJOCO_PATH_ERROR)
     assert f"tolerance {tol:.2g} rad" in texts
     root = ET.parse(tmp_path / "curves.svg").getroot()
     assert any(g.get("id") == "tolerance-0" for g in root.iter(f"{SVG}g"))
@@ -64,7 +64,7 @@ def test_a_projected_preset_draws_the_tolerance_of_the_path_it_plots(tmp_path):
     # fast-projected checks the path after projection (drawn) and MuJoCo's own steps before it (not drawn)
     report = validate(scenes.get("bennett").build(), preset=FAST_PROJECTED)
     plot_report(report, tmp_path / "curves.png")
-    drawn = next(v for v in report.runs[0].verdicts if v.name.endswith("path error after projection (rad)"))
+    drawn = next(v for v in report.runs[0].verdicts if v.id == MUJOCO_PATH_ERROR)  # after projection
     texts = svg_text(tmp_path / "curves.svg")
     assert f"tolerance {drawn.tolerance:.2g} rad" in texts and sum(t.startswith("tolerance ") for t in texts) == 1
 

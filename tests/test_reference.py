@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from sim_origami import scenes
-from sim_origami.checks.reference import compare_reference, read_reference
+from sim_origami.checks.reference import REFERENCE_BRANCH_JUMPS, compare_reference, read_reference
 from sim_origami.cli import main
 from sim_origami.errors import ParameterError
 from sim_origami.precision import half_unit
@@ -275,8 +275,8 @@ def test_a_curve_starting_at_the_bifurcation_is_one_stretch_on_its_branch(tmp_pa
 # --- a comparison that covers nothing cannot pass (issue: vacuous passes) ---------------------------------------
 
 
-def _by_name(result, text: str):
-    (verdict,) = [v for v in result.verdicts if v.name.startswith(text)]
+def _by_id(result, check: str):
+    (verdict,) = [v for v in result.verdicts if v.id == check]
     return verdict
 
 
@@ -301,7 +301,7 @@ def test_a_curve_jumping_between_branches_that_do_not_meet_fails(tmp_path, miura
     result = check(tmp_path, miura, rows)
     assert [s["branch"] for s in result.doc["branches"]] == ["miura", "straight"]
     assert result.verdicts[0].passed  # each sample is on a branch ...
-    jump = _by_name(result, "reference switches of branch")
+    jump = _by_id(result, REFERENCE_BRANCH_JUMPS)
     assert not jump.passed and "miura -> straight between lines 5 and 6" in jump.detail  # ... but not one motion
 
 

@@ -22,6 +22,7 @@ from sim_origami.cli import validate as validate_command
 from sim_origami.presets import PRESET_NAMES
 from sim_origami.scenes.fold_file import fold_scene
 from sim_origami.stabilize import MODES
+from sim_origami.validation import CLOSED_FORM_RESIDUAL, MUJOCO_PATH_ERROR
 
 SCHEMA = json.loads((files("sim_origami") / "report.schema.json").read_text(encoding="utf-8"))
 VALIDATOR = jsonschema.Draft202012Validator(SCHEMA)
@@ -59,8 +60,9 @@ def validated(tmp_path: Path, *argv: str) -> tuple[int, dict]:
     return code, conforming(out / "report.json")
 
 
-def verdict(name: str = "bennett: closed-form closure residual") -> dict:
-    return {"name": name, "measured": 1e-15, "tolerance": 1e-12, "passed": True, "detail": "", "compared": 400}
+def verdict(name: str = "B: closed-form closure residual", check: str = CLOSED_FORM_RESIDUAL) -> dict:
+    return {"id": check, "branch": "B", "name": name, "measured": 1e-15, "tolerance": 1e-12, "passed": True,
+            "detail": "", "compared": 400}
 
 
 def provenance() -> dict:
@@ -78,7 +80,7 @@ def minimal_report() -> dict:
               "projection_closure_residual_max_m": None, "sweep_time_s": 4.0, "steps": 500,
               "step_cpu_time_s": 0.02, "events": [],
               "mobility": {"gruebler": -2, "idle_spins": 0, "inputs": 1, "start": point, "bifurcations": []},
-              "verdicts": [verdict("B: MuJoCo fast path error (rad)")]}
+              "verdicts": [verdict("B: MuJoCo fast path error (rad)", MUJOCO_PATH_ERROR)]}
     return {"sim_origami": "0.1.0", "scene": "bennett", "params": {"a": 1.0}, "adjustments": [], "notes": "",
             "preset": "fast",
             "stabilize": "none", "seed": "closed", "input": {"name": "theta1", "drive_joint": "theta1"},
@@ -140,13 +142,16 @@ def broken(change) -> dict:
         (broken(lambda d: d["provenance"]["machine"].pop("cores")), "'cores' is a required property"),
         (broken(lambda d: d["timings_s"].update(render_cpu_s=1.0)), "'render_cpu_s' was unexpected"),
         (broken(lambda d: d.update(preset="fastest")), "preset: 'fastest' is not one of"),
+        (broken(lambda d: d["verdicts"][0].pop("id")), "'id' is a required property"),
+        (broken(lambda d: d["verdicts"][0].update(id="Swept range")), "verdicts/0/id: 'Swept range' does not match"),
         (broken(lambda d: d["events"].append({"kind": "lock", "input_rad": "pi", "branches": ["B"], "detail": ""})),
          "events/0/input_rad: 'pi' is not of type 'number'"),
         (minimal_failed_report() | {"passed": True}, "passed: False was expected"),
         (minimal_failed_report() | {"seed": "closed"}, "'seed' was unexpected"),
     ],
     ids=["misspelt-required", "unknown-key", "string-number", "fractional-count", "verdict-misspelt", "string-bool",
-         "missing-nested", "unknown-timing", "unknown-preset", "string-event-input", "failed-passing",
+         "missing-nested", "unknown-timing", "unknown-preset", "verdict-without-id", "display-text-id",
+         "string-event-input", "failed-passing",
          "failed-extra-key"],
 )
 def test_a_report_off_the_schema_is_refused_naming_where(doc, needle):
@@ -263,7 +268,7 @@ def test_a_run_mujoco_could_not_finish_conforms(tmp_path, capsys):
     scene = replace(scene, tuning=replace(scene.tuning, sweep_time_scale=0.01))
     assert validate_command.validate_scene(scene, args) == 1
     doc = conforming(tmp_path / "out" / "report.json")
-    assert doc["verdicts"][-1]["name"] == "MuJoCo run finished without a warning" and "events" not in doc
+    assert doc["verdicts"][-1]["id"] == validate_command.MUJOCO_RUN_FINISHED and "events" not in doc
     assert doc["provenance"]["command"] is None  # validate_scene called, not the command line
 
 

@@ -15,7 +15,7 @@ from sim_origami.report import as_dict
 from sim_origami.simulate import Bindings, compile_model, drive_targets, simulate, simulate_free, start_pose
 from sim_origami.stabilize import before_projection, run_step, step_function
 from sim_origami.studies.peer_model import body_poses, potential_energy, rigid_model, tree_model
-from sim_origami.validation import validate
+from sim_origami.validation import MUJOCO_OWN_STEP_ERROR, MUJOCO_PATH_ERROR, validate
 
 FREE_S = 10.0
 
@@ -133,15 +133,14 @@ def test_report_states_the_stabilisation():
     report = validate(scene_of("bennett"), preset=FAST_PROJECTED, branch="bennett")
     doc = as_dict(report)
     assert report.passed and doc["preset"] == "fast-projected" and doc["stabilize"] == "position"
-    checks = {v["name"]: v for v in doc["branches"][0]["verdicts"]}
-    before = checks["bennett: MuJoCo fast-projected path error before projection (rad)"]
-    after = checks["bennett: MuJoCo fast-projected path error after projection (rad)"]
+    checks = {v["id"]: v for v in doc["branches"][0]["verdicts"]}
+    before, after = checks[MUJOCO_OWN_STEP_ERROR], checks[MUJOCO_PATH_ERROR]
     assert before["tolerance"] == FAST.angle_rad and after["tolerance"] == FAST_PROJECTED.angle_rad
     assert before["compared"] == after["compared"] == report.runs[0].dynamic.steps
     assert 1e-9 < before["measured"] < FAST.angle_rad and after["measured"] < 1e-13
     plain = as_dict(validate(scene_of("bennett"), branch="bennett"))
     assert plain["stabilize"] == "none"
-    assert not [v for v in plain["branches"][0]["verdicts"] if "projection (rad)" in v["name"] and "fast" in v["name"]]
+    assert MUJOCO_OWN_STEP_ERROR not in {v["id"] for v in plain["branches"][0]["verdicts"]}
 
 
 def test_before_projection_records_mujocos_own_steps():

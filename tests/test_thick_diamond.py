@@ -22,7 +22,7 @@ from sim_origami.kinematics.thick_vertex5 import lifted_loop
 from sim_origami.presets import FAST
 from sim_origami.simulate import contact_distance, contact_input
 from sim_origami.tolerances import TOLERANCES
-from sim_origami.validation import validate
+from sim_origami.validation import MUJOCO_PATH_ERROR, PROJECTION_PATH_ERROR, validate
 
 DEG = np.pi / 180
 BRANCHES = (DIAMOND, COUNTER)
@@ -261,11 +261,11 @@ def test_validate_default_scene_passes_every_verdict(scene):
     assert report.passed, [v for v in every if not v.passed]
     assert [(run.requested, run.followed, run.flips) for run in report.runs] == [(b, b, 0) for b in BRANCHES]
     for run in report.runs:
-        measured = {v.name.split(": ", 1)[1]: v.measured for v in run.verdicts}
+        measured = {v.id: v.measured for v in run.verdicts}
         # Measured: fast path error 1.7e-6 (diamond) and 4.2e-7 rad (counter23), projection 7.1e-15 and
         # 6.7e-15 rad, fast closure gap 9.8e-8 and 1.9e-8 m.
-        assert measured["MuJoCo fast path error (rad)"] <= FAST.angle_rad
-        assert measured["MuJoCo projection path error (rad)"] <= TOLERANCES.projection_rad
+        assert measured[MUJOCO_PATH_ERROR] <= FAST.angle_rad
+        assert measured[PROJECTION_PATH_ERROR] <= TOLERANCES.projection_rad
         # the bifurcation at flat: mobility 2 there in the numeric loop and in MuJoCo, 1 at the start
         # truss method alike; one state of self-stress (a Bricard 6R) at the start, two at flat
         flat = {"input_rad": 0.0, "numeric": 2, "mujoco": 2, "truss": 2, "truss_self_stress": 2}

@@ -14,7 +14,7 @@ from sim_origami.kinematics.thick_vertex5 import BRANCH, ThickVertex5, lifted_lo
 from sim_origami.presets import FAST
 from sim_origami.simulate import contact_distance, contact_input
 from sim_origami.tolerances import TOLERANCES
-from sim_origami.validation import validate
+from sim_origami.validation import BLOCKAGE_STOP, MUJOCO_PATH_ERROR, PROJECTION_PATH_ERROR, validate
 
 DEG = np.pi / 180
 # Peng 2018's example of eqn 4-22: alpha = pi/6, a23 = 1 m, a12 = 0.5 m; its fold angles at rho1 = pi/2 (6 decimals).
@@ -249,12 +249,12 @@ def test_validate_default_scene_passes_every_verdict(scene):
     (run,) = report.runs
     assert run.followed == BRANCH and run.flips == 0
     assert report.bifurcations == ()
-    measured = {v.name.split(": ", 1)[1]: v.measured for v in (*report.verdicts, *run.verdicts)}
+    measured = {v.id: v.measured for v in (*report.verdicts, *run.verdicts)}
     # Measured: fast path error 3.6e-7 rad, projection 7.5e-15 rad, fast closure gap 2.9e-8 m,
     # closed form vs numeric 2.7e-15 rad; blockage stop -2.099131 vs contact -2.097859 (1.3e-3 rad).
-    assert measured["MuJoCo fast path error (rad)"] <= FAST.angle_rad
-    assert measured["MuJoCo projection path error (rad)"] <= TOLERANCES.projection_rad
-    assert measured["servo stop vs kinematic contact (rad)"] <= TOLERANCES.blockage_rad
+    assert measured[MUJOCO_PATH_ERROR] <= FAST.angle_rad
+    assert measured[PROJECTION_PATH_ERROR] <= TOLERANCES.projection_rad
+    assert measured[BLOCKAGE_STOP] <= TOLERANCES.blockage_rad
     assert report.blockage.stopped and report.blockage.contact_input == pytest.approx(-2.0978594, abs=1e-6)
     # truss method alike, with the Myard linkage's two states of self-stress (Yang 2017, Sec. 3.4)
     start = {"input_rad": -0.4, "numeric": 1, "mujoco": 1, "truss": 1, "truss_self_stress": 2}

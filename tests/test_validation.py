@@ -13,7 +13,7 @@ from sim_origami.presets import FAST, STIFF
 from sim_origami.scenes import Tuning
 from sim_origami.simulate import simulate
 from sim_origami.tolerances import TOLERANCES
-from sim_origami.validation import validate
+from sim_origami.validation import BLOCKAGE_STOP, validate
 
 
 @functools.cache
@@ -50,7 +50,7 @@ def test_validate_thick_miura_adds_a_passing_blockage_verdict():
     assert report.passed
     assert report.blockage is not None and report.blockage.stopped
     assert report.blockage.contact_input < report.blockage.analytic_limit
-    blockage = [v for v in report.verdicts if v.name.startswith("blockage")]
+    blockage = [v for v in report.verdicts if v.id == BLOCKAGE_STOP]
     assert len(blockage) == 1 and blockage[0].tolerance == TOLERANCES.blockage_rad
     assert blockage[0].measured == report.blockage.error <= TOLERANCES.blockage_rad
 
@@ -65,7 +65,7 @@ def test_run_of_one_branch_compared_against_the_other_branch_fails_the_tolerance
 
 def test_report_with_one_failing_verdict_does_not_pass():
     report = report_of("vertex4", branch="odd1")
-    wrong = Verdict("deliberately wrong", measured=2.0, tolerance=1.0)
+    wrong = Verdict("deliberately wrong", measured=2.0, tolerance=1.0, id="deliberately-wrong")
     assert not dataclasses.replace(report, verdicts=(*report.verdicts, wrong)).passed
     run = dataclasses.replace(report.runs[0], verdicts=(*report.runs[0].verdicts, wrong))
     assert not dataclasses.replace(report, runs=(run,)).passed

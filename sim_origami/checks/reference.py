@@ -511,6 +511,14 @@ def _where(s: dict, input_name: str, unit: str) -> str:
             f"{s['branch']})")
 
 
+# Each reference check's stable id (`Verdict.id`, report.json's `verdicts[].id`).
+REFERENCE_OVER_TOLERANCE = "reference-over-tolerance"  # samples farther from the numeric solve than their tolerance
+REFERENCE_OUTSIDE_DOMAINS = "reference-outside-domains"  # samples outside every branch's domain
+REFERENCE_NUMERIC_STALLS = "reference-numeric-stalls"  # stretches where the numeric loop solve stalled
+REFERENCE_BRANCH_JUMPS = "reference-branch-jumps"  # switches of branch where the two branches do not meet
+REFERENCE_UNSIMULATED = "reference-unsimulated"  # stretches on a simulated branch outside MuJoCo's swept range
+
+
 def _verdicts(doc: dict, n: int) -> tuple[Verdict, ...]:
     unit = doc["units"][doc["input"]]
     w = doc["worst"]
@@ -529,16 +537,18 @@ def _verdicts(doc: dict, n: int) -> tuple[Verdict, ...]:
     unsimulated = [s for s in doc["branches"] if s.get("mujoco_samples") == 0]
     return (
         Verdict("reference curves vs numeric loop closure: samples over tolerance", float(over), 0.0, detail,
-                doc["compared_samples"]),
-        Verdict("reference samples outside every branch's domain", float(len(outside)), 0.0, where or "none"),
+                doc["compared_samples"], id=REFERENCE_OVER_TOLERANCE),
+        Verdict("reference samples outside every branch's domain", float(len(outside)), 0.0, where or "none",
+                id=REFERENCE_OUTSIDE_DOMAINS),
         Verdict("reference: numeric loop solve stalled (stretches)", float(len(doc["numeric_stalls"])), 0.0,
-                "; ".join(s["error"] for s in doc["numeric_stalls"]) or "none"),
+                "; ".join(s["error"] for s in doc["numeric_stalls"]) or "none", id=REFERENCE_NUMERIC_STALLS),
         Verdict("reference switches of branch where the two branches do not meet", float(len(jumps)), 0.0,
-                jumped or "none"),
+                jumped or "none", id=REFERENCE_BRANCH_JUMPS),
         Verdict("reference stretches on a simulated branch with no sample in MuJoCo's swept range",
                 float(len(unsimulated)), 0.0,
                 "; ".join(f"{s['branch']}, lines {s['lines'][0]}-{s['lines'][1]}" for s in unsimulated)
-                or f"{doc['mujoco_samples']} of {doc['compared_samples']} compared samples compared with MuJoCo"),
+                or f"{doc['mujoco_samples']} of {doc['compared_samples']} compared samples compared with MuJoCo",
+                id=REFERENCE_UNSIMULATED),
     )
 
 

@@ -10,6 +10,7 @@ from tqdm import tqdm
 
 from .. import scenes
 from ..checks.reference import read_reference, summary_lines
+from ..checks.verdict import Verdict
 from ..conventions import deg_to_rad
 from ..errors import DomainError, ParameterError, SimulationError
 from ..files import check_folder, claimed_folder, write_text
@@ -27,6 +28,8 @@ HELP = "cross-check closed form, numeric closure and MuJoCo; write report.json, 
 # Frames rendered per run with --render, and their size (pixels) unless --size says.
 FRAMES = 60
 DEFAULT_SIZE = (640, 480)
+# The stable id (`Verdict.id`) of the check a run MuJoCo could not finish fails.
+MUJOCO_RUN_FINISHED = "mujoco-run-finished"
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
@@ -155,8 +158,8 @@ def validate_in_all(scene, args, out: Path) -> dict:
 def failed_run(scene, args, out: Path, err: SimulationError) -> dict:
     """report.json for a run MuJoCo could not finish: the failing check and the configuration where it happened."""
     preset = chosen_preset(scene, args)
-    stopped = {"name": "MuJoCo run finished without a warning", "measured": 1.0, "tolerance": 0.0, "passed": False,
-               "detail": str(err), "compared": None}
+    stopped = verdict_json(Verdict("MuJoCo run finished without a warning", 1.0, 0.0, str(err),
+                                   id=MUJOCO_RUN_FINISHED))
     # no run made (a --fold trace stuck at its start): the trace's stop is the failing check, and its events say more
     ran = not isinstance(err, ZeroSweepError)
     doc = {"scene": scene.name, "params": scene.params, "preset": preset.name, "passed": False,
@@ -260,7 +263,7 @@ def validate_scene(scene, args: argparse.Namespace) -> int:
         except SimulationError as err:  # MuJoCo diverged: a failed check on this pattern, not bad input
             doc = failed_run(scene, args, stage, err)
             # the checks made without MuJoCo first: an under-driven pattern's divergence is the symptom, not the cause
-            for v in (v for v in doc["verdicts"] if not v["passed"] and v["detail"] != str(err)):
+            for v in (v for v in doc["verdicts"] if not v["passed"] and v["id"] != MUJOCO_RUN_FINISHED):
                 print(f"  FAIL {v['name']}: {number(v['measured'], '.3g')} (tolerance {v['tolerance']:g})")
                 if isinstance(err, ZeroSweepError):  # why the trace stopped is the reason the run failed
                     print(f"       {v['detail']}")
