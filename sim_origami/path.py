@@ -85,6 +85,8 @@ SPARSE_RANK_STRIDE = 10
 SPARSE_SPECTRUM_FROM = 400
 SMALL_SPECTRUM_FIRST = 8
 SMALL_SPECTRUM_BASIS = 32  # Lanczos vectors kept (ARPACK's ncv)
+SHIFT_FLOOR = 1e-8
+MULTIPLICITY_BLOCK = 4
 # The toward predictor's sparse least squares stops at this relative residual: a predictor, closed by the corrector
 # after it (1e-15 cost 0.13 s a call on the 16 x 16 Miura sheet near flat).
 PREDICTOR_TOL = 1e-8
@@ -307,28 +309,61 @@ def condition(J, rtol: float = RANK_RTOL) -> float:
 def small_spectrum(J: sp.spmatrix, rtol: float = RANK_RTOL) -> tuple[float, int, float]:
     """
     A large sparse matrix's largest singular value, how many are at most rtol times it (at least 1: `rank_of`'s
-    cut) and the smallest above that (0 when none is), from the extreme eigenvalues of its Gram matrix J^T J alone:
-    the largest by Lanczos, the SMALL_SPECTRUM_FIRST smallest by Lanczos on (J^T J + c I)^-1, c the cut squared,
-    factored once by sparse LU; where all of those are below the cut, from the whole spectrum (`singular_values`). A
-    dense eigendecomposition of the Gram matrix costs n^3 (0.92 s at 1,512 creases, once per sample and rank); this
-    grows about as its sparse factor.
+    cut) and the smallest above that (0 when none is), from the extreme eigenvalues of its Gram matrix J^T J alone
+    (`_smallest`); where its null space is too wide for that, from the whole spectrum (`singular_values`). A dense
+    eigendecomposition of the Gram matrix costs n^3 (0.92 s at 1,512 creases, once per sample and rank); this grows
+    about as its sparse factor.
+    """
+    found = _smallest(J, rtol)
+    if found is not None:
+        largest, cut, values, _ = found
+        return largest, int(np.sum(values <= cut)), float(values[values > cut].min())
+    s = singular_values(J)  # a null space this wide (many freedoms): the whole spectrum
+    r = rank_of(s, rtol)
+    return float(s[0]), J.shape[1] - r, float(s[r - 1]) if r else 0.0
+
+
+def null_space(J, rtol: float = RANK_RTOL) -> NDArray[np.float64]:
+    """An orthonormal basis (n, k) of a matrix's null space: its right singular vectors for singular values at most
+    rtol times the largest (at least 1); a large sparse one's from `_smallest` when its null space is narrower than
+    SMALL_SPECTRUM_FIRST, otherwise from a dense SVD."""
+    if sp.issparse(J) and J.shape[1] > SPARSE_SPECTRUM_FROM and (found := _smallest(J, rtol)) is not None:
+        _, cut, values, V = found
+        return V[:, values <= cut]
+    M = J.toarray() if sp.issparse(J) else np.asarray(J)
+    _, s, Vt = np.linalg.svd(M)
+    return Vt[int(np.sum(s > rtol * max(s.max(initial=0.0), 1.0))) :].T
+
+
+def _smallest(J: sp.spmatrix, rtol: float) -> tuple[float, float, NDArray, NDArray] | None:
+    """
+    A sparse matrix's largest singular value by Lanczos, its cut (rtol times that, at least rtol), and its
+    SMALL_SPECTRUM_FIRST smallest singular values with their right singular vectors, by Lanczos on
+    (J^T J + c^2 I)^-1, factored once by sparse LU, c the cut (at least SHIFT_FLOOR of the largest, where a smaller
+    shift would leave the factor singular to rounding). None when they do not reach above the cut, or when a block
+    of inverse iterations orthogonal to the null vectors found finds another: Lanczos keeps one copy of an eigenvalue
+    repeated exactly, as a null space of several dimensions is (a test matrix with 3 repeated columns gave 1).
     """
     n = J.shape[1]
     G = (J.T @ J).tocsc()
     largest = float(np.sqrt(max(eigsh(G, k=1, which="LA", return_eigenvectors=False)[0], 0.0)))
     cut = rtol * max(largest, 1.0)
-    shifted = splu((G + cut**2 * sp.identity(n, format="csc")).tocsc())
-    inverse = LinearOperator((n, n), matvec=shifted.solve, dtype=float)
+    shift = max(cut, SHIFT_FLOOR * max(largest, 1.0)) ** 2
+    lu = splu((G + shift * sp.identity(n, format="csc")).tocsc())
+    inverse = LinearOperator((n, n), matvec=lu.solve, dtype=float)
     k = min(SMALL_SPECTRUM_FIRST, n - 2)
-    # eigenvalues of the inverse, 1 / (lambda + cut^2): its largest are the Gram matrix's smallest
-    inv = eigsh(inverse, k=k, ncv=min(n - 1, max(2 * k + 1, SMALL_SPECTRUM_BASIS)), which="LA",
-                return_eigenvectors=False)
-    values = np.sqrt(np.clip(1.0 / inv - cut**2, 0.0, None))
-    if np.any(values > cut):
-        return largest, int(np.sum(values <= cut)), float(values[values > cut].min())
-    s = singular_values(J)  # a null space this wide (many freedoms): Lanczos would meet a cluster; the whole spectrum
-    r = rank_of(s, rtol)
-    return largest, n - r, float(s[r - 1]) if r else 0.0
+    inv, V = eigsh(inverse, k=k, ncv=min(n - 1, max(2 * k + 1, SMALL_SPECTRUM_BASIS)), which="LA")
+    # eigenvalues of the inverse, 1 / (lambda + shift): its largest are the Gram matrix's smallest
+    values = np.sqrt(np.clip(1.0 / inv - shift, 0.0, None))
+    if not np.any(values > cut):
+        return None
+    null = V[:, values <= cut]
+    W = np.random.default_rng(0).standard_normal((n, MULTIPLICITY_BLOCK))
+    for _ in range(2):
+        W = lu.solve(W - null @ (null.T @ W))
+        W = np.linalg.qr(W - null @ (null.T @ W))[0]
+    missed = np.linalg.eigvalsh(W.T @ (G @ W))
+    return None if np.sqrt(max(missed.min(), 0.0)) <= cut else (largest, cut, values, V)
 
 
 def singular_values(J) -> NDArray[np.float64]:

@@ -16,12 +16,14 @@ from pathlib import Path
 import mujoco
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from scipy import sparse as sp
 from scipy.spatial.transform import Rotation
 
 from . import __version__
 from .files import atomic_path, write_text
 from .fold import write_fold
 from .mjcf import CompiledModel, Replay, replay_xml
+from .path import null_space
 from .presets import Preset
 from .simulate import Bindings, Scene, closure_model, constraint_jacobian, start_input
 from .validation import Report
@@ -438,8 +440,7 @@ def drive_inertia(model: mujoco.MjModel, data: mujoco.MjData, dofs: NDArray[np.i
     M = np.zeros((model.nv, model.nv))
     mujoco.mj_fullM(model, data, M)
     J = constraint_jacobian(model, data)[data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY]
-    _, s, Vt = np.linalg.svd(J) if len(J) else (None, np.zeros(0), np.eye(model.nv))
-    N = Vt[int(np.sum(s > NULL_RTOL * s.max(initial=0.0))) :].T
+    N = null_space(sp.csr_matrix(J), NULL_RTOL) if len(J) else np.eye(model.nv)
     out = np.diag(M)[dofs].copy()
     for k, dof in enumerate(dofs):
         e = N[dof]
