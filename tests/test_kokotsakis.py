@@ -23,7 +23,7 @@ from sim_origami.kinematics.kokotsakis import (
 from sim_origami.kinematics.vertex4 import Vertex4, flat_foldable_fold_angles, flat_foldable_multipliers
 from sim_origami.presets import FAST
 from sim_origami.tolerances import TOLERANCES
-from sim_origami.validation import CLOSED_FORM_VS_NUMERIC, MUJOCO_PATH_ERROR, validate
+from sim_origami.validation import CLOSED_FORM_VS_NUMERIC, MUJOCO_PATH_ERROR, PROJECTION_PATH_ERROR, validate
 
 DEG = np.pi / 180
 # Worked values to 6 decimals: half a unit of the last digit.
@@ -232,7 +232,7 @@ def test_validate_closed_form_numeric_and_mujoco(case):
         # fast: measured case 1 odd2 2.8e-8, odd3 7.3e-8 (4x sweep); case 2 C 9.0e-10, S 4.3e-8 (16x);
         # case 3 4.8e-9 to 5.6e-8 (4x); case 4 1.7e-8 (1x)
         assert measured[b, MUJOCO_PATH_ERROR] <= FAST.angle_rad
-        assert measured[f"{b}: MuJoCo projection path error (rad)"] <= TOLERANCES.projection_rad  # <= 2.1e-14
+        assert measured[b, PROJECTION_PATH_ERROR] <= TOLERANCES.projection_rad  # <= 2.1e-14
         assert (run.followed, run.flips) == (b, 0)
         start = run.mobility["start"]
         assert (start["input_rad"], start["numeric"], start["mujoco"], start["truss"]) == (
