@@ -15,7 +15,13 @@ import numpy as np
 import pytest
 
 from sim_origami import scenes
-from sim_origami.checks.reference import REFERENCE_BRANCH_JUMPS, compare_reference, read_reference
+from sim_origami.checks.reference import (
+    REFERENCE_BRANCH_JUMPS,
+    REFERENCE_OUTSIDE_DOMAINS,
+    REFERENCE_OVER_TOLERANCE,
+    compare_reference,
+    read_reference,
+)
 from sim_origami.cli import main
 from sim_origami.errors import ParameterError
 from sim_origami.precision import half_unit
@@ -54,6 +60,12 @@ def check(tmp_path, miura, rows, **kw):
     return compare_reference(ref, miura)
 
 
+def _by_id(result, check: str):
+    """The result's one check of kind `check` (its `Verdict.id`)."""
+    (verdict,) = [v for v in result.verdicts if v.id == check]
+    return verdict
+
+
 def test_half_unit_of_printed_numbers():
     assert half_unit("30") == 0.5
     assert half_unit("12.50") == pytest.approx(0.005)
@@ -83,14 +95,14 @@ def test_a_sample_at_the_bifurcation_itself(tmp_path, miura):
     assert [s["branch"] for s in result.doc["branches"]] == ["miura"]
     rows[4, 3] += np.rad2deg(1e-3)
     result = compare_reference(read_reference(write_csv(tmp_path / "b.csv", rows, header), miura.kinematics), miura)
-    assert not result.verdicts[0].passed and result.doc["worst"]["line"] == 7
+    assert not _by_id(result, REFERENCE_OVER_TOLERANCE).passed and result.doc["worst"]["line"] == 7
 
 
 def test_sign_error_fails(tmp_path, miura):
     rows = kamrava(THETA)
     rows[:, 2] *= -1  # psi with the wrong sign
     result = check(tmp_path, miura, rows)
-    assert not result.verdicts[0].passed
+    assert not _by_id(result, REFERENCE_OVER_TOLERANCE).passed
     assert result.doc["over_tolerance"]["samples"] == len(THETA)
     assert result.doc["reference_vs_numeric_max_rad"] > 0.1
 
@@ -100,7 +112,7 @@ def test_small_perturbation_fails_naming_the_worst_sample(tmp_path, miura):
     k = 30
     rows[k, 2] += np.rad2deg(1e-3)
     result = check(tmp_path, miura, rows)
-    verdict = result.verdicts[0]
+    verdict = _by_id(result, REFERENCE_OVER_TOLERANCE)
     assert not verdict.passed and verdict.measured == 1.0
     worst = result.doc["worst"]
     assert worst["joint"] == "psi" and worst["line"] == k + 3  # comment, header, then the samples
@@ -113,8 +125,8 @@ def test_small_perturbation_fails_naming_the_worst_sample(tmp_path, miura):
 def test_a_looser_given_tolerance_lets_the_perturbation_pass(tmp_path, miura):
     rows = kamrava(THETA)
     rows[30, 2] += np.rad2deg(1e-3)
-    assert check(tmp_path, miura, rows, tol=2e-3).verdicts[0].passed
-    assert not check(tmp_path, miura, rows, tol=5e-4).verdicts[0].passed
+    assert _by_id(check(tmp_path, miura, rows, tol=2e-3), REFERENCE_OVER_TOLERANCE).passed
+    assert not _by_id(check(tmp_path, miura, rows, tol=5e-4), REFERENCE_OVER_TOLERANCE).passed
 
 
 def test_samples_outside_every_branch_are_reported(tmp_path, miura):
@@ -122,7 +134,7 @@ def test_samples_outside_every_branch_are_reported(tmp_path, miura):
     rows = np.vstack([rows, [95.0, 0.0, 0.0, 190.0]])  # beyond both the miura (54.7) and straight (90) locks
     result = check(tmp_path, miura, rows)
     assert result.doc["outside_every_branch"] == [{"line": 6, "input_rad": pytest.approx(np.deg2rad(95.0))}]
-    assert result.verdicts[0].passed and not result.verdicts[1].passed
+    assert _by_id(result, REFERENCE_OVER_TOLERANCE).passed and not _by_id(result, REFERENCE_OUTSIDE_DOMAINS).passed
 
 
 def test_decreasing_inputs_in_radians_from_the_option(tmp_path, miura):
@@ -225,7 +237,8 @@ def test_fold_file_scene_takes_a_reference_through_the_same_interface(tmp_path):
     rows[4, 2] += 1e-3
     result = compare_reference(read_reference(write_csv(tmp_path / "bad.csv", rows, header, 12), scene.kinematics),
                                scene)
-    assert not result.verdicts[0].passed and result.doc["worst"]["joint"] == scene.kinematics.joint_names[2]
+    assert not _by_id(result, REFERENCE_OVER_TOLERANCE).passed
+    assert result.doc["worst"]["joint"] == scene.kinematics.joint_names[2]
 
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "docs" / "examples"
@@ -275,11 +288,6 @@ def test_a_curve_starting_at_the_bifurcation_is_one_stretch_on_its_branch(tmp_pa
 # --- a comparison that covers nothing cannot pass (issue: vacuous passes) ---------------------------------------
 
 
-def _by_id(result, check: str):
-    (verdict,) = [v for v in result.verdicts if v.id == check]
-    return verdict
-
-
 def test_a_branch_restriction_restricts_the_reference(tmp_path, miura):
     """Curves of the miura branch checked on the straight branch alone (validate --branch straight) fail: they are
     compared with that branch, not quietly with the one they fit."""
@@ -287,7 +295,7 @@ def test_a_branch_restriction_restricts_the_reference(tmp_path, miura):
     assert all(v.passed for v in compare_reference(ref, miura).verdicts)
     result = compare_reference(ref, miura, branches=("straight",))
     assert {s["branch"] for s in result.doc["branches"]} == {"straight"}
-    assert not result.verdicts[0].passed and result.doc["over_tolerance"]["samples"] == 7
+    assert not _by_id(result, REFERENCE_OVER_TOLERANCE).passed and result.doc["over_tolerance"]["samples"] == 7
 
 
 def test_a_curve_jumping_between_branches_that_do_not_meet_fails(tmp_path, miura):
@@ -300,7 +308,7 @@ def test_a_curve_jumping_between_branches_that_do_not_meet_fails(tmp_path, miura
     rows[3:, 1:] = np.rad2deg(straight[:, [names.index(j) for j in ("phi", "psi", "rho_c")]])
     result = check(tmp_path, miura, rows)
     assert [s["branch"] for s in result.doc["branches"]] == ["miura", "straight"]
-    assert result.verdicts[0].passed  # each sample is on a branch ...
+    assert _by_id(result, REFERENCE_OVER_TOLERANCE).passed  # each sample is on a branch ...
     jump = _by_id(result, REFERENCE_BRANCH_JUMPS)
     assert not jump.passed and "miura -> straight between lines 5 and 6" in jump.detail  # ... but not one motion
 
@@ -313,7 +321,7 @@ def test_a_value_printed_as_an_overflowing_exponent_is_not_its_own_tolerance(tmp
     body[3] = body[3].rsplit(",", 1)[0] + ",1e+308"
     path.write_text(HEADER + "\n" + "\n".join(body) + "\n")
     result = compare_reference(read_reference(str(path), miura.kinematics), miura)
-    assert not result.verdicts[0].passed and result.doc["worst"]["tolerance_rad"] <= 0.1 + 1e-9
+    assert not _by_id(result, REFERENCE_OVER_TOLERANCE).passed and result.doc["worst"]["tolerance_rad"] <= 0.1 + 1e-9
 
 
 @pytest.mark.parametrize(
@@ -342,7 +350,7 @@ def test_a_zero_with_an_overflowing_exponent_is_compared(tmp_path, miura):
     body[1] = body[1].split(",", 1)[0] + ",0e400," + body[1].split(",", 2)[2]
     path.write_text(HEADER + "\n" + "\n".join(body) + "\n")
     result = compare_reference(read_reference(str(path), miura.kinematics), miura)
-    assert not result.verdicts[0].passed and result.doc["worst"]["line"] == 3
+    assert not _by_id(result, REFERENCE_OVER_TOLERANCE).passed and result.doc["worst"]["line"] == 3
 
 
 def test_more_samples_than_the_limit_are_refused_before_any_solve(tmp_path, miura):
