@@ -339,11 +339,11 @@ def _smallest(J: sp.spmatrix, rtol: float, expected: int | None = None) -> tuple
     """
     A sparse matrix's largest singular value by Lanczos, its cut (rtol times that, at least rtol), and its
     SMALL_SPECTRUM_FIRST (or `expected` + SMALL_SPECTRUM_FIRST) smallest singular values with their right singular
-    vectors, by Lanczos on
-    (J^T J + c^2 I)^-1, factored once by sparse LU, c the cut (at least SHIFT_FLOOR of the largest, where a smaller
-    shift would leave the factor singular to rounding). None when they do not reach above the cut, or when a block
-    of inverse iterations orthogonal to the null vectors found finds another: Lanczos keeps one copy of an eigenvalue
-    repeated exactly, as a null space of several dimensions is (a test matrix with 3 repeated columns gave 1).
+    vectors, by Lanczos on (J^T J + c^2 I)^-1, factored once by sparse LU, c the cut (at least SHIFT_FLOOR of the
+    largest, where a smaller shift would leave the factor singular to rounding). None when they do not reach above
+    the cut, or when a block of inverse iterations orthogonal to the null vectors found finds another: Lanczos keeps
+    one copy of an eigenvalue repeated exactly, as a null space of several dimensions is (a test matrix with 3
+    repeated columns gave 1).
     """
     n = J.shape[1]
     G = (J.T @ J).tocsc()
