@@ -38,7 +38,7 @@ from .errors import AssemblyError, ParameterError
 from .geometry import invert, wrap
 from .graph import DisjointSets
 from .mechanism import Mechanism
-from .path import MULTIPLICITY_BLOCK, ArcSystem, follow_arc, padded_svd, singular_values
+from .path import ArcSystem, follow_arc, least_outside, padded_svd, singular_values
 
 if TYPE_CHECKING:
     from .scenes.base import Scene
@@ -468,25 +468,12 @@ def _gram_counts(M: NDArray[np.float64], rtol: float) -> tuple[int, float, float
     w, V = eigsh(G, k=GRAM_LOW, sigma=-shift, which="LM", OPinv=inverse, v0=np.ones(n))
     V = np.linalg.qr(lu.solve(V[:, np.argsort(w)]))[0]
     w = np.sum(V * (G @ V), axis=0)
-    if not top > 0 or w.max() < GRAM_CUT**2 * top or _missed(G, lu, V, rtol**2 * top):
+    if not top > 0 or w.max() < GRAM_CUT**2 * top or least_outside(G, lu.solve, V) <= rtol**2 * top:
         return None
     s = np.linalg.svd(A @ V, compute_uv=False)
     rel = np.r_[s, np.zeros(GRAM_LOW - len(s))] / np.sqrt(top)  # the GRAM_LOW smallest; the largest is counted
     small = int(np.sum(rel <= rtol))
     return M.shape[1] - small, float(rel[rel > rtol].min()), float(rel[rel <= rtol].max(initial=0.0))
-
-
-def _missed(G: sp.csr_matrix, lu, V: NDArray[np.float64], below: float) -> bool:
-    """
-    Whether Gram matrix G has an eigenvalue at most `below` outside the span of V (Lanczos keeps one copy of an
-    eigenvalue repeated exactly): two inverse iterations (`lu` factors G plus a small shift) of a random block kept
-    orthogonal to V, and their smallest Rayleigh quotient.
-    """
-    W = np.random.default_rng(0).standard_normal((G.shape[0], MULTIPLICITY_BLOCK))
-    for _ in range(2):
-        W = lu.solve(W - V @ (V.T @ W))
-        W = np.linalg.qr(W - V @ (V.T @ W))[0]
-    return bool(np.linalg.eigvalsh(W.T @ (G @ W)).min() <= below)
 
 
 def removable_bars(truss: Truss) -> tuple[int, ...]:
