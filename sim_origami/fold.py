@@ -986,6 +986,11 @@ def _panels(faces: list[Face], flat: list[tuple[int, int]]) -> list[Face]:
         return faces
 
 
+def _pattern_panels(pattern: CreasePattern) -> list[Face]:
+    """`_panels` of a crease pattern: its faces merged across its F creases."""
+    return _panels(list(pattern.faces), [(c.start, c.end) for c in pattern.creases if c.assignment == "F"])
+
+
 def _worst(sheet: _Sheet) -> FormFit | None:
     """The folded forms read (the crease pattern's frame unfolded, other frames' coordinates) farthest from their
     nearest rigid states against their precision, and how many were compared; None without any."""
@@ -1024,7 +1029,7 @@ def _on_a_motion(
     if len(sigma) < len(rho) or sigma[-1] <= MOBILE_RTOL * sigma[0]:
         return None  # its state already moves (an exact Miura sheet: 1e-15 of the largest; 6 decimals 1e-11)
     missed = []
-    panels = _panels(list(pattern.faces), [(c.start, c.end) for c in pattern.creases if c.assignment == "F"])
+    panels = _pattern_panels(pattern)
     if len(fit.xyz) <= MOTION_VERTICES:
         moving = _further_states(fit, pattern, panels, scale, hinges, loops, rho, k, label, missed)
         if moving is not None:
@@ -1260,7 +1265,7 @@ def _measured(sheet: _Sheet, frame: Mapping[str, Any], field: str) -> NDArray[np
         raise ParameterError(f"{field} has {len(xyz)} vertices; the crease pattern has {sheet.n_file_vertices}")
     given = xyz[sheet.source]
     fold_mesh.dihedral_angles(given, list(sheet.pattern.faces), sheet.hinges, sheet.signs, field)  # faces with area
-    faces = _panels(list(sheet.pattern.faces), [(c.start, c.end) for c in sheet.pattern.creases if c.assignment == "F"])
+    faces = _pattern_panels(sheet.pattern)
     bars = fold_mesh.face_bars(faces)
     unit = frame.get("frame_unit", "unit")
     rest = np.linalg.norm(sheet.pattern.vertices[bars[:, 0]] - sheet.pattern.vertices[bars[:, 1]], axis=1)
